@@ -1,0 +1,3 @@
+file(REMOVE_RECURSE
+  "libwhatnext_core.a"
+)

@@ -1,0 +1,2 @@
+# Empty dependencies file for whatnext_io.
+# This may be replaced when dependencies are built.

@@ -1,0 +1,11 @@
+# Writes examples_embedded.cpp holding examples/example1..4.toml as string literals.
+set(body "// Generated from examples/*.toml by cmake/embed_examples.cmake; do not edit.\n")
+string(APPEND body "#include \"whatnext/config.hpp\"\n\nnamespace whatnext {\n\n")
+string(APPEND body "std::string_view example_toml(int n) {\n  switch (n) {\n")
+foreach(n 1 2 3 4)
+  file(READ ${SRC}/example${n}.toml text)
+  string(APPEND body "    case ${n}:\n      return R\"WNEX(${text})WNEX\";\n")
+endforeach()
+string(APPEND body "  }\n  return {};\n}\n\n}  // namespace whatnext\n")
+file(WRITE ${OUT}.tmp "${body}")
+file(RENAME ${OUT}.tmp ${OUT})

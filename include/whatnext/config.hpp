@@ -1,0 +1,67 @@
+// The input layer: TOML files, the paper's whatnext.inp, --set overrides and the shipped examples,
+// all turned into a validated Scenario. Degrees live here and nowhere deeper.
+#pragma once
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "whatnext/params.hpp"
+
+namespace whatnext {
+
+// Bad input: the message is one line naming the input, the rule and the value given.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class KeyKind { length, mass, density, angle, time, acceleration, positive, text, pair };
+
+struct KeySpec {
+  std::string_view key;
+  KeyKind kind;
+  std::string_view unit;  // as written in inputs
+  std::string_view help;
+};
+// Every key an input may set, in documentation order.
+const std::vector<KeySpec>& known_keys();
+const KeySpec* find_key(std::string_view key);
+
+// A value as written (before unit conversion) and where it came from, for error messages.
+struct ConfigValue {
+  enum class Type { number, text, pair } type = Type::number;
+  double number = 0.0;
+  std::string text;
+  double pair[2] = {0.0, 0.0};
+  std::string origin;  // "example1.toml:12", "--set", "whatnext.inp line 3"
+};
+
+class Config {
+ public:
+  std::string source;  // shown in messages
+  std::map<std::string, ConfigValue> values;
+  bool has(const std::string& key) const { return values.count(key) != 0; }
+};
+
+// Reads a TOML file or the paper's 15-line .inp file (chosen by content: an .inp starts with a
+// number). Throws InputError.
+Config load_config_file(const std::string& path);
+Config parse_toml(std::string_view text, const std::string& source);
+Config parse_inp(std::string_view text, const std::string& source);
+// The paper's example n (1..4), as shipped in examples/exampleN.toml.
+Config example_config(int n);
+std::string_view example_toml(int n);
+// Applies "KEY=VALUE" (VALUE as in TOML; bare words are text). Throws InputError.
+void apply_set(Config& config, std::string_view assignment);
+// Validates everything and converts to SI and radians. Throws InputError.
+Scenario build_scenario(const Config& config);
+// Writes a scenario back as TOML that build_scenario accepts (round trip up to rounding).
+std::string to_toml(const Scenario& scenario);
+
+// Closest known key to a misspelt one ("" if nothing is close).
+std::string nearest_key(std::string_view key);
+
+}  // namespace whatnext

@@ -1,0 +1,67 @@
+// Geometry of the rope between the seesaw's right end R and the lid's free edge E, and of the
+// balloon's height limit under the lid. Every geometric formula of the model lives here, once.
+#pragma once
+
+#include "whatnext/params.hpp"
+#include "whatnext/vec2.hpp"
+
+namespace whatnext {
+
+// dphiL/dphiS and d2phiL/dphiS2 along the straight-rope constraint.
+struct Transfer {
+  double k = 0.0;
+  double dk = 0.0;
+};
+
+class RopeGeometry {
+ public:
+  explicit RopeGeometry(const Machine& m)
+      : r_h_(m.seesaw_right_arm), r_l_(m.lid_half_length), l_r_(m.rope_length), hinge_(m.hinge) {}
+
+  Vec2 hinge() const { return hinge_; }
+  double rope_length() const { return l_r_; }
+  Vec2 seesaw_end(double phi_s) const { return polar(r_h_, phi_s); }
+  Vec2 lid_edge(double phi_l) const { return hinge_ + polar(2.0 * r_l_, phi_l); }
+  // Distance |R - E|.
+  double span(double phi_s, double phi_l) const { return norm(seesaw_end(phi_s) - lid_edge(phi_l)); }
+  // C = |R - E|^2 - l_R^2: negative while the rope is slack, zero when it is straight.
+  double gap(double phi_s, double phi_l) const;
+
+  // cos sigma of the closure at phiS; |cos sigma| > 1 where the rope cannot be straight.
+  double cos_sigma(double phi_s) const;
+  // Closure phiL(phiS) on the branch with the lid below the rope; false where the rope cannot be
+  // straight (|cos sigma| > 1), and out is left untouched.
+  bool lid_angle_for(double phi_s, double& phi_l) const;
+  // Inverse closure phiS(phiL).
+  bool seesaw_angle_for(double phi_l, double& phi_s) const;
+
+  // Analytic k = -C_S/C_L and k' by implicit differentiation of C(phiS, phiL) = 0.
+  Transfer transfer(double phi_s, double phi_l) const;
+  // The paper's transfer coefficient r_H sin(alpha + phiS - phiL) / (2 r_L sin alpha).
+  double paper_transfer(double phi_s, double phi_l) const;
+
+  // Lever arms of a unit rope tension about the lid hinge and about the pivot.
+  // Tension T gives the lid the torque T * lid_arm (opening) and the seesaw T * seesaw_arm
+  // (against phiS growing).
+  double lid_arm(double phi_s, double phi_l) const;
+  double seesaw_arm(double phi_s, double phi_l) const;
+
+  // The largest |R - E| over phiS in [-90 deg, 90 deg] and phiL in [phi_l_min, 90 deg].
+  double max_span(double phi_l_min) const;
+
+ private:
+  double r_h_, r_l_, l_r_;
+  Vec2 hinge_;
+};
+
+// Height limit of the balloon's centre under a lid at angle phiL (heights from the hinge level):
+// h_lim = -r_B (1 - sin phiL) / cos phiL, written as -r_B cos phiL / (1 + sin phiL), which stays
+// finite and smooth up to 90 deg.
+struct BalloonLimit {
+  double radius;
+  double height(double phi_l) const;
+  double rate(double phi_l, double dphi_l) const;
+  double acceleration(double phi_l, double dphi_l, double ddphi_l) const;
+};
+
+}  // namespace whatnext

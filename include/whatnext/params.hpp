@@ -1,0 +1,69 @@
+// Validated, immutable description of one machine and one run.
+// SI units and radians throughout; degrees exist only in the input layer (config.hpp).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "whatnext/vec2.hpp"
+
+namespace whatnext {
+
+enum class ImpactLaw { rope, angular_momentum_sum, kinetic_energy, linear_momentum };
+enum class IntegratorKind { adaptive, euler, rk4 };
+// How the balloon's upward acceleration follows from the densities (MODEL.md "Balloon").
+enum class BalloonModel { program, lagrangian };
+
+std::string_view to_string(ImpactLaw law);
+std::string_view to_string(IntegratorKind kind);
+std::string_view to_string(BalloonModel model);
+bool parse_impact_law(std::string_view text, ImpactLaw& out);
+bool parse_integrator(std::string_view text, IntegratorKind& out);
+bool parse_balloon_model(std::string_view text, BalloonModel& out);
+
+// The fixed parts of the machine. Built only by config.cpp's validation (or by hand in tests that
+// know what they do); every field is checked there, so the physics code never re-checks.
+struct Machine {
+  double seesaw_right_arm = 0.6;  // r_H, pivot to rope end [m]
+  double lid_half_length = 0.2;   // r_L; the lid is 2 r_L long [m]
+  double rope_length = 1.0;       // l_R [m]
+  Vec2 hinge{0.0, 0.0};           // lid hinge H relative to the pivot [m] (h < 0: below)
+  double sandbag_mass = 0.6;      // m_S [kg]
+  double lid_mass = 0.5;          // m_L [kg]
+  double air_density = 1.29;      // [kg/m^3]
+  double helium_density = 0.18;   // [kg/m^3]
+  double balloon_radius = 0.2;    // r_B [m]
+  BalloonModel balloon_model = BalloonModel::program;
+  double gravity = 9.81;          // [m/s^2]
+
+  // Uniform plate hinged at one edge: I = m (2 r_L)^2 / 3.
+  double lid_inertia() const { return lid_mass * 4.0 * lid_half_length * lid_half_length / 3.0; }
+  // Free balloon's constant upward acceleration a_B.
+  double balloon_acceleration() const;
+};
+
+// Where everything starts. The lid starts at rest, the sandbag at rest.
+struct Start {
+  double sandbag_x = -0.3;     // [m], left of the pivot
+  double sandbag_h = 1.0;      // [m], above the left arm
+  double seesaw_angle = 0.0;   // phiS0 [rad], positive = left arm down
+  double lid_angle = 0.0;      // phiL0 [rad]; also the lid's lowest angle
+};
+
+struct RunSettings {
+  IntegratorKind integrator = IntegratorKind::adaptive;
+  double step = 1e-3;           // fixed step for euler/rk4 [s]
+  double tolerance = 1e-12;     // adaptive: absolute and relative error per step
+  double t_max = 5.0;           // [s]
+  double output_step = 1e-3;    // sampling of CSV/.dat rows [s]
+  ImpactLaw impact_law = ImpactLaw::rope;
+  double vertical_margin = 0.9 * 3.14159265358979323846 / 180.0;  // [rad], pi/200 like the paper
+};
+
+struct Scenario {
+  Machine machine;
+  Start start;
+  RunSettings run;
+};
+
+}  // namespace whatnext

@@ -1,0 +1,35 @@
+// One run of the machine: the automaton of model.hpp driven by the chosen integrator.
+#pragma once
+
+#include <vector>
+
+#include "whatnext/events.hpp"
+#include "whatnext/integrate.hpp"
+#include "whatnext/params.hpp"
+#include "whatnext/state.hpp"
+
+namespace whatnext {
+
+// Receives the run as it happens: samples on the run.output_step grid and every event.
+// Called per output sample and per event, never per integration step.
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void on_sample(const Snapshot& s) { (void)s; }
+  virtual void on_event(const Event& e) { (void)e; }
+};
+
+struct Result {
+  std::vector<Event> events;  // in order; the last one ended the run
+  StepStats stats;
+  const Event& outcome() const { return events.back(); }
+};
+
+// Maximum number of events in one run before it is stopped with event_limit.
+constexpr int kMaxEvents = 10000;
+
+// Runs the scenario (which must come from validation, see config.hpp). Samples go to the observer
+// only if one is given; without one nothing is sampled.
+Result simulate(const Scenario& scenario, Observer* observer = nullptr);
+
+}  // namespace whatnext

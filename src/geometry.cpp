@@ -1,0 +1,119 @@
+#include "whatnext/geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <boost/math/tools/minima.hpp>
+
+namespace whatnext {
+
+namespace {
+constexpr double kHalfPi = 1.57079632679489661923;
+}
+
+double RopeGeometry::gap(double phi_s, double phi_l) const {
+  const Vec2 d = seesaw_end(phi_s) - lid_edge(phi_l);
+  return dot(d, d) - l_r_ * l_r_;
+}
+
+double RopeGeometry::cos_sigma(double phi_s) const {
+  const double d = norm(seesaw_end(phi_s) - hinge_);
+  return (4.0 * r_l_ * r_l_ + d * d - l_r_ * l_r_) / (4.0 * r_l_ * d);
+}
+
+bool RopeGeometry::lid_angle_for(double phi_s, double& phi_l) const {
+  // Triangle hinge H, lid edge E, seesaw end R: sides 2 r_L, l_R and d = |R - H|; sigma is the
+  // angle at H between HR and HE. The lid lies below the rope, so E is turned clockwise from HR.
+  const Vec2 hr = seesaw_end(phi_s) - hinge_;
+  const double d = norm(hr);
+  const double cos_sigma = (4.0 * r_l_ * r_l_ + d * d - l_r_ * l_r_) / (4.0 * r_l_ * d);
+  if (!(std::fabs(cos_sigma) <= 1.0)) return false;
+  phi_l = std::atan2(hr.h, hr.x) - std::acos(cos_sigma);
+  return true;
+}
+
+bool RopeGeometry::seesaw_angle_for(double phi_l, double& phi_s) const {
+  const Vec2 e = lid_edge(phi_l);
+  const double de = norm(e);
+  const double cos_rho = (r_h_ * r_h_ + de * de - l_r_ * l_r_) / (2.0 * r_h_ * de);
+  if (!(std::fabs(cos_rho) <= 1.0)) return false;
+  phi_s = std::atan2(e.h, e.x) + std::acos(cos_rho);
+  return true;
+}
+
+Transfer RopeGeometry::transfer(double phi_s, double phi_l) const {
+  // C = |D|^2 - l^2 with D = R(phiS) - E(phiL). Derivatives of R and E:
+  // R_S = perp(R), R_SS = -R; E_L = perp(E - H), E_LL = -(E - H).
+  const Vec2 r = seesaw_end(phi_s);
+  const Vec2 el = polar(2.0 * r_l_, phi_l);  // E - H
+  const Vec2 d = r - (hinge_ + el);
+  const Vec2 r_s{-r.h, r.x};
+  const Vec2 e_l{-el.h, el.x};
+  const double c_s = 2.0 * dot(d, r_s);
+  const double c_l = -2.0 * dot(d, e_l);
+  const double c_ss = 2.0 * (dot(r_s, r_s) - dot(d, r));
+  const double c_ll = 2.0 * (dot(e_l, e_l) + dot(d, el));
+  const double c_sl = -2.0 * dot(r_s, e_l);
+  Transfer t;
+  t.k = -c_s / c_l;
+  t.dk = -(c_ss + 2.0 * c_sl * t.k + c_ll * t.k * t.k) / c_l;
+  return t;
+}
+
+double RopeGeometry::paper_transfer(double phi_s, double phi_l) const {
+  const double d = norm(seesaw_end(phi_s) - hinge_);
+  const double alpha = std::acos((4.0 * r_l_ * r_l_ + l_r_ * l_r_ - d * d) / (4.0 * r_l_ * l_r_));
+  return r_h_ * std::sin(alpha + phi_s - phi_l) / (2.0 * r_l_ * std::sin(alpha));
+}
+
+double RopeGeometry::lid_arm(double phi_s, double phi_l) const {
+  const Vec2 el = polar(2.0 * r_l_, phi_l);
+  const Vec2 along = seesaw_end(phi_s) - (hinge_ + el);  // from E towards R
+  return cross(el, along) / norm(along);
+}
+
+double RopeGeometry::seesaw_arm(double phi_s, double phi_l) const {
+  const Vec2 r = seesaw_end(phi_s);
+  const Vec2 along = lid_edge(phi_l) - r;  // from R towards E
+  return -cross(r, along) / norm(along);
+}
+
+double RopeGeometry::max_span(double phi_l_min) const {
+  // For a fixed R the farthest lid edge on the arc [phi_l_min, 90 deg] is at an end of the arc or
+  // diametrically opposite R - H; the outer maximum over phiS is found on a fine grid and polished
+  // by Brent's method on the best cell.
+  auto farthest = [&](double phi_s) {
+    const Vec2 hr = seesaw_end(phi_s) - hinge_;
+    double best = std::max(span(phi_s, phi_l_min), span(phi_s, kHalfPi));
+    const double opposite = std::atan2(-hr.h, -hr.x);
+    if (opposite >= phi_l_min && opposite <= kHalfPi) best = std::max(best, span(phi_s, opposite));
+    return best;
+  };
+  constexpr int kCells = 720;
+  double best = 0.0;
+  int best_i = 0;
+  for (int i = 0; i <= kCells; ++i) {
+    const double v = farthest(-kHalfPi + kHalfPi * 2.0 * i / kCells);
+    if (v > best) best = v, best_i = i;
+  }
+  const double a = -kHalfPi + kHalfPi * 2.0 * std::max(0, best_i - 1) / kCells;
+  const double b = -kHalfPi + kHalfPi * 2.0 * std::min(kCells, best_i + 1) / kCells;
+  const auto polished = boost::math::tools::brent_find_minima(
+      [&](double phi_s) { return -farthest(phi_s); }, a, b, 40);
+  return std::max(best, -polished.second);
+}
+
+double BalloonLimit::height(double phi_l) const {
+  return -radius * std::cos(phi_l) / (1.0 + std::sin(phi_l));
+}
+
+double BalloonLimit::rate(double phi_l, double dphi_l) const {
+  return radius * dphi_l / (1.0 + std::sin(phi_l));
+}
+
+double BalloonLimit::acceleration(double phi_l, double dphi_l, double ddphi_l) const {
+  const double s = 1.0 + std::sin(phi_l);
+  return radius * (ddphi_l / s - dphi_l * dphi_l * std::cos(phi_l) / (s * s));
+}
+
+}  // namespace whatnext

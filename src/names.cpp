@@ -1,0 +1,102 @@
+// Text names of the enums, as they appear in inputs, the timeline, JSON and CSV.
+#include <array>
+#include <string_view>
+#include <utility>
+
+#include "whatnext/events.hpp"
+#include "whatnext/params.hpp"
+#include "whatnext/state.hpp"
+
+namespace whatnext {
+
+namespace {
+template <class E, std::size_t N>
+bool parse_from(const std::array<std::pair<E, std::string_view>, N>& table, std::string_view text,
+                E& out) {
+  for (const auto& [value, name] : table) {
+    if (name == text) {
+      out = value;
+      return true;
+    }
+  }
+  return false;
+}
+template <class E, std::size_t N>
+std::string_view name_in(const std::array<std::pair<E, std::string_view>, N>& table, E value) {
+  for (const auto& [v, name] : table) {
+    if (v == value) return name;
+  }
+  return "?";
+}
+
+constexpr std::array<std::pair<ImpactLaw, std::string_view>, 4> kLaws{{
+    {ImpactLaw::rope, "rope"},
+    {ImpactLaw::angular_momentum_sum, "angular-momentum-sum"},
+    {ImpactLaw::kinetic_energy, "kinetic-energy"},
+    {ImpactLaw::linear_momentum, "linear-momentum"},
+}};
+constexpr std::array<std::pair<IntegratorKind, std::string_view>, 3> kIntegrators{{
+    {IntegratorKind::adaptive, "adaptive"},
+    {IntegratorKind::euler, "euler"},
+    {IntegratorKind::rk4, "rk4"},
+}};
+constexpr std::array<std::pair<BalloonModel, std::string_view>, 2> kBalloonModels{{
+    {BalloonModel::program, "program"},
+    {BalloonModel::lagrangian, "lagrangian"},
+}};
+constexpr std::array<std::pair<EventType, std::string_view>, 13> kEvents{{
+    {EventType::sandbag_lands, "sandbag_lands"},
+    {EventType::rope_taut, "rope_taut"},
+    {EventType::rope_slack, "rope_slack"},
+    {EventType::lid_rests, "lid_rests"},
+    {EventType::lid_lifts, "lid_lifts"},
+    {EventType::balloon_caught, "balloon_caught"},
+    {EventType::balloon_free, "balloon_free"},
+    {EventType::lid_open, "lid_open"},
+    {EventType::seesaw_vertical, "seesaw_vertical"},
+    {EventType::sandbag_at_pivot, "sandbag_at_pivot"},
+    {EventType::rope_locked, "rope_locked"},
+    {EventType::timeout, "timeout"},
+    {EventType::event_limit, "event_limit"},
+}};
+}  // namespace
+
+std::string_view to_string(ImpactLaw law) { return name_in(kLaws, law); }
+std::string_view to_string(IntegratorKind kind) { return name_in(kIntegrators, kind); }
+std::string_view to_string(BalloonModel model) { return name_in(kBalloonModels, model); }
+std::string_view to_string(EventType type) { return name_in(kEvents, type); }
+bool parse_impact_law(std::string_view text, ImpactLaw& out) { return parse_from(kLaws, text, out); }
+bool parse_integrator(std::string_view text, IntegratorKind& out) {
+  return parse_from(kIntegrators, text, out);
+}
+bool parse_balloon_model(std::string_view text, BalloonModel& out) {
+  return parse_from(kBalloonModels, text, out);
+}
+
+std::string_view to_string(Mode mode) {
+  constexpr std::array<std::string_view, 5> names{"M1", "M2", "M3", "M4", "M5"};
+  return names[static_cast<int>(mode) - 1];
+}
+
+bool is_stop(EventType type) {
+  switch (type) {
+    case EventType::lid_open:
+    case EventType::seesaw_vertical:
+    case EventType::sandbag_at_pivot:
+    case EventType::rope_locked:
+    case EventType::timeout:
+    case EventType::event_limit:
+      return true;
+    default:
+      return false;
+  }
+}
+
+double Machine::balloon_acceleration() const {
+  // Buoyancy minus the helium's weight, divided by the mass that is accelerated: the program
+  // divides by the displaced air's mass, the Lagrangian of section 2 by the helium's.
+  const double lift = gravity * (air_density - helium_density);
+  return balloon_model == BalloonModel::program ? lift / air_density : lift / helium_density;
+}
+
+}  // namespace whatnext

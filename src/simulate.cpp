@@ -1,0 +1,82 @@
+#include "whatnext/simulate.hpp"
+
+#include "whatnext/model.hpp"
+
+namespace whatnext {
+
+namespace {
+
+// Adapts the automaton in one discrete state to the generic integrators' System concept.
+struct MachineSystem {
+  using state_type = State;
+  using guard_type = GuardValues;
+  const Model* model;
+  Discrete d;
+  void operator()(const State& y, State& dy, double /*t*/) const { model->flow(d, y, dy); }
+  void guards(const State& y, GuardValues& g) const { model->guards(d, y, g); }
+};
+
+constexpr double kEventTimeTolerance = 1e-12;  // [s]
+constexpr double kMaxAdaptiveStep = 0.05;     // [s]; keeps brief guard excursions visible
+
+}  // namespace
+
+Result simulate(const Scenario& sc, Observer* observer) {
+  namespace odeint = boost::numeric::odeint;
+  const Model model(sc);
+  Result res;
+  std::vector<Event> fresh;
+  HybridState hs = model.initial(fresh);
+  OutputGrid grid{observer ? sc.run.output_step : 0.0, 0};
+  const double t_end = sc.run.t_max;
+  for (;;) {
+    const MachineSystem sys{&model, hs.d};
+    auto sample = [&](double t, const State& y) {
+      observer->on_sample(model.snapshot(HybridState{t, sys.d, y}));
+    };
+    Crossing c;
+    double t = hs.t;
+    switch (sc.run.integrator) {
+      case IntegratorKind::adaptive:
+        c = integrate_adaptive(sys, hs.y, t, t_end, sc.run.tolerance, kMaxAdaptiveStep,
+                               kEventTimeTolerance, grid, sample, res.stats);
+        break;
+      case IntegratorKind::euler:
+        c = integrate_fixed<odeint::euler<State>>(sys, hs.y, t, t_end, sc.run.step, grid, sample,
+                                                  res.stats);
+        break;
+      case IntegratorKind::rk4:
+        c = integrate_fixed<odeint::runge_kutta4<State>>(sys, hs.y, t, t_end, sc.run.step, grid,
+                                                         sample, res.stats);
+        break;
+    }
+    hs.t = t;
+    fresh.clear();
+    bool stop = false;
+    if (c.guard < 0) {
+      model.timeout(hs, fresh);
+      stop = true;
+    } else {
+      stop = model.jump(static_cast<Guard>(c.guard), hs, fresh);
+    }
+    for (const Event& e : fresh) {
+      res.events.push_back(e);
+      if (observer) observer->on_event(e);
+    }
+    if (stop) break;
+    if (res.events.size() >= static_cast<std::size_t>(kMaxEvents)) {
+      fresh.clear();
+      Event e = res.events.back();
+      e.type = EventType::event_limit;
+      e.mode_before = e.mode_after;
+      e.impact = false;
+      e.energy_before = e.energy_after;
+      res.events.push_back(e);
+      if (observer) observer->on_event(e);
+      break;
+    }
+  }
+  return res;
+}
+
+}  // namespace whatnext
