@@ -28,6 +28,10 @@ struct LoadedInput {
 LoadedInput load_input(const InputOptions& opts);
 
 // Each subcommand registers itself and sets `exit_code` when it runs.
-void register_run(CLI::App& app, int& exit_code);
+void register_run(CLI::App& app, int& exit_code);       // cmd_run.cpp
+void register_plot(CLI::App& app, int& exit_code);      // cmd_plot.cpp
+void register_animate(CLI::App& app, int& exit_code);   // cmd_animate.cpp
+void register_sweep(CLI::App& app, int& exit_code);     // cmd_sweep.cpp
+void register_optimize(CLI::App& app, int& exit_code);  // cmd_optimize.cpp
 
 }  // namespace whatnext::cli

@@ -12,6 +12,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = 0;
   whatnext::cli::register_run(app, exit_code);
+  whatnext::cli::register_plot(app, exit_code);
+  whatnext::cli::register_animate(app, exit_code);
+  whatnext::cli::register_sweep(app, exit_code);
+  whatnext::cli::register_optimize(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -313,6 +313,21 @@ void apply_set(Config& cfg, std::string_view assignment) {
   }
 }
 
+void set_number(Config& cfg, const std::string& key, double value) {
+  const KeySpec* spec = find_key(key);
+  if (!spec) unknown_key("key", key);
+  if (spec->kind == KeyKind::text || spec->kind == KeyKind::pair) {
+    throw InputError(fmt::format("key {}: is not a single number", key));
+  }
+  ConfigValue v;
+  v.number = value;
+  v.origin = fmt::format("{} = {}", key, fmt_num(value));
+  cfg.values[key] = v;
+  if (key == "geometry.hinge_distance" || key == "geometry.hinge_angle") {
+    cfg.values.erase("geometry.hinge_offset");
+  }
+}
+
 Scenario build_scenario(const Config& cfg) {
   const Reader in{cfg};
   Scenario sc;

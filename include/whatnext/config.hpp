@@ -56,6 +56,9 @@ Config example_config(int n);
 std::string_view example_toml(int n);
 // Applies "KEY=VALUE" (VALUE as in TOML; bare words are text). Throws InputError.
 void apply_set(Config& config, std::string_view assignment);
+// Sets a numeric key directly (no parsing; for sweeps and optimisation). Throws InputError for an
+// unknown or non-numeric key.
+void set_number(Config& config, const std::string& key, double value);
 // Validates everything and converts to SI and radians. Throws InputError.
 Scenario build_scenario(const Config& config);
 // Writes a scenario back as TOML that build_scenario accepts (round trip up to rounding).

@@ -111,11 +111,71 @@ CMakeFiles/whatnext.dir/apps/cmd_run.cpp.s: cmake_force
 	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Compiling CXX source to assembly CMakeFiles/whatnext.dir/apps/cmd_run.cpp.s"
 	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -S /work/main/apps/cmd_run.cpp -o CMakeFiles/whatnext.dir/apps/cmd_run.cpp.s
 
+CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.o: CMakeFiles/whatnext.dir/flags.make
+CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.o: /work/main/apps/cmd_plot.cpp
+CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.o: CMakeFiles/whatnext.dir/compiler_depend.ts
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_4) "Building CXX object CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.o"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -MD -MT CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.o -MF CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.o.d -o CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.o -c /work/main/apps/cmd_plot.cpp
+
+CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.i: cmake_force
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Preprocessing CXX source to CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.i"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -E /work/main/apps/cmd_plot.cpp > CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.i
+
+CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.s: cmake_force
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Compiling CXX source to assembly CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.s"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -S /work/main/apps/cmd_plot.cpp -o CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.s
+
+CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.o: CMakeFiles/whatnext.dir/flags.make
+CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.o: /work/main/apps/cmd_animate.cpp
+CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.o: CMakeFiles/whatnext.dir/compiler_depend.ts
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_5) "Building CXX object CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.o"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -MD -MT CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.o -MF CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.o.d -o CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.o -c /work/main/apps/cmd_animate.cpp
+
+CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.i: cmake_force
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Preprocessing CXX source to CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.i"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -E /work/main/apps/cmd_animate.cpp > CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.i
+
+CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.s: cmake_force
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Compiling CXX source to assembly CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.s"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -S /work/main/apps/cmd_animate.cpp -o CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.s
+
+CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.o: CMakeFiles/whatnext.dir/flags.make
+CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.o: /work/main/apps/cmd_sweep.cpp
+CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.o: CMakeFiles/whatnext.dir/compiler_depend.ts
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_6) "Building CXX object CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.o"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -MD -MT CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.o -MF CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.o.d -o CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.o -c /work/main/apps/cmd_sweep.cpp
+
+CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.i: cmake_force
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Preprocessing CXX source to CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.i"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -E /work/main/apps/cmd_sweep.cpp > CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.i
+
+CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.s: cmake_force
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Compiling CXX source to assembly CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.s"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -S /work/main/apps/cmd_sweep.cpp -o CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.s
+
+CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.o: CMakeFiles/whatnext.dir/flags.make
+CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.o: /work/main/apps/cmd_optimize.cpp
+CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.o: CMakeFiles/whatnext.dir/compiler_depend.ts
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_7) "Building CXX object CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.o"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -MD -MT CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.o -MF CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.o.d -o CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.o -c /work/main/apps/cmd_optimize.cpp
+
+CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.i: cmake_force
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Preprocessing CXX source to CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.i"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -E /work/main/apps/cmd_optimize.cpp > CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.i
+
+CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.s: cmake_force
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Compiling CXX source to assembly CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.s"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -S /work/main/apps/cmd_optimize.cpp -o CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.s
+
 # Object files for target whatnext
 whatnext_OBJECTS = \
 "CMakeFiles/whatnext.dir/apps/whatnext.cpp.o" \
 "CMakeFiles/whatnext.dir/apps/cli_common.cpp.o" \
-"CMakeFiles/whatnext.dir/apps/cmd_run.cpp.o"
+"CMakeFiles/whatnext.dir/apps/cmd_run.cpp.o" \
+"CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.o" \
+"CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.o" \
+"CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.o" \
+"CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.o"
 
 # External object files for target whatnext
 whatnext_EXTERNAL_OBJECTS =
@@ -123,13 +183,17 @@ whatnext_EXTERNAL_OBJECTS =
 whatnext: CMakeFiles/whatnext.dir/apps/whatnext.cpp.o
 whatnext: CMakeFiles/whatnext.dir/apps/cli_common.cpp.o
 whatnext: CMakeFiles/whatnext.dir/apps/cmd_run.cpp.o
+whatnext: CMakeFiles/whatnext.dir/apps/cmd_plot.cpp.o
+whatnext: CMakeFiles/whatnext.dir/apps/cmd_animate.cpp.o
+whatnext: CMakeFiles/whatnext.dir/apps/cmd_sweep.cpp.o
+whatnext: CMakeFiles/whatnext.dir/apps/cmd_optimize.cpp.o
 whatnext: CMakeFiles/whatnext.dir/build.make
 whatnext: libwhatnext_io.a
 whatnext: /usr/lib/x86_64-linux-gnu/libfmt.so.9.1.0
 whatnext: libwhatnext_core.a
 whatnext: /usr/lib/x86_64-linux-gnu/libtomlplusplus.so
 whatnext: CMakeFiles/whatnext.dir/link.txt
-	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --bold --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_4) "Linking CXX executable whatnext"
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --bold --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_8) "Linking CXX executable whatnext"
 	$(CMAKE_COMMAND) -E cmake_link_script CMakeFiles/whatnext.dir/link.txt --verbose=$(VERBOSE)
 
 # Rule to build all files generated by this target.
