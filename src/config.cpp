@@ -367,6 +367,9 @@ Scenario build_scenario(const Config& cfg) {
     in.fail("balloon.model", fmt::format("must be program or lagrangian (given '{}')", bmodel));
   }
   m.gravity = in.positive("run.gravity", 9.81);
+  // Kermit's radio stands 0.5 m right of the box, its switch level with the box's top.
+  m.radio_switch = m.hinge + Vec2{2.0 * m.lid_half_length + 0.5, 0.0};
+  m.string_length = 1.0;
 
   Start& st = sc.start;
   st.sandbag_x = in.number("start.sandbag_x", -0.3);

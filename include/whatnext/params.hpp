@@ -35,6 +35,10 @@ struct Machine {
   double balloon_radius = 0.2;    // r_B [m]
   BalloonModel balloon_model = BalloonModel::program;
   double gravity = 9.81;          // [m/s^2]
+  // The radio: its switch (relative to the pivot) and the balloon's string, tied to the switch.
+  // The balloon rises from the box's centre, (hinge.x + r_L, hinge.h + balloon height).
+  Vec2 radio_switch{1.8, -0.36};
+  double string_length = 1.0;     // [m]
 
   // Uniform plate hinged at one edge: I = m (2 r_L)^2 / 3.
   double lid_inertia() const { return lid_mass * 4.0 * lid_half_length * lid_half_length / 3.0; }
