@@ -32,12 +32,13 @@ bool RopeGeometry::lid_angle_for(double phi_s, double& phi_l) const {
   return true;
 }
 
-bool RopeGeometry::seesaw_angle_for(double phi_l, double& phi_s) const {
+bool RopeGeometry::seesaw_angle_for(double phi_l, double near, double& phi_s) const {
   const Vec2 e = lid_edge(phi_l);
   const double de = norm(e);
   const double cos_rho = (r_h_ * r_h_ + de * de - l_r_ * l_r_) / (2.0 * r_h_ * de);
   if (!(std::fabs(cos_rho) <= 1.0)) return false;
-  phi_s = std::atan2(e.h, e.x) + std::acos(cos_rho);
+  const double base = std::atan2(e.h, e.x), rho = std::acos(cos_rho);
+  phi_s = std::fabs(base + rho - near) <= std::fabs(base - rho - near) ? base + rho : base - rho;
   return true;
 }
 

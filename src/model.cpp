@@ -137,9 +137,10 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
     k.dphi_s = (k.vx * s - k.vh * c) / k.r;
     k.ddphi_s = (g_ * c - 2.0 * k.dr * k.dphi_s) / k.r;
   } else if (d.taut) {  // M2: the unloaded seesaw follows the lid
-    rope_.seesaw_angle_for(k.phi_l, k.phi_s);
+    k.phi_s = d.parked_seesaw;  // exact while the lid rests, the branch hint otherwise
+    if (!d.lid_resting) rope_.seesaw_angle_for(k.phi_l, d.parked_seesaw, k.phi_s);
     k.transfer = rope_.transfer(k.phi_s, k.phi_l);
-    k.dphi_s = k.dphi_l / k.transfer.k;
+    k.dphi_s = d.lid_resting ? 0.0 : k.dphi_l / k.transfer.k;
   } else {  // M1: nothing moves the unloaded seesaw
     k.phi_s = d.parked_seesaw;
   }

@@ -1,1 +1,121 @@
+// The paper's four examples against the numbers it prints, with MODEL.md's tolerances:
+// +-0.02 s for times below 1 s, +-1 % for example 3's 20 s, +-2 % for its 1949 m, +-0.5 deg for
+// its 74 deg, +-0.5 s for example 4's "about 10 s".
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "whatnext/config.hpp"
+#include "whatnext/simulate.hpp"
+
+namespace wn = whatnext;
+
+namespace {
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+constexpr double kPaper = 0.02;  // s
+
+wn::Result run_example(int n, const char* law = nullptr) {
+  wn::Config cfg = wn::example_config(n);
+  if (law) wn::apply_set(cfg, std::string("run.impact_law=") + law);
+  return wn::simulate(wn::build_scenario(cfg));
+}
+
+// Times of all events of one type, in order.
+std::vector<double> times_of(const wn::Result& r, wn::EventType type) {
+  std::vector<double> t;
+  for (const auto& e : r.events) {
+    if (e.type == type) t.push_back(e.t);
+  }
+  return t;
+}
+
+// The mechanical events (balloon events left out), as names.
+std::vector<std::string> mechanical(const wn::Result& r) {
+  std::vector<std::string> names;
+  for (const auto& e : r.events) {
+    if (e.type != wn::EventType::balloon_caught && e.type != wn::EventType::balloon_free) {
+      names.emplace_back(wn::to_string(e.type));
+    }
+  }
+  return names;
+}
+
+TEST(PaperExample1, LandsTightensSlacksAndOpens) {
+  const wn::Result r = run_example(1);
+  EXPECT_EQ(mechanical(r),
+            (std::vector<std::string>{"sandbag_lands", "rope_taut", "rope_slack", "lid_open"}));
+  EXPECT_NEAR(times_of(r, wn::EventType::sandbag_lands).at(0), 0.42, kPaper);
+  const double taut = times_of(r, wn::EventType::rope_taut).at(0);
+  EXPECT_NEAR(taut, 0.51, kPaper);
+  EXPECT_EQ(times_of(r, wn::EventType::rope_slack).at(0), taut);  // slack at the very instant
+  EXPECT_EQ(r.outcome().type, wn::EventType::lid_open);
+  EXPECT_NEAR(r.outcome().t, 0.82, kPaper);
+  EXPECT_NEAR(r.outcome().after.r, 2.0, 0.1);  // "sandbag then about 2 m from the pivot"
+}
+
+TEST(PaperExample2, RopePullsForAWhile) {
+  const wn::Result r = run_example(2);
+  EXPECT_EQ(mechanical(r),
+            (std::vector<std::string>{"sandbag_lands", "rope_taut", "rope_slack", "lid_open"}));
+  EXPECT_NEAR(times_of(r, wn::EventType::sandbag_lands).at(0), 0.24, kPaper);
+  EXPECT_NEAR(times_of(r, wn::EventType::rope_taut).at(0), 0.33, kPaper);
+  EXPECT_NEAR(times_of(r, wn::EventType::rope_slack).at(0), 0.49, kPaper);
+  EXPECT_EQ(r.outcome().type, wn::EventType::lid_open);
+  EXPECT_NEAR(r.outcome().t, 0.54, kPaper);
+  EXPECT_NEAR(r.outcome().after.r, 0.6, 0.05);  // "about 0.6 m out"
+}
+
+TEST(PaperExample2, OtherImpactLaws) {
+  const struct {
+    const char* law;
+    double lid_open;
+  } cases[] = {{"angular-momentum-sum", 0.50}, {"kinetic-energy", 0.47}, {"linear-momentum", 0.34}};
+  for (const auto& c : cases) {
+    const wn::Result r = run_example(2, c.law);
+    EXPECT_EQ(r.outcome().type, wn::EventType::lid_open) << c.law;
+    EXPECT_NEAR(r.outcome().t, c.lid_open, kPaper) << c.law;
+  }
+}
+
+TEST(PaperExample3, SeesawTurnsVerticalLongBeforeTheLidOpens) {
+  const wn::Result r = run_example(3);
+  EXPECT_TRUE(times_of(r, wn::EventType::lid_open).empty());
+  EXPECT_TRUE(times_of(r, wn::EventType::sandbag_lands).empty());  // placed on the seesaw
+  ASSERT_EQ(r.outcome().type, wn::EventType::seesaw_vertical);
+  EXPECT_NEAR(r.outcome().t, 20.0, 0.01 * 20.0);
+  EXPECT_NEAR(r.outcome().after.r, 1949.0, 0.02 * 1949.0);
+  EXPECT_NEAR(r.outcome().after.phi_l * kRadToDeg, 74.0, 0.5);
+}
+
+TEST(PaperExample4, HardHitFallBackAndPullAgain) {
+  const wn::Result r = run_example(4);
+  const auto taut = times_of(r, wn::EventType::rope_taut);
+  const auto slack = times_of(r, wn::EventType::rope_slack);
+  ASSERT_EQ(taut.size(), 2u);
+  ASSERT_GE(slack.size(), 1u);
+  EXPECT_NEAR(taut[0], 0.40, kPaper);
+  EXPECT_EQ(slack[0], taut[0]);  // the rope goes slack at once after the hard hit
+  EXPECT_NEAR(taut[1], 0.88, kPaper);
+  EXPECT_TRUE(times_of(r, wn::EventType::lid_open).empty());
+  ASSERT_EQ(r.outcome().type, wn::EventType::seesaw_vertical);
+  EXPECT_NEAR(r.outcome().t, 10.0, 0.5);
+  // MODEL.md: with the lid swinging freely the balloon catches it near 0.56 s.
+  EXPECT_NEAR(times_of(r, wn::EventType::balloon_caught).at(0), 0.56, kPaper);
+}
+
+TEST(PaperExamples, LidSwingsUpAndFallsBackInExample4) {
+  // Between the two tightenings the lid swings freely: it rises, then falls back (phiL' < 0 at
+  // the second tightening).
+  const wn::Result r = run_example(4);
+  const wn::Event* second = nullptr;
+  int n = 0;
+  for (const auto& e : r.events) {
+    if (e.type == wn::EventType::rope_taut && ++n == 2) second = &e;
+  }
+  ASSERT_NE(second, nullptr);
+  EXPECT_GT(second->after.phi_l * kRadToDeg, 30.0);
+  EXPECT_LT(second->energy_after, second->energy_before);
+}
+
+}  // namespace

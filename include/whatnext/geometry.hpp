@@ -32,8 +32,10 @@ class RopeGeometry {
   // Closure phiL(phiS) on the branch with the lid below the rope; false where the rope cannot be
   // straight (|cos sigma| > 1), and out is left untouched.
   bool lid_angle_for(double phi_s, double& phi_l) const;
-  // Inverse closure phiS(phiL).
-  bool seesaw_angle_for(double phi_l, double& phi_s) const;
+  // Inverse closure phiS(phiL). The rope fixes R on one of two mirror positions about the line
+  // from the pivot to E (MODEL.md's "+rho" is the one above it); the one nearer `near` is taken,
+  // since a seesaw cannot jump between them.
+  bool seesaw_angle_for(double phi_l, double near, double& phi_s) const;
 
   // Analytic k = -C_S/C_L and k' by implicit differentiation of C(phiS, phiL) = 0.
   Transfer transfer(double phi_s, double phi_l) const;
