@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# whatnext in one command on a fresh Debian 12 machine (run as root, or with the packages present):
+#   ./run.sh          install what is missing, build, run the paper's example 1 with its
+#                     timeline, plots and animation (into out/)
+#   ./run.sh test     install what is missing, build, run every test
+set -euo pipefail
+cd "$(dirname "$0")"
+job="${1:-example}"
+./scripts/install-deps.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j "$(nproc)"
+case "$job" in
+  example)
+    mkdir -p out
+    ./build/whatnext run --example 1 --events out/example1.json --csv out/example1.csv \
+      --plots out --animate out/example1.gif
+    echo "whatnext: plots, animation, events and CSV of example 1 are in out/"
+    ;;
+  test)
+    ctest --test-dir build --output-on-failure -j "$(nproc)"
+    ;;
+  *)
+    echo "usage: ./run.sh [example|test]" >&2
+    exit 2
+    ;;
+esac
