@@ -3,6 +3,8 @@
 
 #include <cctype>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "whatnext/config.hpp"
@@ -186,6 +188,16 @@ TEST(Toml, HingeFormsAreExclusive) {
     FAIL();
   } catch (const wn::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("hinge_offset"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Docs, EveryKeyIsDocumented) {
+  std::ifstream in(std::string(WHATNEXT_SOURCE_DIR) + "/docs/inputs.md");
+  std::stringstream doc;
+  doc << in.rdbuf();
+  ASSERT_FALSE(doc.str().empty());
+  for (const wn::KeySpec& k : wn::known_keys()) {
+    EXPECT_NE(doc.str().find("`" + std::string(k.key) + "`"), std::string::npos) << k.key;
   }
 }
 
