@@ -1,11 +1,84 @@
-// Placeholder until `whatnext optimize` is built.
+// `whatnext optimize`: the best machine within bounds for one outcome, written as TOML.
+#include <memory>
+#include <thread>
+
+#include <fmt/format.h>
+
 #include "cli_common.hpp"
+#include "whatnext/explore/optimize.hpp"
+#include "whatnext/output.hpp"
 
 namespace whatnext::cli {
 
+namespace {
+struct OptimizeCliOptions {
+  InputOptions input;
+  std::vector<std::string> vary;
+  std::string minimize, maximize, out;
+  int threads = 0, grid = 0, starts = 3, max_evals = 400;
+};
+}  // namespace
+
 void register_optimize(CLI::App& app, int& exit_code) {
-  CLI::App* cmd = app.add_subcommand("optimize", "(not built yet)");
-  cmd->callback([&exit_code] { exit_code = 3; });
+  auto opts = std::make_shared<OptimizeCliOptions>();
+  CLI::App* cmd = app.add_subcommand("optimize", "find the machine within bounds that minimises or maximises an outcome");
+  add_input_options(*cmd, opts->input);
+  cmd->add_option("--vary", opts->vary, "KEY=A:B: search KEY between A and B; repeat for more keys")
+      ->required()
+      ->take_all()
+      ->allow_extra_args(false);
+  auto* mn = cmd->add_option("--minimize", opts->minimize,
+                             "value to minimise: an event name (its first time, e.g. lid_open), outcome_t, "
+                             "final_r or final_phi_l_deg");
+  auto* mx = cmd->add_option("--maximize", opts->maximize, "value to maximise (as --minimize)");
+  mn->excludes(mx);
+  cmd->add_option("--out", opts->out, "write the best machine to this TOML file")->required();
+  cmd->add_option("--threads", opts->threads, "threads for the coarse grid (default: all cores)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--grid", opts->grid, "coarse grid points per key (default: about 400 machines in all)")
+      ->check(CLI::Range(2, 100000));
+  cmd->add_option("--starts", opts->starts, "local searches from the best grid points")->check(CLI::Range(1, 100));
+  cmd->add_option("--max-evals", opts->max_evals, "machines per local search")->check(CLI::Range(1, 1000000));
+  cmd->callback([opts, &exit_code] {
+    if (opts->minimize.empty() == opts->maximize.empty()) {
+      throw InputError("optimize: give one of --minimize VALUE or --maximize VALUE");
+    }
+    explore::OptimizeOptions o;
+    o.maximize = !opts->maximize.empty();
+    o.value = o.maximize ? opts->maximize : opts->minimize;
+    explore::check_value_name(o.value, o.maximize ? "--maximize" : "--minimize");
+    for (const std::string& v : opts->vary) o.bounds.push_back(explore::parse_range(v, "--vary", false));
+    o.threads = opts->threads > 0 ? opts->threads
+                                  : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    o.grid_points = opts->grid;
+    o.starts = opts->starts;
+    o.max_evaluations = opts->max_evals;
+    const LoadedInput in = load_input(opts->input);
+    AtomicFile out(opts->out);  // a bad path fails before the search
+
+    const explore::OptimizeResult r = explore::optimize(in.config, o);
+    if (!r.found) {
+      fmt::print(stderr, "whatnext: optimize: {} never happens within the bounds ({} machines tried); no file written\n",
+                 o.value, r.evaluations);
+      exit_code = 1;
+      return;
+    }
+    Config best = in.config;
+    std::string values;
+    for (std::size_t k = 0; k < o.bounds.size(); ++k) {
+      set_number(best, o.bounds[k].key, r.best[k]);
+      values += fmt::format("{}{} = {:.10g}", k ? ", " : "", o.bounds[k].key, r.best[k]);
+    }
+    const Scenario sc = build_scenario(best);
+    out.stream() << fmt::format("# whatnext optimize: {} {} over {} ({} machines): {}; {} = {:.10g}\n",
+                                o.maximize ? "maximise" : "minimise", o.value, in.source, r.evaluations,
+                                values, o.value, r.value)
+                 << to_toml(sc);
+    out.commit();
+    fmt::print("best: {}\n{} = {:.10g}; outcome {} at {:.6f} s ({} machines tried)\nwritten to {}\n", values,
+               o.value, r.value, to_string(r.outcome.outcome), r.outcome.outcome_t, r.evaluations, opts->out);
+    exit_code = 0;
+  });
 }
 
 }  // namespace whatnext::cli

@@ -1,0 +1,20 @@
+// A sweep's outcome over two keys as a PNG (PLplot's pngcairo driver).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "whatnext/explore/sweep.hpp"
+
+namespace whatnext::explore {
+
+// Throws InputError (naming option) unless the plan is a grid over exactly two keys.
+void check_heatmap_plan(const Plan& plan, std::string_view option);
+
+// Draws `value` (see value_names()) over the plan's two keys: one cell per machine, coloured by
+// the value; machines where it never happened in grey, invalid machines in black, machines not
+// run (an interrupted sweep) left white. The file appears only when complete.
+void draw_heatmap(const std::string& path, const Machines& machines, const SweepResult& result,
+                  std::string_view value);
+
+}  // namespace whatnext::explore

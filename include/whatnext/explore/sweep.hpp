@@ -1,0 +1,108 @@
+// Many machines at once: a parameter grid or a Latin hypercube over input keys, run on all cores,
+// one outcome row per machine. Rows depend only on the plan, never on the thread count.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "whatnext/config.hpp"
+#include "whatnext/events.hpp"
+
+namespace whatnext::explore {
+
+// One varied key: values lo..hi, n of them on a grid (n = 0 where no count is needed).
+struct Range {
+  std::string key;
+  double lo = 0.0, hi = 0.0;
+  int n = 0;
+};
+
+// Parses "KEY=A:B:N" (need_count) or "KEY=A:B" (count optional) as given to the option named by
+// option ("--vary"). Checks the key against the input keys (with a suggestion), A <= B, N >= 1.
+// Throws InputError with one line naming the option, the rule and the value.
+Range parse_range(std::string_view spec, std::string_view option, bool need_count);
+
+// What to sweep: the full grid (samples == 0; the last range varies fastest) or a Latin
+// hypercube of `samples` points drawn from `seed` (the same seed gives the same points everywhere:
+// only mt19937_64's standardised output is used, no library distribution).
+struct Plan {
+  std::vector<Range> ranges;
+  std::int64_t samples = 0;
+  std::uint64_t seed = 1;
+  std::vector<std::string> keys() const;
+};
+
+// The machines of a plan, numbered 0..size()-1.
+class Machines {
+ public:
+  // Throws InputError for no ranges, a key given twice, a grid range without N, or too many machines.
+  explicit Machines(const Plan& plan);
+  std::int64_t size() const { return size_; }
+  const Plan& plan() const { return plan_; }
+  // Values of machine i, one per range, written to out[0..ranges).
+  void point(std::int64_t i, double* out) const;
+
+ private:
+  Plan plan_;
+  std::int64_t size_ = 0;
+  std::vector<double> lhs_;  // Latin hypercube: size_ x ranges values, row-major
+};
+
+// At most this many machines in one sweep (every row is kept in memory until the CSV is written).
+constexpr std::int64_t kMaxMachines = 20'000'000;
+
+// Every event type, in declaration order: the event columns of a sweep. Read from the names
+// table, so a type added to events.hpp and names.cpp appears without touching this code.
+const std::vector<EventType>& event_types();
+
+// What became of one machine.
+struct Outcome {
+  bool valid = false;
+  std::string error;  // the InputError message when the inputs were invalid
+  EventType outcome = EventType::timeout;
+  double outcome_t = 0.0;
+  double final_r = 0.0;          // sandbag's distance from the pivot when the run ended [m]
+  double final_phi_l_deg = 0.0;  // lid angle when the run ended [deg]
+  std::vector<double> first;     // per event_types() entry: first occurrence [s], NaN if none
+};
+
+// Builds the machine (base with the given values set) and runs it. Invalid inputs give an
+// Outcome with valid == false and the reason, never an exception.
+Outcome evaluate(const Config& base, const std::vector<std::string>& keys, const double* values);
+
+// Names usable as a value of an outcome: "outcome_t", "final_r", "final_phi_l_deg" and every
+// event name (its first occurrence time).
+std::vector<std::string> value_names();
+// Throws InputError (naming option) for an unknown value name.
+void check_value_name(std::string_view name, std::string_view option);
+// The named value of an outcome; NaN when it did not happen or the machine is invalid.
+double value_of(const Outcome& o, std::string_view name);
+
+struct RunOptions {
+  int threads = 1;
+  const std::atomic<bool>* stop = nullptr;  // set (e.g. by SIGINT) to stop early
+  // Called on the calling thread about ten times a second with (done, total).
+  std::function<void(std::int64_t, std::int64_t)> progress;
+};
+
+struct SweepResult {
+  std::vector<Outcome> rows;  // by machine index
+  std::vector<char> done;     // done[i]: rows[i] holds machine i's outcome
+  std::int64_t completed = 0;
+  bool interrupted = false;
+};
+
+// Runs every machine.
+SweepResult run(const Config& base, const Machines& machines, const RunOptions& options);
+
+// CSV with a header and one row per finished machine in index order: index, the varied values,
+// outcome, outcome_t, final_r, final_phi_l_deg, one column per event type (first time, empty if
+// none), error.
+void write_csv(std::ostream& out, const Machines& machines, const SweepResult& result);
+
+}  // namespace whatnext::explore

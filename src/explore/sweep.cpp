@@ -1,0 +1,353 @@
+#include "whatnext/explore/sweep.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdlib>
+#include <limits>
+#include <mutex>
+#include <ostream>
+#include <random>
+#include <thread>
+
+#include <fmt/format.h>
+#include <iterator>
+
+#include "whatnext/simulate.hpp"
+
+namespace whatnext::explore {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+std::string_view trim(std::string_view s) {
+  const auto a = s.find_first_not_of(" \t");
+  const auto b = s.find_last_not_of(" \t");
+  return a == std::string_view::npos ? std::string_view() : s.substr(a, b - a + 1);
+}
+
+// Whole-string number parse; strtod because it accepts every spelling users write (1e-3, .5).
+bool parse_double(std::string_view text, double& out) {
+  const std::string s(trim(text));
+  if (s.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size() && std::isfinite(out);
+}
+
+std::string num(double v) { return fmt::format("{}", v); }
+
+std::string csv_quote(std::string_view s) {
+  if (s.find_first_of(",\"\n\r") == std::string_view::npos) return std::string(s);
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += (c == '\n' || c == '\r') ? ' ' : c;
+  }
+  return out + "\"";
+}
+
+// A uniform double in [0, 1) from the raw generator output (the standard fixes mt19937_64's
+// sequence but not the distributions', so these are the same on every platform).
+double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+void set_values(Config& cfg, const std::vector<std::string>& keys, const double* values) {
+  for (std::size_t k = 0; k < keys.size(); ++k) set_number(cfg, keys[k], values[k]);
+}
+
+// Runs one machine in a scratch config that already holds the base values.
+Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const double* values) {
+  Outcome o;
+  o.first.assign(event_types().size(), kNaN);
+  try {
+    set_values(work, keys, values);
+    const Scenario sc = build_scenario(work);
+    const Result res = simulate(sc);
+    for (const Event& e : res.events) {
+      const auto idx = static_cast<std::size_t>(e.type);
+      if (idx < o.first.size() && std::isnan(o.first[idx])) o.first[idx] = e.t;
+    }
+    const Event& last = res.outcome();
+    o.outcome = last.type;
+    o.outcome_t = last.t;
+    o.final_r = last.after.r;
+    o.final_phi_l_deg = last.after.phi_l * kRadToDeg;
+    o.valid = true;
+  } catch (const InputError& e) {
+    o.error = e.what();
+  } catch (const std::exception& e) {  // a bug, but one machine must not sink the whole sweep
+    o.error = fmt::format("internal error: {}", e.what());
+  }
+  return o;
+}
+
+}  // namespace
+
+Range parse_range(std::string_view spec, std::string_view option, bool need_count) {
+  const std::string where = fmt::format("{} {}", option, spec);
+  const std::string_view form = need_count ? "KEY=A:B:N" : "KEY=A:B";
+  const auto eq = spec.find('=');
+  if (eq == std::string_view::npos) {
+    throw InputError(fmt::format("{}: expected {} (given no '=')", where, form));
+  }
+  Range r;
+  r.key = std::string(trim(spec.substr(0, eq)));
+  const KeySpec* ks = find_key(r.key);
+  if (!ks) {
+    const std::string near = nearest_key(r.key);
+    throw InputError(near.empty()
+                         ? fmt::format("{}: unknown key '{}'", where, r.key)
+                         : fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, r.key, near));
+  }
+  if (ks->kind == KeyKind::text || ks->kind == KeyKind::pair) {
+    throw InputError(fmt::format("{}: {} is not a single number and cannot be varied", where, r.key));
+  }
+  std::vector<std::string_view> parts;
+  std::string_view rest = spec.substr(eq + 1);
+  for (;;) {
+    const auto colon = rest.find(':');
+    parts.push_back(rest.substr(0, colon));
+    if (colon == std::string_view::npos) break;
+    rest = rest.substr(colon + 1);
+  }
+  const bool count_given = parts.size() == 3;
+  if (parts.size() != 2 && !count_given) {
+    throw InputError(fmt::format("{}: expected {} ({} fields after '=')", where, form, parts.size()));
+  }
+  if (need_count && !count_given) {
+    throw InputError(fmt::format("{}: expected {}: a grid needs the number of values N", where, form));
+  }
+  if (!parse_double(parts[0], r.lo)) {
+    throw InputError(fmt::format("{}: A must be a finite number (given '{}')", where, trim(parts[0])));
+  }
+  if (!parse_double(parts[1], r.hi)) {
+    throw InputError(fmt::format("{}: B must be a finite number (given '{}')", where, trim(parts[1])));
+  }
+  if (r.lo > r.hi) {
+    throw InputError(fmt::format("{}: needs A <= B (given A = {}, B = {})", where, num(r.lo), num(r.hi)));
+  }
+  if (count_given) {
+    double n = 0.0;
+    if (!parse_double(parts[2], n) || n != std::floor(n) || n < 1.0 || n > 1e9) {
+      throw InputError(fmt::format("{}: N must be a whole number >= 1 (given '{}')", where, trim(parts[2])));
+    }
+    r.n = static_cast<int>(n);
+  }
+  return r;
+}
+
+std::vector<std::string> Plan::keys() const {
+  std::vector<std::string> out;
+  for (const Range& r : ranges) out.push_back(r.key);
+  return out;
+}
+
+Machines::Machines(const Plan& plan) : plan_(plan) {
+  if (plan_.ranges.empty()) throw InputError("--vary: give at least one KEY=A:B:N to vary");
+  for (std::size_t i = 0; i < plan_.ranges.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (plan_.ranges[i].key == plan_.ranges[j].key) {
+        throw InputError(fmt::format("--vary: each key may be varied once ({} is given twice)",
+                                     plan_.ranges[i].key));
+      }
+    }
+  }
+  const auto dims = plan_.ranges.size();
+  if (plan_.samples > 0) {
+    if (plan_.samples > kMaxMachines) {
+      throw InputError(fmt::format("--samples: at most {} machines (given {})", kMaxMachines, plan_.samples));
+    }
+    size_ = plan_.samples;
+    // Latin hypercube: in every dimension each of the `samples` strata holds exactly one point.
+    std::mt19937_64 rng(plan_.seed);
+    lhs_.assign(static_cast<std::size_t>(size_) * dims, 0.0);
+    std::vector<std::int64_t> perm(static_cast<std::size_t>(size_));
+    for (std::size_t d = 0; d < dims; ++d) {
+      for (std::int64_t i = 0; i < size_; ++i) perm[static_cast<std::size_t>(i)] = i;
+      for (std::int64_t i = size_ - 1; i > 0; --i) {  // Fisher-Yates
+        const auto j = static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(i + 1));
+        std::swap(perm[static_cast<std::size_t>(i)], perm[static_cast<std::size_t>(j)]);
+      }
+      const Range& r = plan_.ranges[d];
+      for (std::int64_t i = 0; i < size_; ++i) {
+        const double u = (static_cast<double>(perm[static_cast<std::size_t>(i)]) + unit(rng)) /
+                         static_cast<double>(size_);
+        lhs_[static_cast<std::size_t>(i) * dims + d] = r.lo + (r.hi - r.lo) * u;
+      }
+    }
+    return;
+  }
+  size_ = 1;
+  for (const Range& r : plan_.ranges) {
+    if (r.n < 1) {
+      throw InputError(fmt::format("--vary {}: a grid needs KEY=A:B:N with N >= 1 (or use --samples)", r.key));
+    }
+    if (size_ > kMaxMachines / r.n) {
+      throw InputError(fmt::format("--vary: the grid has more than {} machines; use fewer values",
+                                   kMaxMachines));
+    }
+    size_ *= r.n;
+  }
+}
+
+void Machines::point(std::int64_t i, double* out) const {
+  const auto dims = plan_.ranges.size();
+  if (plan_.samples > 0) {
+    for (std::size_t d = 0; d < dims; ++d) out[d] = lhs_[static_cast<std::size_t>(i) * dims + d];
+    return;
+  }
+  for (std::size_t d = dims; d-- > 0;) {  // the last range varies fastest
+    const Range& r = plan_.ranges[d];
+    const std::int64_t j = i % r.n;
+    i /= r.n;
+    // The ends are exactly A and B; a single value is A.
+    out[d] = r.n == 1 ? r.lo
+             : j == r.n - 1 ? r.hi
+                            : r.lo + (r.hi - r.lo) * static_cast<double>(j) / static_cast<double>(r.n - 1);
+  }
+}
+
+const std::vector<EventType>& event_types() {
+  // EventType is a scoped enum (underlying int) with contiguous values from 0, and names.cpp
+  // names every one of them: the first value without a name is one past the last.
+  static const std::vector<EventType> types = [] {
+    std::vector<EventType> out;
+    for (int i = 0; i < 1000; ++i) {
+      const auto t = static_cast<EventType>(i);
+      if (to_string(t) == "?") break;
+      out.push_back(t);
+    }
+    return out;
+  }();
+  return types;
+}
+
+Outcome evaluate(const Config& base, const std::vector<std::string>& keys, const double* values) {
+  Config work = base;
+  return evaluate_in(work, keys, values);
+}
+
+std::vector<std::string> value_names() {
+  std::vector<std::string> out{"outcome_t", "final_r", "final_phi_l_deg"};
+  for (EventType t : event_types()) out.emplace_back(to_string(t));
+  return out;
+}
+
+void check_value_name(std::string_view name, std::string_view option) {
+  for (const std::string& v : value_names()) {
+    if (v == name) return;
+  }
+  throw InputError(fmt::format("{} {}: unknown value (use outcome_t, final_r, final_phi_l_deg or an "
+                               "event name such as lid_open)", option, name));
+}
+
+double value_of(const Outcome& o, std::string_view name) {
+  if (!o.valid) return kNaN;
+  if (name == "outcome_t") return o.outcome_t;
+  if (name == "final_r") return o.final_r;
+  if (name == "final_phi_l_deg") return o.final_phi_l_deg;
+  const auto& types = event_types();
+  for (std::size_t i = 0; i < types.size(); ++i) {
+    if (to_string(types[i]) == name) return o.first[i];
+  }
+  return kNaN;
+}
+
+SweepResult run(const Config& base, const Machines& machines, const RunOptions& options) {
+  const std::int64_t total = machines.size();
+  const std::vector<std::string> keys = machines.plan().keys();
+  SweepResult res;
+  res.rows.resize(static_cast<std::size_t>(total));
+  res.done.assign(static_cast<std::size_t>(total), 0);
+
+  // Workers claim small blocks of indices; each row lands in its own slot, so the rows (and the
+  // CSV) do not depend on which thread ran which machine.
+  constexpr std::int64_t kBlock = 8;
+  std::atomic<std::int64_t> next{0}, completed{0};
+  std::atomic<int> running{0};
+  std::mutex m;
+  std::condition_variable cv;
+  auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
+  auto worker = [&] {
+    Config work = base;
+    std::vector<double> values(keys.size());
+    for (;;) {
+      const std::int64_t start = next.fetch_add(kBlock);
+      if (start >= total) break;
+      const std::int64_t end = std::min(total, start + kBlock);
+      for (std::int64_t i = start; i < end; ++i) {
+        if (stopped()) break;
+        machines.point(i, values.data());
+        res.rows[static_cast<std::size_t>(i)] = evaluate_in(work, keys, values.data());
+        res.done[static_cast<std::size_t>(i)] = 1;
+        completed.fetch_add(1, std::memory_order_relaxed);
+      }
+      if (stopped()) break;
+    }
+    std::lock_guard<std::mutex> lock(m);
+    --running;
+    cv.notify_all();
+  };
+  const int threads = static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>(options.threads, total)));
+  running = threads;
+  std::vector<std::thread> pool;
+  pool.reserve(static_cast<std::size_t>(threads));
+  for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+  {
+    std::unique_lock<std::mutex> lock(m);
+    while (running > 0) {
+      cv.wait_for(lock, std::chrono::milliseconds(100));
+      if (options.progress) {
+        lock.unlock();
+        options.progress(completed.load(), total);
+        lock.lock();
+      }
+    }
+  }
+  for (std::thread& t : pool) t.join();
+  res.completed = completed.load();
+  res.interrupted = res.completed < total;
+  return res;
+}
+
+void write_csv(std::ostream& out, const Machines& machines, const SweepResult& result) {
+  const Plan& plan = machines.plan();
+  fmt::memory_buffer line;
+  auto put = [&line](std::string_view text) { line.append(text.data(), text.data() + text.size()); };
+  put("index");
+  for (const Range& r : plan.ranges) fmt::format_to(std::back_inserter(line), ",{}", r.key);
+  put(",outcome,outcome_t,final_r,final_phi_l_deg");
+  for (EventType t : event_types()) fmt::format_to(std::back_inserter(line), ",{}", to_string(t));
+  put(",error\n");
+  out.write(line.data(), static_cast<std::streamsize>(line.size()));
+  std::vector<double> values(plan.ranges.size());
+  for (std::int64_t i = 0; i < machines.size(); ++i) {
+    if (!result.done[static_cast<std::size_t>(i)]) continue;
+    const Outcome& o = result.rows[static_cast<std::size_t>(i)];
+    machines.point(i, values.data());
+    line.clear();
+    fmt::format_to(std::back_inserter(line), "{}", i);
+    // "{}" prints the shortest text that reads back to the same double: lossless and deterministic.
+    for (double v : values) fmt::format_to(std::back_inserter(line), ",{}", v);
+    if (o.valid) {
+      fmt::format_to(std::back_inserter(line), ",{},{},{},{}", to_string(o.outcome), o.outcome_t, o.final_r,
+                     o.final_phi_l_deg);
+      for (double t : o.first) {
+        put(",");
+        if (!std::isnan(t)) fmt::format_to(std::back_inserter(line), "{}", t);
+      }
+      put(",\n");
+    } else {
+      put(",invalid,,,");
+      for (std::size_t k = 0; k < o.first.size(); ++k) put(",");
+      put(",");
+      put(csv_quote(o.error));
+      put("\n");
+    }
+    out.write(line.data(), static_cast<std::streamsize>(line.size()));
+  }
+}
+
+}  // namespace whatnext::explore

@@ -1,0 +1,345 @@
+// Sweeps and optimisation (issue 5): rows independent of the thread count, bad --vary specs
+// rejected before any work, Latin hypercubes that are reproducible and stratified, invalid
+// machines reported in their row, Ctrl-C leaving a valid file, and the optimiser finding the best
+// cell of a fine grid.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "whatnext/explore/optimize.hpp"
+#include "whatnext/explore/sweep.hpp"
+#include "whatnext/simulate.hpp"
+
+namespace fs = std::filesystem;
+using namespace whatnext;
+using namespace whatnext::explore;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  std::istringstream in(s);
+  while (std::getline(in, cur, sep)) out.push_back(cur);
+  if (!s.empty() && s.back() == sep) out.emplace_back();
+  return out;
+}
+
+struct CliResult {
+  int code;
+  std::string out, err;
+};
+
+class SweepCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("wn-sweep-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  CliResult whatnext(const std::string& args) {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    const std::string cmd = std::string(WHATNEXT_CLI) + " " + args + " >" + out.string() + " 2>" +
+                            err.string() + " </dev/null";
+    const int status = std::system(cmd.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  }
+  // Bad input: exit 2, one line mentioning what is wrong, and neither the CSV nor its temporary.
+  void expect_rejected(const std::string& args, const std::string& must_mention) {
+    const fs::path csv = dir_ / "out.csv";
+    const CliResult r = whatnext(args + " --out " + csv.string());
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(must_mention), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(csv)) << args;
+    EXPECT_FALSE(fs::exists(dir_.string() + "/out.csv.part")) << args;
+  }
+  fs::path dir_;
+};
+
+TEST_F(SweepCli, CsvIsByteIdenticalForOneAndTwoThreads) {
+  // Example 1 over the masses crosses the line where the lid stops opening, so rows differ in
+  // their event columns and a reordering would show.
+  const std::string args =
+      "sweep --example 1 --vary masses.sandbag=0.1:1.5:12 --vary masses.lid=0.2:2:11 --vary "
+      "geometry.rope_length=0.95:1.05:3";
+  const CliResult one = whatnext(args + " --threads 1 --out " + (dir_ / "one.csv").string());
+  const CliResult two = whatnext(args + " --threads 2 --out " + (dir_ / "two.csv").string());
+  ASSERT_EQ(one.code, 0) << one.err;
+  ASSERT_EQ(two.code, 0) << two.err;
+  const std::string a = slurp(dir_ / "one.csv"), b = slurp(dir_ / "two.csv");
+  EXPECT_EQ(std::count(a.begin(), a.end(), '\n'), 1 + 12 * 11 * 3);
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a.find(",lid_open,"), std::string::npos);
+  EXPECT_NE(a.find(",timeout,"), std::string::npos);
+
+  const std::string lhs = "sweep --example 2 --vary masses.sandbag=0.3:1 --vary start.sandbag_height=0.3:1 "
+                          "--samples 97 --seed 11";
+  ASSERT_EQ(whatnext(lhs + " --threads 1 --out " + (dir_ / "l1.csv").string()).code, 0);
+  ASSERT_EQ(whatnext(lhs + " --threads 2 --out " + (dir_ / "l2.csv").string()).code, 0);
+  EXPECT_EQ(slurp(dir_ / "l1.csv"), slurp(dir_ / "l2.csv"));
+}
+
+TEST_F(SweepCli, RowsMatchSingleRuns) {
+  // The sweep's row for a machine must say what `whatnext run` says for the same machine.
+  ASSERT_EQ(whatnext("sweep --example 2 --vary geometry.rope_length=0.62:0.66:3 --out " +
+                     (dir_ / "s.csv").string()).code, 0);
+  const auto lines = split(slurp(dir_ / "s.csv"), '\n');
+  const auto header = split(lines[0], ',');
+  const auto col = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  const auto row = split(lines[3], ',');  // rope 0.66
+  EXPECT_EQ(row[col("geometry.rope_length")], "0.66");
+  Config c = example_config(2);
+  set_number(c, "geometry.rope_length", 0.66);
+  const Result r = simulate(build_scenario(c));
+  EXPECT_EQ(row[col("outcome")], std::string(to_string(r.outcome().type)));
+  EXPECT_DOUBLE_EQ(std::stod(row[col("outcome_t")]), r.outcome().t);
+  for (const Event& e : r.events) {
+    const std::string& cell = row[col(std::string(to_string(e.type)))];
+    ASSERT_FALSE(cell.empty()) << to_string(e.type);
+  }
+  const auto first_sandbag = std::find_if(r.events.begin(), r.events.end(),
+                                          [](const Event& e) { return e.type == EventType::sandbag_lands; });
+  ASSERT_NE(first_sandbag, r.events.end());
+  EXPECT_DOUBLE_EQ(std::stod(row[col("sandbag_lands")]), first_sandbag->t);
+  EXPECT_EQ(row[col("seesaw_vertical")], "");
+}
+
+TEST_F(SweepCli, BadVarySpecsAreRejectedWithOneLineAndNoFile) {
+  const std::string base = "sweep --example 2 ";
+  expect_rejected(base + "--vary geometry.rope_lenght=0.6:0.7:3", "did you mean 'geometry.rope_length'");
+  expect_rejected(base + "--vary geometry.rope_length=0.7:0.6:3", "A <= B");
+  expect_rejected(base + "--vary geometry.rope_length=0.6:0.7:0", "N must be a whole number >= 1");
+  expect_rejected(base + "--vary geometry.rope_length=0.6:0.7:2.5", "N must be");
+  expect_rejected(base + "--vary geometry.rope_length=0.6:abc:3", "B must be a finite number (given 'abc')");
+  expect_rejected(base + "--vary geometry.rope_length=0.6:0.7", "needs the number of values N");
+  expect_rejected(base + "--vary run.integrator=1:2:3", "cannot be varied");
+  expect_rejected(base + "--vary masses.lid=1:2:3 --vary masses.lid=1:2:3", "given twice");
+  expect_rejected(base + "--vary masses.lid=1:2:3 --heatmap " + (dir_ / "h.png").string(), "two keys");
+  expect_rejected(base + "--vary masses.lid=1:2:3 --vary masses.sandbag=1:2:2 --heatmap " +
+                      (dir_ / "h.png").string() + " --heatmap-value lid_opne",
+                  "unknown value");
+  EXPECT_FALSE(fs::exists(dir_ / "h.png"));
+}
+
+TEST_F(SweepCli, InvalidMachinesGetTheirReasonAndTheSweepGoesOn) {
+  // Ropes shorter than the start distance (0.639 m) are invalid inputs; the others run.
+  const CliResult r = whatnext("sweep --example 2 --vary geometry.rope_length=0.5:0.7:5 --out " +
+                               (dir_ / "s.csv").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto lines = split(slurp(dir_ / "s.csv"), '\n');
+  ASSERT_EQ(lines.size(), 7u);  // header, five rows, the empty piece after the last newline
+  Config c = example_config(2);
+  set_number(c, "geometry.rope_length", 0.5);
+  std::string reason;
+  try {
+    build_scenario(c);
+  } catch (const InputError& e) {
+    reason = e.what();
+  }
+  ASSERT_FALSE(reason.empty());
+  EXPECT_NE(lines[1].find(",invalid,"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[1].find(reason), std::string::npos) << lines[1];
+  EXPECT_NE(lines[5].find(",lid_open,"), std::string::npos) << lines[5];
+}
+
+TEST_F(SweepCli, InterruptKeepsAValidFileOfFinishedRows) {
+  // Example 3 machines take about a millisecond each: 40,000 of them outlast the signal.
+  const fs::path csv = dir_ / "big.csv";
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    execl(WHATNEXT_CLI, WHATNEXT_CLI, "sweep", "--example", "3", "--vary", "geometry.rope_length=0.9:1.1:200",
+          "--vary", "masses.lid=0.3:0.7:200", "--out", csv.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_NE(WEXITSTATUS(status), 0);
+  ASSERT_TRUE(fs::exists(csv));
+  EXPECT_FALSE(fs::exists(csv.string() + ".part"));
+  const auto lines = split(slurp(csv), '\n');
+  ASSERT_GE(lines.size(), 2u);
+  EXPECT_EQ(lines.back(), "");  // ends with a complete line
+  const std::size_t columns = split(lines[0], ',').size();
+  long previous = -1;
+  for (std::size_t i = 1; i + 1 < lines.size(); ++i) {
+    const auto cells = split(lines[i], ',');
+    ASSERT_EQ(cells.size(), columns) << lines[i];
+    const long index = std::stol(cells[0]);
+    EXPECT_GT(index, previous);  // index order
+    previous = index;
+  }
+  EXPECT_LT(lines.size() - 2, 40000u);  // it really stopped early
+}
+
+TEST(Sweep, EventColumnsFollowTheEventTypes) {
+  const auto& types = event_types();
+  std::set<std::string> names;
+  for (EventType t : types) names.insert(std::string(to_string(t)));
+  EXPECT_EQ(names.size(), types.size());
+  EXPECT_EQ(names.count("?"), 0u);
+  EXPECT_EQ(names.count("lid_open"), 1u);
+  EXPECT_EQ(names.count("lid_rests"), 1u);
+  EXPECT_EQ(names.count("event_limit"), 1u);
+  // The type after the last one has no name: nothing was cut off.
+  EXPECT_EQ(to_string(static_cast<EventType>(static_cast<int>(types.back()) + 1)), "?");
+
+  Plan plan;
+  plan.ranges.push_back(parse_range("masses.lid=0.5:0.5:1", "--vary", true));
+  const Machines m(plan);
+  RunOptions ro;
+  const SweepResult res = run(example_config(2), m, ro);
+  std::ostringstream csv;
+  write_csv(csv, m, res);
+  const auto header = split(split(csv.str(), '\n')[0], ',');
+  for (const std::string& n : names) {
+    EXPECT_EQ(std::count(header.begin(), header.end(), n), 1) << n;
+  }
+}
+
+TEST(Sweep, GridEndsAreExactAndLastKeyVariesFastest) {
+  Plan plan;
+  plan.ranges.push_back(parse_range("masses.lid=0.1:0.7:4", "--vary", true));
+  plan.ranges.push_back(parse_range("masses.sandbag=1:2:3", "--vary", true));
+  const Machines m(plan);
+  ASSERT_EQ(m.size(), 12);
+  double v[2];
+  m.point(0, v);
+  EXPECT_EQ(v[0], 0.1);
+  EXPECT_EQ(v[1], 1.0);
+  m.point(1, v);
+  EXPECT_EQ(v[0], 0.1);
+  EXPECT_EQ(v[1], 1.5);
+  m.point(11, v);
+  EXPECT_EQ(v[0], 0.7);
+  EXPECT_EQ(v[1], 2.0);
+}
+
+TEST(Sweep, LatinHypercubeIsReproducibleAndStratified) {
+  Plan plan;
+  plan.samples = 50;
+  plan.seed = 42;
+  plan.ranges.push_back(parse_range("masses.lid=0:10", "--vary", false));
+  plan.ranges.push_back(parse_range("masses.sandbag=1:2", "--vary", false));
+  const Machines a(plan), b(plan);
+  plan.seed = 43;
+  const Machines c(plan);
+  std::vector<int> stratum0(50, 0), stratum1(50, 0);
+  bool differs = false;
+  for (std::int64_t i = 0; i < 50; ++i) {
+    double pa[2], pb[2], pc[2];
+    a.point(i, pa);
+    b.point(i, pb);
+    c.point(i, pc);
+    EXPECT_EQ(pa[0], pb[0]);
+    EXPECT_EQ(pa[1], pb[1]);
+    differs = differs || pa[0] != pc[0];
+    ++stratum0[static_cast<int>(pa[0] / 10.0 * 50)];
+    ++stratum1[static_cast<int>((pa[1] - 1.0) * 50)];
+  }
+  EXPECT_TRUE(differs);
+  for (int s = 0; s < 50; ++s) {
+    EXPECT_EQ(stratum0[s], 1) << s;
+    EXPECT_EQ(stratum1[s], 1) << s;
+  }
+}
+
+TEST(Optimize, LandsInTheBestCellOfAFineGrid) {
+  // Example 2: the sandbag's distance from the pivot when the lid opens has an interior minimum
+  // over its start x (near -0.18 m). A 1001-point sweep finds the best cell; the optimiser, with
+  // only a 7-point coarse grid of its own, must end in that cell and do at least as well.
+  const Config base = example_config(2);
+  Plan plan;
+  plan.ranges.push_back(parse_range("start.sandbag_x=-0.6:-0.1:1001", "--vary", true));
+  const Machines fine(plan);
+  RunOptions ro;
+  ro.threads = 2;
+  const SweepResult grid = run(base, fine, ro);
+  std::int64_t best = -1;
+  for (std::int64_t i = 0; i < fine.size(); ++i) {
+    const double v = value_of(grid.rows[static_cast<std::size_t>(i)], "final_r");
+    if (!std::isnan(v) && (best < 0 || v < value_of(grid.rows[static_cast<std::size_t>(best)], "final_r"))) best = i;
+  }
+  ASSERT_GT(best, 0);
+  ASSERT_LT(best, fine.size() - 1);  // interior, or the test shows nothing
+  double x_best;
+  fine.point(best, &x_best);
+  const double cell = 0.5 / 1000;
+
+  OptimizeOptions opt;
+  opt.bounds.push_back(parse_range("start.sandbag_x=-0.6:-0.1", "--vary", false));
+  opt.value = "final_r";
+  opt.grid_points = 7;
+  opt.threads = 2;
+  const OptimizeResult r = optimize(base, opt);
+  ASSERT_TRUE(r.found);
+  EXPECT_NEAR(r.best[0], x_best, cell);
+  EXPECT_LE(r.value, value_of(grid.rows[static_cast<std::size_t>(best)], "final_r") + 1e-12);
+  EXPECT_EQ(r.outcome.outcome, EventType::lid_open);
+
+  // Maximising a value that has its largest grid value at an end must stay at that end.
+  opt.maximize = true;
+  const OptimizeResult m = optimize(base, opt);
+  ASSERT_TRUE(m.found);
+  double v_max = -1.0, x_max = 0.0;
+  for (std::int64_t i = 0; i < fine.size(); ++i) {
+    const double v = value_of(grid.rows[static_cast<std::size_t>(i)], "final_r");
+    if (v > v_max) v_max = v, fine.point(i, &x_max);
+  }
+  EXPECT_NEAR(m.best[0], x_max, cell);
+  EXPECT_GE(m.value, v_max - 1e-12);
+}
+
+TEST_F(SweepCli, OptimizeWritesATomlThatRunAccepts) {
+  const fs::path best = dir_ / "best.toml";
+  const CliResult r = whatnext("optimize --example 2 --vary start.sandbag_x=-0.6:-0.1 --minimize final_r --out " +
+                               best.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Scenario sc = build_scenario(load_config_file(best.string()));
+  EXPECT_NEAR(sc.start.sandbag_x, -0.18, 0.02);  // the interior minimum, not a bound
+  const CliResult run = whatnext("run -q " + best.string());
+  ASSERT_EQ(run.code, 0) << run.err;
+  EXPECT_NE(run.out.find("lid open"), std::string::npos) << run.out;
+  // An unknown outcome is bad input: exit 2, one line, no file.
+  const fs::path none = dir_ / "none.toml";
+  const CliResult bad = whatnext("optimize --example 2 --vary start.sandbag_x=-0.6:-0.1 --minimize lid_opn --out " +
+                                 none.string());
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_FALSE(fs::exists(none));
+}
+
+}  // namespace
