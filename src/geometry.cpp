@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <boost/math/tools/minima.hpp>
-
 namespace whatnext {
 
 namespace {
@@ -80,28 +78,33 @@ double RopeGeometry::seesaw_arm(double phi_s, double phi_l) const {
 }
 
 double RopeGeometry::max_span(double phi_l_min) const {
-  // For a fixed R the farthest lid edge on the arc [phi_l_min, 90 deg] is at an end of the arc or
-  // diametrically opposite R - H; the outer maximum over phiS is found on a fine grid and polished
-  // by Brent's method on the best cell.
-  auto farthest = [&](double phi_s) {
-    const Vec2 hr = seesaw_end(phi_s) - hinge_;
-    double best = std::max(span(phi_s, phi_l_min), span(phi_s, kHalfPi));
-    const double opposite = std::atan2(-hr.h, -hr.x);
-    if (opposite >= phi_l_min && opposite <= kHalfPi) best = std::max(best, span(phi_s, opposite));
-    return best;
-  };
-  constexpr int kCells = 720;
+  // Closed form (a grid search cost more than a whole simulation, and validation runs for every
+  // machine of a sweep). For a fixed point, the farthest point of a circular arc is the
+  // antipodal one if the arc holds it, else an end of the arc. So at the maximum each of R and E
+  // is an arc end or antipodal to the other, and these candidates contain it:
+  // both ends; one end and the other's antipode; both antipodal (R, P, H, E on one line).
+  const double s_lo = -kHalfPi, s_hi = kHalfPi, l_lo = phi_l_min, l_hi = kHalfPi;
+  auto in = [](double a, double lo, double hi) { return a >= lo && a <= hi; };
   double best = 0.0;
-  int best_i = 0;
-  for (int i = 0; i <= kCells; ++i) {
-    const double v = farthest(-kHalfPi + kHalfPi * 2.0 * i / kCells);
-    if (v > best) best = v, best_i = i;
+  auto consider = [&](double phi_s, double phi_l) { best = std::max(best, span(phi_s, phi_l)); };
+  for (double s : {s_lo, s_hi}) {
+    for (double l : {l_lo, l_hi}) consider(s, l);
+    const Vec2 hr = seesaw_end(s) - hinge_;  // E opposite R as seen from H
+    const double l = std::atan2(-hr.h, -hr.x);
+    if (in(l, l_lo, l_hi)) consider(s, l);
   }
-  const double a = -kHalfPi + kHalfPi * 2.0 * std::max(0, best_i - 1) / kCells;
-  const double b = -kHalfPi + kHalfPi * 2.0 * std::min(kCells, best_i + 1) / kCells;
-  const auto polished = boost::math::tools::brent_find_minima(
-      [&](double phi_s) { return -farthest(phi_s); }, a, b, 40);
-  return std::max(best, -polished.second);
+  for (double l : {l_lo, l_hi}) {
+    const Vec2 e = lid_edge(l);  // R opposite E as seen from P
+    const double s = std::atan2(-e.h, -e.x);
+    if (in(s, s_lo, s_hi)) consider(s, l);
+  }
+  const double a = std::atan2(hinge_.h, hinge_.x);  // the line through P and H
+  for (double s : {a, a + 2.0 * kHalfPi, a - 2.0 * kHalfPi}) {
+    for (double l : {a, a + 2.0 * kHalfPi, a - 2.0 * kHalfPi}) {
+      if (in(s, s_lo, s_hi) && in(l, l_lo, l_hi)) consider(s, l);
+    }
+  }
+  return best;
 }
 
 double BalloonLimit::height(double phi_l) const {
