@@ -155,7 +155,8 @@ double Model::lid_rope_torque(const Kinematics& k) const {
 
 bool Model::lid_lifts_now(double r, double phi_s) const {
   const double k = rope_.transfer(phi_s, phi_l0_).k;
-  return m_s_ * r * std::cos(phi_s) > k * m_l_ * r_l_ * std::cos(phi_l0_);
+  // >= so that it agrees exactly with the lid_lifts guard at the instant that guard fires.
+  return m_s_ * r * std::cos(phi_s) >= k * m_l_ * r_l_ * std::cos(phi_l0_);
 }
 
 double Model::energy(const Kinematics& k) const {
@@ -335,7 +336,10 @@ void Model::settle(HybridState& hs, std::vector<Event>& out) const {
   if (!hs.d.polar()) return;
   if (!hs.d.lid_resting) {
     const Kinematics k = kinematics(hs.d, hs.y);
-    if (k.phi_l <= phi_l0_ + 1e-12 && k.dphi_l <= 0.0) {  // the box stops the lid
+    // The box stops a lid left moving down, or left at rest with too little pull to lift it
+    // (a lid that has just lifted, at rest but pulled hard enough, goes on lifting).
+    if (k.phi_l <= phi_l0_ + 1e-12 &&
+        (k.dphi_l < 0.0 || (k.dphi_l == 0.0 && !lid_lifts_now(hs.y[slot::r], hs.y[slot::phi_s])))) {
       hs.d.lid_resting = true;
       hs.y[slot::dphi_s] = 0.0;
     }
@@ -373,7 +377,10 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
   const Mode before = hs.d.mode();
   const Kinematics k0 = kinematics(hs.d, hs.y);
   const double limit_rate0 = limit_.rate(k0.phi_l, k0.dphi_l);
-  const EventType type = event_of(fired);
+  EventType type = event_of(fired);
+  // MODEL.md: the model ends when the sandbag reaches the pivot. As r -> 0 the rope's pull on the
+  // lid vanishes too, so rope_slack and sandbag_at_pivot arrive together; the pivot wins.
+  if (hs.d.on_seesaw && k0.r <= 1e-9 && !is_stop(type)) type = EventType::sandbag_at_pivot;
   auto emit_impact = [&] {
     Event e = make_event(type, hs, before);
     e.impact = true;

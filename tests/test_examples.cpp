@@ -119,3 +119,46 @@ TEST(PaperExamples, LidSwingsUpAndFallsBackInExample4) {
 }
 
 }  // namespace
+
+namespace {
+
+// Two random machines that once went wrong (found by comparing against a 1e-15 run).
+wn::Result run_inp(const std::string& numbers, const char* tolerance = nullptr) {
+  wn::Config cfg = wn::parse_inp(numbers, "machine.inp");
+  if (tolerance) wn::apply_set(cfg, std::string("run.tolerance=") + tolerance);
+  return wn::simulate(wn::build_scenario(cfg));
+}
+
+TEST(RandomMachines, LidThatLiftsFromRestKeepsLifting) {
+  // The lid falls back (M4 -> M5), the sandbag slides out until its torque lifts the lid again:
+  // exactly one lid_lifts, and a tighter tolerance tells the same story.
+  const std::string m =
+      "0.02058615894255251\n-0.16316896651208757\n7.19071099728049\n12.988503633009488\n"
+      "0.5970593224925949\n0.4939818005573638\n29.968088772540717\n0.15921453461663032\n"
+      "0.5498999611184008\n0.7856221787767934\n1.3202701103929773\n1.29\n0.18\n5\n0.001\n";
+  const wn::Result a = run_inp(m), b = run_inp(m, "1e-15");
+  EXPECT_EQ(times_of(a, wn::EventType::lid_lifts).size(), 1u);
+  EXPECT_EQ(times_of(a, wn::EventType::lid_rests).size(), 1u);
+  ASSERT_EQ(a.events.size(), b.events.size());
+  for (std::size_t i = 0; i < a.events.size(); ++i) {
+    EXPECT_EQ(a.events[i].type, b.events[i].type);
+    EXPECT_NEAR(a.events[i].t, b.events[i].t, 1e-9);
+  }
+  EXPECT_EQ(a.outcome().type, wn::EventType::lid_open);
+}
+
+TEST(RandomMachines, SandbagSlidingIntoThePivotEndsTheRun) {
+  // The lid pulls the seesaw back and the sandbag slides inward to the pivot; as r -> 0 the rope's
+  // pull vanishes too. The run must end at the pivot with finite numbers.
+  const std::string m =
+      "1.0741647951891522\n-0.1819056799090406\n-30.256496080949923\n13.815115032639667\n"
+      "0.8557638384246731\n0.47431273060191104\n42.06352765464577\n0.13061614451734713\n"
+      "0.6336485887226643\n0.2544691975669947\n0.6675425018048345\n1.29\n0.18\n20\n0.001\n";
+  const wn::Result a = run_inp(m);
+  EXPECT_EQ(a.outcome().type, wn::EventType::sandbag_at_pivot);
+  EXPECT_LT(a.outcome().after.r, 1e-6);
+  EXPECT_TRUE(std::isfinite(a.outcome().after.phi_l));
+  EXPECT_TRUE(times_of(a, wn::EventType::rope_slack).empty());
+}
+
+}  // namespace
