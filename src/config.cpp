@@ -37,7 +37,26 @@ const std::vector<KeySpec> kKeys = {
     {"air.helium_density", KeyKind::density, "kg/m^3", "density of the balloon's helium"},
     {"balloon.radius", KeyKind::length, "m", "r_B (default: geometry.lid_half_length)"},
     {"balloon.model", KeyKind::text, "",
-     "program (a = g (rho_air - rho_He) / rho_air) or lagrangian (/ rho_He)"},
+     "program (a = g (rho_air - rho_He) / rho_air), lagrangian (/ rho_He) or added-mass "
+     "(/ (rho_He + rho_air / 2))"},
+    {"balloon.rubber_mass", KeyKind::mass, "kg", "the balloon's rubber: weight and inertia (default 0)"},
+    {"balloon.drag", KeyKind::flag, "", "true: quadratic air drag 1/2 rho_air Cd pi r_B^2 v|v| (default false)"},
+    {"balloon.drag_coefficient", KeyKind::positive, "",
+     "Cd of the air drag (default 0.47, a sphere); giving it turns drag on"},
+    {"radio.enabled", KeyKind::flag, "",
+     "true: after lid_open run on until the balloon's string switches the radio on (default false; "
+     "any other radio key turns it on too)"},
+    {"radio.switch_offset", KeyKind::pair, "m",
+     "[dx, dh]: the radio's switch dx right of and dh above the box's top-right corner (default [0.5, 0])"},
+    {"radio.string_length", KeyKind::length, "m", "the balloon's string, centre to switch (default 1.0)"},
+    {"damping.pivot", KeyKind::positive, "N m s/rad", "viscous torque -c phiS' at the seesaw's pivot (default 0)"},
+    {"damping.lid_hinge", KeyKind::positive, "N m s/rad", "viscous torque -c phiL' at the lid's hinge (default 0)"},
+    {"seesaw.left_arm", KeyKind::length, "m", "pivot to the left arm's end (default: endless, as the paper)"},
+    {"seesaw.mass", KeyKind::mass, "kg",
+     "a seesaw with mass: a uniform bar from -left_arm to r_H unless inertia/com_offset are given (default 0)"},
+    {"seesaw.inertia", KeyKind::positive, "kg m^2", "the seesaw's moment of inertia about the pivot"},
+    {"seesaw.com_offset", KeyKind::length, "m",
+     "the seesaw's centre of mass along the bar from the pivot, + towards the rope's end"},
     {"start.sandbag_x", KeyKind::length, "m", "sandbag's start, horizontal from the pivot (< 0)"},
     {"start.sandbag_height", KeyKind::length, "m", "sandbag's start height above the pivot"},
     {"start.seesaw_angle", KeyKind::angle, "deg", "phiS0, positive = left arm down"},
@@ -90,7 +109,12 @@ void store(Config& cfg, const std::string& key, const toml::node& node, const st
   if (!spec) unknown_key(origin, key);
   ConfigValue v;
   v.origin = origin;
-  if (spec->kind == KeyKind::text) {
+  if (spec->kind == KeyKind::flag) {
+    if (!node.is_boolean()) {
+      throw InputError(fmt::format("{}: {} must be true or false", origin, key));
+    }
+    v.number = node.as_boolean()->get() ? 1.0 : 0.0;
+  } else if (spec->kind == KeyKind::text) {
     if (!node.is_string()) {
       throw InputError(fmt::format("{}: {} must be a text value (one of: {})", origin, key, spec->help));
     }
@@ -316,7 +340,7 @@ void apply_set(Config& cfg, std::string_view assignment) {
 void set_number(Config& cfg, const std::string& key, double value) {
   const KeySpec* spec = find_key(key);
   if (!spec) unknown_key("key", key);
-  if (spec->kind == KeyKind::text || spec->kind == KeyKind::pair) {
+  if (spec->kind == KeyKind::text || spec->kind == KeyKind::pair || spec->kind == KeyKind::flag) {
     throw InputError(fmt::format("key {}: is not a single number", key));
   }
   ConfigValue v;
@@ -327,6 +351,108 @@ void set_number(Config& cfg, const std::string& key, double value) {
     cfg.values.erase("geometry.hinge_offset");
   }
 }
+
+namespace {
+
+bool flag(const Reader& in, const std::string& key, bool fallback) {
+  const ConfigValue* v = in.find(key);
+  return v ? v->number != 0.0 : fallback;
+}
+
+// The switches beyond the paper (docs/extensions.md); with none of their keys given the machine
+// is MODEL.md's.
+void build_extensions(const Reader& in, Machine& m) {
+  // Kermit's radio stands 0.5 m right of the box, its switch level with the box's top. The radio is
+  // opt-in: radio.enabled, or any other radio key, turns it on.
+  Vec2 offset{0.5, 0.0};
+  if (in.find("radio.switch_offset")) {
+    const ConfigValue& v = *in.find("radio.switch_offset");
+    if (!std::isfinite(v.pair[0]) || !std::isfinite(v.pair[1])) {
+      in.fail("radio.switch_offset", "must hold finite numbers");
+    }
+    offset = {v.pair[0], v.pair[1]};
+  }
+  m.radio_switch = m.hinge + Vec2{2.0 * m.lid_half_length, 0.0} + offset;
+  m.string_length = in.positive("radio.string_length", 1.0);
+  const bool any_radio = in.find("radio.switch_offset") || in.find("radio.string_length");
+  m.radio = flag(in, "radio.enabled", any_radio);
+  if (!m.radio && any_radio && in.find("radio.enabled")) {
+    in.fail("radio.enabled", "is false but other radio keys are given: remove them or enable the radio");
+  }
+
+  m.balloon_rubber_mass = in.number("balloon.rubber_mass", 0.0);
+  if (!(m.balloon_rubber_mass >= 0.0)) {
+    in.fail("balloon.rubber_mass", fmt::format("must be >= 0 kg (given {})", fmt_num(m.balloon_rubber_mass)));
+  }
+  if (!(m.balloon_acceleration() > 0.0)) {
+    const double most = (m.air_density - m.helium_density) * m.balloon_volume();
+    in.fail("balloon.rubber_mass",
+            fmt::format("must be below the lift {:.4g} kg (displaced air minus helium) so that the balloon "
+                        "rises (given {})", most, fmt_num(m.balloon_rubber_mass)));
+  }
+  const bool drag_given = in.find("balloon.drag_coefficient") != nullptr;
+  const bool drag = flag(in, "balloon.drag", drag_given);
+  if (!drag && drag_given && in.find("balloon.drag")) {
+    in.fail("balloon.drag", "is false but balloon.drag_coefficient is given: remove one");
+  }
+  m.balloon_drag_coefficient = drag ? in.positive("balloon.drag_coefficient", 0.47) : 0.0;
+
+  m.pivot_damping = in.in_range("damping.pivot", 0.0, 0.0, true, 1e6, true);
+  m.lid_hinge_damping = in.in_range("damping.lid_hinge", 0.0, 0.0, true, 1e6, true);
+
+  if (in.find("seesaw.left_arm")) m.seesaw_left_arm = in.positive("seesaw.left_arm", 1.0);
+  m.seesaw_mass = in.number("seesaw.mass", 0.0);
+  if (!(m.seesaw_mass >= 0.0)) {
+    in.fail("seesaw.mass", fmt::format("must be >= 0 kg (given {})", fmt_num(m.seesaw_mass)));
+  }
+  const bool bar = !in.find("seesaw.inertia") || !in.find("seesaw.com_offset");
+  if (m.seesaw_mass > 0.0 && bar && !std::isfinite(m.seesaw_left_arm)) {
+    in.fail("seesaw.mass", "needs seesaw.left_arm (a uniform bar) or both seesaw.inertia and seesaw.com_offset");
+  }
+  if ((in.find("seesaw.inertia") || in.find("seesaw.com_offset")) && !in.find("seesaw.mass")) {
+    in.fail(in.find("seesaw.inertia") ? "seesaw.inertia" : "seesaw.com_offset",
+            "needs seesaw.mass (the seesaw's weight acts at its centre of mass)");
+  }
+  if (m.seesaw_mass > 0.0) {
+    // Uniform bar from -L to r_H: centre (r_H - L) / 2, I = m (L^3 + r_H^3) / (3 (L + r_H)).
+    const double l = m.seesaw_left_arm, rh = m.seesaw_right_arm;
+    const double bar_com = std::isfinite(l) ? 0.5 * (rh - l) : 0.0;
+    const double bar_inertia = std::isfinite(l) ? m.seesaw_mass * (l * l * l + rh * rh * rh) / (3.0 * (l + rh)) : 0.0;
+    m.seesaw_com_offset = in.number("seesaw.com_offset", bar_com);
+    m.seesaw_inertia = in.number("seesaw.inertia", bar_inertia);
+    const double least = m.seesaw_mass * m.seesaw_com_offset * m.seesaw_com_offset;
+    if (!(m.seesaw_inertia > 0.0) || m.seesaw_inertia < least * (1.0 - 1e-12)) {
+      in.fail("seesaw.inertia",
+              fmt::format("must be > 0 and at least mass * com_offset^2 = {:.4g} kg m^2 (given {})", least,
+                          fmt_num(m.seesaw_inertia)));
+    }
+  }
+}
+
+// Start conditions that only the extensions can violate.
+void check_extension_start(const Reader& in, const Scenario& sc) {
+  const Machine& m = sc.machine;
+  const Start& st = sc.start;
+  const double c = std::cos(st.seesaw_angle), s = std::sin(st.seesaw_angle);
+  const double along = -st.sandbag_x * c - st.sandbag_h * s;
+  const double above = -st.sandbag_x * s + st.sandbag_h * c;
+  if (std::isfinite(m.seesaw_left_arm) && std::fabs(above) <= 1e-9 && along > m.seesaw_left_arm) {
+    in.fail("seesaw.left_arm", fmt::format("is shorter than the sandbag's start on the arm ({:.4g} m < {:.4g} m)",
+                                           m.seesaw_left_arm, along));
+  }
+  if (m.radio) {
+    const BalloonLimit limit{m.balloon_radius};
+    const Vec2 balloon{m.hinge.x + m.lid_half_length, m.hinge.h + limit.height(st.lid_angle)};
+    const double reach = norm(balloon - m.radio_switch);
+    if (reach >= m.string_length) {
+      in.fail("radio.string_length",
+              fmt::format("is already straight at the start: the balloon is {:.4g} m from the switch (given {:.4g} m)",
+                          reach, m.string_length));
+    }
+  }
+}
+
+}  // namespace
 
 Scenario build_scenario(const Config& cfg) {
   const Reader in{cfg};
@@ -364,12 +490,10 @@ Scenario build_scenario(const Config& cfg) {
   m.balloon_radius = in.positive("balloon.radius", m.lid_half_length);
   const std::string bmodel = in.text("balloon.model", "program");
   if (!parse_balloon_model(bmodel, m.balloon_model)) {
-    in.fail("balloon.model", fmt::format("must be program or lagrangian (given '{}')", bmodel));
+    in.fail("balloon.model", fmt::format("must be program, lagrangian or added-mass (given '{}')", bmodel));
   }
   m.gravity = in.positive("run.gravity", 9.81);
-  // Kermit's radio stands 0.5 m right of the box, its switch level with the box's top.
-  m.radio_switch = m.hinge + Vec2{2.0 * m.lid_half_length + 0.5, 0.0};
-  m.string_length = 1.0;
+  build_extensions(in, m);
 
   Start& st = sc.start;
   st.sandbag_x = in.number("start.sandbag_x", -0.3);
@@ -429,6 +553,7 @@ Scenario build_scenario(const Config& cfg) {
             fmt::format("can never be straight: the seesaw's end and the lid's edge are never more than "
                         "{:.4g} m apart (given {:.4g} m)", reach, m.rope_length));
   }
+  check_extension_start(in, sc);
   return sc;
 }
 

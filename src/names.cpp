@@ -40,11 +40,12 @@ constexpr std::array<std::pair<IntegratorKind, std::string_view>, 3> kIntegrator
     {IntegratorKind::euler, "euler"},
     {IntegratorKind::rk4, "rk4"},
 }};
-constexpr std::array<std::pair<BalloonModel, std::string_view>, 2> kBalloonModels{{
+constexpr std::array<std::pair<BalloonModel, std::string_view>, 3> kBalloonModels{{
     {BalloonModel::program, "program"},
     {BalloonModel::lagrangian, "lagrangian"},
+    {BalloonModel::added_mass, "added-mass"},
 }};
-constexpr std::array<std::pair<EventType, std::string_view>, 13> kEvents{{
+constexpr std::array<std::pair<EventType, std::string_view>, 16> kEvents{{
     {EventType::sandbag_lands, "sandbag_lands"},
     {EventType::rope_taut, "rope_taut"},
     {EventType::rope_slack, "rope_slack"},
@@ -52,10 +53,13 @@ constexpr std::array<std::pair<EventType, std::string_view>, 13> kEvents{{
     {EventType::lid_lifts, "lid_lifts"},
     {EventType::balloon_caught, "balloon_caught"},
     {EventType::balloon_free, "balloon_free"},
+    {EventType::sandbag_falls_off, "sandbag_falls_off"},
+    {EventType::sandbag_leaves, "sandbag_leaves"},
     {EventType::lid_open, "lid_open"},
     {EventType::seesaw_vertical, "seesaw_vertical"},
     {EventType::sandbag_at_pivot, "sandbag_at_pivot"},
     {EventType::rope_locked, "rope_locked"},
+    {EventType::radio_on, "radio_on"},
     {EventType::timeout, "timeout"},
     {EventType::event_limit, "event_limit"},
 }};
@@ -84,6 +88,7 @@ bool is_stop(EventType type) {
     case EventType::seesaw_vertical:
     case EventType::sandbag_at_pivot:
     case EventType::rope_locked:
+    case EventType::radio_on:
     case EventType::timeout:
     case EventType::event_limit:
       return true;
@@ -92,11 +97,41 @@ bool is_stop(EventType type) {
   }
 }
 
+namespace {
+// Density of the mass the net lift accelerates, rubber spread over the volume: the program divides
+// by the displaced air, the Lagrangian of section 2 by the helium, the added-mass model by the
+// helium plus half the displaced air (a sphere's added mass).
+double inertia_density(const Machine& m, double rubber) {
+  switch (m.balloon_model) {
+    case BalloonModel::program: return m.air_density + rubber;
+    case BalloonModel::lagrangian: return m.helium_density + rubber;
+    case BalloonModel::added_mass: return m.helium_density + 0.5 * m.air_density + rubber;
+  }
+  return m.air_density + rubber;
+}
+}  // namespace
+
+double Machine::balloon_volume() const {
+  return 4.0 / 3.0 * 3.14159265358979323846 * balloon_radius * balloon_radius * balloon_radius;
+}
+
 double Machine::balloon_acceleration() const {
-  // Buoyancy minus the helium's weight, divided by the mass that is accelerated: the program
-  // divides by the displaced air's mass, the Lagrangian of section 2 by the helium's.
-  const double lift = gravity * (air_density - helium_density);
-  return balloon_model == BalloonModel::program ? lift / air_density : lift / helium_density;
+  // Buoyancy minus the weights of helium and rubber, per unit volume, over the inertia's density.
+  // With no rubber this is exactly MODEL.md's g (rho_air - rho_He) / rho_air (or / rho_He).
+  const double rubber = balloon_rubber_mass / balloon_volume();
+  const double lift = gravity * (air_density - helium_density - rubber);
+  return lift / inertia_density(*this, rubber);
+}
+
+double Machine::balloon_inertia() const {
+  const double v = balloon_volume();
+  return inertia_density(*this, balloon_rubber_mass / v) * v;
+}
+
+double Machine::balloon_drag_rate() const {
+  // F = 1/2 rho_air Cd pi r_B^2 v|v|.
+  return 0.5 * air_density * balloon_drag_coefficient * 3.14159265358979323846 * balloon_radius *
+         balloon_radius / balloon_inertia();
 }
 
 }  // namespace whatnext

@@ -58,6 +58,8 @@ std::string outcome_sentence(const Result& result) {
     case EventType::rope_locked:
       return fmt::format("rope and lid in line at {:.3f} s: the linkage locks with the lid at {:.1f} deg",
                          e.t, s.phi_l * kRadToDeg);
+    case EventType::radio_on:
+      return fmt::format("radio on at t = {:.3f} s", e.t);
     case EventType::timeout:
       return fmt::format("no outcome by t_max = {:.3f} s: the lid is at {:.1f} deg", e.t,
                          s.phi_l * kRadToDeg);
@@ -89,6 +91,28 @@ std::string timeline_text(const Result& result, const Scenario& sc, const std::s
   return out;
 }
 
+namespace {
+// Where the energy is and where it went (docs/extensions.md "Energy ledger").
+nlohmann::json ledger(const Snapshot& s) {
+  return nlohmann::json{{"sandbag_kinetic", clean(s.sandbag_kinetic)},
+                        {"sandbag_potential", clean(s.sandbag_potential)},
+                        {"seesaw_kinetic", clean(s.seesaw_kinetic)},
+                        {"seesaw_potential", clean(s.seesaw_potential)},
+                        {"lid_kinetic", clean(s.lid_kinetic)},
+                        {"lid_potential", clean(s.lid_potential)},
+                        {"balloon_kinetic", clean(s.balloon_kinetic)},
+                        {"balloon_potential", clean(s.balloon_potential)},
+                        {"lost_impacts", clean(s.lost_impacts)},
+                        {"lost_balloon_catch", clean(s.lost_balloon_catch)},
+                        {"dissipated_pivot", clean(s.dissipated_pivot)},
+                        {"dissipated_lid_hinge", clean(s.dissipated_hinge)},
+                        {"dissipated_drag", clean(s.dissipated_drag)},
+                        {"lid_push_on_balloon", clean(s.lid_push_work)},
+                        {"initial_total", clean(s.initial_total)},
+                        {"residual", s.ledger_residual()}};
+}
+}  // namespace
+
 std::string events_json(const Result& result, const Scenario& sc, const std::string& source) {
   using nlohmann::json;
   auto state = [](const Snapshot& s) {
@@ -114,6 +138,7 @@ std::string events_json(const Result& result, const Scenario& sc, const std::str
       j["energy_before"] = clean(e.energy_before);
       j["energy_after"] = clean(e.energy_after);
     }
+    j["ledger"] = ledger(e.after);
     events.push_back(std::move(j));
   }
   const Event& last = result.outcome();
@@ -134,7 +159,10 @@ CsvWriter::CsvWriter(std::ostream& out) : out_(out) { out_ << header() << '\n'; 
 const char* CsvWriter::header() {
   return "t_s,event,mode,rope_taut,x_m,h_m,r_m,dr_m_per_s,phi_s_deg,dphi_s_deg_per_s,phi_l_deg,"
          "dphi_l_deg_per_s,balloon_h_m,balloon_v_m_per_s,balloon_limit_m,tension_N,energy_J,"
-         "sandbag_kinetic_J,sandbag_potential_J,lid_kinetic_J,lid_potential_J";
+         "sandbag_kinetic_J,sandbag_potential_J,lid_kinetic_J,lid_potential_J,"
+         "seesaw_kinetic_J,seesaw_potential_J,balloon_kinetic_J,balloon_potential_J,lost_impacts_J,"
+         "lost_balloon_catch_J,dissipated_pivot_J,dissipated_lid_hinge_J,dissipated_drag_J,"
+         "lid_push_on_balloon_J,ledger_residual_J";
 }
 
 void CsvWriter::row(const Snapshot& s, const char* event) {
@@ -144,7 +172,10 @@ void CsvWriter::row(const Snapshot& s, const char* event) {
   for (double v : {s.x, s.h, s.r, s.dr, s.phi_s * kRadToDeg, s.dphi_s * kRadToDeg,
                    s.phi_l * kRadToDeg, s.dphi_l * kRadToDeg, s.balloon_h, s.balloon_v,
                    s.balloon_limit, s.tension, s.energy(), s.sandbag_kinetic, s.sandbag_potential,
-                   s.lid_kinetic, s.lid_potential}) {
+                   s.lid_kinetic, s.lid_potential, s.seesaw_kinetic, s.seesaw_potential,
+                   s.balloon_kinetic, s.balloon_potential, s.lost_impacts, s.lost_balloon_catch,
+                   s.dissipated_pivot, s.dissipated_hinge, s.dissipated_drag, s.lid_push_work,
+                   s.ledger_residual()}) {
     fmt::format_to(std::back_inserter(b), ",{:.9g}", clean(v));
   }
   b.push_back('\n');

@@ -18,7 +18,7 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class KeyKind { length, mass, density, angle, time, acceleration, positive, text, pair };
+enum class KeyKind { length, mass, density, angle, time, acceleration, positive, text, pair, flag };
 
 struct KeySpec {
   std::string_view key;

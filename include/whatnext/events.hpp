@@ -15,10 +15,13 @@ enum class EventType {
   lid_lifts,
   balloon_caught,
   balloon_free,
+  sandbag_falls_off,  // extensions: slides off the end of a finite left arm
+  sandbag_leaves,     // extensions: the arm's normal force on the sandbag reaches zero (heavy seesaw)
   lid_open,
   seesaw_vertical,
   sandbag_at_pivot,
   rope_locked,  // the lid lies along the rope: the linkage cannot move on (not in the paper)
+  radio_on,     // extensions: the balloon's string is straight and switches the radio on
   timeout,
   event_limit,  // safety stop against endless event chains at one instant
 };

@@ -2,6 +2,7 @@
 // SI units and radians throughout; degrees exist only in the input layer (config.hpp).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <string_view>
 
@@ -12,7 +13,8 @@ namespace whatnext {
 enum class ImpactLaw { rope, angular_momentum_sum, kinetic_energy, linear_momentum };
 enum class IntegratorKind { adaptive, euler, rk4 };
 // How the balloon's upward acceleration follows from the densities (MODEL.md "Balloon").
-enum class BalloonModel { program, lagrangian };
+// program and lagrangian are MODEL.md's; added_mass also accelerates half the displaced air.
+enum class BalloonModel { program, lagrangian, added_mass };
 
 std::string_view to_string(ImpactLaw law);
 std::string_view to_string(IntegratorKind kind);
@@ -40,10 +42,27 @@ struct Machine {
   Vec2 radio_switch{1.8, -0.36};
   double string_length = 1.0;     // [m]
 
+  // Extensions beyond the paper (docs/extensions.md). Every default is MODEL.md's machine.
+  bool radio = false;                      // run on after lid_open until the radio switches on
+  double balloon_rubber_mass = 0.0;        // [kg]
+  double balloon_drag_coefficient = 0.0;   // Cd of quadratic air drag; 0: no drag
+  double pivot_damping = 0.0;              // viscous torque -c phiS' at the pivot [N m s/rad]
+  double lid_hinge_damping = 0.0;          // viscous torque -c phiL' at the lid hinge [N m s/rad]
+  double seesaw_left_arm = std::numeric_limits<double>::infinity();  // pivot to left end [m]
+  double seesaw_mass = 0.0;                // [kg]
+  double seesaw_inertia = 0.0;             // about the pivot [kg m^2]; > 0 makes the seesaw "heavy"
+  double seesaw_com_offset = 0.0;          // centre of mass along the bar, + towards r_H [m]
+
   // Uniform plate hinged at one edge: I = m (2 r_L)^2 / 3.
   double lid_inertia() const { return lid_mass * 4.0 * lid_half_length * lid_half_length / 3.0; }
-  // Free balloon's constant upward acceleration a_B.
+  // Free balloon's upward acceleration at rest, a_B = net lift / balloon_inertia().
   double balloon_acceleration() const;
+  double balloon_volume() const;
+  // The mass the net force accelerates (by balloon_model, plus the rubber).
+  double balloon_inertia() const;
+  // Air drag per unit of balloon_inertia(): a = a_B - drag_rate * v |v|.
+  double balloon_drag_rate() const;
+  bool heavy_seesaw() const { return seesaw_inertia > 0.0; }
 };
 
 // Where everything starts. The lid starts at rest, the sandbag at rest.

@@ -12,30 +12,49 @@ namespace whatnext {
 enum class Mode { M1 = 1, M2, M3, M4, M5 };
 std::string_view to_string(Mode mode);
 
+// Energy booked at the jumps (docs/extensions.md "Energy ledger"); the flows' losses are
+// integrated in the continuous state instead. Marks hold the values at the last booking.
+struct Books {
+  double initial_total = 0.0;  // machine and balloon at t = 0 [J]
+  double impacts = 0.0;        // machine energy lost in impacts (and the radio's latch) [J]
+  double balloon_catch = 0.0;  // balloon energy lost when the lid forces its velocity [J]
+  double lid_push = 0.0;       // work of the (one-way) lid contact on the balloon, to the mark [J]
+  double machine_mark = 0.0, balloon_v_mark = 0.0, balloon_e_mark = 0.0, drag_mark = 0.0;
+};
+
 struct Discrete {
-  bool on_seesaw = false;      // sandbag has landed (it never leaves: MODEL.md)
+  bool on_seesaw = false;      // sandbag on the arm (massless seesaw: once landed, for good)
   bool taut = false;           // rope straight
   bool lid_resting = true;     // lid lying at its lowest angle phiL0
   bool balloon_stuck = true;   // balloon pressed against the lid
+  bool fallen_off = false;     // sandbag slid off the arm's end: it never lands again
+  bool latched = false;        // radio: lid latched open after lid_open, rope slack for good
+  bool heavy = false;          // the seesaw has inertia (copied from the machine at the start)
   double parked_seesaw = 0.0;  // seesaw angle while nothing moves it (M1) [rad]
+  Books books;
 
   Mode mode() const {
     if (!on_seesaw) return taut ? Mode::M2 : Mode::M1;
     if (!taut) return Mode::M3;
     return lid_resting ? Mode::M5 : Mode::M4;
   }
-  // While the sandbag rides a taut rope its motion is polar (r, phiS); otherwise Cartesian.
-  bool polar() const { return on_seesaw && taut; }
+  // While the sandbag rides a taut rope, or a seesaw with inertia, its motion is polar (r, phiS);
+  // otherwise Cartesian (on a massless seesaw with the rope slack that is free fall).
+  bool polar() const { return on_seesaw && (taut || heavy); }
 };
 
 // Continuous state. Cartesian layout: x, h, x', h' of the sandbag; polar layout: r, phiS, r', phiS'.
 // Then phiL, phiL' (unused while the lid is slaved to the seesaw or resting), then the balloon's
-// height and rate (unused while it is stuck under the lid).
-using State = std::array<double, 8>;
+// height and rate (unused while it is stuck under the lid); then a seesaw with inertia's angle and
+// rate while the sandbag is off it; then the energy dissipated so far by the damped pivot, the
+// damped lid hinge and the balloon's air drag (zero rates unless those switches are on).
+using State = std::array<double, 13>;
 namespace slot {
 constexpr int x = 0, h = 1, vx = 2, vh = 3;
 constexpr int r = 0, phi_s = 1, dr = 2, dphi_s = 3;
 constexpr int phi_l = 4, dphi_l = 5, balloon_h = 6, balloon_v = 7;
+constexpr int seesaw_phi = 8, seesaw_dphi = 9;
+constexpr int lost_pivot = 10, lost_hinge = 11, lost_drag = 12;
 }  // namespace slot
 
 struct HybridState {
@@ -57,7 +76,26 @@ struct Snapshot {
   double balloon_limit = 0, balloon_limit_rate = 0;
   double tension = 0;                         // rope tension [N]
   double sandbag_kinetic = 0, sandbag_potential = 0, lid_kinetic = 0, lid_potential = 0;
-  double energy() const { return sandbag_kinetic + sandbag_potential + lid_kinetic + lid_potential; }
+  double normal_force = 0;                    // arm on the sandbag [N] (0 when off the arm)
+  // Energy ledger (docs/extensions.md). Potentials: zero at the pivot level (sandbag, seesaw), at
+  // the hinge (lid) and, for the balloon's net lift, at the hinge level.
+  double seesaw_kinetic = 0, seesaw_potential = 0, balloon_kinetic = 0, balloon_potential = 0;
+  double lost_impacts = 0, lost_balloon_catch = 0;           // booked at jumps
+  double dissipated_pivot = 0, dissipated_hinge = 0, dissipated_drag = 0;  // integrated
+  double lid_push_work = 0;  // work done on the balloon by the lid that does not feel it
+  double initial_total = 0;
+  // The machine: sandbag, lid and seesaw (the balloon does not act on it).
+  double energy() const {
+    return sandbag_kinetic + sandbag_potential + lid_kinetic + lid_potential + seesaw_kinetic +
+           seesaw_potential;
+  }
+  double total_energy() const { return energy() + balloon_kinetic + balloon_potential; }
+  double dissipated() const { return dissipated_pivot + dissipated_hinge + dissipated_drag; }
+  double lost() const { return lost_impacts + lost_balloon_catch; }
+  // initial = now + lost + dissipated - work put in by the lid's push on the balloon.
+  double ledger_residual() const {
+    return initial_total - (total_energy() + lost() + dissipated() - lid_push_work);
+  }
 };
 
 }  // namespace whatnext
