@@ -537,8 +537,13 @@ void Model::settle(HybridState& hs, std::vector<Event>& out) const {
       const Kinematics k = kinematics(hs.d, hs.y);
       // The box stops a lid left moving down, or left at rest with too little pull to lift it
       // (a lid that has just lifted, at rest but pulled hard enough, goes on lifting).
+      // A heavy seesaw of vanishing inertia jerks the resting lid up by less than the contact
+      // tolerance before it falls back: too brief for any step to see, so the box stops it here.
+      const double rise = k.ddphi_l < 0.0 ? r_l_ * k.dphi_l * k.dphi_l / -k.ddphi_l : kNoEnd;
+      const bool twitch = hs.d.heavy && k.dphi_l > 0.0 && rise < kContact;
       if (k.phi_l <= phi_l0_ + 1e-12 &&
-          (k.dphi_l < 0.0 || (k.dphi_l == 0.0 && !lid_lifts_now(hs.d.on_seesaw, k.r, k.phi_s)))) {
+          (k.dphi_l < 0.0 || twitch ||
+           (k.dphi_l == 0.0 && !lid_lifts_now(hs.d.on_seesaw, k.r, k.phi_s)))) {
         hs.d.lid_resting = true;
         set_seesaw_rate(hs, 0.0);
       }
