@@ -15,6 +15,11 @@ namespace {
 // Colour map 0 slots used here (0 is the background).
 constexpr PLINT kInk = 1, kNever = 2, kInvalid = 3;
 
+std::string with_unit(std::string_view value) {
+  const char* unit = value == "final_r" ? "m" : value == "final_phi_l_deg" ? "deg" : "s";
+  return fmt::format("{} [{}]", value, unit);
+}
+
 void fill_rect(double x0, double x1, double y0, double y1) {
   PLFLT x[4] = {x0, x1, x1, x0};
   PLFLT y[4] = {y0, y0, y1, y1};
@@ -113,11 +118,26 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
     const double cx = x0 + wx * static_cast<double>(ix), cy = y0 + wy * static_cast<double>(iy);
     fill_rect(cx, cx + wx, cy, cy + wy);
   }
+  // Whatever is drawn, machines that never open the lid stay recognisable: hatched.
+  bool any_closed = false;
+  if (value != "lid_open") {
+    plcol0(kInk);
+    plpsty(3);
+    for (std::int64_t i = 0; i < machines.size(); ++i) {
+      const Outcome& o = result.rows[static_cast<std::size_t>(i)];
+      if (!result.done[static_cast<std::size_t>(i)] || !o.valid || !std::isnan(value_of(o, "lid_open"))) continue;
+      any_closed = true;
+      const double cx = x0 + wx * static_cast<double>(i / ry.n), cy = y0 + wy * static_cast<double>(i % ry.n);
+      fill_rect(cx, cx + wx, cy, cy + wy);
+    }
+    plpsty(0);
+  }
   plcol0(kInk);
   plbox("bcnst", 0.0, 0, "bcnstv", 0.0, 0);
-  pllab(rx.key.c_str(), ry.key.c_str(), fmt::format("{} by {} and {}", value, rx.key, ry.key).c_str());
+  pllab(rx.key.c_str(), ry.key.c_str(), fmt::format("{} by {} and {}", with_unit(value), rx.key, ry.key).c_str());
   std::string legend;
   if (any_never) legend += fmt::format("grey: no {}", value);
+  if (any_closed) legend += fmt::format("{}hatched: the lid never opens", legend.empty() ? "" : "   ");
   if (any_invalid) legend += fmt::format("{}black: invalid inputs", legend.empty() ? "" : "   ");
   if (!legend.empty()) plmtex("b", 5.2, 0.0, 0.0, legend.c_str());
 
@@ -131,7 +151,7 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
   }
   plcol0(kInk);
   plbox("bc", 0.0, 0, "bcmstv", 0.0, 0);
-  plmtex("t", 1.0, 0.5, 0.5, std::string(value).c_str());
+  plmtex("t", 1.0, 0.5, 0.5, with_unit(value).c_str());
   plend();
 
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {

@@ -12,8 +12,9 @@ namespace whatnext::explore {
 void check_heatmap_plan(const Plan& plan, std::string_view option);
 
 // Draws `value` (see value_names()) over the plan's two keys: one cell per machine, coloured by
-// the value; machines where it never happened in grey, invalid machines in black, machines not
-// run (an interrupted sweep) left white. The file appears only when complete.
+// the value; machines where it never happened in grey, machines that never open the lid hatched
+// (when the value is not lid_open itself), invalid machines in black, machines not run (an
+// interrupted sweep) left white. The file appears only when complete.
 void draw_heatmap(const std::string& path, const Machines& machines, const SweepResult& result,
                   std::string_view value);
 

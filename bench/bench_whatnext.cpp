@@ -1,0 +1,201 @@
+// whatnext benchmarks (docs/performance.md): the four examples with the adaptive integrator and the
+// paper's Euler steps, a work-precision table, sweep throughput, and heap allocations per run.
+// Every timed configuration also reports its event-time error against a very tight reference run
+// (adaptive, tolerance 1e-15): err_s is the largest difference of the first time of each event
+// type; inf when the run's set of event types differs from the reference's.
+#include <benchmark/benchmark.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <new>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "whatnext/config.hpp"
+#include "whatnext/explore/sweep.hpp"
+#include "whatnext/simulate.hpp"
+
+// --- counting global operator new: shows that a run allocates per event, never per step ---------
+namespace {
+std::atomic<long> g_allocations{0};
+}
+void* operator new(std::size_t n) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return ::operator new(n); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace {
+
+using namespace whatnext;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Method {
+  IntegratorKind kind;
+  double param;  // tolerance (adaptive) or step (euler, rk4)
+  std::string name() const {
+    return kind == IntegratorKind::adaptive ? fmt::format("adaptive_tol{:g}", param)
+                                            : fmt::format("{}_dt{:g}", to_string(kind), param);
+  }
+};
+
+Config with_method(Config c, const Method& m) {
+  c.values.erase("run.integrator");
+  apply_set(c, fmt::format("run.integrator={}", to_string(m.kind)));
+  set_number(c, m.kind == IntegratorKind::adaptive ? "run.tolerance" : "run.step", m.param);
+  return c;
+}
+
+std::map<EventType, double> first_times(const Result& r) {
+  std::map<EventType, double> out;
+  for (const Event& e : r.events) out.emplace(e.type, e.t);  // emplace keeps the first
+  return out;
+}
+
+double event_error(const Result& run, const Result& ref) {
+  const auto a = first_times(run), b = first_times(ref);
+  if (a.size() != b.size()) return kInf;
+  double err = 0.0;
+  for (const auto& [type, t] : b) {
+    const auto it = a.find(type);
+    if (it == a.end()) return kInf;
+    err = std::fmax(err, std::fabs(it->second - t));
+  }
+  return err;
+}
+
+const Result& reference(int example) {
+  static std::map<int, Result> cache;
+  auto it = cache.find(example);
+  if (it == cache.end()) {
+    Config c = example_config(example);
+    set_number(c, "run.tolerance", 1e-15);
+    it = cache.emplace(example, simulate(build_scenario(c))).first;
+  }
+  return it->second;
+}
+
+// One example, one method: time per run, event-time error, steps.
+void run_example(benchmark::State& state, int example, Method m) {
+  const Scenario sc = build_scenario(with_method(example_config(example), m));
+  const Result once = simulate(sc);
+  for (auto _ : state) {
+    Result r = simulate(sc);
+    benchmark::DoNotOptimize(r.events.data());
+  }
+  state.counters["err_s"] = event_error(once, reference(example));
+  state.counters["steps"] = static_cast<double>(once.stats.steps);
+  state.counters["t_end_s"] = once.outcome().t;
+}
+
+// Example-2-class machines: rope length and drop height varied around example 2.
+Config sweep_base(double tolerance) {
+  Config c = example_config(2);
+  set_number(c, "run.tolerance", tolerance);
+  return c;
+}
+explore::Plan sweep_plan() {
+  explore::Plan p;
+  p.ranges.push_back(explore::parse_range("geometry.rope_length=0.625:0.72:40", "--vary", true));
+  p.ranges.push_back(explore::parse_range("start.sandbag_height=0.25:1.0:50", "--vary", true));
+  return p;
+}
+
+void sweep_throughput(benchmark::State& state, double tolerance) {
+  const int threads = static_cast<int>(state.range(0));
+  const explore::Machines machines(sweep_plan());
+  const Config base = sweep_base(tolerance);
+  explore::RunOptions ro;
+  ro.threads = threads;
+  std::int64_t invalid = 0;
+  for (auto _ : state) {
+    const explore::SweepResult r = explore::run(base, machines, ro);
+    invalid = 0;
+    for (const auto& o : r.rows) invalid += o.valid ? 0 : 1;
+    benchmark::DoNotOptimize(r.rows.data());
+  }
+  state.SetItemsProcessed(state.iterations() * machines.size());
+  // Accuracy of these very machines: every 10th against a tolerance-1e-15 run.
+  const explore::SweepResult run = explore::run(base, machines, ro);
+  const Config tight = sweep_base(1e-15);
+  const explore::SweepResult ref = explore::run(tight, machines, ro);
+  double err = 0.0;
+  for (std::size_t i = 0; i < run.rows.size(); i += 10) {
+    const auto& a = run.rows[i];
+    const auto& b = ref.rows[i];
+    if (!a.valid || !b.valid) continue;
+    for (std::size_t k = 0; k < a.first.size(); ++k) {
+      if (std::isnan(a.first[k]) != std::isnan(b.first[k])) err = kInf;
+      else if (!std::isnan(a.first[k])) err = std::fmax(err, std::fabs(a.first[k] - b.first[k]));
+    }
+  }
+  state.counters["err_s"] = err;
+  state.counters["invalid"] = static_cast<double>(invalid);
+}
+
+// Heap allocations per run: constant in the number of steps means none per step.
+void allocations(benchmark::State& state, int example, Method m) {
+  const Scenario sc = build_scenario(with_method(example_config(example), m));
+  long per_run = 0;
+  std::int64_t steps = 0;
+  for (auto _ : state) {
+    const long before = g_allocations.load();
+    Result r = simulate(sc);
+    per_run = g_allocations.load() - before;
+    steps = r.stats.steps;
+    benchmark::DoNotOptimize(r.events.data());
+  }
+  state.counters["allocs_per_run"] = static_cast<double>(per_run);
+  state.counters["steps"] = static_cast<double>(steps);
+  state.counters["allocs_per_step"] = static_cast<double>(per_run) / static_cast<double>(steps);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Method adaptive_default{IntegratorKind::adaptive, 1e-12};
+  const Method adaptive_1e9{IntegratorKind::adaptive, 1e-11};
+  const Method euler_paper{IntegratorKind::euler, 1e-3};
+  const Method euler_fine{IntegratorKind::euler, 2.5e-4};
+  for (int ex = 1; ex <= 4; ++ex) {
+    for (const Method& m : {adaptive_default, adaptive_1e9, euler_paper, euler_fine}) {
+      benchmark::RegisterBenchmark(fmt::format("example{}/{}", ex, m.name()).c_str(), run_example, ex, m)
+          ->Unit(benchmark::kMicrosecond);
+    }
+  }
+  std::vector<Method> table;
+  for (double dt : {1e-3, 2.5e-4, 1e-4, 2.5e-5}) table.push_back({IntegratorKind::euler, dt});
+  for (double dt : {1e-2, 2.5e-3, 1e-3, 2.5e-4, 1e-4}) table.push_back({IntegratorKind::rk4, dt});
+  for (double tol : {1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13}) table.push_back({IntegratorKind::adaptive, tol});
+  for (int ex : {2, 3}) {
+    for (const Method& m : table) {
+      benchmark::RegisterBenchmark(fmt::format("precision/example{}/{}", ex, m.name()).c_str(), run_example, ex, m)
+          ->Unit(benchmark::kMicrosecond);
+    }
+  }
+  for (double tol : {1e-8, 1e-9}) {
+    benchmark::RegisterBenchmark(fmt::format("sweep/example2_class_2000/tol{:g}/threads", tol).c_str(),
+                                 sweep_throughput, tol)
+        ->Arg(1)
+        ->Arg(2)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+  benchmark::RegisterBenchmark("allocations/example2/adaptive_tol1e-12", allocations, 2, adaptive_default);
+  benchmark::RegisterBenchmark("allocations/example3/adaptive_tol1e-12", allocations, 3, adaptive_default);
+  benchmark::RegisterBenchmark("allocations/example3/euler_dt0.00025", allocations, 3, euler_fine);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
