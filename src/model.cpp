@@ -331,7 +331,9 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g) const {
     // Height of the sandbag above the left arm's line, measured across the arm; it can only land
     // where the arm is (a finite arm ends at seesaw_left_arm).
     const double along = -k.x * std::cos(k.phi_s) - k.h * std::sin(k.phi_s);
-    if (along <= arm_) g[kGuardLands] = -(-k.x * std::sin(k.phi_s) + k.h * std::cos(k.phi_s));
+    const double below = -(-k.x * std::sin(k.phi_s) + k.h * std::cos(k.phi_s));
+    // Passing the arm's line beyond its end is missing the arm for good (sandbag_falls_off).
+    g[along <= arm_ ? kGuardLands : kGuardFallsOff] = below;
   }
   if (!d.taut) g[kGuardRopeTaut] = rope_.gap(k.phi_s, k.phi_l);
   if (!d.lid_resting) {
