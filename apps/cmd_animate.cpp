@@ -1,11 +1,47 @@
-// Placeholder until `whatnext animate` is built.
+// `whatnext animate`: the machine to scale as an animated GIF (or MP4 through ffmpeg).
+#include <memory>
+
+#include <fmt/format.h>
+
 #include "cli_common.hpp"
+#include "whatnext/viz/animation.hpp"
 
 namespace whatnext::cli {
 
+namespace {
+struct AnimateOptions {
+  InputOptions input;
+  std::string out, dump;
+  viz::AnimationOptions anim;
+  bool quiet = false;
+};
+}  // namespace
+
 void register_animate(CLI::App& app, int& exit_code) {
-  CLI::App* cmd = app.add_subcommand("animate", "(not built yet)");
-  cmd->callback([&exit_code] { exit_code = 3; });
+  auto opts = std::make_shared<AnimateOptions>();
+  CLI::App* cmd = app.add_subcommand("animate", "draw the machine moving, as an animated GIF or MP4");
+  add_input_options(*cmd, opts->input);
+  cmd->add_option("--out", opts->out, "FILE.gif, or FILE.mp4 (needs ffmpeg on PATH)")->required();
+  cmd->add_option("--slowmo", opts->anim.slowmo, "one simulated second lasts this many seconds")
+      ->capture_default_str();
+  cmd->add_option("--fps", opts->anim.fps, "frames per second")->capture_default_str();
+  cmd->add_option("--width", opts->anim.width, "[px]")->capture_default_str();
+  cmd->add_option("--height", opts->anim.height, "[px]")->capture_default_str();
+  cmd->add_option("--hold", opts->anim.hold, "seconds each event's frame is held")->capture_default_str();
+  cmd->add_option("--max-length", opts->anim.max_length,
+                  "seconds on screen; longer runs are fast-forwarded between events")
+      ->capture_default_str();
+  cmd->add_option("--dump-frames", opts->dump,
+                  "also write the held frames and one frame per second as PNG into this directory");
+  cmd->add_flag("-q,--quiet", opts->quiet, "print nothing");
+  cmd->callback([opts, &exit_code] {
+    const LoadedInput in = load_input(opts->input);
+    viz::validate(opts->anim);
+    viz::is_mp4(opts->out);  // rejects other extensions before the run
+    const int frames = viz::write_animation(viz::record(in.scenario), opts->out, opts->anim, opts->dump);
+    if (!opts->quiet) fmt::print("{}: {} frames\n", opts->out, frames);
+    exit_code = 0;
+  });
 }
 
 }  // namespace whatnext::cli

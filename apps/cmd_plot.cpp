@@ -1,11 +1,80 @@
-// Placeholder until `whatnext plot` is built.
+// `whatnext plot`: the paper's figures for one run, or a comparison of impact laws or integrators.
+#include <memory>
+
+#include <fmt/format.h>
+
 #include "cli_common.hpp"
+#include "whatnext/viz/plots.hpp"
 
 namespace whatnext::cli {
 
+namespace {
+struct PlotOptions {
+  InputOptions input;
+  std::string out, compare, integrator = "euler", formats = "png,svg,pdf";
+  double step = 0.0;
+  int width = 1000, height = 650;
+  bool quiet = false;
+};
+}  // namespace
+
 void register_plot(CLI::App& app, int& exit_code) {
-  CLI::App* cmd = app.add_subcommand("plot", "(not built yet)");
-  cmd->callback([&exit_code] { exit_code = 3; });
+  auto opts = std::make_shared<PlotOptions>();
+  CLI::App* cmd = app.add_subcommand("plot", "draw the paper's figures (Fig. 8, 9) for one machine");
+  add_input_options(*cmd, opts->input);
+  cmd->add_option("--out", opts->out, "directory for the figures (created if missing)")->required();
+  cmd->add_option("--compare", opts->compare,
+                  "laws: phiS and phiL for the four impact laws; integrator: adaptive against "
+                  "--integrator with --step");
+  cmd->add_option("--integrator", opts->integrator, "with --compare integrator: euler or rk4")
+      ->capture_default_str();
+  cmd->add_option("--step", opts->step, "with --compare integrator: its step [s] (default: run.step)");
+  cmd->add_option("--format", opts->formats, "comma-separated: png, svg, pdf")->capture_default_str();
+  cmd->add_option("--width", opts->width, "width of a one-panel figure [px]")->capture_default_str();
+  cmd->add_option("--height", opts->height, "height of a one-panel figure [px]")->capture_default_str();
+  cmd->add_flag("-q,--quiet", opts->quiet, "do not list the files written");
+  cmd->callback([opts, cmd, &exit_code] {
+    const LoadedInput in = load_input(opts->input);
+    viz::FigureOptions fig;
+    if (!viz::parse_formats(opts->formats, fig.formats)) {
+      throw InputError(fmt::format("--format: must list png, svg or pdf separated by commas, got '{}'",
+                                   opts->formats));
+    }
+    if (opts->width < 200 || opts->width > 8000) {
+      throw InputError(fmt::format("--width: must be between 200 and 8000 pixels, got {}", opts->width));
+    }
+    if (opts->height < 150 || opts->height > 8000) {
+      throw InputError(fmt::format("--height: must be between 150 and 8000 pixels, got {}", opts->height));
+    }
+    fig.width = opts->width;
+    fig.height = opts->height;
+    fig.title = in.source;
+    std::vector<std::string> written;
+    if (opts->compare.empty()) {
+      if (cmd->count("--integrator") || cmd->count("--step")) {
+        throw InputError("--integrator/--step: only with --compare integrator (use --set run.integrator=... to plot one run)");
+      }
+      written = viz::write_run_figures(viz::record(in.scenario), opts->out, fig);
+    } else if (opts->compare == "laws") {
+      written = viz::write_law_comparison(in.scenario, opts->out, fig);
+    } else if (opts->compare == "integrator") {
+      IntegratorKind kind;
+      if (!parse_integrator(opts->integrator, kind) || kind == IntegratorKind::adaptive) {
+        throw InputError(fmt::format("--integrator: must be euler or rk4, got '{}'", opts->integrator));
+      }
+      const double step = cmd->count("--step") ? opts->step : in.scenario.run.step;
+      if (!(step > 0.0 && step <= 1.0)) {
+        throw InputError(fmt::format("--step: must be > 0 and <= 1 s, got {:g}", step));
+      }
+      written = viz::write_integrator_comparison(in.scenario, kind, step, opts->out, fig);
+    } else {
+      throw InputError(fmt::format("--compare: must be laws or integrator, got '{}'", opts->compare));
+    }
+    if (!opts->quiet) {
+      for (const std::string& w : written) fmt::print("{}\n", w);
+    }
+    exit_code = 0;
+  });
 }
 
 }  // namespace whatnext::cli

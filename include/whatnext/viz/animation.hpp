@@ -1,0 +1,82 @@
+// An animation of the machine, to scale: frames drawn with Cairo, written as a GIF (giflib) or
+// piped to ffmpeg for MP4.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "whatnext/vec2.hpp"
+#include "whatnext/viz/recording.hpp"
+
+namespace whatnext::viz {
+
+struct AnimationOptions {
+  double slowmo = 12.0;     // one simulated second lasts this many seconds on screen
+  double fps = 25.0;        // frames per second on screen
+  int width = 800;          // pixels
+  int height = 600;
+  double hold = 1.2;        // seconds each event's frame is held on screen
+  double max_length = 20.0; // seconds on screen; quiet stretches are fast-forwarded to fit
+};
+// Throws InputError naming the option when a value is out of range.
+void validate(const AnimationOptions& opts);
+
+// World (metres, origin at the pivot, h up) to pixels (origin top left, y down), the same scale on
+// both axes.
+struct View {
+  int width = 0, height = 0;
+  double scale = 1.0;             // pixels per metre
+  double origin_x = 0.0;          // pixel of the pivot
+  double origin_y = 0.0;
+  int top = 0, bottom = 0;        // the drawing area is rows [top, bottom); text above, time bar below
+  double left_arm = 0.0;          // drawn length of the seesaw's left arm before the sandbag lands [m]
+};
+struct Pixel {
+  double x = 0.0, y = 0.0;
+};
+Pixel to_pixel(const View& view, Vec2 p);
+// The view that shows the whole machine and the sandbag as long as it stays near the machine
+// (the model's left arm is endless; further out an arrow points to the sandbag).
+View make_view(const Recording& rec, int width, int height);
+
+// One frame: a state to draw and how long it stays on screen.
+struct Frame {
+  double t = 0.0;
+  double delay = 0.04;    // seconds on screen
+  Snapshot state;
+  int event_group = -1;   // index into group_events(): this frame is held at that event
+  double speed = 1.0;     // simulated seconds per second on screen (1/slowmo when not fast-forwarding)
+};
+// The frames of the animation: equally spaced on screen, with simulated time slowed down by slowmo
+// (fast-forwarded through quiet stretches when the run would not fit into max_length) and one held
+// frame at every instant with events.
+std::vector<Frame> plan_frames(const Recording& rec, const AnimationOptions& opts);
+
+// Colours of the machine's parts (exactly representable in the GIF palette).
+struct Rgb {
+  std::uint8_t r, g, b;
+};
+constexpr Rgb kSandbagColour{204, 127, 0};
+constexpr Rgb kBalloonColour{255, 42, 51};
+
+// An image as Cairo draws it: 0xAARRGGBB per pixel, row by row.
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::uint32_t> pixels;
+  Rgb at(int x, int y) const;
+};
+Image render_frame(const Recording& rec, const View& view, const Frame& frame,
+                   const AnimationOptions& opts);
+void write_png(const Image& image, const std::string& path);
+
+// Writes the animation to path: .gif with giflib, .mp4 through ffmpeg (InputError when ffmpeg is
+// not on PATH). If dump_dir is not empty, the held frames and one frame per second on screen are
+// also written there as PNG (for looking at single frames). Returns the number of frames.
+int write_animation(const Recording& rec, const std::string& path, const AnimationOptions& opts,
+                    const std::string& dump_dir = "");
+
+// True for paths ending in .mp4; InputError (naming option) for anything else but .gif.
+bool is_mp4(const std::string& path, const std::string& option = "--out");
+
+}  // namespace whatnext::viz

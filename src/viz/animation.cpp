@@ -1,0 +1,818 @@
+// The machine drawn to scale with Cairo, frame by frame, and written as GIF (giflib, fixed
+// palette: deterministic and enough for a drawing of a few flat colours) or MP4 (ffmpeg).
+#include "whatnext/viz/animation.hpp"
+
+#include <cairo.h>
+#include <gif_lib.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "whatnext/config.hpp"
+#include "whatnext/events.hpp"
+#include "whatnext/geometry.hpp"
+#include "whatnext/viz/plots.hpp"
+
+namespace whatnext::viz {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// ---- palette: a 6x7x6 colour cube, three greys and the transparent index 255 ----
+constexpr int kLevelsRB = 6, kLevelsG = 7;
+constexpr int kCube = kLevelsRB * kLevelsG * kLevelsRB;  // 252
+constexpr std::array<int, 3> kGreys{96, 160, 224};
+constexpr int kTransparent = 255;
+
+int level_rb(int i) { return i * 51; }
+int level_g(int i) { return i * 255 / 6; }  // 0 42 85 127 170 212 255
+
+std::array<GifColorType, 256> make_palette() {
+  std::array<GifColorType, 256> pal{};
+  for (int r = 0; r < kLevelsRB; ++r) {
+    for (int g = 0; g < kLevelsG; ++g) {
+      for (int b = 0; b < kLevelsRB; ++b) {
+        auto& c = pal[(r * kLevelsG + g) * kLevelsRB + b];
+        c.Red = static_cast<GifByteType>(level_rb(r));
+        c.Green = static_cast<GifByteType>(level_g(g));
+        c.Blue = static_cast<GifByteType>(level_rb(b));
+      }
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    const auto v = static_cast<GifByteType>(kGreys[i]);
+    pal[kCube + i] = {v, v, v};
+  }
+  pal[kTransparent] = {255, 0, 255};
+  return pal;
+}
+
+// Nearest palette entry: the nearest cube colour or the nearest grey, whichever is closer.
+std::uint8_t palette_index(std::uint32_t argb) {
+  const int r = (argb >> 16) & 0xff, g = (argb >> 8) & 0xff, b = argb & 0xff;
+  const int ir = (r + 25) / 51, ib = (b + 25) / 51;
+  const int ig = std::min(6, (g * 6 + 127) / 255);
+  auto sq = [](int v) { return v * v; };
+  int best = (ir * kLevelsG + ig) * kLevelsRB + ib;
+  int dist = sq(r - level_rb(ir)) + sq(g - level_g(ig)) + sq(b - level_rb(ib));
+  for (int i = 0; i < 3; ++i) {
+    const int d = sq(r - kGreys[i]) + sq(g - kGreys[i]) + sq(b - kGreys[i]);
+    if (d < dist) dist = d, best = kCube + i;
+  }
+  return static_cast<std::uint8_t>(best);
+}
+
+// ---- colours of the drawing (all on the palette) ----
+constexpr Rgb kWhite{255, 255, 255}, kBlack{0, 0, 0}, kDark{51, 42, 51}, kGrey{96, 96, 96},
+    kMidGrey{160, 160, 160}, kLightGrey{224, 224, 224}, kSeesaw{153, 85, 51},
+    kBoxWall{153, 127, 51}, kBoxInside{255, 255, 204}, kLid{51, 85, 153}, kRadio{51, 42, 102},
+    kDial{204, 212, 255}, kEventRed{204, 0, 0}, kCursor{0, 85, 204}, kFastForward{204, 212, 255};
+
+void set(cairo_t* cr, Rgb c) { cairo_set_source_rgb(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0); }
+
+// ---- the slack rope and string: a parabola sagging under its chord, as long as the rope ----
+std::vector<Vec2> sag_curve(Vec2 a, Vec2 b, double length, int n = 48) {
+  std::vector<Vec2> pts;
+  const double chord = norm(b - a);
+  auto point = [&](double s, double d) { return a + s * (b - a) + Vec2{0.0, -4.0 * d * s * (1.0 - s)}; };
+  auto arc = [&](double d) {
+    double len = 0.0;
+    Vec2 prev = a;
+    for (int i = 1; i <= n; ++i) {
+      const Vec2 p = point(static_cast<double>(i) / n, d);
+      len += norm(p - prev);
+      prev = p;
+    }
+    return len;
+  };
+  double d = 0.0;
+  if (chord < length - 1e-9) {
+    double lo = 0.0, hi = length;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (arc(mid) < length ? lo : hi) = mid;
+    }
+    d = 0.5 * (lo + hi);
+  }
+  for (int i = 0; i <= n; ++i) pts.push_back(point(static_cast<double>(i) / n, d));
+  return pts;
+}
+
+// The balloon's string from its knot to the radio switch. While the knot is inside the box the
+// string runs over the box's far wall and hangs from there with what is left of it.
+// The string's length counts from the balloon's centre (as the radio's switch condition does), so
+// it is drawn from the point of the balloon's skin that faces where it goes, with r_B less.
+std::vector<Vec2> string_path(const Machine& m, Vec2 balloon) {
+  const Vec2 corner{m.hinge.x + 2.0 * m.lid_half_length, m.hinge.h};
+  const bool over_wall = balloon.h < corner.h && m.radio_switch.x > corner.x;
+  const Vec2 target = over_wall ? corner : m.radio_switch;
+  const Vec2 dir = target - balloon;
+  const double dist = norm(dir);
+  const Vec2 knot = dist > 0.0 ? balloon + (m.balloon_radius / dist) * dir : balloon;
+  const double length = std::max(0.0, m.string_length - m.balloon_radius);
+  if (!over_wall) return sag_curve(knot, m.radio_switch, length);
+  std::vector<Vec2> pts{knot};
+  const double rest = std::max(0.0, length - norm(corner - knot));
+  for (Vec2 p : sag_curve(corner, m.radio_switch, rest)) pts.push_back(p);
+  return pts;
+}
+
+double landing_distance(const Scenario& sc) {
+  return std::fabs(sc.start.sandbag_x) / std::max(0.2, std::cos(sc.start.seesaw_angle));
+}
+
+Vec2 balloon_centre(const Machine& m, const Snapshot& s) {
+  return {m.hinge.x + m.lid_half_length, m.hinge.h + s.balloon_h};
+}
+
+double ground_level(const Machine& m) { return m.hinge.h - 2.0 * m.lid_half_length; }
+
+// The radio: its body stands on the ground under the switch (or hangs below a switch that is lower).
+struct RadioBox {
+  double x0, x1, h0, h1;
+};
+RadioBox radio_box(const Machine& m) {
+  const double w = 0.36 * std::max(0.5, 2.0 * m.lid_half_length);
+  const double g = ground_level(m);
+  const double top = m.radio_switch.h - 0.03;
+  const double bottom = top - g > 0.08 ? g : top - 0.25 * w * 2.0;
+  return {m.radio_switch.x - 0.5 * w, m.radio_switch.x + 0.5 * w, bottom, top};
+}
+
+// Drawn length of the left arm: a finite arm as it is; the model's endless arm as long as needed
+// to hold the sandbag (and a little more), before the landing long enough to catch it.
+double drawn_arm(const Machine& m, double endless_default, const Snapshot& s) {
+  if (std::isfinite(m.seesaw_left_arm)) return m.seesaw_left_arm;
+  return s.on_seesaw ? std::max(endless_default, s.r + 0.1) : endless_default;
+}
+
+// Distance from the pivot beyond which the view no longer follows the sandbag.
+double follow_radius(const Recording& rec, double left_arm) {
+  const Machine& m = rec.scenario.machine;
+  return 2.2 * std::max({m.seesaw_right_arm, left_arm, norm(m.hinge) + 2.0 * m.lid_half_length});
+}
+
+struct Box {
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, h0 = x0, h1 = -x0;
+  void add(Vec2 p) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.h)) return;
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), h0 = std::min(h0, p.h), h1 = std::max(h1, p.h);
+  }
+};
+
+std::string speed_words(double speed, double slowmo) {
+  if (speed * slowmo <= 1.0 + 1e-9) return fmt::format("slow motion x{:g}", slowmo);
+  if (speed < 1.0) return fmt::format("quiet stretch: slow motion x{:.2g}", 1.0 / speed);
+  return fmt::format("quiet stretch: fast forward x{:.3g}", speed);
+}
+
+void fit_text(cairo_t* cr, const std::string& text, double size, double max_width) {
+  cairo_set_font_size(cr, size);
+  cairo_text_extents_t ext;
+  cairo_text_extents(cr, text.c_str(), &ext);
+  if (ext.x_advance > max_width && ext.x_advance > 0) {
+    cairo_set_font_size(cr, size * max_width / ext.x_advance);
+  }
+}
+
+struct Piece {  // a stretch of simulated time shown at one speed
+  double t0, t1, speed;
+};
+
+std::vector<Piece> time_warp(const Recording& rec, const AnimationOptions& opts) {
+  const double t_end = rec.t_end();
+  const double slow = 1.0 / opts.slowmo;
+  std::vector<double> keys{0.0};
+  for (const EventGroup& g : group_events(rec.result)) keys.push_back(g.t);
+  keys.push_back(t_end);
+  std::sort(keys.begin(), keys.end());
+  const double pad = 0.4;  // simulated seconds shown slowly on either side of an event
+  std::vector<Piece> pieces;
+  double active = 0.0, quiet = 0.0;
+  int n_quiet = 0;
+  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+    const double a = keys[i], b = keys[i + 1];
+    if (b <= a) continue;
+    if (b - a > 3.0 * pad) {
+      pieces.push_back({a, a + pad, slow});
+      pieces.push_back({a + pad, b - pad, -1.0});  // speed decided below
+      pieces.push_back({b - pad, b, slow});
+      active += 2.0 * pad, quiet += b - a - 2.0 * pad, ++n_quiet;
+    } else {
+      pieces.push_back({a, b, slow});
+      active += b - a;
+    }
+  }
+  double quiet_speed = slow;
+  if ((active + quiet) * opts.slowmo > opts.max_length && n_quiet > 0) {
+    const double budget = std::max(opts.max_length - active * opts.slowmo, 2.0 * n_quiet);
+    quiet_speed = std::max(slow, quiet / budget);
+  }
+  for (Piece& p : pieces) {
+    if (p.speed < 0.0) p.speed = quiet_speed;
+  }
+  if (pieces.empty()) pieces.push_back({0.0, t_end, slow});
+  return pieces;
+}
+
+// ---- GIF output through giflib's low-level encoder ----
+int gif_write(GifFileType* gif, const GifByteType* data, int n) {
+  auto* out = static_cast<std::ostream*>(gif->UserData);
+  out->write(reinterpret_cast<const char*>(data), n);
+  return out->good() ? n : 0;
+}
+
+class GifEncoder {
+ public:
+  GifEncoder(std::ostream& out, int width, int height) : w_(width), h_(height) {
+    int err = 0;
+    gif_ = EGifOpen(&out, gif_write, &err);
+    if (!gif_) throw std::runtime_error(fmt::format("GIF: {}", GifErrorString(err)));
+    EGifSetGifVersion(gif_, true);
+    auto pal = make_palette();
+    ColorMapObject* map = GifMakeMapObject(256, pal.data());
+    check(EGifPutScreenDesc(gif_, w_, h_, 8, 0, map));
+    GifFreeMapObject(map);
+    // Loop for ever (the NETSCAPE2.0 application extension).
+    check(EGifPutExtensionLeader(gif_, APPLICATION_EXT_FUNC_CODE));
+    check(EGifPutExtensionBlock(gif_, 11, "NETSCAPE2.0"));
+    const unsigned char loop[3] = {1, 0, 0};
+    check(EGifPutExtensionBlock(gif_, 3, loop));
+    check(EGifPutExtensionTrailer(gif_));
+  }
+  ~GifEncoder() {
+    if (gif_) {
+      int err = 0;
+      EGifCloseFile(gif_, &err);
+    }
+  }
+  // Each frame after the first stores only the rectangle that changed, with unchanged pixels
+  // transparent over the previous frame: far smaller files for a mostly still scene.
+  void add(const std::vector<std::uint8_t>& idx, int delay_cs) {
+    int x0 = 0, y0 = 0, x1 = w_ - 1, y1 = h_ - 1;
+    const bool first = prev_.empty();
+    if (!first) {
+      x0 = w_, y0 = h_, x1 = -1, y1 = -1;
+      for (int y = 0; y < h_; ++y) {
+        for (int x = 0; x < w_; ++x) {
+          if (idx[y * w_ + x] != prev_[y * w_ + x]) {
+            x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+          }
+        }
+      }
+      if (x1 < 0) x0 = x1 = y0 = y1 = 0;  // nothing changed: one transparent pixel
+    }
+    GraphicsControlBlock gcb{};
+    gcb.DisposalMode = DISPOSE_DO_NOT;
+    gcb.UserInputFlag = false;
+    gcb.DelayTime = delay_cs;
+    gcb.TransparentColor = first ? NO_TRANSPARENT_COLOR : kTransparent;
+    GifByteType ext[4];
+    const size_t n = EGifGCBToExtension(&gcb, ext);
+    check(EGifPutExtension(gif_, GRAPHICS_EXT_FUNC_CODE, static_cast<int>(n), ext));
+    const int w = x1 - x0 + 1, h = y1 - y0 + 1;
+    check(EGifPutImageDesc(gif_, x0, y0, w, h, false, nullptr));
+    std::vector<GifByteType> row(w);
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        const std::uint8_t v = idx[y * w_ + x];
+        row[x - x0] = (!first && v == prev_[y * w_ + x]) ? kTransparent : v;
+      }
+      check(EGifPutLine(gif_, row.data(), w));
+    }
+    prev_ = idx;
+  }
+  void close() {
+    int err = 0;
+    const int ok = EGifCloseFile(gif_, &err);
+    gif_ = nullptr;
+    if (ok != GIF_OK) throw std::runtime_error(fmt::format("GIF: {}", GifErrorString(err)));
+  }
+
+ private:
+  void check(int rc) {
+    if (rc != GIF_OK) throw std::runtime_error(fmt::format("GIF: {}", GifErrorString(gif_->Error)));
+  }
+  GifFileType* gif_ = nullptr;
+  int w_, h_;
+  std::vector<std::uint8_t> prev_;
+};
+
+std::string find_on_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  if (!path) return "";
+  std::stringstream ss(path);
+  std::string dir;
+  while (std::getline(ss, dir, ':')) {
+    if (dir.empty()) continue;
+    const std::string candidate = dir + "/" + name;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  return "";
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+}  // namespace
+
+void validate(const AnimationOptions& o) {
+  auto bad = [](const char* opt, const char* rule, double v) {
+    throw InputError(fmt::format("{}: must be {}, got {:g}", opt, rule, v));
+  };
+  if (!(o.slowmo > 0.0 && o.slowmo <= 1e6)) bad("--slowmo", "> 0 and <= 1e6", o.slowmo);
+  if (!(o.fps >= 1.0 && o.fps <= 100.0)) bad("--fps", "between 1 and 100", o.fps);
+  if (!(o.width >= 64 && o.width <= 4096)) bad("--width", "between 64 and 4096 pixels", o.width);
+  if (!(o.height >= 64 && o.height <= 4096)) bad("--height", "between 64 and 4096 pixels", o.height);
+  if (!(o.hold >= 0.0 && o.hold <= 60.0)) bad("--hold", "between 0 and 60 s", o.hold);
+  if (!(o.max_length > 0.0 && o.max_length <= 3600.0)) {
+    bad("--max-length", "> 0 and <= 3600 s", o.max_length);
+  }
+}
+
+bool is_mp4(const std::string& path, const std::string& option) {
+  const std::string ext = fs::path(path).extension().string();
+  std::string lower;
+  for (char c : ext) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lower == ".mp4") return true;
+  if (lower == ".gif") return false;
+  throw InputError(
+      fmt::format("{}: the animation must be a .gif or .mp4 file, got '{}'", option, path));
+}
+
+Pixel to_pixel(const View& v, Vec2 p) {
+  return {v.origin_x + p.x * v.scale, v.origin_y - p.h * v.scale};
+}
+
+View make_view(const Recording& rec, int width, int height) {
+  const Machine& m = rec.scenario.machine;
+  const RopeGeometry geo(m);
+  View v;
+  v.width = width;
+  v.height = height;
+  const double font = std::clamp(height / 30.0, 9.0, 22.0);
+  v.top = static_cast<int>(std::lround(2.7 * font));
+  v.bottom = height - static_cast<int>(std::lround(1.9 * font));
+  v.left_arm = std::max(m.seesaw_right_arm, 1.2 * landing_distance(rec.scenario));
+  const double follow = follow_radius(rec, v.left_arm);
+
+  Box box;
+  const double g = ground_level(m), rl = m.lid_half_length;
+  box.add({0.0, 0.0});
+  box.add({-0.15, g});
+  box.add({0.15, g});
+  box.add({m.hinge.x - 0.05, g});
+  box.add({m.hinge.x + 2.0 * rl + 0.05, m.hinge.h});
+  box.add(m.hinge + Vec2{0.0, 2.0 * rl});
+  const RadioBox radio = radio_box(m);
+  box.add({radio.x0 - 0.05, radio.h0});
+  box.add({radio.x1 + 0.05, radio.h1 + 0.05});
+  for (const Snapshot& s : rec.states) {
+    box.add(geo.seesaw_end(s.phi_s));
+    box.add(geo.lid_edge(s.phi_l));
+    const double shown = std::min(drawn_arm(m, v.left_arm, s), follow);
+    box.add({-shown * std::cos(s.phi_s), -shown * std::sin(s.phi_s)});
+    if (std::hypot(s.x, s.h) <= follow) box.add({s.x, s.h});
+    const Vec2 c = balloon_centre(m, s);
+    if (c.h - m.hinge.h <= follow) {
+      box.add(c + Vec2{m.balloon_radius, m.balloon_radius});
+      box.add(c - Vec2{m.balloon_radius, m.balloon_radius});
+    }
+  }
+  for (const Snapshot* s : {&rec.states.front(), &rec.states.back()}) {
+    for (Vec2 p : string_path(m, balloon_centre(m, *s))) box.add(p);
+  }
+  const double pad = 0.05 * std::max(box.x1 - box.x0, box.h1 - box.h0);
+  box.x0 -= pad, box.x1 += pad, box.h0 -= pad, box.h1 += pad;
+  const double area_w = width, area_h = v.bottom - v.top;
+  v.scale = std::min(area_w / (box.x1 - box.x0), area_h / (box.h1 - box.h0));
+  v.origin_x = 0.5 * area_w - 0.5 * (box.x0 + box.x1) * v.scale;
+  v.origin_y = v.top + 0.5 * area_h + 0.5 * (box.h0 + box.h1) * v.scale;
+  return v;
+}
+
+std::vector<Frame> plan_frames(const Recording& rec, const AnimationOptions& opts) {
+  validate(opts);
+  const std::vector<Piece> pieces = time_warp(rec, opts);
+  const std::vector<EventGroup> groups = group_events(rec.result);
+  std::vector<Frame> frames;
+  std::size_t next_group = 0;
+  auto hold_events_until = [&](double t) {
+    while (next_group < groups.size() && groups[next_group].t <= t) {
+      const EventGroup& g = groups[next_group];
+      Frame f;
+      f.t = g.t;
+      f.state = rec.result.events[g.events.back()].after;
+      f.delay = opts.hold;
+      f.event_group = static_cast<int>(next_group);
+      f.speed = frames.empty() ? 1.0 / opts.slowmo : frames.back().speed;
+      frames.push_back(f);
+      ++next_group;
+    }
+  };
+  const double dt_screen = 1.0 / opts.fps;
+  for (const Piece& p : pieces) {
+    const double step = p.speed * dt_screen;
+    const auto n = static_cast<long>(std::ceil((p.t1 - p.t0) / step - 1e-9));
+    for (long k = 0; k < n; ++k) {
+      const double t = p.t0 + static_cast<double>(k) * step;
+      hold_events_until(t);
+      if (!frames.empty() && frames.back().event_group >= 0 && frames.back().t == t) continue;
+      Frame f;
+      f.t = t;
+      f.state = rec.at(t);
+      f.delay = dt_screen;
+      f.speed = p.speed;
+      frames.push_back(f);
+    }
+  }
+  hold_events_until(std::numeric_limits<double>::infinity());
+  // The last picture stays a little longer before the GIF starts over.
+  if (!frames.empty()) frames.back().delay = std::max(frames.back().delay, 2.0 * opts.hold);
+  return frames;
+}
+
+Rgb Image::at(int x, int y) const {
+  const std::uint32_t p = pixels[static_cast<std::size_t>(y) * width + x];
+  return {static_cast<std::uint8_t>(p >> 16), static_cast<std::uint8_t>(p >> 8),
+          static_cast<std::uint8_t>(p)};
+}
+
+Image render_frame(const Recording& rec, const View& v, const Frame& frame,
+                   const AnimationOptions& opts) {
+  const Machine& m = rec.scenario.machine;
+  const RopeGeometry geo(m);
+  const Snapshot& s = frame.state;
+  const std::vector<EventGroup> groups = group_events(rec.result);
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, v.width, v.height);
+  cairo_t* cr = cairo_create(surface);
+  set(cr, kWhite);
+  cairo_paint(cr);
+
+  auto px = [&](Vec2 p) { return to_pixel(v, p); };
+  auto move = [&](Vec2 p) { const Pixel q = px(p); cairo_move_to(cr, q.x, q.y); };
+  auto line = [&](Vec2 p) { const Pixel q = px(p); cairo_line_to(cr, q.x, q.y); };
+  auto width_m = [&](double metres, double min_px) {
+    cairo_set_line_width(cr, std::max(min_px, metres * v.scale));
+  };
+  auto polyline = [&](const std::vector<Vec2>& pts) {
+    move(pts.front());
+    for (std::size_t i = 1; i < pts.size(); ++i) line(pts[i]);
+  };
+  auto circle = [&](Vec2 c, double radius_px) {
+    const Pixel q = px(c);
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, q.x, q.y, radius_px, 0.0, 2.0 * kPi);
+  };
+
+  // Machine drawing, clipped to its band.
+  cairo_save(cr);
+  cairo_rectangle(cr, 0, v.top, v.width, v.bottom - v.top);
+  cairo_clip(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  const double g = ground_level(m), rl = m.lid_half_length;
+  const Vec2 hinge = m.hinge;
+  const RadioBox radio = radio_box(m);
+
+  // Floor pieces under the pivot stand, the box and the radio (the model has no floor elsewhere:
+  // the sandbag's arm is endless and may dip below them).
+  set(cr, kMidGrey);
+  width_m(0.01, 2.0);
+  for (auto [a, b] : {std::pair{-0.15, 0.15}, std::pair{hinge.x - 0.05, hinge.x + 2 * rl + 0.05},
+                      std::pair{radio.x0 - 0.05, radio.x1 + 0.05}}) {
+    move({a, g});
+    line({b, g});
+    cairo_stroke(cr);
+  }
+  // Pivot stand.
+  set(cr, kGrey);
+  move({0.0, 0.0});
+  line({-0.07, g});
+  line({0.07, g});
+  cairo_close_path(cr);
+  cairo_fill(cr);
+
+  // Box inside, then the balloon, then the walls in front.
+  set(cr, kBoxInside);
+  cairo_rectangle(cr, px(hinge).x, px(hinge).y, 2 * rl * v.scale, 2 * rl * v.scale);
+  cairo_fill(cr);
+
+  const Vec2 bc = balloon_centre(m, s);
+  set(cr, kGrey);
+  cairo_set_line_width(cr, 1.5);
+  polyline(string_path(m, bc));
+  cairo_stroke(cr);
+  set(cr, kBalloonColour);
+  circle(bc, m.balloon_radius * v.scale);
+  cairo_fill(cr);
+
+  set(cr, kBoxWall);
+  width_m(0.02, 3.0);
+  move(hinge);
+  line({hinge.x, g});
+  line({hinge.x + 2 * rl, g});
+  line({hinge.x + 2 * rl, hinge.h});
+  cairo_stroke(cr);
+
+  // Radio with its switch, where the balloon's string is tied.
+  set(cr, kRadio);
+  cairo_rectangle(cr, px({radio.x0, radio.h1}).x, px({radio.x0, radio.h1}).y,
+                  (radio.x1 - radio.x0) * v.scale, (radio.h1 - radio.h0) * v.scale);
+  cairo_fill(cr);
+  set(cr, kDial);
+  circle({0.5 * (radio.x0 + radio.x1), 0.5 * (radio.h0 + radio.h1)},
+         0.3 * (radio.x1 - radio.x0) * v.scale * std::min(1.0, (radio.h1 - radio.h0) / (radio.x1 - radio.x0)));
+  cairo_fill(cr);
+  set(cr, kDark);
+  width_m(0.012, 2.0);
+  move({m.radio_switch.x, radio.h1});
+  line(m.radio_switch);
+  cairo_stroke(cr);
+
+  // Once the radio is on, notes rise from it.
+  for (const Event& e : rec.result.events) {
+    if (e.type != EventType::radio_on || e.t > frame.t) continue;
+    set(cr, kRadio);
+    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+    cairo_set_font_size(cr, std::max(10.0, 0.12 * v.scale));
+    const Pixel q = px({radio.x1, radio.h1 + 0.05});
+    cairo_move_to(cr, q.x, q.y);
+    cairo_show_text(cr, "\u266A \u266B");
+  }
+
+  // Lid on its hinge.
+  set(cr, kLid);
+  width_m(0.025, 3.0);
+  move(hinge);
+  line(geo.lid_edge(s.phi_l));
+  cairo_stroke(cr);
+  set(cr, kBlack);
+  circle(hinge, std::max(2.0, 0.012 * v.scale));
+  cairo_fill(cr);
+
+  // Seesaw: the left arm is as long as needed (the model's arm is endless).
+  const double arm = drawn_arm(m, v.left_arm, s);
+  set(cr, kSeesaw);
+  width_m(0.03, 4.0);
+  move(polar(-arm, s.phi_s));
+  line(geo.seesaw_end(s.phi_s));
+  cairo_stroke(cr);
+  set(cr, kBlack);
+  circle({0.0, 0.0}, std::max(2.5, 0.015 * v.scale));
+  cairo_fill(cr);
+
+  // Rope: straight when taut, sagging when slack.
+  const Vec2 rope_r = geo.seesaw_end(s.phi_s), rope_e = geo.lid_edge(s.phi_l);
+  set(cr, kDark);
+  cairo_set_line_width(cr, std::max(1.5, 0.008 * v.scale));
+  if (s.rope_taut) {
+    move(rope_r);
+    line(rope_e);
+  } else {
+    polyline(sag_curve(rope_r, rope_e, m.rope_length));
+  }
+  cairo_stroke(cr);
+
+  // Sandbag, centred on the simulated point.
+  const Pixel bag = px({s.x, s.h});
+  const double bag_r = std::max(6.0, 0.05 * v.scale);
+  const bool bag_visible = bag.x >= -bag_r && bag.x <= v.width + bag_r && bag.y >= v.top - bag_r &&
+                           bag.y <= v.bottom + bag_r;
+  if (bag_visible) {
+    set(cr, kSandbagColour);
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, bag.x, bag.y, bag_r, 0.0, 2.0 * kPi);
+    cairo_fill_preserve(cr);
+    set(cr, kDark);
+    cairo_set_line_width(cr, 1.0);
+    cairo_stroke(cr);
+  }
+  cairo_restore(cr);
+
+  const double font = std::clamp(v.height / 30.0, 9.0, 22.0);
+  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  if (!bag_visible) {
+    // An arrow at the edge of the picture, pointing along the arm to the sandbag far out.
+    const Pixel o = px({0.0, 0.0});
+    const double dx = bag.x - o.x, dy = bag.y - o.y, len = std::hypot(dx, dy);
+    const double ux = dx / len, uy = dy / len;
+    double tmax = std::numeric_limits<double>::infinity();
+    if (ux > 0) tmax = std::min(tmax, (v.width - 12 - o.x) / ux);
+    if (ux < 0) tmax = std::min(tmax, (12 - o.x) / ux);
+    if (uy > 0) tmax = std::min(tmax, (v.bottom - 12 - o.y) / uy);
+    if (uy < 0) tmax = std::min(tmax, (v.top + 12 - o.y) / uy);
+    const double tx = o.x + ux * tmax, ty = o.y + uy * tmax;
+    set(cr, kSandbagColour);
+    cairo_move_to(cr, tx, ty);
+    cairo_line_to(cr, tx - 14 * ux - 7 * uy, ty - 14 * uy + 7 * ux);
+    cairo_line_to(cr, tx - 14 * ux + 7 * uy, ty - 14 * uy - 7 * ux);
+    cairo_close_path(cr);
+    cairo_fill(cr);
+    set(cr, kBlack);
+    const std::string text = fmt::format("sandbag {:.4g} m out", std::hypot(s.x, s.h));
+    fit_text(cr, text, 0.85 * font, 0.45 * v.width);
+    cairo_text_extents_t ext;
+    cairo_text_extents(cr, text.c_str(), &ext);
+    const double lx = std::clamp(tx - 0.5 * ext.x_advance + 30 * std::fabs(uy) * 0, 4.0,
+                                 v.width - ext.x_advance - 4.0);
+    const double ly = std::clamp(ty - 18 * uy - 10, v.top + font, v.bottom - 4.0);
+    cairo_move_to(cr, lx, ly);
+    cairo_show_text(cr, text.c_str());
+  }
+
+  // Text: time and mode; on held frames the event, otherwise the speed.
+  const double margin = 0.5 * font;
+  set(cr, kLightGrey);
+  cairo_rectangle(cr, 0, 0, v.width, v.top);
+  cairo_fill(cr);
+  set(cr, kBlack);
+  const std::string line1 = fmt::format("t = {:.3f} s    {}", frame.t, mode_words(s.mode));
+  fit_text(cr, line1, font, v.width - 2 * margin);
+  cairo_move_to(cr, margin, 1.15 * font);
+  cairo_show_text(cr, line1.c_str());
+  std::string line2;
+  if (frame.event_group >= 0) {
+    const EventGroup& grp = groups[frame.event_group];
+    line2 = fmt::format("event at {:.3f} s: ", grp.t);
+    for (std::size_t i = 0; i < grp.events.size(); ++i) {
+      line2 += (i ? " + " : "") + event_words(rec.result.events[grp.events[i]], true);
+    }
+    set(cr, kEventRed);
+  } else {
+    line2 = speed_words(frame.speed, opts.slowmo);
+    set(cr, kGrey);
+  }
+  fit_text(cr, line2, 0.9 * font, v.width - 2 * margin);
+  cairo_move_to(cr, margin, 2.3 * font);
+  cairo_show_text(cr, line2.c_str());
+
+  // Time bar: the whole run, its events and where this frame is.
+  const double t_end = std::max(rec.t_end(), 1e-9);
+  const double bx0 = margin + 3.2 * font, bx1 = v.width - margin - 4.2 * font;
+  const double by = 0.5 * (v.bottom + v.height);
+  auto bar_x = [&](double t) { return bx0 + (bx1 - bx0) * std::clamp(t / t_end, 0.0, 1.0); };
+  set(cr, kMidGrey);
+  cairo_set_line_width(cr, 3.0);
+  cairo_move_to(cr, bx0, by);
+  cairo_line_to(cr, bx1, by);
+  cairo_stroke(cr);
+  set(cr, kEventRed);
+  cairo_set_line_width(cr, 1.5);
+  for (const EventGroup& grp : groups) {
+    cairo_move_to(cr, bar_x(grp.t), by - 0.45 * font);
+    cairo_line_to(cr, bar_x(grp.t), by + 0.45 * font);
+    cairo_stroke(cr);
+  }
+  set(cr, kCursor);
+  cairo_new_sub_path(cr);
+  cairo_arc(cr, bar_x(frame.t), by, 0.35 * font, 0.0, 2.0 * kPi);
+  cairo_fill(cr);
+  set(cr, kBlack);
+  cairo_set_font_size(cr, 0.75 * font);
+  cairo_move_to(cr, margin, by + 0.3 * font);
+  cairo_show_text(cr, "0 s");
+  const std::string end = fmt::format("{:.3g} s", rec.t_end());
+  cairo_move_to(cr, bx1 + 0.6 * font, by + 0.3 * font);
+  cairo_show_text(cr, end.c_str());
+
+  cairo_destroy(cr);
+  cairo_surface_flush(surface);
+  Image img;
+  img.width = v.width;
+  img.height = v.height;
+  img.pixels.resize(static_cast<std::size_t>(v.width) * v.height);
+  const unsigned char* data = cairo_image_surface_get_data(surface);
+  const int stride = cairo_image_surface_get_stride(surface);
+  for (int y = 0; y < v.height; ++y) {
+    std::copy_n(reinterpret_cast<const std::uint32_t*>(data + static_cast<std::size_t>(y) * stride),
+                v.width, img.pixels.begin() + static_cast<std::ptrdiff_t>(y) * v.width);
+  }
+  cairo_surface_destroy(surface);
+  return img;
+}
+
+void write_png(const Image& image, const std::string& path) {
+  const int stride = cairo_format_stride_for_width(CAIRO_FORMAT_RGB24, image.width);
+  std::vector<unsigned char> buffer(static_cast<std::size_t>(stride) * image.height);
+  for (int y = 0; y < image.height; ++y) {
+    std::copy_n(image.pixels.begin() + static_cast<std::ptrdiff_t>(y) * image.width, image.width,
+                reinterpret_cast<std::uint32_t*>(buffer.data() + static_cast<std::size_t>(y) * stride));
+  }
+  cairo_surface_t* s = cairo_image_surface_create_for_data(buffer.data(), CAIRO_FORMAT_RGB24,
+                                                           image.width, image.height, stride);
+  const std::string tmp = path + ".part";
+  const cairo_status_t st = cairo_surface_write_to_png(s, tmp.c_str());
+  cairo_surface_destroy(s);
+  if (st != CAIRO_STATUS_SUCCESS) {
+    std::remove(tmp.c_str());
+    throw InputError(fmt::format("cannot write PNG '{}': {}", path, cairo_status_to_string(st)));
+  }
+  fs::rename(tmp, path);
+}
+
+int write_animation(const Recording& rec, const std::string& path, const AnimationOptions& opts,
+                    const std::string& dump_dir) {
+  validate(opts);
+  const bool mp4 = is_mp4(path);
+  std::string ffmpeg;
+  if (mp4) {
+    ffmpeg = find_on_path("ffmpeg");
+    if (ffmpeg.empty()) {
+      throw InputError(fmt::format("--out: writing '{}' needs ffmpeg on PATH, and there is none "
+                                   "(write a .gif instead)", path));
+    }
+  }
+  if (!dump_dir.empty()) prepare_output_dir(dump_dir, "--dump-frames");
+  const std::vector<Frame> frames = plan_frames(rec, opts);
+  const View view = make_view(rec, opts.width, opts.height);
+  const std::string tmp = path + ".part";
+
+  if (mp4) {
+    // Raw BGRA frames (Cairo's ARGB32 in memory on little-endian machines) into ffmpeg; held
+    // frames are repeated for their time on screen.
+    const std::string cmd = fmt::format(
+        "{} -loglevel error -y -f rawvideo -pix_fmt bgra -s {}x{} -r {:g} -i - "
+        "-vf pad=ceil(iw/2)*2:ceil(ih/2)*2 -c:v libx264 -pix_fmt yuv420p -f mp4 {}",
+        shell_quote(ffmpeg), opts.width, opts.height, opts.fps, shell_quote(tmp));
+    FILE* pipe = ::popen(cmd.c_str(), "w");
+    if (!pipe) throw std::runtime_error("cannot start ffmpeg");
+    double shown = 0.0;
+    long written = 0;
+    int index = 0;
+    for (const Frame& f : frames) {
+      const Image img = render_frame(rec, view, f, opts);
+      if (!dump_dir.empty()) {
+        write_png(img, (fs::path(dump_dir) / fmt::format("frame{:05d}.png", index)).string());
+      }
+      shown += f.delay;
+      const long until = std::lround(shown * opts.fps);
+      for (; written < std::max(until, written + 1); ++written) {
+        std::fwrite(img.pixels.data(), sizeof(std::uint32_t), img.pixels.size(), pipe);
+      }
+      ++index;
+    }
+    if (::pclose(pipe) != 0) {
+      std::remove(tmp.c_str());
+      throw std::runtime_error(fmt::format("ffmpeg failed to write '{}'", path));
+    }
+    fs::rename(tmp, path);
+    return static_cast<int>(frames.size());
+  }
+
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(fmt::format("--out: cannot write '{}'", path));
+    try {
+      GifEncoder gif(out, opts.width, opts.height);
+      double shown = 0.0;
+      long shown_cs = 0;
+      const int dump_every = std::max(1, static_cast<int>(std::lround(opts.fps)));
+      int index = 0;
+      std::vector<std::uint8_t> idx(static_cast<std::size_t>(opts.width) * opts.height);
+      for (const Frame& f : frames) {
+        const Image img = render_frame(rec, view, f, opts);
+        if (!dump_dir.empty() && (f.event_group >= 0 || index % dump_every == 0)) {
+          write_png(img, (fs::path(dump_dir) / fmt::format("frame{:05d}.png", index)).string());
+        }
+        for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = palette_index(img.pixels[i]);
+        // Delays in centiseconds, rounded on the running total so that they do not drift.
+        shown += f.delay;
+        const long until = std::lround(shown * 100.0);
+        gif.add(idx, static_cast<int>(std::max(1L, until - shown_cs)));
+        shown_cs = std::max(until, shown_cs + 1);
+        ++index;
+      }
+      gif.close();
+    } catch (...) {
+      out.close();
+      std::remove(tmp.c_str());
+      throw;
+    }
+    out.close();
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw InputError(fmt::format("--out: cannot write '{}'", path));
+    }
+  }
+  fs::rename(tmp, path);
+  return static_cast<int>(frames.size());
+}
+
+}  // namespace whatnext::viz

@@ -1,0 +1,368 @@
+// Pictures (issue 3): every output decodes, has the requested size and content, and the animation
+// draws the sandbag where the simulation puts it.
+#include <cairo.h>
+#include <expat.h>
+#include <gif_lib.h>
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "whatnext/config.hpp"
+#include "whatnext/geometry.hpp"
+#include "whatnext/viz/animation.hpp"
+#include "whatnext/viz/plots.hpp"
+
+namespace fs = std::filesystem;
+using namespace whatnext;
+using namespace whatnext::viz;
+
+namespace {
+
+Scenario example(int n) { return build_scenario(example_config(n)); }
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("whatnext_test_viz_" + name);
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+struct Png {
+  int width = 0, height = 0;
+  std::set<std::uint32_t> colours;
+  int count(Rgb c) const { return counts.count(key(c)) ? counts.at(key(c)) : 0; }
+  static std::uint32_t key(Rgb c) { return (c.r << 16) | (c.g << 8) | c.b; }
+  std::map<std::uint32_t, int> counts;
+};
+
+Png read_png(const fs::path& path) {
+  cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
+  Png png;
+  if (cairo_surface_status(s) != CAIRO_STATUS_SUCCESS) {
+    cairo_surface_destroy(s);
+    ADD_FAILURE() << path << " does not decode as PNG";
+    return png;
+  }
+  png.width = cairo_image_surface_get_width(s);
+  png.height = cairo_image_surface_get_height(s);
+  const unsigned char* data = cairo_image_surface_get_data(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  for (int y = 0; y < png.height; ++y) {
+    const auto* row = reinterpret_cast<const std::uint32_t*>(data + y * stride);
+    for (int x = 0; x < png.width; ++x) {
+      const std::uint32_t v = row[x] & 0xffffff;
+      png.colours.insert(v);
+      ++png.counts[v];
+    }
+  }
+  cairo_surface_destroy(s);
+  return png;
+}
+
+// Root element name of a well-formed XML file ("" if it does not parse).
+std::string xml_root(const fs::path& path) {
+  const std::string text = slurp(path);
+  XML_Parser parser = XML_ParserCreate(nullptr);
+  std::string root;
+  XML_SetUserData(parser, &root);
+  XML_SetStartElementHandler(parser, [](void* user, const XML_Char* name, const XML_Char**) {
+    auto* r = static_cast<std::string*>(user);
+    if (r->empty()) *r = name;
+  });
+  const bool ok = XML_Parse(parser, text.data(), static_cast<int>(text.size()), 1) == XML_STATUS_OK;
+  XML_ParserFree(parser);
+  return ok ? root : "";
+}
+
+// A decoded GIF with every frame composited over the previous one, as a viewer shows it.
+struct Gif {
+  int width = 0, height = 0;
+  std::vector<std::vector<Rgb>> frames;
+  std::vector<int> delays_cs;
+};
+
+Gif read_gif(const fs::path& path) {
+  Gif out;
+  int err = 0;
+  GifFileType* gif = DGifOpenFileName(path.c_str(), &err);
+  if (!gif) {
+    ADD_FAILURE() << path << " does not open as GIF";
+    return out;
+  }
+  if (DGifSlurp(gif) != GIF_OK) {
+    ADD_FAILURE() << path << " does not decode as GIF";
+    DGifCloseFile(gif, &err);
+    return out;
+  }
+  out.width = gif->SWidth;
+  out.height = gif->SHeight;
+  std::vector<Rgb> canvas(static_cast<std::size_t>(out.width) * out.height, Rgb{0, 0, 0});
+  for (int i = 0; i < gif->ImageCount; ++i) {
+    const SavedImage& img = gif->SavedImages[i];
+    GraphicsControlBlock gcb{};
+    gcb.TransparentColor = NO_TRANSPARENT_COLOR;
+    DGifSavedExtensionToGCB(gif, i, &gcb);
+    const ColorMapObject* map = img.ImageDesc.ColorMap ? img.ImageDesc.ColorMap : gif->SColorMap;
+    const GifImageDesc& d = img.ImageDesc;
+    for (int y = 0; y < d.Height; ++y) {
+      for (int x = 0; x < d.Width; ++x) {
+        const int v = img.RasterBits[y * d.Width + x];
+        if (v == gcb.TransparentColor) continue;
+        const GifColorType c = map->Colors[v];
+        canvas[(d.Top + y) * out.width + d.Left + x] = {c.Red, c.Green, c.Blue};
+      }
+    }
+    out.frames.push_back(canvas);
+    out.delays_cs.push_back(gcb.DelayTime);
+  }
+  DGifCloseFile(gif, &err);
+  return out;
+}
+
+bool same(Rgb a, Rgb b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+
+AnimationOptions small_animation() {
+  AnimationOptions o;
+  o.width = 240;
+  o.height = 180;
+  o.fps = 10;
+  o.slowmo = 3;
+  o.hold = 0.5;
+  return o;
+}
+
+}  // namespace
+
+TEST(VizPlots, FigureSetDecodesWithSizeAndContent) {
+  const fs::path dir = fresh_dir("figures");
+  FigureOptions opts;
+  opts.width = 500;
+  opts.height = 320;
+  opts.title = "example 1";
+  const auto files = write_run_figures(record(example(1)), dir.string(), opts);
+  ASSERT_EQ(files.size(), 7u * 3u);
+  for (const char* name : {"sandbag_x", "sandbag_h", "trajectory", "angles", "balloon", "energy", "overview"}) {
+    SCOPED_TRACE(name);
+    const bool overview = std::string(name) == "overview";
+    const Png png = read_png(dir / (std::string(name) + ".png"));
+    EXPECT_EQ(png.width, overview ? 500 * 9 / 5 : 500);
+    EXPECT_EQ(png.height, overview ? 320 * 3 / 2 : 320);
+    // Antialiased curves, text and the mode strip: a blank or one-line picture has far fewer.
+    EXPECT_GT(png.colours.size(), 40u);
+    EXPECT_EQ(xml_root(dir / (std::string(name) + ".svg")), "svg");
+    const std::string pdf = slurp(dir / (std::string(name) + ".pdf"));
+    EXPECT_EQ(pdf.rfind("%PDF-", 0), 0u);
+    EXPECT_NE(pdf.find("%%EOF"), std::string::npos);
+  }
+  // The angle plot draws phiS in blue and phiL in orange.
+  const Png angles = read_png(dir / "angles.png");
+  EXPECT_GT(angles.count({31, 119, 180}), 200);
+  EXPECT_GT(angles.count({230, 120, 20}), 200);
+  // Nothing half-written is left behind.
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().extension(), ".part");
+}
+
+TEST(VizPlots, SameInputSameBytes) {
+  FigureOptions opts;
+  opts.width = 300;
+  opts.height = 200;
+  const Recording rec = record(example(2));
+  const fs::path a = fresh_dir("det_a"), b = fresh_dir("det_b");
+  write_run_figures(rec, a.string(), opts);
+  write_run_figures(rec, b.string(), opts);
+  for (const char* f : {"angles.png", "angles.svg", "angles.pdf", "overview.pdf"}) {
+    EXPECT_EQ(slurp(a / f), slurp(b / f)) << f;
+  }
+}
+
+TEST(VizPlots, LawComparisonDrawsFourLaws) {
+  const fs::path dir = fresh_dir("laws");
+  FigureOptions opts;
+  opts.width = 500;
+  opts.height = 320;
+  opts.formats = {Format::png, Format::svg};
+  const auto files = write_law_comparison(example(2), dir.string(), opts);
+  ASSERT_EQ(files.size(), 2u);
+  const Png png = read_png(dir / "compare_laws.png");
+  EXPECT_EQ(png.width, 500);
+  EXPECT_EQ(png.height, 320 * 8 / 5);
+  // One colour per law: blue, orange, green, red.
+  for (Rgb c : {Rgb{31, 119, 180}, Rgb{230, 120, 20}, Rgb{44, 160, 44}, Rgb{214, 39, 40}}) {
+    EXPECT_GT(png.count(c), 30) << int(c.r) << "," << int(c.g) << "," << int(c.b);
+  }
+  EXPECT_EQ(xml_root(dir / "compare_laws.svg"), "svg");
+}
+
+TEST(VizPlots, IntegratorComparisonAndBadInput) {
+  const fs::path dir = fresh_dir("integrator");
+  FigureOptions opts;
+  opts.width = 400;
+  opts.height = 260;
+  opts.formats = {Format::png};
+  write_integrator_comparison(example(1), IntegratorKind::euler, 0.002, dir.string(), opts);
+  const Png png = read_png(dir / "compare_integrator.png");
+  EXPECT_EQ(png.width, 400);
+  EXPECT_GT(png.count({214, 39, 40}), 30);  // the fixed-step energy curve
+  EXPECT_THROW(write_integrator_comparison(example(1), IntegratorKind::adaptive, 0.001,
+                                           dir.string(), opts),
+               InputError);
+  EXPECT_THROW(write_run_figures(record(example(1)), "/proc/whatnext/no", opts), InputError);
+  std::vector<Format> f;
+  EXPECT_TRUE(parse_formats("svg,png", f));
+  EXPECT_EQ(f.size(), 2u);
+  EXPECT_FALSE(parse_formats("png,jpg", f));
+}
+
+TEST(VizAnimation, FramesHoldEveryEventOnce) {
+  const Recording rec = record(example(1));
+  const AnimationOptions o = small_animation();
+  const auto frames = plan_frames(rec, o);
+  const auto groups = group_events(rec.result);
+  std::vector<int> held;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (i > 0) {
+      EXPECT_GE(frames[i].t, frames[i - 1].t);
+    }
+    if (frames[i].event_group >= 0) {
+      held.push_back(frames[i].event_group);
+      EXPECT_DOUBLE_EQ(frames[i].t, groups[frames[i].event_group].t);
+      EXPECT_GE(frames[i].delay, o.hold);
+    }
+  }
+  ASSERT_EQ(held.size(), groups.size());
+  for (std::size_t g = 0; g < groups.size(); ++g) EXPECT_EQ(held[g], static_cast<int>(g));
+  // Slow motion: the regular frames advance 1 / (fps * slowmo) of simulated time.
+  EXPECT_NEAR(frames[2].t - frames[1].t, 1.0 / (o.fps * o.slowmo), 1e-12);
+  // Example 1 ends at 0.82 s: about 0.82 * slowmo * fps regular frames.
+  EXPECT_NEAR(static_cast<double>(frames.size() - groups.size()), 0.82 * o.slowmo * o.fps, 2.0);
+}
+
+TEST(VizAnimation, LongRunsAreFastForwardedBetweenEvents) {
+  const Recording rec = record(example(3));  // 20 s, three event instants
+  AnimationOptions o = small_animation();
+  o.slowmo = 10;
+  o.max_length = 15;
+  double screen = 0.0;
+  double fastest = 0.0;
+  for (const Frame& f : plan_frames(rec, o)) screen += f.delay, fastest = std::max(fastest, f.speed);
+  EXPECT_LT(screen, 25.0);  // slow motion throughout would take 200 s
+  EXPECT_GT(fastest, 1.0 / o.slowmo);
+}
+
+TEST(VizAnimation, GifDecodesAndShowsTheSandbagWhereTheSimulationPutsIt) {
+  const Recording rec = record(example(1));
+  const AnimationOptions o = small_animation();
+  const fs::path dir = fresh_dir("gif");
+  fs::create_directories(dir);
+  const fs::path path = dir / "a.gif";
+  const int n = write_animation(rec, path.string(), o);
+  const auto frames = plan_frames(rec, o);
+  ASSERT_EQ(n, static_cast<int>(frames.size()));
+  const Gif gif = read_gif(path);
+  ASSERT_EQ(gif.frames.size(), frames.size());
+  EXPECT_EQ(gif.width, o.width);
+  EXPECT_EQ(gif.height, o.height);
+  std::set<std::uint32_t> colours;
+  for (const Rgb& c : gif.frames[0]) colours.insert((c.r << 16) | (c.g << 8) | c.b);
+  EXPECT_GT(colours.size(), 20u);
+  int total_cs = 0;
+  for (int d : gif.delays_cs) total_cs += d;
+  double planned = 0.0;
+  for (const Frame& f : frames) planned += f.delay;
+  EXPECT_NEAR(total_cs, planned * 100.0, 1.0);
+
+  // Probe: one frame while falling, one on the seesaw after the impact, one held at an event.
+  const View view = make_view(rec, o.width, o.height);
+  int probed = 0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const Frame& f = frames[i];
+    const bool pick = (f.event_group < 0 && f.t > 0.25 && probed == 0) ||
+                      (f.event_group < 0 && f.t > 0.65 && probed == 1) ||
+                      (f.event_group >= 0 && f.t > 0.8 && probed == 2);
+    if (!pick) continue;
+    const Pixel p = to_pixel(view, {f.state.x, f.state.h});
+    const int x = static_cast<int>(p.x), y = static_cast<int>(p.y);
+    ASSERT_TRUE(x >= 0 && x < o.width && y >= view.top && y < view.bottom) << "t = " << f.t;
+    const Rgb c = gif.frames[i][y * o.width + x];
+    EXPECT_TRUE(same(c, kSandbagColour)) << "frame " << i << " t = " << f.t << " at " << x << ","
+                                         << y << ": " << int(c.r) << "," << int(c.g) << "," << int(c.b);
+    // ... and not where it was at the start (the frame really moved).
+    const Pixel p0 = to_pixel(view, {frames[0].state.x, frames[0].state.h});
+    EXPECT_FALSE(same(gif.frames[i][static_cast<int>(p0.y) * o.width + static_cast<int>(p0.x)],
+                      kSandbagColour));
+    ++probed;
+  }
+  EXPECT_EQ(probed, 3);
+}
+
+TEST(VizAnimation, GifIsDeterministicAndBadOutputsFailCleanly) {
+  const Recording rec = record(example(2));
+  AnimationOptions o = small_animation();
+  o.width = 120;
+  o.height = 90;
+  const fs::path dir = fresh_dir("gif_det");
+  fs::create_directories(dir);
+  write_animation(rec, (dir / "a.gif").string(), o);
+  write_animation(rec, (dir / "b.gif").string(), o);
+  EXPECT_EQ(slurp(dir / "a.gif"), slurp(dir / "b.gif"));
+  EXPECT_THROW(write_animation(rec, (dir / "c.avi").string(), o), InputError);
+  EXPECT_THROW(write_animation(rec, (dir / "missing" / "d.gif").string(), o), InputError);
+  const std::string old_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  setenv("PATH", dir.c_str(), 1);  // no ffmpeg here
+  EXPECT_THROW(write_animation(rec, (dir / "e.mp4").string(), o), InputError);
+  setenv("PATH", old_path.c_str(), 1);
+  o.fps = 0;
+  EXPECT_THROW(write_animation(rec, (dir / "f.gif").string(), o), InputError);
+  for (const char* f : {"c.avi", "missing", "e.mp4", "e.mp4.part", "f.gif", "f.gif.part"}) {
+    EXPECT_FALSE(fs::exists(dir / f)) << f;
+  }
+}
+
+TEST(VizAnimation, RopeIsStraightWhenTautAndSagsWhenSlack) {
+  // Example 2: the rope is taut in M4 between 0.33 s and 0.49 s. Example 1: it starts slack with
+  // 0.43 m to spare.
+  const AnimationOptions o = small_animation();
+  auto chord_mid_is_rope = [&](const Recording& rec, double t) {
+    const View view = make_view(rec, 480, 360);
+    const RopeGeometry geo(rec.scenario.machine);
+    Frame f;
+    f.t = t;
+    f.state = rec.at(t);
+    const Image img = render_frame(rec, view, f, o);
+    const Vec2 r = geo.seesaw_end(f.state.phi_s), e = geo.lid_edge(f.state.phi_l);
+    const Pixel p = to_pixel(view, 0.5 * (r + e));
+    const Rgb c = img.at(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
+    return c.r < 120 && c.g < 120 && c.b < 120;  // the rope is drawn dark on a light background
+  };
+  const Recording ex2 = record(example(2)), ex1 = record(example(1));
+  ASSERT_EQ(ex2.at(0.4).mode, Mode::M4);
+  EXPECT_TRUE(chord_mid_is_rope(ex2, 0.4));
+  ASSERT_EQ(ex1.at(0.1).mode, Mode::M1);
+  EXPECT_FALSE(chord_mid_is_rope(ex1, 0.1));
+}
+
+TEST(VizCli, RunWritesPlotsAndAnimationAndRejectsBadOptions) {
+  const fs::path dir = fresh_dir("cli");
+  const std::string cli = WHATNEXT_CLI;
+  const std::string ok = cli + " run --example 2 -q --plots " + (dir / "plots").string() +
+                         " --animate " + (dir / "ex2.gif").string() + " > /dev/null";
+  ASSERT_EQ(std::system(ok.c_str()), 0);
+  EXPECT_TRUE(fs::exists(dir / "plots" / "overview.png"));
+  EXPECT_EQ(read_gif(dir / "ex2.gif").width, AnimationOptions{}.width);
+  const std::string bad = cli + " animate --example 2 --out " + (dir / "x.avi").string() + " 2> /dev/null";
+  EXPECT_EQ(WEXITSTATUS(std::system(bad.c_str())), 2);
+  const std::string bad2 = cli + " plot --example 2 --out " + dir.string() + " --compare nothing 2> /dev/null";
+  EXPECT_EQ(WEXITSTATUS(std::system(bad2.c_str())), 2);
+  EXPECT_FALSE(fs::exists(dir / "x.avi"));
+}
