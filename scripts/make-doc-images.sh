@@ -1,0 +1,29 @@
+#!/bin/sh
+# Regenerates the pictures in docs/img/ that docs/pictures.md and the README show: example 1's
+# figures, the comparisons of impact laws and integrators, and a small animation of example 1
+# (reduced size and frame rate so that it stays well under 1.5 MB).
+# Usage: scripts/make-doc-images.sh [path/to/whatnext]   (default: build/whatnext)
+set -eu
+cd "$(dirname "$0")/.."
+WN=${1:-build/whatnext}
+if [ ! -x "$WN" ]; then
+  echo "make-doc-images: no whatnext at '$WN'; build first (cmake -S . -B build && cmake --build build -j2)" >&2
+  exit 2
+fi
+IMG=docs/img
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+mkdir -p "$IMG"
+
+"$WN" plot --example 1 --out "$TMP/ex1" --format png,svg -q
+cp "$TMP/ex1/overview.png" "$IMG/example1-overview.png"
+cp "$TMP/ex1/angles.svg" "$IMG/example1-angles.svg"
+cp "$TMP/ex1/energy.png" "$IMG/example1-energy.png"
+"$WN" plot --example 2 --compare laws --out "$TMP/ex2" --format png -q
+cp "$TMP/ex2/compare_laws.png" "$IMG/example2-compare-laws.png"
+"$WN" plot --example 1 --compare integrator --integrator euler --step 0.002 --out "$TMP/ex1e" --format png -q
+cp "$TMP/ex1e/compare_integrator.png" "$IMG/example1-compare-euler.png"
+"$WN" animate --example 1 --out "$IMG/example1.gif" --width 480 --height 360 --fps 15 -q
+"$WN" animate --example 3 --out "$IMG/example3.gif" --width 400 --height 300 --fps 10 --max-length 14 -q
+
+ls -l "$IMG"
