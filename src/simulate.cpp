@@ -27,6 +27,10 @@ Result simulate(const Scenario& sc, Observer* observer) {
   Result res;
   std::vector<Event> fresh;
   HybridState hs = model.initial(fresh);
+  for (const Event& e : fresh) {  // anything the start itself decides, at t = 0
+    res.events.push_back(e);
+    if (observer) observer->on_event(e);
+  }
   OutputGrid grid{observer ? sc.run.output_step : 0.0, 0};
   const double t_end = sc.run.t_max;
   for (;;) {
