@@ -41,10 +41,29 @@ bool RopeGeometry::seesaw_angle_for(double phi_l, double near, double& phi_s) co
 }
 
 Transfer RopeGeometry::transfer(double phi_s, double phi_l) const {
+  return transfer_at(seesaw_end(phi_s), polar(2.0 * r_l_, phi_l));
+}
+
+RopeGeometry::Closure RopeGeometry::closure(double phi_s) const {
+  const Vec2 r = seesaw_end(phi_s);
+  const Vec2 hr = r - hinge_;
+  const double d = std::sqrt(dot(hr, hr));  // not hypot: slower, and d is never near over/underflow
+  double cs = (4.0 * r_l_ * r_l_ + d * d - l_r_ * l_r_) / (4.0 * r_l_ * d);
+  cs = cs > 1.0 ? 1.0 : (cs < -1.0 ? -1.0 : cs);
+  const double sn = std::sqrt(1.0 - cs * cs);  // sin sigma >= 0
+  // E - H is HR turned clockwise by sigma and scaled to 2 r_L (the lid below the rope).
+  const double f = 2.0 * r_l_ / d;
+  const Vec2 el{f * (hr.x * cs + hr.h * sn), f * (hr.h * cs - hr.x * sn)};
+  Closure c;
+  c.phi_l = std::atan2(hr.h, hr.x) - std::acos(cs);
+  c.cos_phi_l = el.x / (2.0 * r_l_);
+  c.transfer = transfer_at(r, el);
+  return c;
+}
+
+Transfer RopeGeometry::transfer_at(Vec2 r, Vec2 el) const {
   // C = |D|^2 - l^2 with D = R(phiS) - E(phiL). Derivatives of R and E:
   // R_S = perp(R), R_SS = -R; E_L = perp(E - H), E_LL = -(E - H).
-  const Vec2 r = seesaw_end(phi_s);
-  const Vec2 el = polar(2.0 * r_l_, phi_l);  // E - H
   const Vec2 d = r - (hinge_ + el);
   const Vec2 r_s{-r.h, r.x};
   const Vec2 e_l{-el.h, el.x};

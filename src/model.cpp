@@ -79,13 +79,12 @@ Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr,
     den += m_s_ * r * r;
   }
   if (taut) {  // the lid on the rope's closure phiL(phiS), with analytic k, k'
-    double cs = rope_.cos_sigma(phi_s);
-    cs = cs > 1.0 ? 1.0 : (cs < -1.0 ? -1.0 : cs);  // the rope_locked guard stops the run before
-    const Vec2 hr = rope_.seesaw_end(phi_s) - rope_.hinge();
-    p.phi_l = std::atan2(hr.h, hr.x) - std::acos(cs);
-    p.tr = rope_.transfer(phi_s, p.phi_l);
+    // One call for phiL, cos phiL, k and k': this is the flow's hot path (see docs/performance.md).
+    const RopeGeometry::Closure c = rope_.closure(phi_s);
+    p.phi_l = c.phi_l;
+    p.tr = c.transfer;
     const double k = p.tr.k;
-    num -= (m_l_ * g_ * r_l_ * std::cos(p.phi_l) + i_l_ * p.tr.dk * dphi_s * dphi_s) * k +
+    num -= (m_l_ * g_ * r_l_ * c.cos_phi_l + i_l_ * p.tr.dk * dphi_s * dphi_s) * k +
            c_l_ * k * k * dphi_s;
     den += i_l_ * k * k;
   }

@@ -22,6 +22,7 @@
 
 #include "whatnext/explore/optimize.hpp"
 #include "whatnext/explore/sweep.hpp"
+#include "whatnext/geometry.hpp"
 #include "whatnext/simulate.hpp"
 
 namespace fs = std::filesystem;
@@ -340,6 +341,51 @@ TEST_F(SweepCli, OptimizeWritesATomlThatRunAccepts) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
   EXPECT_FALSE(fs::exists(none));
+}
+
+// The fast paths behind sweep throughput (docs/performance.md) must agree with the plain formulas.
+TEST(FastPaths, ClosureMatchesLidAngleAndTransfer) {
+  Machine m;
+  m.hinge = {0.8 * std::cos(27.0 * M_PI / 180.0), -0.8 * std::sin(27.0 * M_PI / 180.0)};
+  for (double rope : {0.62, 0.9, 1.0}) {
+    m.rope_length = rope;
+    const RopeGeometry g(m);
+    int checked = 0;
+    for (double deg = -89.0; deg <= 89.0; deg += 0.5) {
+      const double phi_s = deg * M_PI / 180.0;
+      double phi_l = 0.0;
+      if (!g.lid_angle_for(phi_s, phi_l)) continue;
+      ++checked;
+      const RopeGeometry::Closure c = g.closure(phi_s);
+      const Transfer t = g.transfer(phi_s, phi_l);
+      EXPECT_NEAR(c.phi_l, phi_l, 1e-13) << deg;
+      EXPECT_NEAR(c.cos_phi_l, std::cos(phi_l), 1e-14) << deg;
+      EXPECT_NEAR(c.transfer.k, t.k, 1e-12 * (1.0 + std::fabs(t.k))) << deg;
+      EXPECT_NEAR(c.transfer.dk, t.dk, 1e-11 * (1.0 + std::fabs(t.dk))) << deg;
+    }
+    EXPECT_GT(checked, 20) << rope;
+  }
+}
+
+TEST(FastPaths, MaxSpanIsTheLargestSpanOnAFineGrid) {
+  // Several shapes, including hinges above and left of the pivot, where other candidates win.
+  const double hinges[][2] = {{0.71, -0.36}, {0.3, 0.2}, {-0.5, -0.1}, {0.1, -1.2}, {1.5, 0.0}};
+  for (const auto& h : hinges) {
+    Machine m;
+    m.seesaw_right_arm = 0.45;
+    m.lid_half_length = 0.25;
+    m.hinge = {h[0], h[1]};
+    const RopeGeometry g(m);
+    for (double l0 : {0.0, 5.0, 60.0}) {
+      const double reach = g.max_span(l0 * M_PI / 180.0);
+      double seen = 0.0;
+      for (double s = -90.0; s <= 90.0; s += 0.25) {
+        for (double l = l0; l <= 90.0; l += 0.25) seen = std::max(seen, g.span(s * M_PI / 180.0, l * M_PI / 180.0));
+      }
+      EXPECT_GE(reach, seen - 1e-12) << h[0] << "," << h[1] << " " << l0;
+      EXPECT_LT(reach, seen + 1e-4) << h[0] << "," << h[1] << " " << l0;
+    }
+  }
 }
 
 }  // namespace

@@ -39,6 +39,16 @@ class RopeGeometry {
 
   // Analytic k = -C_S/C_L and k' by implicit differentiation of C(phiS, phiL) = 0.
   Transfer transfer(double phi_s, double phi_l) const;
+
+  // The closure phiL(phiS) together with cos phiL, k and k', for the flow's hot path: one sincos
+  // instead of five (the lid edge follows from the triangle, not from cos/sin of phiL).
+  // |cos sigma| is clamped to 1; callers stop the run at rope_locked before it gets there.
+  struct Closure {
+    double phi_l = 0.0;
+    double cos_phi_l = 0.0;
+    Transfer transfer;
+  };
+  Closure closure(double phi_s) const;
   // The paper's transfer coefficient r_H sin(alpha + phiS - phiL) / (2 r_L sin alpha).
   double paper_transfer(double phi_s, double phi_l) const;
 
@@ -52,6 +62,8 @@ class RopeGeometry {
   double max_span(double phi_l_min) const;
 
  private:
+  // transfer() given the seesaw end R and the lid vector E - H.
+  Transfer transfer_at(Vec2 r, Vec2 el) const;
   double r_h_, r_l_, l_r_;
   Vec2 hinge_;
 };
