@@ -117,12 +117,13 @@ void register_sweep(CLI::App& app, int& exit_code) {
     g_interrupted.store(false);
     const auto old_handler = std::signal(SIGINT, on_sigint);
     const explore::SweepResult result = explore::run(in.config, machines, ro);
-    std::signal(SIGINT, old_handler);
     bar.finish();
 
+    // The handler stays until the files are in place: a second Ctrl-C must not leave a .part file.
     explore::write_csv(csv.stream(), machines, result);
     csv.commit();
     if (!opts->heatmap.empty()) explore::draw_heatmap(opts->heatmap, machines, result, opts->heatmap_value);
+    std::signal(SIGINT, old_handler);
     std::int64_t invalid = 0;
     for (std::int64_t i = 0; i < machines.size(); ++i) {
       if (result.done[static_cast<std::size_t>(i)] && !result.rows[static_cast<std::size_t>(i)].valid) ++invalid;

@@ -307,6 +307,7 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
     }
   }
   for (std::thread& t : pool) t.join();
+  if (options.progress) options.progress(completed.load(), total);  // the final count, not the last tick's
   res.completed = completed.load();
   res.interrupted = res.completed < total;
   return res;
