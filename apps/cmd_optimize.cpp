@@ -1,4 +1,5 @@
 // `whatnext optimize`: the best machine within bounds for one outcome, written as TOML.
+#include <cmath>
 #include <memory>
 #include <thread>
 
@@ -70,11 +71,19 @@ void register_optimize(CLI::App& app, int& exit_code) {
       values += fmt::format("{}{} = {:.10g}", k ? ", " : "", o.bounds[k].key, r.best[k]);
     }
     const Scenario sc = build_scenario(best);
+    const std::string toml = to_toml(sc);
     out.stream() << fmt::format("# whatnext optimize: {} {} over {} ({} machines): {}; {} = {:.10g}\n",
                                 o.maximize ? "maximise" : "minimise", o.value, in.source, r.evaluations,
                                 values, o.value, r.value)
-                 << to_toml(sc);
+                 << toml;
     out.commit();
+    // The file is only useful if it is the optimum: run it again from its own text.
+    const explore::Outcome again = explore::evaluate(parse_toml(toml, opts->out), {}, nullptr);
+    const double v = explore::value_of(again, o.value);
+    if (!(std::fabs(v - r.value) <= 1e-9 * (1.0 + std::fabs(r.value)))) {
+      fmt::print(stderr, "whatnext: warning: {} gives {} = {:.10g}, not {:.10g}: to_toml() does not write "
+                 "every input key that was set\n", opts->out, o.value, v, r.value);
+    }
     fmt::print("best: {}\n{} = {:.10g}; outcome {} at {:.6f} s ({} machines tried)\nwritten to {}\n", values,
                o.value, r.value, to_string(r.outcome.outcome), r.outcome.outcome_t, r.evaluations, opts->out);
     exit_code = 0;
