@@ -94,14 +94,16 @@ Range parse_range(std::string_view spec, std::string_view option, bool need_coun
   }
   Range r;
   r.key = std::string(trim(spec.substr(0, eq)));
-  const KeySpec* ks = find_key(r.key);
-  if (!ks) {
+  if (!find_key(r.key)) {
     const std::string near = nearest_key(r.key);
     throw InputError(near.empty()
                          ? fmt::format("{}: unknown key '{}'", where, r.key)
                          : fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, r.key, near));
   }
-  if (ks->kind == KeyKind::text || ks->kind == KeyKind::pair) {
+  try {  // set_number knows which kinds of key hold one number (text, pairs and flags do not)
+    Config probe;
+    set_number(probe, r.key, 0.0);
+  } catch (const InputError&) {
     throw InputError(fmt::format("{}: {} is not a single number and cannot be varied", where, r.key));
   }
   std::vector<std::string_view> parts;
