@@ -105,6 +105,22 @@ TEST_F(SweepCli, CsvIsByteIdenticalForOneAndTwoThreads) {
   EXPECT_EQ(slurp(dir_ / "l1.csv"), slurp(dir_ / "l2.csv"));
 }
 
+TEST_F(SweepCli, HeatMapIsAPngAndTheSameForAnyThreadCount) {
+  const std::string args = "sweep --example 1 --vary masses.sandbag=0.1:1.5:10 --vary masses.lid=0.2:2:10";
+  const fs::path a = dir_ / "a.png", b = dir_ / "b.png";
+  ASSERT_EQ(whatnext(args + " --threads 1 --out " + (dir_ / "a.csv").string() + " --heatmap " + a.string()).code, 0);
+  const CliResult r = whatnext(args + " --threads 2 --out " + (dir_ / "b.csv").string() + " --heatmap " +
+                               b.string() + " --heatmap-value outcome_t");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string pa = slurp(a), pb = slurp(b);
+  EXPECT_EQ(pa.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_FALSE(fs::exists(a.string() + ".part"));
+  EXPECT_NE(pa, pb);  // a different value is drawn
+  ASSERT_EQ(whatnext(args + " --threads 2 --out " + (dir_ / "c.csv").string() + " --heatmap " +
+                     (dir_ / "c.png").string()).code, 0);
+  EXPECT_EQ(slurp(dir_ / "c.png"), pa);
+}
+
 TEST_F(SweepCli, RowsMatchSingleRuns) {
   // The sweep's row for a machine must say what `whatnext run` says for the same machine.
   ASSERT_EQ(whatnext("sweep --example 2 --vary geometry.rope_length=0.62:0.66:3 --out " +
