@@ -577,6 +577,30 @@ std::string to_toml(const Scenario& sc) {
   out += "\n[balloon]\n";
   line("radius", m.balloon_radius);
   out += fmt::format("model = \"{}\"\n", to_string(m.balloon_model));
+  // The extensions are written only where they differ from the paper's model, so that a plain
+  // machine stays a plain file.
+  if (m.balloon_rubber_mass > 0.0) line("rubber_mass", m.balloon_rubber_mass);
+  if (m.balloon_drag_coefficient > 0.0) line("drag_coefficient", m.balloon_drag_coefficient);
+  if (m.radio) {
+    const Vec2 offset = m.radio_switch - m.hinge - Vec2{2.0 * m.lid_half_length, 0.0};
+    out += "\n[radio]\nenabled = true\n";
+    out += fmt::format("switch_offset = [{:.17g}, {:.17g}]\n", offset.x, offset.h);
+    line("string_length", m.string_length);
+  }
+  if (m.pivot_damping > 0.0 || m.lid_hinge_damping > 0.0) {
+    out += "\n[damping]\n";
+    line("pivot", m.pivot_damping);
+    line("lid_hinge", m.lid_hinge_damping);
+  }
+  if (std::isfinite(m.seesaw_left_arm) || m.seesaw_mass > 0.0) {
+    out += "\n[seesaw]\n";
+    if (std::isfinite(m.seesaw_left_arm)) line("left_arm", m.seesaw_left_arm);
+    if (m.seesaw_mass > 0.0) {
+      line("mass", m.seesaw_mass);
+      line("inertia", m.seesaw_inertia);
+      line("com_offset", m.seesaw_com_offset);
+    }
+  }
   out += "\n[start]\n";
   line("sandbag_x", st.sandbag_x);
   line("sandbag_height", st.sandbag_h);

@@ -91,6 +91,34 @@ TEST(Toml, RoundTripThroughToToml) {
   }
 }
 
+TEST(Toml, RoundTripKeepsTheExtensions) {
+  wn::Config cfg = wn::example_config(1);
+  for (const char* set : {"damping.lid_hinge=0.05", "damping.pivot=0.01", "seesaw.mass=0.3",
+                          "seesaw.left_arm=2.5", "radio.string_length=1.2", "radio.switch_offset=[0.4, 0.1]",
+                          "balloon.drag=true", "balloon.rubber_mass=0.001"}) {
+    wn::apply_set(cfg, set);
+  }
+  const wn::Scenario a = wn::build_scenario(cfg);
+  const wn::Scenario b = wn::build_scenario(wn::parse_toml(wn::to_toml(a), "round.toml"));
+  const wn::Machine &ma = a.machine, &mb = b.machine;
+  EXPECT_DOUBLE_EQ(ma.lid_hinge_damping, mb.lid_hinge_damping);
+  EXPECT_DOUBLE_EQ(ma.pivot_damping, mb.pivot_damping);
+  EXPECT_DOUBLE_EQ(ma.seesaw_mass, mb.seesaw_mass);
+  EXPECT_DOUBLE_EQ(ma.seesaw_left_arm, mb.seesaw_left_arm);
+  EXPECT_DOUBLE_EQ(ma.seesaw_inertia, mb.seesaw_inertia);
+  EXPECT_DOUBLE_EQ(ma.seesaw_com_offset, mb.seesaw_com_offset);
+  EXPECT_TRUE(mb.radio);
+  EXPECT_NEAR(ma.radio_switch.x, mb.radio_switch.x, 1e-15);
+  EXPECT_NEAR(ma.radio_switch.h, mb.radio_switch.h, 1e-15);
+  EXPECT_DOUBLE_EQ(ma.string_length, mb.string_length);
+  EXPECT_DOUBLE_EQ(ma.balloon_drag_coefficient, mb.balloon_drag_coefficient);
+  EXPECT_DOUBLE_EQ(ma.balloon_rubber_mass, mb.balloon_rubber_mass);
+  // A plain machine stays plain.
+  const std::string plain = wn::to_toml(wn::build_scenario(wn::example_config(1)));
+  EXPECT_EQ(plain.find("[seesaw]"), std::string::npos);
+  EXPECT_EQ(plain.find("[radio]"), std::string::npos);
+}
+
 TEST(Set, OverridesAndSwitchesTheHingeForm) {
   wn::Config cfg = wn::example_config(1);
   wn::apply_set(cfg, "geometry.hinge_offset = [0.7, 0.3]");
