@@ -533,6 +533,18 @@ void Model::settle(HybridState& hs, std::vector<Event>& out) const {
   // Right after a jump that leaves something with inertia on a taut rope, decide between M4 and
   // M5 and apply MODEL.md's immediate checks (lid lifting, rope going slack at once); on a heavy
   // seesaw also whether the sandbag leaves the arm at once.
+
+  // Lets go of the rope (or of the sandbag) where it is, with no impulse, and reports it.
+  auto part = [&](const Kinematics& k, EventType type) {
+    const Mode m = hs.d.mode();
+    if (type == EventType::sandbag_leaves) {
+      hs.d.on_seesaw = false;
+    } else {
+      hs.d.taut = false;
+    }
+    place(hs, k);
+    out.push_back(make_event(type, hs, m));
+  };
   if (hs.d.taut && (hs.d.on_seesaw || hs.d.heavy)) {
     if (!hs.d.lid_resting) {
       const Kinematics k = kinematics(hs.d, hs.y);
@@ -559,31 +571,17 @@ void Model::settle(HybridState& hs, std::vector<Event>& out) const {
         out.push_back(make_event(EventType::lid_lifts, hs, m));
       } else {
         pulling = false;
-        if (hs.d.heavy && seesaw_load(hs.d.on_seesaw, k.r, k.phi_s) < 0.0) {
-          hs.d.taut = false;
-          place(hs, k);
-          out.push_back(make_event(EventType::rope_slack, hs, m));
-        }
+        if (hs.d.heavy && seesaw_load(hs.d.on_seesaw, k.r, k.phi_s) < 0.0) part(k, EventType::rope_slack);
       }
     }
     if (pulling) {
       const Kinematics k = kinematics(hs.d, hs.y);
-      if (lid_rope_torque(k) < 0.0) {
-        const Mode m = hs.d.mode();
-        hs.d.taut = false;
-        place(hs, k);
-        out.push_back(make_event(EventType::rope_slack, hs, m));
-      }
+      if (lid_rope_torque(k) < 0.0) part(k, EventType::rope_slack);
     }
   }
   if (hs.d.heavy && hs.d.on_seesaw && !(hs.d.taut && hs.d.lid_resting)) {
     const Kinematics k = kinematics(hs.d, hs.y);
-    if (normal_force(k) < 0.0) {
-      const Mode m = hs.d.mode();
-      hs.d.on_seesaw = false;
-      place(hs, k);
-      out.push_back(make_event(EventType::sandbag_leaves, hs, m));
-    }
+    if (normal_force(k) < 0.0) part(k, EventType::sandbag_leaves);
   }
 }
 

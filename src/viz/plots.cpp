@@ -448,14 +448,20 @@ std::vector<std::size_t> thin(const Recording& rec, std::size_t limit = 4000) {
   return idx;
 }
 
-Curve series(const Recording& rec, const std::function<double(const Snapshot&)>& x,
-             const std::function<double(const Snapshot&)>& y, std::string label, int colour,
-             int style = 1, double width = 2.0) {
+// An empty curve with its legend label and pen.
+Curve styled(std::string label, int colour, int style, double width) {
   Curve c;
   c.label = std::move(label);
   c.colour = colour;
   c.style = style;
   c.width = width;
+  return c;
+}
+
+Curve series(const Recording& rec, const std::function<double(const Snapshot&)>& x,
+             const std::function<double(const Snapshot&)>& y, std::string label, int colour,
+             int style = 1, double width = 2.0) {
+  Curve c = styled(std::move(label), colour, style, width);
   for (std::size_t i : thin(rec)) {
     c.x.push_back(x(rec.states[i]));
     c.y.push_back(y(rec.states[i]));
@@ -496,11 +502,7 @@ Panel time_panel(const Recording& rec, std::string title, std::string ylabel) {
 // Total energy with its jumps at impacts drawn as vertical steps.
 Curve total_energy(const Recording& rec, std::string label, int colour, int style = 1,
                    double width = 2.5) {
-  Curve c;
-  c.label = std::move(label);
-  c.colour = colour;
-  c.style = style;
-  c.width = width;
+  Curve c = styled(std::move(label), colour, style, width);
   for (std::size_t i : thin(rec)) {
     const Snapshot& s = rec.states[i];
     const int e = rec.event_index[i];
