@@ -335,10 +335,8 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g) const {
     g[along <= arm_ ? kGuardLands : kGuardFallsOff] = below;
   }
   if (!d.taut) g[kGuardRopeTaut] = rope_.gap(k.phi_s, k.phi_l);
-  if (!d.lid_resting) {
-    g[kGuardLidRests] = phi_l0_ - k.phi_l;
-    g[kGuardLidOpen] = k.phi_l - vertical_;
-  }
+  g[kGuardLidOpen] = k.phi_l - vertical_;  // a lid resting at or past it is open from the start
+  if (!d.lid_resting) g[kGuardLidRests] = phi_l0_ - k.phi_l;
   if (d.taut && (d.on_seesaw || d.heavy)) {  // something with inertia hangs on the rope
     if (d.lid_resting) {
       const double load = seesaw_load(d.on_seesaw, k.r, k.phi_s);

@@ -27,10 +27,24 @@ Result simulate(const Scenario& sc, Observer* observer) {
   Result res;
   std::vector<Event> fresh;
   HybridState hs = model.initial(fresh);
+  // A guard that already reads >= 0 when a smooth piece starts is never seen to cross: a stop
+  // threshold passed at the start or by a jump, or a stuck balloon whose lid now accelerates away
+  // faster than it can follow. Such events happen at once.
+  auto fire_at_once = [&](std::vector<Event>& out) {
+    GuardValues g;
+    model.guards(hs.d, hs.y, g);
+    for (int i = 0; i < kGuardCount; ++i) {
+      const Guard gi = static_cast<Guard>(i);
+      if (g[i] >= 0.0 && (gi == kGuardBalloonFree || is_stop(event_of(gi)))) return model.jump(gi, hs, out);
+    }
+    return false;
+  };
+  bool stopped = fire_at_once(fresh);
   for (const Event& e : fresh) {  // anything the start itself decides, at t = 0
     res.events.push_back(e);
     if (observer) observer->on_event(e);
   }
+  if (stopped) return res;
   OutputGrid grid{observer ? sc.run.output_step : 0.0, 0};
   const double t_end = sc.run.t_max;
   for (;;) {
@@ -62,6 +76,7 @@ Result simulate(const Scenario& sc, Observer* observer) {
       stop = true;
     } else {
       stop = model.jump(static_cast<Guard>(c.guard), hs, fresh);
+      if (!stop) stop = fire_at_once(fresh);
     }
     for (const Event& e : fresh) {
       res.events.push_back(e);

@@ -218,6 +218,46 @@ TEST(ClosedForm, SandbagSlidesOnTheHeldSeesawUntilTheLidLifts) {
   EXPECT_NEAR(res.events.front().after.r, r_star, 1e-9);
 }
 
+TEST(Balloon, LeavesAtOnceWhenTheLidStartsFasterThanItCanFollow) {
+  // A heavy sandbag placed on the arm with the rope straight lifts the lid from rest. At t = 0
+  // (r' = phiS' = 0) eq. (4) gives phiS'' = (m_S g r cos phiS - m_L g r_L cos phiL0 k) /
+  // (m_S r^2 + I_L k^2), so the limit accelerates at r_B k phiS'' / (1 + sin phiL0): more than
+  // a_B, and the stuck balloon must part from the lid at once.
+  wn::Config cfg = wn::example_config(1);
+  const double phi_s = 10.0 * kDeg, r = 0.3;
+  wn::set_number(cfg, "start.seesaw_angle", 10.0);
+  wn::set_number(cfg, "start.sandbag_x", -r * std::cos(phi_s));
+  wn::set_number(cfg, "start.sandbag_height", -r * std::sin(phi_s));
+  wn::set_number(cfg, "masses.sandbag", 50.0);
+  const wn::Scenario probe = wn::build_scenario(cfg);
+  wn::set_number(cfg, "geometry.rope_length",
+                 wn::RopeGeometry(probe.machine).span(phi_s, probe.start.lid_angle));
+  const wn::Scenario sc = wn::build_scenario(cfg);
+  const wn::Machine& m = sc.machine;
+  const double phi_l0 = sc.start.lid_angle, g = m.gravity;
+  const double k = wn::RopeGeometry(m).transfer(phi_s, phi_l0).k;
+  const double dd_s = (m.sandbag_mass * g * r * std::cos(phi_s) - m.lid_mass * g * m.lid_half_length * std::cos(phi_l0) * k) /
+                      (m.sandbag_mass * r * r + m.lid_inertia() * k * k);
+  const double limit_acc = m.balloon_radius * k * dd_s / (1.0 + std::sin(phi_l0));
+  ASSERT_GT(limit_acc, m.balloon_acceleration());
+  const wn::Result res = wn::simulate(sc);
+  ASSERT_FALSE(res.events.empty());
+  EXPECT_EQ(res.events.front().type, wn::EventType::balloon_free);
+  EXPECT_EQ(res.events.front().t, 0.0);
+  EXPECT_EQ(res.events.front().mode_after, wn::Mode::M4);
+}
+
+TEST(Stops, ALidStartingPastTheMarginIsOpenAtOnce) {
+  wn::Config cfg = wn::example_config(1);
+  wn::apply_set(cfg, "run.vertical_margin=10");
+  wn::apply_set(cfg, "start.lid_angle=85");
+  wn::apply_set(cfg, "geometry.rope_length=0.9");
+  const wn::Result res = wn::simulate(wn::build_scenario(cfg));
+  ASSERT_EQ(res.events.size(), 1u);
+  EXPECT_EQ(res.outcome().type, wn::EventType::lid_open);
+  EXPECT_EQ(res.outcome().t, 0.0);
+}
+
 TEST(PolarFreeFall, M3MotionObeysThePapersPolarEquations) {
   // In M3 the sandbag and the massless seesaw obey r'' = g sin phiS + r phiS'^2 and
   // phiS'' = (g cos phiS - 2 r' phiS') / r. Check on the recorded run by finite differences.
