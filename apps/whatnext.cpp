@@ -23,7 +23,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "whatnext: error: {}\n", e.what());
+    if (argc == 1) {
+      fmt::print(stderr, "whatnext: error: say what to do: run, plot, animate, sweep or optimize (see whatnext --help)\n");
+    } else {
+      fmt::print(stderr, "whatnext: error: {}\n", e.what());
+    }
     return 2;
   } catch (const whatnext::InputError& e) {
     fmt::print(stderr, "whatnext: error: {}\n", e.what());
