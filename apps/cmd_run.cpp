@@ -34,7 +34,7 @@ void register_run(CLI::App& app, int& exit_code) {
   cmd->callback([opts, &exit_code] {
     const LoadedInput in = load_input(opts->input);
     if (!opts->plots.empty()) viz::prepare_output_dir(opts->plots, "--plots");
-    if (!opts->animate.empty()) viz::is_mp4(opts->animate, "--animate");  // rejects other extensions up front
+    if (!opts->animate.empty()) viz::check_animation_target(opts->animate, "--animate");
     // Open every output first so that a bad path fails before any work; files appear only when done.
     std::optional<AtomicFile> csv_file, dat_file, events_file;
     Fanout fan;
@@ -70,7 +70,7 @@ void register_run(CLI::App& app, int& exit_code) {
         if (!opts->quiet) fmt::print("Plots: {} files in {}\n", files.size(), opts->plots);
       }
       if (!opts->animate.empty()) {
-        const int frames = viz::write_animation(rec, opts->animate, viz::AnimationOptions{});
+        const int frames = viz::write_animation(rec, opts->animate, viz::AnimationOptions{}, "", "--animate");
         if (!opts->quiet) fmt::print("Animation: {} ({} frames)\n", opts->animate, frames);
       }
     }

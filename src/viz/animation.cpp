@@ -727,18 +727,25 @@ void write_png(const Image& image, const std::string& path) {
   fs::rename(tmp, path);
 }
 
-int write_animation(const Recording& rec, const std::string& path, const AnimationOptions& opts,
-                    const std::string& dump_dir) {
-  validate(opts);
-  const bool mp4 = is_mp4(path);
-  std::string ffmpeg;
-  if (mp4) {
-    ffmpeg = find_on_path("ffmpeg");
-    if (ffmpeg.empty()) {
-      throw InputError(fmt::format("--out: writing '{}' needs ffmpeg on PATH, and there is none "
-                                   "(write a .gif instead)", path));
-    }
+void check_animation_target(const std::string& path, const std::string& option) {
+  if (is_mp4(path, option) && find_on_path("ffmpeg").empty()) {
+    throw InputError(fmt::format("{}: writing '{}' needs ffmpeg on PATH, and there is none "
+                                 "(write a .gif instead)", option, path));
   }
+  const std::string probe = path + ".part";
+  {
+    std::ofstream out(probe, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(fmt::format("{}: cannot write '{}'", option, path));
+  }
+  std::remove(probe.c_str());
+}
+
+int write_animation(const Recording& rec, const std::string& path, const AnimationOptions& opts,
+                    const std::string& dump_dir, const std::string& option) {
+  validate(opts);
+  check_animation_target(path, option);
+  const bool mp4 = is_mp4(path, option);
+  const std::string ffmpeg = mp4 ? find_on_path("ffmpeg") : std::string();
   if (!dump_dir.empty()) prepare_output_dir(dump_dir, "--dump-frames");
   const std::vector<Frame> frames = plan_frames(rec, opts);
   const View view = make_view(rec, opts.width, opts.height);
@@ -778,7 +785,7 @@ int write_animation(const Recording& rec, const std::string& path, const Animati
 
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(fmt::format("--out: cannot write '{}'", path));
+    if (!out) throw InputError(fmt::format("{}: cannot write '{}'", option, path));
     try {
       GifEncoder gif(out, opts.width, opts.height);
       double shown = 0.0;
@@ -808,7 +815,7 @@ int write_animation(const Recording& rec, const std::string& path, const Animati
     out.close();
     if (!out) {
       std::remove(tmp.c_str());
-      throw InputError(fmt::format("--out: cannot write '{}'", path));
+      throw InputError(fmt::format("{}: cannot write '{}'", option, path));
     }
   }
   fs::rename(tmp, path);

@@ -73,8 +73,13 @@ void write_png(const Image& image, const std::string& path);
 // Writes the animation to path: .gif with giflib, .mp4 through ffmpeg (InputError when ffmpeg is
 // not on PATH). If dump_dir is not empty, the held frames and one frame per second on screen are
 // also written there as PNG (for looking at single frames). Returns the number of frames.
+// Errors name `option`, the command-line option that gave the path.
 int write_animation(const Recording& rec, const std::string& path, const AnimationOptions& opts,
-                    const std::string& dump_dir = "");
+                    const std::string& dump_dir = "", const std::string& option = "--out");
+
+// Checks before any work that path can take an animation: a .gif or .mp4 name, ffmpeg on PATH for
+// .mp4, a writable place. InputError naming option otherwise.
+void check_animation_target(const std::string& path, const std::string& option);
 
 // True for paths ending in .mp4; InputError (naming option) for anything else but .gif.
 bool is_mp4(const std::string& path, const std::string& option = "--out");
