@@ -190,19 +190,24 @@ TEST(ClosedForm, FreeFallOntoASeesawHeldByATautRope) {
   EXPECT_NEAR(res.events.front().t, std::sqrt(2.0 * drop / sc.machine.gravity), 1e-10);
 }
 
+// Example 1 with the sandbag placed on the arm at distance r, the seesaw at phi_s_deg, and the rope
+// cut to the exact span at the start: straight, holding the resting lid.
+wn::Config placed_on_a_taut_rope(double phi_s_deg, double r, wn::Config cfg = wn::example_config(1)) {
+  const double phi_s = phi_s_deg * kDeg;
+  wn::set_number(cfg, "start.seesaw_angle", phi_s_deg);
+  wn::set_number(cfg, "start.sandbag_x", -r * std::cos(phi_s));
+  wn::set_number(cfg, "start.sandbag_height", -r * std::sin(phi_s));
+  const wn::Scenario probe = wn::build_scenario(cfg);
+  wn::set_number(cfg, "geometry.rope_length", wn::RopeGeometry(probe.machine).span(phi_s, probe.start.lid_angle));
+  return cfg;
+}
+
 TEST(ClosedForm, SandbagSlidesOnTheHeldSeesawUntilTheLidLifts) {
   // M5: the taut rope holds the seesaw at phiS0 and the sandbag slides with r'' = g sin phiS0.
   // The lid lifts when m_S r cos phiS0 = k m_L r_L cos phiL0, i.e. at
   // t = sqrt(2 (r* - r0) / (g sin phiS0)).
-  wn::Config cfg = wn::example_config(1);
   const double phi_s = 10.0 * kDeg, r0 = 0.05;
-  wn::set_number(cfg, "start.seesaw_angle", 10.0);
-  wn::set_number(cfg, "start.sandbag_x", -r0 * std::cos(phi_s));
-  wn::set_number(cfg, "start.sandbag_height", -r0 * std::sin(phi_s));
-  wn::Scenario probe = wn::build_scenario(cfg);
-  const wn::RopeGeometry rope0(probe.machine);
-  wn::set_number(cfg, "geometry.rope_length", rope0.span(phi_s, probe.start.lid_angle));
-  const wn::Scenario sc = wn::build_scenario(cfg);
+  const wn::Scenario sc = wn::build_scenario(placed_on_a_taut_rope(10.0, r0));
   const wn::Machine& m = sc.machine;
   const wn::RopeGeometry rope(m);
   const double phi_l0 = sc.start.lid_angle;
@@ -223,16 +228,10 @@ TEST(Balloon, LeavesAtOnceWhenTheLidStartsFasterThanItCanFollow) {
   // (r' = phiS' = 0) eq. (4) gives phiS'' = (m_S g r cos phiS - m_L g r_L cos phiL0 k) /
   // (m_S r^2 + I_L k^2), so the limit accelerates at r_B k phiS'' / (1 + sin phiL0): more than
   // a_B, and the stuck balloon must part from the lid at once.
-  wn::Config cfg = wn::example_config(1);
   const double phi_s = 10.0 * kDeg, r = 0.3;
-  wn::set_number(cfg, "start.seesaw_angle", 10.0);
-  wn::set_number(cfg, "start.sandbag_x", -r * std::cos(phi_s));
-  wn::set_number(cfg, "start.sandbag_height", -r * std::sin(phi_s));
-  wn::set_number(cfg, "masses.sandbag", 50.0);
-  const wn::Scenario probe = wn::build_scenario(cfg);
-  wn::set_number(cfg, "geometry.rope_length",
-                 wn::RopeGeometry(probe.machine).span(phi_s, probe.start.lid_angle));
-  const wn::Scenario sc = wn::build_scenario(cfg);
+  wn::Config heavy = wn::example_config(1);
+  wn::set_number(heavy, "masses.sandbag", 50.0);
+  const wn::Scenario sc = wn::build_scenario(placed_on_a_taut_rope(10.0, r, heavy));
   const wn::Machine& m = sc.machine;
   const double phi_l0 = sc.start.lid_angle, g = m.gravity;
   const double k = wn::RopeGeometry(m).transfer(phi_s, phi_l0).k;
