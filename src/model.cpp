@@ -616,7 +616,7 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
   EventType type = event_of(fired);
   // MODEL.md: the model ends when the sandbag reaches the pivot. As r -> 0 the rope's pull on the
   // lid vanishes too, so rope_slack and sandbag_at_pivot arrive together; the pivot wins.
-  if (hs.d.on_seesaw && k0.r <= 1e-9 && !is_stop(type)) type = EventType::sandbag_at_pivot;
+  if (hs.d.on_seesaw && k0.r <= kContact && !is_stop(type)) type = EventType::sandbag_at_pivot;
   auto emit_impact = [&] {
     Event e = make_event(type, hs, before);
     e.impact = true;
@@ -653,10 +653,7 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
       if (hs.d.taut && (hs.d.on_seesaw || hs.d.heavy)) {
         // M4 -> M5: lid, seesaw and the sandbag's motion across the arm stop together
         set_seesaw_rate(hs, 0.0);
-        Event e = make_event(type, hs, before);
-        e.impact = true;
-        e.energy_before = energy(k0);
-        out.push_back(e);
+        emit_impact();
         settle(hs, out);
       } else {
         hs.y[slot::phi_l] = phi_l0_;

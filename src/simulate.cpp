@@ -39,11 +39,12 @@ Result simulate(const Scenario& sc, Observer* observer) {
     }
     return false;
   };
-  bool stopped = fire_at_once(fresh);
-  for (const Event& e : fresh) {  // anything the start itself decides, at t = 0
+  auto publish = [&](const Event& e) {
     res.events.push_back(e);
     if (observer) observer->on_event(e);
-  }
+  };
+  const bool stopped = fire_at_once(fresh);
+  for (const Event& e : fresh) publish(e);  // anything the start itself decides, at t = 0
   if (stopped) return res;
   OutputGrid grid{observer ? sc.run.output_step : 0.0, 0};
   const double t_end = sc.run.t_max;
@@ -78,20 +79,15 @@ Result simulate(const Scenario& sc, Observer* observer) {
       stop = model.jump(static_cast<Guard>(c.guard), hs, fresh);
       if (!stop) stop = fire_at_once(fresh);
     }
-    for (const Event& e : fresh) {
-      res.events.push_back(e);
-      if (observer) observer->on_event(e);
-    }
+    for (const Event& e : fresh) publish(e);
     if (stop) break;
     if (res.events.size() >= static_cast<std::size_t>(kMaxEvents)) {
-      fresh.clear();
       Event e = res.events.back();
       e.type = EventType::event_limit;
       e.mode_before = e.mode_after;
       e.impact = false;
       e.energy_before = e.energy_after;
-      res.events.push_back(e);
-      if (observer) observer->on_event(e);
+      publish(e);
       break;
     }
   }
