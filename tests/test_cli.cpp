@@ -1,10 +1,8 @@
 // The whatnext command as a user meets it: outputs, determinism, and bad input (one line on
 // stderr, exit code 2, no output file).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,48 +11,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.hpp"
+
 namespace fs = std::filesystem;
+using whatnext::test_support::CliResult;
+using whatnext::test_support::slurp;
 
 namespace {
 
-struct Outcome {
-  int code;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-class Cli : public ::testing::Test {
+class Cli : public whatnext::test_support::CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("wn-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  Outcome whatnext(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = std::string(WHATNEXT_CLI) + " " + args + " >" + out.string() + " 2>" +
-                            err.string() + " </dev/null";
-    const int status = std::system(cmd.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-  }
-  fs::path write(const std::string& name, const std::string& text) {
-    const fs::path p = dir_ / name;
-    std::ofstream(p) << text;
-    return p;
-  }
   // Bad input: exit 2, one line naming what is wrong, and no events file left behind.
   void expect_rejected(const std::string& args, const std::string& must_mention) {
     const fs::path events = dir_ / "events.json";
-    const Outcome r = whatnext(args + " --events " + events.string());
+    const CliResult r = whatnext(args + " --events " + events.string());
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_NE(r.err.find(must_mention), std::string::npos) << r.err;
@@ -62,11 +32,10 @@ class Cli : public ::testing::Test {
     EXPECT_FALSE(fs::exists(events));
     EXPECT_FALSE(fs::exists(dir_ / "events.json.part"));
   }
-  fs::path dir_;
 };
 
 TEST_F(Cli, ExampleOneTimelineAndOutcome) {
-  const Outcome r = whatnext("run --example 1");
+  const CliResult r = whatnext("run --example 1");
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("sandbag_lands"), std::string::npos);
   EXPECT_NE(r.out.find("Outcome: lid open at 0.82"), std::string::npos) << r.out;
@@ -138,7 +107,7 @@ TEST_F(Cli, SameInputSameBytes) {
 TEST_F(Cli, InpFileRunsLikeTheExample) {
   const fs::path inp = write("whatnext.inp",
                              "1.0\n-0.3\n-25.0\n5.0\n0.8\n1.0\n27.0\n0.2\n0.6\n0.6\n0.5\n1.29\n0.18\n1.0\n0.001\n");
-  const Outcome r = whatnext("run -q " + inp.string());
+  const CliResult r = whatnext("run -q " + inp.string());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("lid open at 0.82"), std::string::npos) << r.out;
 }

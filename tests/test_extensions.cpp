@@ -2,15 +2,14 @@
 // forms for the balloon, the radio and a sandbag sliding off a fixed arm, the massless limit of a
 // seesaw with mass, the energy ledger's balance, and the rules for bad input.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "cli_runner.hpp"
 #include "whatnext/config.hpp"
 #include "whatnext/geometry.hpp"
 #include "whatnext/output.hpp"
@@ -252,29 +251,10 @@ TEST(Ledger, LidHingeDampingDissipatesTheFreeLidsEnergy) {
 
 // --- bad input ------------------------------------------------------------------------------------
 
-namespace {
-struct CliRun {
-  int code;
-  std::string err;
-};
-CliRun cli(const std::string& args) {
-  const std::string err_file = (fs::temp_directory_path() / "wn-ext-err.txt").string();
-  const std::string cmd = std::string(WHATNEXT_CLI) + " " + args + " 2>" + err_file + " >/dev/null";
-  const int status = std::system(cmd.c_str());
-  std::FILE* f = std::fopen(err_file.c_str(), "r");
-  std::string err;
-  if (f) {
-    char buf[4096];
-    std::size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) err.append(buf, n);
-    std::fclose(f);
-  }
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, err};
-}
-}  // namespace
+class BadInput : public whatnext::test_support::CliTest {};
 
-TEST(BadInput, EachNewRuleIsOneLineExitTwoAndNoFile) {
-  const fs::path out = fs::temp_directory_path() / "wn-ext-bad.json";
+TEST_F(BadInput, EachNewRuleIsOneLineExitTwoAndNoFile) {
+  const fs::path out = dir_ / "bad.json";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"radio.string_length=0.5", "radio.string_length"},       // straight at the start
       {"radio.string_length=-1", "radio.string_length"},
@@ -293,7 +273,7 @@ TEST(BadInput, EachNewRuleIsOneLineExitTwoAndNoFile) {
   };
   for (const auto& [set, key] : cases) {
     fs::remove(out);
-    const CliRun r = cli("run --example 1 --set " + set + " --events " + out.string());
+    const whatnext::test_support::CliResult r = whatnext("run --example 1 --set " + set + " --events " + out.string());
     EXPECT_EQ(r.code, 2) << set;
     EXPECT_NE(r.err.find(key), std::string::npos) << set << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << set << ": " << r.err;
@@ -305,7 +285,7 @@ TEST(BadInput, EachNewRuleIsOneLineExitTwoAndNoFile) {
         std::string("--example 3 --set seesaw.left_arm=0.2"),
         std::string("--example 1 --set radio.enabled=false --set radio.string_length=2")}) {
     fs::remove(out);
-    const CliRun r = cli("run " + sets + " --events " + out.string());
+    const whatnext::test_support::CliResult r = whatnext("run " + sets + " --events " + out.string());
     EXPECT_EQ(r.code, 2) << sets;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << sets << ": " << r.err;
     EXPECT_FALSE(fs::exists(out)) << sets;

@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli_runner.hpp"
 #include "whatnext/explore/optimize.hpp"
 #include "whatnext/explore/sweep.hpp"
 #include "whatnext/geometry.hpp"
@@ -28,15 +29,10 @@
 namespace fs = std::filesystem;
 using namespace whatnext;
 using namespace whatnext::explore;
+using whatnext::test_support::CliResult;
+using whatnext::test_support::slurp;
 
 namespace {
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
@@ -47,28 +43,8 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
-struct CliResult {
-  int code;
-  std::string out, err;
-};
-
-class SweepCli : public ::testing::Test {
+class SweepCli : public whatnext::test_support::CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("wn-sweep-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  CliResult whatnext(const std::string& args) {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = std::string(WHATNEXT_CLI) + " " + args + " >" + out.string() + " 2>" +
-                            err.string() + " </dev/null";
-    const int status = std::system(cmd.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-  }
   // Bad input: exit 2, one line mentioning what is wrong, and neither the CSV nor its temporary.
   void expect_rejected(const std::string& args, const std::string& must_mention) {
     const fs::path csv = dir_ / "out.csv";
@@ -79,7 +55,6 @@ class SweepCli : public ::testing::Test {
     EXPECT_FALSE(fs::exists(csv)) << args;
     EXPECT_FALSE(fs::exists(dir_.string() + "/out.csv.part")) << args;
   }
-  fs::path dir_;
 };
 
 TEST_F(SweepCli, CsvIsByteIdenticalForOneAndTwoThreads) {
