@@ -1,6 +1,7 @@
 // One run of the machine: the automaton of model.hpp driven by the chosen integrator.
 #pragma once
 
+#include <stdexcept>
 #include <vector>
 
 #include "whatnext/events.hpp"
@@ -9,6 +10,13 @@
 #include "whatnext/state.hpp"
 
 namespace whatnext {
+
+// A run that cannot go on: the state turned non-finite, or the integrator exhausted its step budget.
+// The message is one line naming the time and the mode; nothing of the run should be written.
+class SimulationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // Receives the run as it happens: samples on the run.output_step grid and every event.
 // Called per output sample and per event, never per integration step.
