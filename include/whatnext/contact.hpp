@@ -1,0 +1,81 @@
+// Unilateral contacts decided by complementarity: the event-driven method for rigid bodies with
+// unilateral constraints (Pfeiffer & Glocker). At a contact change, impacts are a complementarity
+// problem on velocities (impulses >= 0, no contact left closing) and the contacts that carry the
+// motion on are one on accelerations (forces >= 0, released contacts separate).
+//
+// It knows nothing of seesaws: coordinates with a diagonal mass matrix (a zero entry is a massless
+// coordinate, held by the contacts acting on it, or at rest when none does), generalized forces,
+// and for each contact the gradient of its gap (gap >= 0 open, 0 touching) and the velocity terms
+// of the gap's second derivative. The problems are small (at most kMaxContacts contacts), so every
+// candidate set is tried and the valid one kept; where a massless coordinate makes several valid
+// (their forces all zero), the caller's preferences choose.
+#pragma once
+
+#include <array>
+
+namespace whatnext::contact {
+
+constexpr int kMaxCoords = 4;
+constexpr int kMaxContacts = 3;
+
+using Coords = std::array<double, kMaxCoords>;
+using PerContact = std::array<double, kMaxContacts>;
+using Set = unsigned;  // bit i: contact i
+constexpr bool has(Set s, int i) { return (s >> i) & 1u; }
+
+struct System {
+  int coords = 0, contacts = 0;
+  Coords mass{};      // diagonal of the mass matrix; 0: massless
+  Coords force{};     // generalized forces (gravity, dampers) at this state
+  Coords velocity{};  // generalized velocities
+  std::array<Coords, kMaxContacts> normal{};  // W_i = d gap_i / dq
+  PerContact curvature{};  // gap_i'' = W_i . q'' + curvature_i (the velocity-product terms)
+  double rate(int i, const Coords& v) const;  // gap_i' = W_i . v
+};
+
+// How much each contact should stay as it is when the physics leaves a choice (only a massless
+// coordinate does): want +1 closed, -1 open, 0 no wish; ties between sets of equal cost go to the
+// smaller bit pattern. Also the tolerances that decide "zero".
+struct Choice {
+  std::array<int, kMaxContacts> want{};
+  std::array<int, kMaxContacts> weight{};
+  double force_tol = 1e-9;     // multipliers >= -force_tol count as pulling/pushing
+  double impulse_tol = 1e-9;   // likewise for impulses
+  double rate_tol = 1e-9;      // gap rates within rate_tol of 0 are zero (held, decided on forces)
+  double closing_tol = 1e-12;  // an impact leaves no contact closing faster than this
+  double accel_tol = 1e-9;     // gap accelerations >= -accel_tol count as separating or holding
+};
+
+struct Impact {
+  bool ok = false;      // false: no set satisfies the conditions (degenerate geometry)
+  Set impulsive = 0;    // contacts that end the impact closed (zero gap rate)
+  PerContact impulse{};  // >= 0 on impulsive contacts
+  Coords velocity{};    // after the impact
+  PerContact rate{};    // gap rates after the impact, of every touching contact
+};
+
+// Perfectly inelastic impact of the touching contacts: closed ones get impulses >= 0 and end with
+// zero gap rate, the others separate (rate >= 0).
+Impact solve_impact(const System& sys, Set touching, const Choice& choice);
+
+struct Motion {
+  bool ok = false;
+  Set active = 0;
+  PerContact force{};         // multipliers of the active contacts (>= 0)
+  Coords acceleration{};
+  PerContact gap_acceleration{};  // of every candidate (0 on active ones)
+};
+
+// Among the candidates (touching, with zero gap rate), the set whose forces are all >= 0 and whose
+// released contacts do not close (gap acceleration >= 0).
+Motion solve_motion(const System& sys, Set candidates, const Choice& choice);
+
+// The velocities after a perfectly inelastic impact with exactly the given contacts closed (no
+// sign checks): the projection that leaves them all at zero gap rate.
+bool constrained_velocity(const System& sys, Set closed, Coords& velocity);
+
+// The accelerations and contact forces with exactly the given contacts closed (no sign checks):
+// what the motion is while that set holds. false where the set does not determine it.
+bool constrained_motion(const System& sys, Set active, Coords& acceleration, PerContact& force);
+
+}  // namespace whatnext::contact

@@ -1,0 +1,188 @@
+#include "whatnext/contact.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace whatnext::contact {
+
+namespace {
+
+constexpr int kMaxUnknowns = kMaxContacts + kMaxCoords;
+
+// Dense Gaussian elimination with partial pivoting on an n x n system (n <= kMaxUnknowns).
+// false when a pivot is negligible against the matrix's scale: the set does not determine the motion.
+bool solve_dense(int n, std::array<std::array<double, kMaxUnknowns>, kMaxUnknowns>& a,
+                 std::array<double, kMaxUnknowns>& b) {
+  // Rows in units as different as 1/kg and 1/(kg m^2): equilibrate each to a largest entry of 1.
+  for (int i = 0; i < n; ++i) {
+    double m = 0.0;
+    for (int j = 0; j < n; ++j) m = std::fmax(m, std::fabs(a[i][j]));
+    if (!(m > 0.0) || !std::isfinite(m)) return false;
+    for (int j = 0; j < n; ++j) a[i][j] /= m;
+    b[i] /= m;
+  }
+  for (int c = 0; c < n; ++c) {
+    int p = c;
+    for (int r = c + 1; r < n; ++r)
+      if (std::fabs(a[r][c]) > std::fabs(a[p][c])) p = r;
+    if (!(std::fabs(a[p][c]) > 1e-12)) return false;
+    std::swap(a[p], a[c]);
+    std::swap(b[p], b[c]);
+    for (int r = c + 1; r < n; ++r) {
+      const double f = a[r][c] / a[c][c];
+      if (f == 0.0) continue;
+      for (int j = c; j < n; ++j) a[r][j] -= f * a[c][j];
+      b[r] -= f * b[c];
+    }
+  }
+  for (int c = n - 1; c >= 0; --c) {
+    double s = b[c];
+    for (int j = c + 1; j < n; ++j) s -= a[c][j] * b[j];
+    b[c] = s / a[c][c];
+  }
+  return true;
+}
+
+// The linear problem shared by impacts and motion. With the set's contacts closed, the unknowns are
+// their multipliers and the accelerations (velocities, for an impact) of the massless coordinates
+// they act on; massive coordinates follow from M a = f + W^T lambda. A massless coordinate that no
+// closed contact acts on stays at rest.
+//   given[j]:  f_j for motion, the velocity before for an impact
+//   target[i]: the closed contacts' -curvature_i for motion, 0 for an impact
+// Writes the multipliers and the resulting coordinates' accelerations (or velocities after).
+bool solve_set(const System& sys, Set set, bool impact, PerContact& multiplier, Coords& out) {
+  int idx[kMaxContacts];
+  int m = 0;
+  for (int i = 0; i < sys.contacts; ++i)
+    if (has(set, i)) idx[m++] = i;
+  // Massless coordinates that a closed contact acts on.
+  int free_coord[kMaxCoords];
+  int p = 0;
+  for (int j = 0; j < sys.coords; ++j) {
+    if (sys.mass[j] > 0.0) continue;
+    for (int a = 0; a < m; ++a) {
+      if (sys.normal[idx[a]][j] != 0.0) {
+        free_coord[p++] = j;
+        break;
+      }
+    }
+  }
+  std::array<std::array<double, kMaxUnknowns>, kMaxUnknowns> k{};
+  std::array<double, kMaxUnknowns> rhs{};
+  for (int a = 0; a < m; ++a) {
+    const Coords& wa = sys.normal[idx[a]];
+    double r = impact ? 0.0 : -sys.curvature[idx[a]];
+    for (int j = 0; j < sys.coords; ++j) {
+      if (!(sys.mass[j] > 0.0)) continue;
+      r -= impact ? wa[j] * sys.velocity[j] : wa[j] * sys.force[j] / sys.mass[j];
+      for (int b = 0; b < m; ++b) k[a][b] += wa[j] * sys.normal[idx[b]][j] / sys.mass[j];
+    }
+    for (int c = 0; c < p; ++c) k[a][m + c] = wa[free_coord[c]];
+    rhs[a] = r;
+  }
+  for (int c = 0; c < p; ++c) {
+    // Balance on a massless coordinate: its force plus the contacts' is zero (impulses: zero).
+    for (int b = 0; b < m; ++b) k[m + c][b] = sys.normal[idx[b]][free_coord[c]];
+    rhs[m + c] = impact ? 0.0 : -sys.force[free_coord[c]];
+  }
+  if (!solve_dense(m + p, k, rhs)) return false;
+  multiplier.fill(0.0);
+  for (int a = 0; a < m; ++a) multiplier[idx[a]] = rhs[a];
+  out.fill(0.0);
+  for (int j = 0; j < sys.coords; ++j) {
+    if (!(sys.mass[j] > 0.0)) continue;  // massless: at rest unless solved for below
+    double s = impact ? sys.velocity[j] * sys.mass[j] : sys.force[j];
+    for (int a = 0; a < m; ++a) s += sys.normal[idx[a]][j] * rhs[a];
+    out[j] = s / sys.mass[j];
+  }
+  for (int c = 0; c < p; ++c) out[free_coord[c]] = rhs[m + c];
+  for (double v : out)
+    if (!std::isfinite(v)) return false;
+  for (int a = 0; a < m; ++a)
+    if (!std::isfinite(rhs[a])) return false;
+  return true;
+}
+
+int cost(Set s, Set among, const Choice& choice, int contacts) {
+  int c = 0;
+  for (int i = 0; i < contacts; ++i) {
+    if (!has(among, i) || choice.want[i] == 0) continue;
+    const bool closed = has(s, i);
+    if (closed != (choice.want[i] > 0)) c += choice.weight[i] > 0 ? choice.weight[i] : 1;
+  }
+  return c;
+}
+
+// Subsets of `among`, each tried once, in increasing bit order.
+template <class F>
+void for_each_subset(Set among, F&& f) {
+  for (Set s = 0; s <= among; ++s)
+    if ((s & ~among) == 0) f(s);
+}
+
+}  // namespace
+
+double System::rate(int i, const Coords& v) const {
+  double s = 0.0;
+  for (int j = 0; j < coords; ++j) s += normal[i][j] * v[j];
+  return s;
+}
+
+Impact solve_impact(const System& sys, Set touching, const Choice& choice) {
+  Impact best;
+  int best_cost = std::numeric_limits<int>::max();
+  for_each_subset(touching, [&](Set s) {
+    Impact cand;
+    if (!solve_set(sys, s, true, cand.impulse, cand.velocity)) return;
+    for (int i = 0; i < sys.contacts; ++i) {
+      if (!has(touching, i)) continue;
+      cand.rate[i] = has(s, i) ? 0.0 : sys.rate(i, cand.velocity);
+      if (has(s, i) ? cand.impulse[i] < -choice.impulse_tol : cand.rate[i] < -choice.closing_tol) return;
+    }
+    const int c = cost(s, touching, choice, sys.contacts);
+    if (c < best_cost) {
+      best_cost = c;
+      cand.ok = true;
+      cand.impulsive = s;
+      best = cand;
+    }
+  });
+  return best;
+}
+
+Motion solve_motion(const System& sys, Set candidates, const Choice& choice) {
+  Motion best;
+  int best_cost = std::numeric_limits<int>::max();
+  for_each_subset(candidates, [&](Set s) {
+    Motion cand;
+    if (!solve_set(sys, s, false, cand.force, cand.acceleration)) return;
+    for (int i = 0; i < sys.contacts; ++i) {
+      if (!has(candidates, i)) continue;
+      if (has(s, i)) {
+        if (cand.force[i] < -choice.force_tol) return;
+        continue;
+      }
+      cand.gap_acceleration[i] = sys.rate(i, cand.acceleration) + sys.curvature[i];
+      if (cand.gap_acceleration[i] < -choice.accel_tol) return;
+    }
+    const int c = cost(s, candidates, choice, sys.contacts);
+    if (c < best_cost) {
+      best_cost = c;
+      cand.ok = true;
+      cand.active = s;
+      best = cand;
+    }
+  });
+  return best;
+}
+
+bool constrained_velocity(const System& sys, Set closed, Coords& velocity) {
+  PerContact impulse;
+  return solve_set(sys, closed, true, impulse, velocity);
+}
+
+bool constrained_motion(const System& sys, Set active, Coords& acceleration, PerContact& force) {
+  return solve_set(sys, active, false, force, acceleration);
+}
+
+}  // namespace whatnext::contact
