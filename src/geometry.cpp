@@ -7,6 +7,10 @@ namespace whatnext {
 
 namespace {
 constexpr double kHalfPi = 1.57079632679489661923;
+constexpr double kPi = 2.0 * kHalfPi;
+// atan2(R - H) - sigma leaves (-pi, pi] only when R is left of the hinge and below it (steep
+// starts); the lid's angle is continuous, so bring it back.
+double wrap(double a) { return a <= -kPi ? a + 2.0 * kPi : (a > kPi ? a - 2.0 * kPi : a); }
 }
 
 double RopeGeometry::gap(double phi_s, double phi_l) const {
@@ -26,17 +30,24 @@ bool RopeGeometry::lid_angle_for(double phi_s, double& phi_l) const {
   const double d = norm(hr);
   const double cos_sigma = (4.0 * r_l_ * r_l_ + d * d - l_r_ * l_r_) / (4.0 * r_l_ * d);
   if (!(std::fabs(cos_sigma) <= 1.0)) return false;
-  phi_l = std::atan2(hr.h, hr.x) - std::acos(cos_sigma);
+  phi_l = wrap(std::atan2(hr.h, hr.x) - std::acos(cos_sigma));
   return true;
 }
 
-bool RopeGeometry::seesaw_angle_for(double phi_l, double near, double& phi_s) const {
+bool RopeGeometry::lid_below_rope(double phi_s, double phi_l) const {
+  return lid_side_of_rope(phi_s, phi_l) < 0.0;
+}
+
+double RopeGeometry::cos_rho(double phi_l) const {
+  const double de = norm(lid_edge(phi_l));
+  return (r_h_ * r_h_ + de * de - l_r_ * l_r_) / (2.0 * r_h_ * de);
+}
+
+bool RopeGeometry::seesaw_angle_for(double phi_l, int side, double& phi_s) const {
   const Vec2 e = lid_edge(phi_l);
-  const double de = norm(e);
-  const double cos_rho = (r_h_ * r_h_ + de * de - l_r_ * l_r_) / (2.0 * r_h_ * de);
-  if (!(std::fabs(cos_rho) <= 1.0)) return false;
-  const double base = std::atan2(e.h, e.x), rho = std::acos(cos_rho);
-  phi_s = std::fabs(base + rho - near) <= std::fabs(base - rho - near) ? base + rho : base - rho;
+  const double c = cos_rho(phi_l);
+  if (!(std::fabs(c) <= 1.0)) return false;
+  phi_s = std::atan2(e.h, e.x) + (side > 0 ? 1.0 : -1.0) * std::acos(c);
   return true;
 }
 
@@ -55,27 +66,44 @@ RopeGeometry::Closure RopeGeometry::closure(double phi_s) const {
   const double f = 2.0 * r_l_ / d;
   const Vec2 el{f * (hr.x * cs + hr.h * sn), f * (hr.h * cs - hr.x * sn)};
   Closure c;
-  c.phi_l = std::atan2(hr.h, hr.x) - std::acos(cs);
+  c.phi_l = wrap(std::atan2(hr.h, hr.x) - std::acos(cs));
   c.cos_phi_l = el.x / (2.0 * r_l_);
   c.transfer = transfer_at(r, el);
   return c;
 }
 
-Transfer RopeGeometry::transfer_at(Vec2 r, Vec2 el) const {
+RopeGeometry::Partials RopeGeometry::partials_at(Vec2 r, Vec2 el) const {
   // C = |D|^2 - l^2 with D = R(phiS) - E(phiL). Derivatives of R and E:
   // R_S = perp(R), R_SS = -R; E_L = perp(E - H), E_LL = -(E - H).
   const Vec2 d = r - (hinge_ + el);
   const Vec2 r_s{-r.h, r.x};
   const Vec2 e_l{-el.h, el.x};
-  const double c_s = 2.0 * dot(d, r_s);
-  const double c_l = -2.0 * dot(d, e_l);
-  const double c_ss = 2.0 * (dot(r_s, r_s) - dot(d, r));
-  const double c_ll = 2.0 * (dot(e_l, e_l) + dot(d, el));
-  const double c_sl = -2.0 * dot(r_s, e_l);
+  return {2.0 * dot(d, r_s), -2.0 * dot(d, e_l), 2.0 * (dot(r_s, r_s) - dot(d, r)),
+          -2.0 * dot(r_s, e_l), 2.0 * (dot(e_l, e_l) + dot(d, el))};
+}
+
+Transfer RopeGeometry::transfer_at(Vec2 r, Vec2 el) const {
+  const Partials c = partials_at(r, el);
   Transfer t;
-  t.k = -c_s / c_l;
-  t.dk = -(c_ss + 2.0 * c_sl * t.k + c_ll * t.k * t.k) / c_l;
+  t.k = -c.c_s / c.c_l;
+  t.dk = -(c.c_ss + 2.0 * c.c_sl * t.k + c.c_ll * t.k * t.k) / c.c_l;
   return t;
+}
+
+bool RopeGeometry::inverse_closure(double phi_l, int side, InverseClosure& out) const {
+  double phi_s = 0.0;
+  if (!seesaw_angle_for(phi_l, side, phi_s)) return false;
+  // Implicit differentiation of C(phiS(phiL), phiL) = 0, the roles of the angles swapped.
+  const Partials c = partials_at(seesaw_end(phi_s), polar(2.0 * r_l_, phi_l));
+  out.phi_s = phi_s;
+  out.ds = -c.c_l / c.c_s;
+  out.dds = -(c.c_ll + 2.0 * c.c_sl * out.ds + c.c_ss * out.ds * out.ds) / c.c_s;
+  return true;
+}
+
+double RopeGeometry::lid_side_of_rope(double phi_s, double phi_l) const {
+  const Vec2 hr = seesaw_end(phi_s) - hinge_;
+  return cross(hr, polar(1.0, phi_l)) / norm(hr);
 }
 
 double RopeGeometry::paper_transfer(double phi_s, double phi_l) const {

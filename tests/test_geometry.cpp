@@ -34,8 +34,9 @@ TEST_P(ClosureTest, InverseClosureRoundTrip) {
   for (double deg = -60.0; deg <= 85.0; deg += 2.5) {
     double phi_l = 0.0, phi_s = 0.0;
     if (!rope.lid_angle_for(deg * kDeg, phi_l)) continue;
-    // Either mirror branch is a straight rope; the hint picks the one the seesaw is on.
-    ASSERT_TRUE(rope.seesaw_angle_for(phi_l, deg * kDeg + 0.01, phi_s));
+    // Either mirror branch is a straight rope; the side of the line P-E picks the seesaw's.
+    const int side = wn::RopeGeometry::side_of(rope.lid_edge(phi_l), rope.seesaw_end(deg * kDeg));
+    ASSERT_TRUE(rope.seesaw_angle_for(phi_l, side, phi_s));
     EXPECT_NEAR(phi_s, deg * kDeg, 1e-10) << deg;
     ++checked;
   }

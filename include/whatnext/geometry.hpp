@@ -29,13 +29,19 @@ class RopeGeometry {
 
   // cos sigma of the closure at phiS; |cos sigma| > 1 where the rope cannot be straight.
   double cos_sigma(double phi_s) const;
-  // Closure phiL(phiS) on the branch with the lid below the rope; false where the rope cannot be
-  // straight (|cos sigma| > 1), and out is left untouched.
+  // Closure phiL(phiS) on the branch with the lid below the rope, in (-pi, pi]; false where the
+  // rope cannot be straight (|cos sigma| > 1), and out is left untouched.
   bool lid_angle_for(double phi_s, double& phi_l) const;
+  // The lid lies below the straight rope (E turned clockwise from the direction H->R): the only
+  // physical side, since on the other the rope would run under the hinge, through the box.
+  bool lid_below_rope(double phi_s, double phi_l) const;
   // Inverse closure phiS(phiL). The rope fixes R on one of two mirror positions about the line
-  // from the pivot to E (MODEL.md's "+rho" is the one above it); the one nearer `near` is taken,
-  // since a seesaw cannot jump between them.
-  bool seesaw_angle_for(double phi_l, double near, double& phi_s) const;
+  // from the pivot to E; side +1 is R turned counterclockwise from E (MODEL.md's "+rho"), -1 the
+  // other. A seesaw cannot jump between them, so the caller keeps the side it is on.
+  bool seesaw_angle_for(double phi_l, int side, double& phi_s) const;
+  static int side_of(Vec2 e, Vec2 r) { return cross(e, r) >= 0.0 ? 1 : -1; }
+  // cos rho of the inverse closure at phiL; |cos rho| -> 1 is its fold (R on the line P-E).
+  double cos_rho(double phi_l) const;
 
   // Analytic k = -C_S/C_L and k' by implicit differentiation of C(phiS, phiL) = 0.
   Transfer transfer(double phi_s, double phi_l) const;
@@ -49,6 +55,18 @@ class RopeGeometry {
     Transfer transfer;
   };
   Closure closure(double phi_s) const;
+  // The inverse closure phiS(phiL) on a side of the line P-E, with dphiS/dphiL = 1/k and
+  // d2phiS/dphiL2: the chart in which a lid approaching its dead centre (k -> infinity) moves
+  // smoothly. false where the rope cannot be straight.
+  struct InverseClosure {
+    double phi_s = 0.0;
+    double ds = 0.0;   // dphiS/dphiL
+    double dds = 0.0;  // d2phiS/dphiL2
+  };
+  bool inverse_closure(double phi_l, int side, InverseClosure& out) const;
+  // Where the lid stands against the straight rope: < 0 below it (MODEL.md's branch), 0 along
+  // it (the dead centre: the rope would touch the hinge), > 0 on the mirror side. Dimensionless.
+  double lid_side_of_rope(double phi_s, double phi_l) const;
   // The paper's transfer coefficient r_H sin(alpha + phiS - phiL) / (2 r_L sin alpha).
   double paper_transfer(double phi_s, double phi_l) const;
 
@@ -62,6 +80,11 @@ class RopeGeometry {
   double max_span(double phi_l_min) const;
 
  private:
+  // Partial derivatives of C = |R - E|^2 - l^2 given the seesaw end R and the lid vector E - H.
+  struct Partials {
+    double c_s, c_l, c_ss, c_sl, c_ll;
+  };
+  Partials partials_at(Vec2 r, Vec2 el) const;
   // transfer() given the seesaw end R and the lid vector E - H.
   Transfer transfer_at(Vec2 r, Vec2 el) const;
   double r_h_, r_l_, l_r_;
