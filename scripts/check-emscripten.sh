@@ -25,5 +25,5 @@ int main() {  // example 1, built by hand: the TOML layer stays outside the core
 CPP
 export NODE_PATH="${NODE_PATH:-/usr/share/nodejs}"  # Debian ships the JS optimizer's acorn there
 em++ -std=c++20 -O2 -sSINGLE_FILE=1 -I"$here/include" -I"$work/inc" \
-  "$work/main.cpp" "$here"/src/{geometry,model,names,simulate}.cpp -o "$work/core.js"
+  "$work/main.cpp" "$here"/src/{contact,geometry,model,names,simulate}.cpp -o "$work/core.js"
 node "$work/core.js"

@@ -1,34 +1,43 @@
 #include "whatnext/model.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "whatnext/simulate.hpp"
 
 namespace whatnext {
 
 namespace {
 constexpr double kHalfPi = 1.57079632679489661923;
-constexpr double kContact = 1e-9;  // MODEL.md: "on" and "taut" at the start within 1e-9 m
+constexpr double kContact = 1e-9;  // MODEL.md: touching (on the arm, rope straight) within 1e-9 m
 constexpr double kNoEnd = std::numeric_limits<double>::infinity();  // MODEL.md's endless arm
+// Lead of an armed guard whose first non-zero derivative is not known (a force that just reached
+// zero): only its sign matters to the integrators.
+constexpr double kUnknownLead = -1e-300;
+
+using contact::Set;
+constexpr Set bit(int i) { return 1u << i; }
+
+Guard guard_of(int contact) {
+  return contact == kBag ? kGuardBag : (contact == kRope ? kGuardRope : kGuardLid);
+}
+
+EventType change_event(int contact, bool closes) {
+  switch (contact) {
+    case kBag: return closes ? EventType::sandbag_lands : EventType::sandbag_leaves;
+    case kRope: return closes ? EventType::rope_taut : EventType::rope_slack;
+    default: return closes ? EventType::lid_rests : EventType::lid_lifts;
+  }
+}
+
+Mode mode_of(Set s) { return Discrete::mode_of(contact::has(s, kBag), contact::has(s, kRope), contact::has(s, kLid)); }
 }  // namespace
 
-EventType event_of(Guard g) {
-  switch (g) {
-    case kGuardLands: return EventType::sandbag_lands;
-    case kGuardRopeTaut: return EventType::rope_taut;
-    case kGuardRopeSlack: return EventType::rope_slack;
-    case kGuardLidRests: return EventType::lid_rests;
-    case kGuardLidLifts: return EventType::lid_lifts;
-    case kGuardBalloonCaught: return EventType::balloon_caught;
-    case kGuardBalloonFree: return EventType::balloon_free;
-    case kGuardLidOpen: return EventType::lid_open;
-    case kGuardSeesawVertical: return EventType::seesaw_vertical;
-    case kGuardAtPivot: return EventType::sandbag_at_pivot;
-    case kGuardRopeLocked: return EventType::rope_locked;
-    case kGuardFallsOff: return EventType::sandbag_falls_off;
-    case kGuardLeaves: return EventType::sandbag_leaves;
-    case kGuardRadioOn: return EventType::radio_on;
-    case kGuardCount: break;
-  }
-  return EventType::timeout;
+bool fires_at_once(Guard g) {
+  // A contact guard at zero is a contact that touches (decided where the piece starts); the balloon
+  // is decided by the model (Model::jump) since it is both kinds.
+  return !(g == kGuardBag || g == kGuardRope || g == kGuardLid || g == kGuardBalloon);
 }
 
 Model::Model(const Scenario& scenario)
@@ -54,16 +63,14 @@ Model::Model(const Scenario& scenario)
       radio_(scenario.machine.radio),
       switch_(scenario.machine.radio_switch),
       string_(scenario.machine.string_length),
-      balloon_x_(scenario.machine.hinge.x + scenario.machine.lid_half_length) {}
+      balloon_x_(scenario.machine.hinge.x + scenario.machine.lid_half_length),
+      length_scale_(scenario.machine.seesaw_right_arm + 2.0 * scenario.machine.lid_half_length +
+                    scenario.machine.rope_length) {}
 
 // --- flows -------------------------------------------------------------------------------------
 
 double Model::lid_free_acceleration(double phi_l, double dphi_l) const {
   return (-m_l_ * g_ * r_l_ * std::cos(phi_l) - c_l_ * dphi_l) / i_l_;
-}
-
-double Model::seesaw_load(bool on, double r, double phi_s) const {
-  return (on ? m_s_ * r * std::cos(phi_s) : 0.0) - w_s_ * std::cos(phi_s);
 }
 
 Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr,
@@ -92,6 +99,30 @@ Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr,
   return p;
 }
 
+Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l,
+                                    int side) const {
+  // Along the closure phiS = S(phiL): multiply the seesaw's equation by S' and add the lid's, and
+  // the rope's force drops out (its gradient is normal to the closure). With phiS' = S' phiL' and
+  // phiS'' = S' phiL'' + S'' phiL'^2:
+  //   [(I_S + m r^2) S'^2 + I_L] phiL'' = S' Q_S + Q_L - (I_S + m r^2) S' S'' phiL'^2 - 2 m r r' S'^2 phiL'
+  // with Q_S, Q_L the weights' and dampers' torques. Finite where k = 1/S' is not.
+  LidSwing p{};
+  rope_.inverse_closure(phi_l, side, p.s);
+  const double ds = p.s.ds, dphi_s = ds * dphi_l;
+  const double cs = std::cos(p.s.phi_s);
+  const double carried = i_s_ + (on ? m_s_ * r * r : 0.0);
+  double q_s = -w_s_ * g_ * cs - c_p_ * dphi_s;
+  if (on) {
+    q_s += m_s_ * g_ * r * cs;
+    p.ddr = g_ * std::sin(p.s.phi_s) + r * dphi_s * dphi_s;
+  }
+  const double q_l = -m_l_ * g_ * r_l_ * std::cos(phi_l) - c_l_ * dphi_l;
+  const double num = ds * q_s + q_l - carried * ds * p.s.dds * dphi_l * dphi_l -
+                     (on ? 2.0 * m_s_ * r * dr * ds * ds * dphi_l : 0.0);
+  p.ddphi_l = num / (carried * ds * ds + i_l_);
+  return p;
+}
+
 void Model::flow(const Discrete& d, const State& y, State& dy) const {
   dy.fill(0.0);
   if (d.polar()) {
@@ -99,6 +130,10 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     dy[slot::phi_s] = y[slot::dphi_s];
     if (d.taut && d.lid_resting) {  // M5: seesaw held by the rope, sandbag slides on the fixed arm
       dy[slot::dr] = g_ * std::sin(y[slot::phi_s]);
+    } else if (d.lid_chart && d.taut) {  // M4 near the lid's dead centre: the lid's angle integrated
+      const LidSwing p = swing_by_lid(true, y[slot::r], y[slot::phi_s], y[slot::dr], y[slot::dphi_s], d.side);
+      dy[slot::dr] = p.ddr;
+      dy[slot::dphi_s] = p.ddphi_l;
     } else {  // M4, or a heavy seesaw carrying the sandbag
       const Swing p = swing(true, d.taut, y[slot::r], y[slot::phi_s], y[slot::dr], y[slot::dphi_s]);
       dy[slot::dr] = p.ddr;
@@ -120,9 +155,10 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
       dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l]);
     }
     if (d.heavy && !(d.taut && d.lid_resting)) {  // the unloaded heavy seesaw swings
-      const Swing p = swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi]);
       dy[slot::seesaw_phi] = y[slot::seesaw_dphi];
-      dy[slot::seesaw_dphi] = p.ddphi_s;
+      dy[slot::seesaw_dphi] =
+          d.lid_chart && d.taut ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side).ddphi_l
+                      : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi]).ddphi_s;
     }
   }
   if (!d.balloon_stuck) {
@@ -167,6 +203,9 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
     } else if (d.lid_resting) {
       k.phi_l = phi_l0_;
       k.transfer = rope_.transfer(k.phi_s, k.phi_l);
+    } else if (d.lid_chart) {
+      lid_chart(k, swing_by_lid(true, k.r, y[slot::phi_s], k.dr, y[slot::dphi_s], d.side), y[slot::phi_s],
+                y[slot::dphi_s]);
     } else {
       const Swing p = swing(true, true, k.r, k.phi_s, k.dr, k.dphi_s);
       k.phi_l = p.phi_l;
@@ -199,6 +238,9 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
       if (d.taut && d.lid_resting) {
         k.phi_l = phi_l0_;
         k.transfer = rope_.transfer(k.phi_s, k.phi_l);
+      } else if (d.lid_chart && d.taut) {
+        lid_chart(k, swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side),
+                  y[slot::seesaw_phi], y[slot::seesaw_dphi]);
       } else {
         const Swing p = swing(false, d.taut, 0.0, k.phi_s, 0.0, k.dphi_s);
         k.ddphi_s = p.ddphi_s;
@@ -209,9 +251,9 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
           k.ddphi_l = p.tr.k * p.ddphi_s + p.tr.dk * k.dphi_s * k.dphi_s;
         }
       }
-    } else if (d.taut) {  // M2: the unloaded seesaw follows the lid
-      k.phi_s = d.parked_seesaw;  // exact while the lid rests, the branch hint otherwise
-      if (!d.lid_resting) rope_.seesaw_angle_for(k.phi_l, d.parked_seesaw, k.phi_s);
+    } else if (d.taut) {  // M2: the unloaded massless seesaw follows the lid, on its side of P-E
+      k.phi_s = d.parked_seesaw;  // exact while the lid rests
+      if (!d.lid_resting) rope_.seesaw_angle_for(k.phi_l, d.side, k.phi_s);
       k.transfer = rope_.transfer(k.phi_s, k.phi_l);
       k.dphi_s = d.lid_resting ? 0.0 : k.dphi_l / k.transfer.k;
     } else {  // M1: nothing moves the unloaded seesaw
@@ -228,23 +270,88 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
   return k;
 }
 
-double Model::lid_rope_torque(const Kinematics& k) const {
-  // Torque the rope must supply to the lid: I phiL'' + m_L g r_L cos phiL (+ the hinge damper's
-  // c phiL') — the paper's connecting-rod check: the rope can only pull, so it goes slack when
-  // this is negative.
-  return i_l_ * k.ddphi_l + m_l_ * g_ * r_l_ * std::cos(k.phi_l) + c_l_ * k.dphi_l;
+void Model::lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l) {
+  // The lid's angle and rate are the state; the seesaw follows on the closure.
+  k.phi_l = phi_l;
+  k.phi_s = p.s.phi_s;
+  k.dphi_l = dphi_l;
+  k.dphi_s = p.s.ds * dphi_l;
+  k.ddphi_l = p.ddphi_l;
+  k.ddphi_s = p.s.ds * p.ddphi_l + p.s.dds * dphi_l * dphi_l;
+  k.transfer = {1.0 / p.s.ds, -p.s.dds / (p.s.ds * p.s.ds * p.s.ds)};
 }
 
-bool Model::lid_lifts_now(bool on, double r, double phi_s) const {
-  const double k = rope_.transfer(phi_s, phi_l0_).k;
-  // >= so that it agrees exactly with the lid_lifts guard at the instant that guard fires.
-  return seesaw_load(on, r, phi_s) >= k * m_l_ * r_l_ * std::cos(phi_l0_);
+double Model::height_above_arm(const Kinematics& k) {
+  return -k.x * std::sin(k.phi_s) + k.h * std::cos(k.phi_s);
 }
 
-double Model::normal_force(const Kinematics& k) const {
-  // Newton across the arm: N = m_S (g cos phiS - 2 r' phiS' - r phiS'').
-  return m_s_ * (g_ * std::cos(k.phi_s) - 2.0 * k.dr * k.dphi_s - k.r * k.ddphi_s);
+double Model::along_arm(const Kinematics& k) {
+  return -k.x * std::cos(k.phi_s) - k.h * std::sin(k.phi_s);
 }
+
+Kinematics Model::with_velocity(Kinematics k, const contact::Coords& u) {
+  k.vx = u[0];
+  k.vh = u[1];
+  k.dphi_s = u[2];
+  k.dphi_l = u[3];
+  // On the arm's line r is the distance along it and r' the sandbag's speed along it (eq. 5).
+  k.r = along_arm(k);
+  k.dr = -k.vx * std::cos(k.phi_s) - k.vh * std::sin(k.phi_s);
+  return k;
+}
+
+// --- the contact problem -------------------------------------------------------------------------
+
+contact::System Model::contact_system(const Discrete& d, const Kinematics& k) const {
+  // Coordinates (x, h, phiS, phiL), diagonal masses (m_S, m_S, I_S, I_L): I_S = 0 is MODEL.md's
+  // massless seesaw, held by whatever contact acts on it. The gaps, each >= 0 when open:
+  //   sandbag: its height above the arm's line, -x sin phiS + h cos phiS (multiplier: the arm's push, N)
+  //   rope:    l_R - |R - E|                                  (multiplier: the tension, N)
+  //   lid:     phiL - phiL0                                   (multiplier: the box's push, N m)
+  contact::System s;
+  s.coords = 4;
+  s.contacts = 3;
+  s.mass = {m_s_, m_s_, i_s_, i_l_};
+  s.velocity = {k.vx, k.vh, k.dphi_s, k.dphi_l};
+  const double cs = std::cos(k.phi_s), sn = std::sin(k.phi_s);
+  const double cl = std::cos(k.phi_l), sl = std::sin(k.phi_l);
+  // The pivot's damper: see dissipation() for where a massless seesaw carries it.
+  const double damper = (heavy_ || (d.on_seesaw && d.taut)) ? c_p_ * k.dphi_s : 0.0;
+  s.force = {0.0, -m_s_ * g_, -w_s_ * g_ * cs - damper, -m_l_ * g_ * r_l_ * cl - c_l_ * k.dphi_l};
+
+  const double height = -k.x * sn + k.h * cs;
+  s.normal[kBag] = {-sn, cs, -k.x * cs - k.h * sn, 0.0};
+  s.curvature[kBag] = -2.0 * k.dphi_s * (k.vx * cs + k.vh * sn) - k.dphi_s * k.dphi_s * height;
+
+  const Vec2 r = rope_.seesaw_end(k.phi_s);
+  const Vec2 el = rope_.lid_edge(k.phi_l) - rope_.hinge();
+  const Vec2 dv = r - (rope_.hinge() + el);  // D = R - E
+  const double dn = norm(dv);
+  const Vec2 r_s{-r.h, r.x}, e_l{-el.h, el.x};  // dR/dphiS, dE/dphiL
+  s.normal[kRope] = {0.0, 0.0, -dot(dv, r_s) / dn, dot(dv, e_l) / dn};
+  const Vec2 d_rate = k.dphi_s * r_s - k.dphi_l * e_l;
+  const Vec2 d_acc = (k.dphi_l * k.dphi_l) * el - (k.dphi_s * k.dphi_s) * r;  // D'' without phiS'', phiL''
+  const double along = dot(dv, d_rate) / dn;
+  s.curvature[kRope] = -(dot(dv, d_acc) + dot(d_rate, d_rate) - along * along) / dn;
+  (void)sl;
+
+  s.normal[kLid] = {0.0, 0.0, 0.0, 1.0};
+  s.curvature[kLid] = 0.0;
+  return s;
+}
+
+contact::Set Model::active_set(const Discrete& d) {
+  return (d.on_seesaw ? bit(kBag) : 0u) | (d.taut ? bit(kRope) : 0u) | (d.lid_resting ? bit(kLid) : 0u);
+}
+
+bool Model::contact_forces(const Discrete& d, const Kinematics& k, contact::PerContact& force) const {
+  contact::Coords acc;
+  if (contact::constrained_motion(contact_system(d, k), active_set(d), acc, force)) return true;
+  force.fill(0.0);
+  return false;
+}
+
+// --- energies and the snapshot -------------------------------------------------------------------
 
 double Model::radio_gap(double balloon_h) const {
   // Distance from the switch to the balloon's centre, minus the string: >= 0 when it is straight.
@@ -286,14 +393,13 @@ Snapshot Model::snapshot(const HybridState& hs) const {
   s.balloon_limit_rate = limit_.rate(k.phi_l, k.dphi_l);
   s.balloon_h = k.balloon_h;
   s.balloon_v = k.balloon_v;
-  if (s.mode == Mode::M4) {
-    s.tension = lid_rope_torque(k) / rope_.lid_arm(k.phi_s, k.phi_l);
-  } else if (s.mode == Mode::M5) {
-    // The fixed arm carries the sandbag's normal force m g cos phiS at distance r; the rope balances it.
-    s.tension = (m_s_ * g_ * std::cos(k.phi_s) * k.r - w_s_ * g_ * std::cos(k.phi_s)) /
-                rope_.seesaw_arm(k.phi_s, k.phi_l);
+  if (!hs.d.latched) {
+    contact::PerContact f;
+    contact_forces(hs.d, k, f);
+    s.tension = f[kRope];
+    s.normal_force = f[kBag];
+    s.box_reaction = f[kLid];
   }
-  if (hs.d.on_seesaw) s.normal_force = normal_force(k);
   s.sandbag_kinetic = 0.5 * m_s_ * (k.vx * k.vx + k.vh * k.vh);
   s.sandbag_potential = m_s_ * g_ * k.h;
   s.lid_kinetic = 0.5 * i_l_ * k.dphi_l * k.dphi_l;
@@ -320,32 +426,46 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g) const {
   const Kinematics k = kinematics(d, y);
   if (radio_) g[kGuardRadioOn] = radio_gap(k.balloon_h);
   if (d.balloon_stuck) {
-    g[kGuardBalloonFree] =
+    g[kGuardBalloon] =
         limit_.acceleration(k.phi_l, k.dphi_l, k.ddphi_l) - balloon_acceleration(k.balloon_v);
   } else if (!d.latched) {
-    g[kGuardBalloonCaught] = y[slot::balloon_h] - limit_.height(k.phi_l);
+    g[kGuardBalloon] = y[slot::balloon_h] - limit_.height(k.phi_l);
   }
   if (d.latched) return;  // the radio's wait: only the balloon matters now
-  if (!d.on_seesaw && !d.fallen_off) {
-    // Height of the sandbag above the left arm's line, measured across the arm; it can only land
-    // where the arm is (a finite arm ends at seesaw_left_arm).
-    const double along = -k.x * std::cos(k.phi_s) - k.h * std::sin(k.phi_s);
-    const double below = -(-k.x * std::sin(k.phi_s) + k.h * std::cos(k.phi_s));
-    // Passing the arm's line beyond its end is missing the arm for good (sandbag_falls_off).
-    g[along <= arm_ ? kGuardLands : kGuardFallsOff] = below;
-  }
-  if (!d.taut) g[kGuardRopeTaut] = rope_.gap(k.phi_s, k.phi_l);
-  g[kGuardLidOpen] = k.phi_l - vertical_;  // a lid resting at or past it is open from the start
-  if (!d.lid_resting) g[kGuardLidRests] = phi_l0_ - k.phi_l;
-  if (d.taut && (d.on_seesaw || d.heavy)) {  // something with inertia hangs on the rope
-    if (d.lid_resting) {
-      const double load = seesaw_load(d.on_seesaw, k.r, k.phi_s);
-      g[kGuardLidLifts] = load - k.transfer.k * m_l_ * r_l_ * std::cos(phi_l0_);
-      if (d.heavy) g[kGuardRopeSlack] = -load;  // the seesaw tips back: nothing pulls the rope
-    } else {
-      g[kGuardRopeSlack] = -lid_rope_torque(k);
-      g[kGuardRopeLocked] = std::fabs(rope_.cos_sigma(k.phi_s)) - (1.0 - 1e-9);
+
+  // Open contacts: their gaps, negative while open.
+  if (!d.on_seesaw && !d.fallen_off) g[kGuardBag] = -height_above_arm(k);
+  if (!d.taut) g[kGuardRope] = rope_.span(k.phi_s, k.phi_l) - rope_.rope_length();
+  if (!d.lid_resting) g[kGuardLid] = phi_l0_ - k.phi_l;
+  // Closed contacts: minus their forces. A massless seesaw held by one contact alone carries no
+  // force through it at all (identically zero: no guard); held by sandbag and rope together, the
+  // arm's push is the tension times the coupling k (torque balance), so the sandbag's guard is
+  // the sign of k and the rope's the tension.
+  const bool loaded = heavy_ || (d.on_seesaw && d.taut);
+  if (loaded && (d.on_seesaw || d.taut)) {
+    const contact::System sys = contact_system(d, k);
+    contact::Coords acc;
+    contact::PerContact f;
+    if (contact::constrained_motion(sys, active_set(d), acc, f)) {
+      // The sign of k is that of -W_RS (the rope's gap gradient along phiS), which stays finite
+      // where k passes through infinity at the lid's dead centre.
+      if (d.on_seesaw) g[kGuardBag] = heavy_ ? -f[kBag] : sys.normal[kRope][2];
+      if (d.taut) g[kGuardRope] = -f[kRope];
+      if (d.lid_resting && d.taut) g[kGuardLid] = -f[kLid];
     }
+  }
+
+  g[kGuardLidOpen] = k.phi_l - vertical_;  // a lid resting at or past it is open from the start
+  if (on_closure(d)) {
+    // The lid's dead centre: it reaches the rope's line (the rope would touch the hinge and then
+    // run through the box). Crossed at a finite rate in the lid chart, so found exactly.
+    g[kGuardRopeLocked] = rope_.lid_side_of_rope(k.phi_s, k.phi_l);
+    // Integrate the angle that moves slower: switch charts at |k| = 2 (seesaw) or 1/2 (lid).
+    g[kGuardChart] = d.lid_chart ? std::fabs(1.0 / k.transfer.k) - 2.0 : std::fabs(k.transfer.k) - 2.0;
+  } else if (d.taut && !d.lid_resting && !d.latched) {
+    // The massless seesaw following the lid: R on the line from the pivot to E, where the seesaw
+    // would have to turn infinitely fast.
+    g[kGuardRopeLocked] = std::fabs(rope_.cos_rho(k.phi_l)) - (1.0 - 1e-9);
   }
   if (d.polar()) {
     g[kGuardAtPivot] = -k.r;
@@ -353,84 +473,116 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g) const {
     // A free-falling sandbag can only leave the left arm through the pivot's vertical line.
     g[kGuardAtPivot] = k.x;
   }
-  if (d.on_seesaw) {
-    g[kGuardSeesawVertical] = k.phi_s - vertical_;
-    if (arm_ < kNoEnd) g[kGuardFallsOff] = k.r - arm_;
-    if (d.heavy && !(d.taut && d.lid_resting)) g[kGuardLeaves] = -normal_force(k);
+  // A seesaw that moves ends the model when it turns vertical, either way round (with the
+  // sandbag on it that is MODEL.md's stop; an unloaded heavy seesaw would hit the ground).
+  if (d.on_seesaw || d.heavy || (d.taut && !d.lid_resting)) g[kGuardSeesawVertical] = std::fabs(k.phi_s) - vertical_;
+  if (d.on_seesaw && arm_ < kNoEnd) g[kGuardArmEnd] = k.r - arm_;
+}
+
+double Model::guard_floor(Guard g, const Discrete& d) const {
+  // A thousand times what rounding leaves in each kind of value, on this machine's scale.
+  const double len = length_scale_, weight = (m_s_ + m_l_ + sc_.machine.seesaw_mass) * g_;
+  switch (g) {
+    case kGuardBag:
+      if (!d.on_seesaw) return 1e-12 * len;
+      return heavy_ ? 1e-10 * weight : 1e-12;  // the arm's push, or the sign of k
+    case kGuardRope: return d.taut ? 1e-10 * weight : 1e-12 * len;
+    case kGuardLid: return d.lid_resting ? 1e-10 * weight * len : 1e-12;
+    case kGuardBalloon: return d.balloon_stuck ? 1e-10 * g_ : 1e-12 * len;
+    default: return 0.0;
   }
 }
 
-// --- jumps -------------------------------------------------------------------------------------
-
-HybridState Model::initial(std::vector<Event>& out) const {
-  (void)out;
-  const Start& st = sc_.start;
-  HybridState hs;
-  hs.t = 0.0;
-  hs.d.parked_seesaw = st.seesaw_angle;
-  hs.d.lid_resting = true;
-  hs.d.balloon_stuck = true;
-  hs.d.heavy = heavy_;
-  const double c = std::cos(st.seesaw_angle), s = std::sin(st.seesaw_angle);
-  const double above = -st.sandbag_x * s + st.sandbag_h * c;
-  hs.d.on_seesaw = std::fabs(above) <= kContact;
-  hs.d.taut = rope_.span(st.seesaw_angle, phi_l0_) >= rope_.rope_length() - kContact;
-  if (hs.d.polar()) {
-    const double r = -st.sandbag_x * c - st.sandbag_h * s;
-    hs.y = {r, st.seesaw_angle, 0.0, 0.0, phi_l0_, 0.0, 0.0, 0.0};
-  } else {
-    hs.y = {st.sandbag_x, st.sandbag_h, 0.0, 0.0, phi_l0_, 0.0, 0.0, 0.0};
-    if (hs.d.on_seesaw) {
-      // Placed on the arm: the polar and the Cartesian pictures agree exactly on the arm's line.
-      hs.y[slot::x] = -std::hypot(st.sandbag_x, st.sandbag_h) * c;
-      hs.y[slot::h] = -std::hypot(st.sandbag_x, st.sandbag_h) * s;
-    }
-  }
-  hs.y[slot::seesaw_phi] = st.seesaw_angle;
-  if (hs.d.taut && (hs.d.on_seesaw || hs.d.heavy)) {
-    const double r = hs.d.on_seesaw ? hs.y[slot::r] : 0.0;
-    hs.d.lid_resting = !lid_lifts_now(hs.d.on_seesaw, r, st.seesaw_angle);
-    // A heavy seesaw that tips the other way does not pull the straight rope.
-    if (hs.d.heavy && hs.d.lid_resting && seesaw_load(hs.d.on_seesaw, r, st.seesaw_angle) < 0.0) {
-      hs.d.taut = false;
-    }
-  }
-  hs.y[slot::balloon_h] = limit_.height(phi_l0_);
-  const Kinematics k = kinematics(hs.d, hs.y);
-  Books& b = hs.d.books;
-  b.initial_total = energy(k) + balloon_energy(k.balloon_h, k.balloon_v);
-  b.balloon_e_mark = balloon_energy(k.balloon_h, k.balloon_v);  // nothing pushed yet
-  open_books(hs, k);
-  return hs;
+void Model::guard_rates(const Discrete& d, const State& y, GuardValues& dg) const {
+  dg.fill(std::numeric_limits<double>::quiet_NaN());
+  if (d.latched) return;
+  const Kinematics k = kinematics(d, y);
+  if (!d.balloon_stuck) dg[kGuardBalloon] = y[slot::balloon_v] - limit_.rate(k.phi_l, k.dphi_l);
+  if (d.on_seesaw && d.taut && d.lid_resting) return;  // nothing is open
+  // A gap guard is minus the gap, so its rate is minus the gap's rate W_i . v.
+  const contact::System sys = contact_system(d, k);
+  if (!d.on_seesaw && !d.fallen_off) dg[kGuardBag] = -sys.rate(kBag, sys.velocity);
+  if (!d.taut) dg[kGuardRope] = -sys.rate(kRope, sys.velocity);
+  if (!d.lid_resting) dg[kGuardLid] = -k.dphi_l;
 }
 
-void Model::impact(HybridState& hs, const Kinematics& b, bool bag, bool rope) const {
-  // Sudden coupling of sandbag (bag), seesaw and lid (rope): r' keeps the sandbag's speed along
-  // the arm (eq. 5), phiS' jumps by the chosen law, and afterwards phiL' = k phiS'. A heavy
-  // seesaw brings its own angular momentum I_S phiS'- (zero for MODEL.md's massless seesaw).
-  const double c = std::cos(b.phi_s), s = std::sin(b.phi_s);
-  const double r = -b.x * c - b.h * s;
-  const double v_par = -b.vx * c - b.vh * s;
-  const double v_perp = b.vx * s - b.vh * c;
-  const double k = rope ? rope_.transfer(b.phi_s, b.phi_l).k : 0.0;
+// --- contact changes ---------------------------------------------------------------------------
+
+contact::Set Model::touching(const Discrete& d, const Kinematics& k) const {
+  // Open contacts whose gap is (numerically) closed as well: they take part in the decision.
+  Set s = 0;
+  if (d.latched) return s;
+  if (!d.on_seesaw && !d.fallen_off) {
+    const double along = along_arm(k);
+    if (std::fabs(height_above_arm(k)) <= kContact && along >= 0.0 && along <= arm_) s |= bit(kBag);
+  }
+  if (!d.taut && std::fabs(rope_.span(k.phi_s, k.phi_l) - rope_.rope_length()) <= kContact &&
+      rope_.lid_below_rope(k.phi_s, k.phi_l)) {
+    s |= bit(kRope);
+  }
+  if (!d.lid_resting && k.phi_l - phi_l0_ <= kContact) s |= bit(kLid);
+  return s;
+}
+
+contact::Choice Model::choice(const Discrete& d, const contact::System& sys, const Kinematics& k,
+                              int trigger, Trend trend) const {
+  contact::Choice c;
+  // Where the physics leaves a choice (only a massless seesaw does: contacts with zero force
+  // either way), each contact stays as it was, the one that triggered the event goes the way it
+  // tends, and a sandbag on a massless seesaw stays on it (MODEL.md: once landed, it stays; with
+  // the rope slack that seesaw simply turns with the falling sandbag).
+  const Set s0 = active_set(d);
+  for (int i = 0; i < 3; ++i) {
+    c.want[i] = contact::has(s0, i) ? 1 : -1;
+    c.weight[i] = 1;
+  }
+  if (trigger >= 0 && trend != Trend::forced_off) {
+    c.want[trigger] = trend == Trend::closing ? 1 : -1;
+    c.weight[trigger] = 8;
+  }
+  if (!heavy_) {
+    c.want[kBag] = 1;
+    c.weight[kBag] = 16;
+  }
+  // "Zero" on the scale of this machine and motion.
+  const double len = length_scale_;
+  double v = std::sqrt(g_ * len);
+  v = std::fmax(v, std::fmax(std::fabs(k.vx), std::fabs(k.vh)));
+  v = std::fmax(v, len * std::fmax(std::fabs(k.dphi_s), std::fabs(k.dphi_l)));
+  const double mass = m_s_ + m_l_ + sc_.machine.seesaw_mass;
+  const double acc = g_ + v * v / len;
+  c.force_tol = 1e-9 * mass * acc * (1.0 + len);
+  c.impulse_tol = 1e-9 * mass * v * (1.0 + len);
+  c.rate_tol = 1e-7 * v;
+  c.closing_tol = 1e-12 * v;
+  c.accel_tol = 1e-9 * acc;
+  (void)sys;
+  return c;
+}
+
+bool Model::law_velocity(const Kinematics& k, bool bag, contact::Coords& u) const {
+  // MODEL.md's impact laws fix the seesaw's rate after the rope's jerk; r' keeps the sandbag's
+  // speed along the arm (eq. 5) except under linear-momentum; afterwards phiL' = k phiS'. A heavy
+  // seesaw brings its own angular momentum I_S phiS'- (zero for the massless seesaw).
+  const double c = std::cos(k.phi_s), s = std::sin(k.phi_s);
+  const double r = along_arm(k);
+  const double v_par = -k.vx * c - k.vh * s;
+  const double v_perp = k.vx * s - k.vh * c;
+  const double kk = rope_.transfer(k.phi_s, k.phi_l).k;
   const double m = bag ? m_s_ : 0.0;
-  const double w0 = b.dphi_l, ws = b.dphi_s;
+  const double w0 = k.dphi_l, ws = k.dphi_s;
   double dr = v_par, dphi_s = 0.0;
-  const double rope_num = m * r * v_perp + k * i_l_ * w0 + i_s_ * ws;
-  const double rope_den = m * r * r + i_l_ * k * k + i_s_;
-  // Landing on a heavy seesaw with the rope slack: the lid is not involved, and every law reduces
-  // to the perfectly inelastic one (angular momentum about the pivot).
-  const ImpactLaw law = rope ? sc_.run.impact_law : ImpactLaw::rope;
-  switch (law) {
+  const double rope_num = m * r * v_perp + kk * i_l_ * w0 + i_s_ * ws;
+  const double rope_den = m * r * r + i_l_ * kk * kk + i_s_;
+  switch (sc_.run.impact_law) {
     case ImpactLaw::rope:  // eq. (7): inelastic impulse along the rope
       dphi_s = rope_num / rope_den;
       break;
     case ImpactLaw::angular_momentum_sum:
-      dphi_s = (m * r * v_perp + i_l_ * w0 + i_s_ * ws) / (m * r * r + i_l_ * k + i_s_);
+      dphi_s = (m * r * v_perp + i_l_ * w0 + i_s_ * ws) / (m * r * r + i_l_ * kk + i_s_);
       break;
     case ImpactLaw::kinetic_energy: {
-      const double mag =
-          std::sqrt((m * v_perp * v_perp + i_l_ * w0 * w0 + i_s_ * ws * ws) / rope_den);
+      const double mag = std::sqrt((m * v_perp * v_perp + i_l_ * w0 * w0 + i_s_ * ws * ws) / rope_den);
       dphi_s = rope_num < 0.0 ? -mag : mag;
       break;
     }
@@ -440,39 +592,257 @@ void Model::impact(HybridState& hs, const Kinematics& b, bool bag, bool rope) co
         break;
       }
       // Linear momentum of sandbag and lid centre of mass before = after (2x2 in r', phiS').
-      const double sl = std::sin(b.phi_l), cl = std::cos(b.phi_l);
-      const double px = m_s_ * b.vx - m_l_ * r_l_ * sl * w0;
-      const double ph = m_s_ * b.vh + m_l_ * r_l_ * cl * w0;
-      const double a11 = -m_s_ * c, a12 = m_s_ * r * s - m_l_ * r_l_ * sl * k;
-      const double a21 = -m_s_ * s, a22 = -m_s_ * r * c + m_l_ * r_l_ * cl * k;
+      const double sl = std::sin(k.phi_l), cl = std::cos(k.phi_l);
+      const double px = m_s_ * k.vx - m_l_ * r_l_ * sl * w0;
+      const double ph = m_s_ * k.vh + m_l_ * r_l_ * cl * w0;
+      const double a11 = -m_s_ * c, a12 = m_s_ * r * s - m_l_ * r_l_ * sl * kk;
+      const double a21 = -m_s_ * s, a22 = -m_s_ * r * c + m_l_ * r_l_ * cl * kk;
       const double det = a11 * a22 - a12 * a21;
       dr = (px * a22 - a12 * ph) / det;
       dphi_s = (a11 * ph - a21 * px) / det;
       break;
     }
   }
-  if (rope) {
-    hs.d.taut = true;
-    hs.d.lid_resting = false;
-  }
+  contact::Coords out = u;
   if (bag) {
-    hs.d.on_seesaw = true;
-    hs.y[slot::r] = r;
-    hs.y[slot::phi_s] = b.phi_s;
-    hs.y[slot::dr] = dr;
-    hs.y[slot::dphi_s] = dphi_s;
-  } else {
-    hs.y[slot::seesaw_phi] = b.phi_s;
-    hs.y[slot::seesaw_dphi] = dphi_s;
+    out[0] = -dr * c + r * s * dphi_s;
+    out[1] = -dr * s - r * c * dphi_s;
   }
+  out[2] = dphi_s;
+  out[3] = kk * dphi_s;
+  for (double x : out)
+    if (!std::isfinite(x)) return false;
+  u = out;
+  return true;
+}
+
+void Model::set_contacts(Discrete& d, Set s, const Kinematics& k) const {
+  d.on_seesaw = contact::has(s, kBag);
+  d.taut = contact::has(s, kRope);
+  d.lid_resting = contact::has(s, kLid);
+  // The unloaded massless seesaw is parked where it is, or follows the lid; on the closure the
+  // chart is the seesaw's angle while the lid moves no faster than it (|k| <= 1).
+  if (!d.on_seesaw && !d.heavy) d.parked_seesaw = k.phi_s;
+  d.side = RopeGeometry::side_of(rope_.lid_edge(k.phi_l), rope_.seesaw_end(k.phi_s));
+  d.lid_chart = on_closure(d) && std::fabs(rope_.transfer(k.phi_s, k.phi_l).k) > 1.0;
+}
+
+void Model::resolve(HybridState& hs, const Kinematics& k0, int trigger, Trend trend,
+                    std::vector<Event>& out) const {
+  using contact::has;
+  Discrete& d = hs.d;
+  const Set s0 = active_set(d);
+  Set touch = s0 | touching(d, k0);
+  if (trend == Trend::closing) touch |= bit(trigger);
+  if (trend == Trend::forced_off) touch &= ~bit(trigger);
+
+  auto fail = [&](const char* what) {
+    char msg[200];
+    std::snprintf(msg, sizeof msg, "no consistent %s at t = %.9g s in mode M%d (degenerate contact)",
+                  what, hs.t, static_cast<int>(d.mode()));
+    throw SimulationError(msg);
+  };
+
+  // Velocities: an impact wherever a touching contact is closing.
+  const contact::System sys = contact_system(d, k0);
+  const contact::Choice ch = choice(d, sys, k0, trigger, trend);
+  const contact::Impact imp = contact::solve_impact(sys, touch, ch);
+  if (!imp.ok) fail("impact");
+  contact::Coords u = imp.velocity;
+  contact::PerContact rate = imp.rate;
+  bool impacted = false;
+  for (int i = 0; i < 3; ++i) impacted = impacted || (has(imp.impulsive, i) && imp.impulse[i] > ch.impulse_tol);
+  const bool rope_jerk = has(imp.impulsive, kRope) && imp.impulse[kRope] > ch.impulse_tol;
+  if (rope_jerk && sc_.run.impact_law != ImpactLaw::rope &&
+      !(has(imp.impulsive, kLid) && imp.impulse[kLid] > ch.impulse_tol)) {
+    // The rope's jerk by the chosen law (the inelastic solution above is the rope law, eq. 7),
+    // provided nothing else it touches is then left closing.
+    contact::Coords ul = u;
+    if (law_velocity(k0, has(imp.impulsive, kBag), ul)) {
+      bool ok = true;
+      contact::PerContact rl = rate;
+      for (int i = 0; i < 3; ++i) {
+        if (!has(touch, i)) continue;
+        rl[i] = has(imp.impulsive, i) ? 0.0 : sys.rate(i, ul);
+        ok = ok && rl[i] >= -ch.closing_tol;
+      }
+      if (ok) u = ul, rate = rl;
+    }
+  }
+  Set held = 0;  // touching contacts with zero gap rate after the impact
+  for (int i = 0; i < 3; ++i)
+    if (has(touch, i) && (has(imp.impulsive, i) || rate[i] <= ch.rate_tol)) held |= bit(i);
+
+  // Accelerations: which of them carry the motion on.
+  const Kinematics k1 = with_velocity(k0, u);
+  Discrete dh = d;
+  dh.on_seesaw = has(held, kBag), dh.taut = has(held, kRope), dh.lid_resting = has(held, kLid);
+  const contact::System sys1 = contact_system(dh, k1);
+  const contact::Motion mot = contact::solve_motion(sys1, held, ch);
+  if (!mot.ok) fail("set of contacts");
+  const Set s2 = mot.active;
+
+  // Released contacts: their gaps start at zero and open, by their rate or their acceleration.
+  d.armed = {};
+  GuardStart released[3];
+  for (int i = 0; i < 3; ++i) {
+    if (!has(held, i)) {
+      released[i] = {1, -rate[i]};
+    } else if (mot.gap_acceleration[i] > ch.accel_tol) {
+      released[i] = {2, -0.5 * mot.gap_acceleration[i]};
+    } else {
+      released[i] = {3, kUnknownLead};
+    }
+  }
+
+  // The contacts that hold are left with exactly zero gap rate (they may have had a rate within
+  // the rounding band): the same projection as an impact, booked like one.
+  Kinematics k2 = k1;
+  contact::Coords u2;
+  if (s2 != 0 && contact::constrained_velocity(sys1, s2, u2)) k2 = with_velocity(k1, u2);
+
+  // A touch that changes nothing (no impulse, the same contacts) leaves the state as it was.
+  if (s2 == s0 && !impacted) k2 = k0;
+
+  const Mode before = d.mode();
+  set_contacts(d, s2, k2);
+  for (int i = 0; i < 3; ++i) {
+    const Guard gi = guard_of(i);
+    if (has(touch, i) && !has(s2, i)) {
+      d.armed[gi] = released[i];
+    } else if (has(s2, i) && !has(s0, i) && mot.force[i] <= ch.force_tol) {
+      d.armed[gi] = {1, kUnknownLead};  // closed with a force still zero: it can only load up
+    } else {
+      continue;
+    }
+    d.armed[gi].floor = guard_floor(gi, d);
+  }
+  if (trend == Trend::forced_off) d.fallen_off = true;
+  place(hs, k2);
+
+  // Report the changes as they happen: the one that triggered the event, those decided on the
+  // velocities, then those decided on the accelerations. A lid knocked off the box by an impact
+  // is part of that impact (M3 > M4 says it), not an event of its own.
+  const bool trigger_changed =
+      trend == Trend::closing ? (has(imp.impulsive, trigger) && imp.impulse[trigger] > ch.impulse_tol) || has(s2, trigger)
+                              : !has(s2, trigger);
+  const bool lid_knocked = impacted && has(s0, kLid) && !has(held, kLid);
+  Set cur = s0;
+  Mode from = before;
+  bool first = true;
+  auto emit = [&](EventType type) {
+    if (first && lid_knocked) cur &= ~bit(kLid);
+    const Mode to = mode_of(cur);
+    Event e = make_event(type, hs, from, to);
+    if (first && impacted) {
+      e.impact = true;
+      e.energy_before = energy(k0);
+    }
+    out.push_back(e);
+    from = to;
+    first = false;
+  };
+  if (trigger_changed) {
+    if (trend == Trend::closing) {
+      cur |= bit(trigger);
+      emit(change_event(trigger, true));
+    } else {
+      cur &= ~bit(trigger);
+      emit(trend == Trend::forced_off ? EventType::sandbag_falls_off : change_event(trigger, false));
+    }
+  }
+  // The trigger's own change was reported first; a contact it closed may still let go below.
+  auto step_to = [&](Set target, bool trigger_may_change) {
+    for (int i = 0; i < 3; ++i) {
+      if (i == trigger && !trigger_may_change) continue;
+      if (has(cur, i) == has(target, i)) continue;
+      if (has(target, i)) {
+        cur |= bit(i);
+      } else {
+        cur &= ~bit(i);
+      }
+      emit(change_event(i, has(target, i)));
+    }
+  };
+  step_to(held, false);
+  step_to(s2, trigger_changed && trend == Trend::closing);
+}
+
+// --- jumps -------------------------------------------------------------------------------------
+
+HybridState Model::initial(std::vector<Event>& out) const {
+  const Start& st = sc_.start;
+  HybridState hs;
+  hs.t = 0.0;
+  Discrete& d = hs.d;
+  d.parked_seesaw = st.seesaw_angle;
+  d.balloon_stuck = true;
+  d.heavy = heavy_;
+  d.on_seesaw = false;
+  d.taut = false;
+  d.lid_resting = true;
+  Kinematics k;
+  k.x = st.sandbag_x;
+  k.h = st.sandbag_h;
+  k.phi_s = st.seesaw_angle;
+  k.phi_l = phi_l0_;
+  // What touches at t = 0: the sandbag placed on the arm, the rope straight, the lid on the box.
+  Set touch = bit(kLid);
+  const double c = std::cos(st.seesaw_angle), s = std::sin(st.seesaw_angle);
+  if (std::fabs(height_above_arm(k)) <= kContact) {
+    touch |= bit(kBag);
+    // Placed on the arm: the polar and the Cartesian pictures agree exactly on the arm's line.
+    const double r = std::hypot(st.sandbag_x, st.sandbag_h);
+    k.x = -r * c;
+    k.h = -r * s;
+  }
+  if (rope_.span(st.seesaw_angle, phi_l0_) >= rope_.rope_length() - kContact) touch |= bit(kRope);
+  k = with_velocity(k, contact::Coords{});
+  // Everything starts at rest, so only forces decide; what touches is kept where they allow it.
+  Discrete dt = d;
+  dt.on_seesaw = contact::has(touch, kBag), dt.taut = contact::has(touch, kRope);
+  const contact::System sys = contact_system(dt, k);
+  contact::Choice ch = choice(dt, sys, k, -1, Trend::closing);
+  const contact::Motion mot = contact::solve_motion(sys, touch, ch);
+  if (!mot.ok) throw SimulationError("no consistent set of contacts at the start (degenerate contact)");
+  set_contacts(d, mot.active, k);
+  hs.y.fill(0.0);
+  place(hs, k);
+  hs.y[slot::balloon_h] = limit_.height(phi_l0_);
+  for (int i = 0; i < 3; ++i) {
+    if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
+    const Guard gi = guard_of(i);
+    d.armed[gi] = mot.gap_acceleration[i] > ch.accel_tol ? GuardStart{2, -0.5 * mot.gap_acceleration[i]}
+                                                         : GuardStart{3, kUnknownLead};
+    d.armed[gi].floor = guard_floor(gi, d);
+  }
+
+  const Kinematics k1 = kinematics(d, hs.y);
+  Books& b = d.books;
+  b.initial_total = energy(k1) + balloon_energy(k1.balloon_h, k1.balloon_v);
+  b.balloon_e_mark = balloon_energy(k1.balloon_h, k1.balloon_v);  // nothing pushed yet
+  open_books(hs, k1);
+  // A rope or a sandbag that touches at the start but lets go at once is an event at t = 0 (a lid
+  // that lifts at once just starts in M4).
+  Set cur = touch;
+  for (int i : {kBag, kRope}) {
+    if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
+    const Mode from = mode_of(cur);
+    cur &= ~bit(i);
+    out.push_back(make_event(change_event(i, false), hs, from, mode_of(cur)));
+  }
+  return hs;
 }
 
 void Model::place(HybridState& hs, const Kinematics& k) const {
+  // In the lid chart the angle slots hold the lid's angle and rate instead of the seesaw's.
+  const bool by_lid = hs.d.lid_chart && on_closure(hs.d);
+  const double angle = by_lid ? k.phi_l : k.phi_s, rate = by_lid ? k.dphi_l : k.dphi_s;
   if (hs.d.polar()) {
     hs.y[slot::r] = k.r;
-    hs.y[slot::phi_s] = k.phi_s;
+    hs.y[slot::phi_s] = angle;
     hs.y[slot::dr] = k.dr;
-    hs.y[slot::dphi_s] = k.dphi_s;
+    hs.y[slot::dphi_s] = rate;
   } else {
     hs.y[slot::x] = k.x;
     hs.y[slot::h] = k.h;
@@ -481,12 +851,8 @@ void Model::place(HybridState& hs, const Kinematics& k) const {
   }
   hs.y[slot::phi_l] = k.phi_l;
   hs.y[slot::dphi_l] = k.dphi_l;
-  hs.y[slot::seesaw_phi] = k.phi_s;
-  hs.y[slot::seesaw_dphi] = k.dphi_s;
-}
-
-void Model::set_seesaw_rate(HybridState& hs, double rate) const {
-  hs.y[hs.d.polar() ? slot::dphi_s : slot::seesaw_dphi] = rate;
+  hs.y[slot::seesaw_phi] = angle;
+  hs.y[slot::seesaw_dphi] = rate;
 }
 
 void Model::open_books(HybridState& hs, const Kinematics& k) const {
@@ -515,72 +881,16 @@ void Model::book(HybridState& hs) const {
   b.drag_mark = hs.y[slot::lost_drag];
 }
 
-Event Model::make_event(EventType type, HybridState& hs, Mode before) const {
+Event Model::make_event(EventType type, HybridState& hs, Mode before, Mode after) const {
   book(hs);
   Event e;
   e.type = type;
   e.t = hs.t;
   e.mode_before = before;
-  e.mode_after = hs.d.mode();
+  e.mode_after = after;
   e.after = snapshot(hs);
   e.energy_before = e.energy_after = e.after.energy();
   return e;
-}
-
-void Model::settle(HybridState& hs, std::vector<Event>& out) const {
-  // Right after a jump that leaves something with inertia on a taut rope, decide between M4 and
-  // M5 and apply MODEL.md's immediate checks (lid lifting, rope going slack at once); on a heavy
-  // seesaw also whether the sandbag leaves the arm at once.
-
-  // Lets go of the rope (or of the sandbag) where it is, with no impulse, and reports it.
-  auto part = [&](const Kinematics& k, EventType type) {
-    const Mode m = hs.d.mode();
-    if (type == EventType::sandbag_leaves) {
-      hs.d.on_seesaw = false;
-    } else {
-      hs.d.taut = false;
-    }
-    place(hs, k);
-    out.push_back(make_event(type, hs, m));
-  };
-  if (hs.d.taut && (hs.d.on_seesaw || hs.d.heavy)) {
-    if (!hs.d.lid_resting) {
-      const Kinematics k = kinematics(hs.d, hs.y);
-      // The box stops a lid left moving down, or left at rest with too little pull to lift it
-      // (a lid that has just lifted, at rest but pulled hard enough, goes on lifting).
-      // A heavy seesaw of vanishing inertia jerks the resting lid up by less than the contact
-      // tolerance before it falls back: too brief for any step to see, so the box stops it here.
-      const double rise = k.ddphi_l < 0.0 ? r_l_ * k.dphi_l * k.dphi_l / -k.ddphi_l : kNoEnd;
-      const bool twitch = hs.d.heavy && k.dphi_l > 0.0 && rise < kContact;
-      if (k.phi_l <= phi_l0_ + 1e-12 &&
-          (k.dphi_l < 0.0 || twitch ||
-           (k.dphi_l == 0.0 && !lid_lifts_now(hs.d.on_seesaw, k.r, k.phi_s)))) {
-        hs.d.lid_resting = true;
-        set_seesaw_rate(hs, 0.0);
-      }
-    }
-    bool pulling = true;
-    if (hs.d.lid_resting) {
-      const Kinematics k = kinematics(hs.d, hs.y);
-      const Mode m = hs.d.mode();
-      if (lid_lifts_now(hs.d.on_seesaw, k.r, k.phi_s)) {
-        hs.d.lid_resting = false;
-        set_seesaw_rate(hs, 0.0);
-        out.push_back(make_event(EventType::lid_lifts, hs, m));
-      } else {
-        pulling = false;
-        if (hs.d.heavy && seesaw_load(hs.d.on_seesaw, k.r, k.phi_s) < 0.0) part(k, EventType::rope_slack);
-      }
-    }
-    if (pulling) {
-      const Kinematics k = kinematics(hs.d, hs.y);
-      if (lid_rope_torque(k) < 0.0) part(k, EventType::rope_slack);
-    }
-  }
-  if (hs.d.heavy && hs.d.on_seesaw && !(hs.d.taut && hs.d.lid_resting)) {
-    const Kinematics k = kinematics(hs.d, hs.y);
-    if (normal_force(k) < 0.0) part(k, EventType::sandbag_leaves);
-  }
 }
 
 void Model::free_balloon(HybridState& hs, const Kinematics& k, double v) const {
@@ -594,110 +904,87 @@ void Model::release_balloon_if_lid_jumped(HybridState& hs, double limit_rate_bef
   if (!hs.d.balloon_stuck) return;
   const Kinematics k = kinematics(hs.d, hs.y);
   const double rate = limit_.rate(k.phi_l, k.dphi_l);
-  if (rate > limit_rate_before + 1e-12 * (1.0 + std::fabs(limit_rate_before))) {
+  // A jump, not rounding: beyond what the contact decision calls a zero rate.
+  if (rate > limit_rate_before + 1e-7 * std::sqrt(g_ * length_scale_) + 1e-9 * std::fabs(limit_rate_before)) {
     // The lid jumped away faster than the balloon moves: it keeps its own velocity, so the
     // balloon's side of the books is as it was before the jump.
     const Mode m = hs.d.mode();
     free_balloon(hs, k, limit_rate_before);
+    hs.d.armed[kGuardBalloon] = {1, limit_rate_before - rate, guard_floor(kGuardBalloon, hs.d)};
     Books& b = hs.d.books;
     b.balloon_catch = opened.balloon_catch;
     b.lid_push = opened.lid_push;
     b.balloon_v_mark = opened.balloon_v_mark;
-    out.push_back(make_event(EventType::balloon_free, hs, m));
+    out.push_back(make_event(EventType::balloon_free, hs, m, m));
   }
 }
 
 bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
+  hs.d.armed = {};
   const Mode before = hs.d.mode();
   const Kinematics k0 = kinematics(hs.d, hs.y);
   const double limit_rate0 = limit_.rate(k0.phi_l, k0.dphi_l);
   open_books(hs, k0);
   const Books opened = hs.d.books;
-  EventType type = event_of(fired);
-  // MODEL.md: the model ends when the sandbag reaches the pivot. As r -> 0 the rope's pull on the
-  // lid vanishes too, so rope_slack and sandbag_at_pivot arrive together; the pivot wins.
-  if (hs.d.on_seesaw && k0.r <= kContact && !is_stop(type)) type = EventType::sandbag_at_pivot;
-  auto emit_impact = [&] {
-    Event e = make_event(type, hs, before);
-    e.impact = true;
-    e.energy_before = energy(k0);
-    out.push_back(e);
+  auto stop = [&](EventType type) {
+    out.push_back(make_event(type, hs, before, before));
+    return true;
   };
-  switch (type) {
-    case EventType::sandbag_lands:
-    case EventType::rope_taut:
-      if (hs.d.on_seesaw || (type == EventType::sandbag_lands && hs.d.taut)) {
-        impact(hs, k0, true, true);
-        emit_impact();
-        settle(hs, out);
-      } else if (hs.d.heavy) {  // the heavy seesaw takes its share of the blow
-        impact(hs, k0, type == EventType::sandbag_lands, type == EventType::rope_taut);
-        emit_impact();
-        settle(hs, out);
-      } else if (type == EventType::sandbag_lands) {  // M1 -> M3: velocity kept
-        hs.d.on_seesaw = true;
-        out.push_back(make_event(type, hs, before));
-      } else {  // M1 -> M2: nothing loads the seesaw, no impulse
-        hs.d.taut = true;
-        out.push_back(make_event(type, hs, before));
+  // MODEL.md: the model ends when the sandbag reaches the pivot. As r -> 0 the rope's pull on the
+  // lid vanishes too, so contact changes and sandbag_at_pivot arrive together; the pivot wins.
+  if (hs.d.on_seesaw && k0.r <= kContact && !fires_at_once(fired)) return stop(EventType::sandbag_at_pivot);
+  switch (fired) {
+    case kGuardBag:
+      if (hs.d.on_seesaw) {
+        resolve(hs, k0, kBag, Trend::releasing, out);
+        break;
+      }
+      {
+        // The falling sandbag reaches the arm's line: it lands where the arm is. Beyond a finite
+        // arm's end it has missed it for good; on the pivot's other side the model ends.
+        const double along = along_arm(k0);
+        if (along > arm_) {
+          hs.d.fallen_off = true;
+          out.push_back(make_event(EventType::sandbag_falls_off, hs, before, before));
+          return false;
+        }
+        if (along < 0.0) return stop(EventType::sandbag_at_pivot);
+        resolve(hs, k0, kBag, Trend::closing, out);
       }
       break;
-    case EventType::rope_slack:
-      hs.d.taut = false;
-      place(hs, k0);
-      out.push_back(make_event(type, hs, before));
-      settle(hs, out);
+    case kGuardRope:
+      // MODEL.md's linkage: the rope straightens on the lid-below-rope side only; on the other
+      // it would run under the hinge, through the box, and the model cannot go on.
+      if (!hs.d.taut && !rope_.lid_below_rope(k0.phi_s, k0.phi_l)) return stop(EventType::rope_locked);
+      resolve(hs, k0, kRope, hs.d.taut ? Trend::releasing : Trend::closing, out);
       break;
-    case EventType::lid_rests:
-      hs.d.lid_resting = true;
-      if (hs.d.taut && (hs.d.on_seesaw || hs.d.heavy)) {
-        // M4 -> M5: lid, seesaw and the sandbag's motion across the arm stop together
-        set_seesaw_rate(hs, 0.0);
-        emit_impact();
-        settle(hs, out);
-      } else {
-        hs.y[slot::phi_l] = phi_l0_;
-        hs.y[slot::dphi_l] = 0.0;
-        Event e = make_event(type, hs, before);
-        e.energy_before = energy(k0);
-        out.push_back(e);
-      }
+    case kGuardLid:
+      resolve(hs, k0, kLid, hs.d.lid_resting ? Trend::releasing : Trend::closing, out);
       break;
-    case EventType::lid_lifts:
-      hs.d.lid_resting = false;
-      set_seesaw_rate(hs, 0.0);
-      out.push_back(make_event(type, hs, before));
-      settle(hs, out);
+    case kGuardArmEnd:  // off the end of a finite arm, velocity kept; it never lands again
+      resolve(hs, k0, kBag, Trend::forced_off, out);
       break;
-    case EventType::sandbag_falls_off:
-    case EventType::sandbag_leaves:
-      // Off the arm into free fall, velocity kept; past the end of the arm for good.
-      hs.d.on_seesaw = false;
-      hs.d.fallen_off = hs.d.fallen_off || type == EventType::sandbag_falls_off;
-      hs.d.parked_seesaw = k0.phi_s;
-      place(hs, k0);
-      out.push_back(make_event(type, hs, before));
-      settle(hs, out);
-      break;
-    case EventType::balloon_caught: {
-      hs.d.balloon_stuck = true;
-      out.push_back(make_event(type, hs, before));
-      // Caught by a lid that accelerates away faster than the balloon can: it touches and parts.
-      if (limit_.acceleration(k0.phi_l, k0.dphi_l, k0.ddphi_l) > balloon_acceleration(limit_rate0)) {
+    case kGuardBalloon:
+      if (hs.d.balloon_stuck) {  // the lid pulls away faster than the balloon can follow
         free_balloon(hs, k0, limit_rate0);
-        out.push_back(make_event(EventType::balloon_free, hs, before));
+        hs.d.armed[kGuardBalloon] = {3, kUnknownLead, guard_floor(kGuardBalloon, hs.d)};
+        out.push_back(make_event(EventType::balloon_free, hs, before, before));
+        return false;
+      }
+      hs.d.balloon_stuck = true;
+      out.push_back(make_event(EventType::balloon_caught, hs, before, before));
+      {
+        // Caught by a lid that accelerates away faster than the balloon can: it touches and parts.
+        const double ahead = limit_.acceleration(k0.phi_l, k0.dphi_l, k0.ddphi_l) - balloon_acceleration(limit_rate0);
+        if (ahead > 0.0) {
+          free_balloon(hs, k0, limit_rate0);
+          hs.d.armed[kGuardBalloon] = {2, -0.5 * ahead, guard_floor(kGuardBalloon, hs.d)};
+          out.push_back(make_event(EventType::balloon_free, hs, before, before));
+        }
       }
       return false;
-    }
-    case EventType::balloon_free:
-      free_balloon(hs, k0, limit_rate0);
-      out.push_back(make_event(type, hs, before));
-      return false;
-    case EventType::lid_open:
-      if (!radio_) {
-        out.push_back(make_event(type, hs, before));
-        return true;
-      }
+    case kGuardLidOpen:
+      if (!radio_) return stop(EventType::lid_open);
       {
         // The radio's question goes on: the lid latches open where it is (its kinetic energy is
         // lost to the latch), the rope is let go for good, the sandbag falls freely off the
@@ -706,30 +993,38 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
         hs.d.lid_resting = false;
         hs.d.taut = false;
         hs.d.on_seesaw = false;
+        hs.d.lid_chart = false;
         hs.d.parked_seesaw = k0.phi_s;
         Kinematics k = k0;
         k.dphi_l = 0.0;
         place(hs, k);
-        out.push_back(make_event(type, hs, before));
+        out.push_back(make_event(EventType::lid_open, hs, before, hs.d.mode()));
         if (hs.d.balloon_stuck) {
           const Mode m = hs.d.mode();
           free_balloon(hs, k0, limit_rate0);
-          out.push_back(make_event(EventType::balloon_free, hs, m));
+          out.push_back(make_event(EventType::balloon_free, hs, m, m));
         }
       }
       return false;
-    default:  // stops
-      out.push_back(make_event(type, hs, before));
-      return true;
+    case kGuardSeesawVertical: return stop(EventType::seesaw_vertical);
+    case kGuardAtPivot: return stop(EventType::sandbag_at_pivot);
+    case kGuardRopeLocked: return stop(EventType::rope_locked);
+    case kGuardRadioOn: return stop(EventType::radio_on);
+    case kGuardChart:  // the same state in the other angle: no event
+      hs.d.lid_chart = !hs.d.lid_chart;
+      hs.d.side = RopeGeometry::side_of(rope_.lid_edge(k0.phi_l), rope_.seesaw_end(k0.phi_s));
+      place(hs, k0);
+      return false;
+    case kGuardCount: break;
   }
   release_balloon_if_lid_jumped(hs, limit_rate0, opened, out);
-  book(hs);  // a jump may end with a settling that no event reports
+  book(hs);  // a jump may end with a change that no event reports
   return false;
 }
 
 void Model::timeout(HybridState& hs, std::vector<Event>& out) const {
   open_books(hs, kinematics(hs.d, hs.y));
-  out.push_back(make_event(EventType::timeout, hs, hs.d.mode()));
+  out.push_back(make_event(EventType::timeout, hs, hs.d.mode(), hs.d.mode()));
 }
 
 }  // namespace whatnext

@@ -1,5 +1,7 @@
 #include "whatnext/simulate.hpp"
 
+#include <cstdio>
+
 #include "whatnext/model.hpp"
 
 namespace whatnext {
@@ -14,10 +16,20 @@ struct MachineSystem {
   Discrete d;
   void operator()(const State& y, State& dy, double /*t*/) const { model->flow(d, y, dy); }
   void guards(const State& y, GuardValues& g) const { model->guards(d, y, g); }
+  void guard_rates(const State& y, GuardValues& g) const { model->guard_rates(d, y, g); }
+  GuardStart guard_start(int i) const { return d.armed[i]; }
 };
 
 constexpr double kEventTimeTolerance = 1e-12;  // [s]
 constexpr double kMaxAdaptiveStep = 0.05;     // [s]; keeps brief guard excursions visible
+// No accepted input may run for minutes without a word: a few seconds of steps at most.
+constexpr std::int64_t kMaxAdaptiveSteps = 5'000'000;
+
+[[noreturn]] void fail(const char* what, double t, Mode mode) {
+  char msg[240];
+  std::snprintf(msg, sizeof msg, "%s at t = %.9g s in mode M%d", what, t, static_cast<int>(mode));
+  throw SimulationError(msg);
+}
 
 }  // namespace
 
@@ -27,38 +39,59 @@ Result simulate(const Scenario& sc, Observer* observer) {
   Result res;
   std::vector<Event> fresh;
   HybridState hs = model.initial(fresh);
-  // A guard that already reads >= 0 when a smooth piece starts is never seen to cross: a stop
-  // threshold passed at the start or by a jump, or a stuck balloon whose lid now accelerates away
-  // faster than it can follow. Such events happen at once.
-  auto fire_at_once = [&](std::vector<Event>& out) {
+  // Where a smooth piece starts, a guard that already reads >= 0 is never seen to cross. A stop
+  // threshold passed, or a stuck balloon the lid already leaves, happens at once; a contact guard
+  // at zero that the contact decision did not arm is armed here, so it is looked for just after.
+  auto start_piece = [&](std::vector<Event>& out) {
     GuardValues g;
     model.guards(hs.d, hs.y, g);
     for (int i = 0; i < kGuardCount; ++i) {
       const Guard gi = static_cast<Guard>(i);
-      if (g[i] >= 0.0 && (gi == kGuardBalloonFree || is_stop(event_of(gi)))) return model.jump(gi, hs, out);
+      if (!(g[i] >= 0.0)) continue;
+      if (fires_at_once(gi) || (gi == kGuardBalloon && hs.d.balloon_stuck)) return model.jump(gi, hs, out);
+      if (hs.d.armed[i].order == 0) hs.d.armed[i] = {1, -1e-300, model.guard_floor(gi, hs.d)};
     }
     return false;
   };
-  auto publish = [&](const Event& e) {
-    res.events.push_back(e);
-    if (observer) observer->on_event(e);
+  // Every event of one instant carries the state the motion goes on with after all of them.
+  auto publish = [&](std::vector<Event>& events) {
+    if (!events.empty()) {
+      const Snapshot final_state = model.snapshot(hs);
+      for (Event& e : events) {
+        if (e.t != hs.t) continue;
+        e.after = final_state;
+        e.energy_after = final_state.energy();
+        if (!e.impact) e.energy_before = e.energy_after;
+      }
+    }
+    for (const Event& e : events) {
+      res.events.push_back(e);
+      if (observer) observer->on_event(e);
+    }
   };
-  const bool stopped = fire_at_once(fresh);
-  for (const Event& e : fresh) publish(e);  // anything the start itself decides, at t = 0
+  bool stopped = false;
+  for (int settle = 0; settle < 8 && !stopped; ++settle) {
+    const std::size_t n = fresh.size();
+    stopped = start_piece(fresh);
+    if (fresh.size() == n) break;
+  }
+  publish(fresh);  // anything the start itself decides, at t = 0
   if (stopped) return res;
   OutputGrid grid{observer ? sc.run.output_step : 0.0, 0};
   const double t_end = sc.run.t_max;
   for (;;) {
     const MachineSystem sys{&model, hs.d};
     auto sample = [&](double t, const State& y) {
-      observer->on_sample(model.snapshot(HybridState{t, sys.d, y}));
+      const Snapshot s = model.snapshot(HybridState{t, sys.d, y});
+      observer->on_sample(s);
     };
     Crossing c;
     double t = hs.t;
     switch (sc.run.integrator) {
       case IntegratorKind::adaptive:
         c = integrate_adaptive(sys, hs.y, t, t_end, sc.run.tolerance, kMaxAdaptiveStep,
-                               kEventTimeTolerance, grid, sample, res.stats);
+                               kEventTimeTolerance, kMaxAdaptiveSteps - res.stats.steps, grid, sample,
+                               res.stats);
         break;
       case IntegratorKind::euler:
         c = integrate_fixed<odeint::euler<State>>(sys, hs.y, t, t_end, sc.run.step, grid, sample,
@@ -69,17 +102,28 @@ Result simulate(const Scenario& sc, Observer* observer) {
                                                          sample, res.stats);
         break;
     }
+    if (c.kind == Crossing::non_finite) fail("the motion turned non-finite", c.t, hs.d.mode());
+    if (c.kind == Crossing::step_limit) {
+      fail("the integrator used its budget of 5e6 steps (loosen run.tolerance or shorten run.t_max)",
+           c.t, hs.d.mode());
+    }
     hs.t = t;
     fresh.clear();
     bool stop = false;
-    if (c.guard < 0) {
+    if (c.kind == Crossing::end) {
       model.timeout(hs, fresh);
       stop = true;
     } else {
       stop = model.jump(static_cast<Guard>(c.guard), hs, fresh);
-      if (!stop) stop = fire_at_once(fresh);
+      for (int settle = 0; settle < 8 && !stop; ++settle) {
+        const std::size_t n = fresh.size();
+        stop = start_piece(fresh);
+        if (fresh.size() == n) break;
+      }
     }
-    for (const Event& e : fresh) publish(e);
+    for (double v : hs.y)
+      if (!std::isfinite(v)) fail("the state turned non-finite", hs.t, hs.d.mode());
+    publish(fresh);
     if (stop) break;
     if (res.events.size() >= static_cast<std::size_t>(kMaxEvents)) {
       Event e = res.events.back();
@@ -87,7 +131,8 @@ Result simulate(const Scenario& sc, Observer* observer) {
       e.mode_before = e.mode_after;
       e.impact = false;
       e.energy_before = e.energy_after;
-      publish(e);
+      std::vector<Event> last{e};
+      publish(last);
       break;
     }
   }

@@ -2,14 +2,33 @@
 //   using state_type = std::array<double, N>;  using guard_type = std::array<double, G>;
 //   void operator()(const state_type& y, state_type& dy, double t) const;   // the flow
 //   void guards(const state_type& y, guard_type& g) const;                   // event functions
+//   S guard_start(int i) const;  // S has .order, .lead and .floor, see below
+//   void guard_rates(const state_type& y, guard_type& dg) const;            // dg/dt, NaN: unknown
 // A guard fires when its value goes from negative to >= 0. Each call integrates one smooth piece
 // from t up to the first firing guard or t_end and hands samples on an output grid to a callback.
+//
+// A guard may start a piece at zero: a contact just released, whose gap is zero and opens. The
+// System then says how it leaves zero, g(t) ~ lead (t - t0)^order with lead < 0, and the guard is
+// searched as g(t) / (t - t0)^order in the first step: negative at the start by construction, so
+// a contact that closes again however soon is found, at any tolerance, and never the start itself.
+// Such a guard also has a floor: while |g| <= floor it is still "zero" (rounding, or a contact
+// that neither opens nor closes), and it fires only when it rises above the floor. Right after
+// the start, where lead (t - t0)^order is below a thousandth of the floor, the expansion is
+// trusted over the computed value, which is rounding there.
+//
+// A guard that is negative at both ends of a step may still have touched zero in between (a lid
+// that dips onto the box and rises again). Where the System knows a guard's rate, the cubic
+// Hermite interpolant of its values and rates shows such an excursion, and the guard is then
+// looked at on the dense output where the interpolant peaks.
 #pragma once
 
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <tuple>
+#include <limits>
+#include <utility>
 
 #include <boost/math/tools/toms748_solve.hpp>
 #include <boost/numeric/odeint.hpp>
@@ -17,9 +36,20 @@
 namespace whatnext {
 
 struct Crossing {
-  int guard = -1;  // -1: t_end reached without an event
-  double t = 0.0;
+  enum Kind { event, end, non_finite, step_limit };
+  Kind kind = end;
+  int guard = -1;  // the guard that fired (kind == event)
+  double t = 0.0;  // where the piece ended (for non_finite and step_limit: the last good time)
 };
+
+namespace detail {
+template <class State>
+bool finite(const State& y) {
+  for (double v : y)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+}  // namespace detail
 
 struct StepStats {
   std::int64_t steps = 0;
@@ -53,21 +83,44 @@ void sample_until(OutputGrid& grid, double t_hi, Eval&& eval, Sample&& sample) {
 template <class System, class Sample>
 Crossing integrate_adaptive(const System& sys, typename System::state_type& y, double& t,
                             double t_end, double tolerance, double max_dt, double time_tolerance,
-                            OutputGrid& grid, Sample&& sample, StepStats& stats) {
+                            std::int64_t max_steps, OutputGrid& grid, Sample&& sample,
+                            StepStats& stats) {
   namespace odeint = boost::numeric::odeint;
   using state_type = typename System::state_type;
   using guard_type = typename System::guard_type;
   auto stepper = odeint::make_dense_output(tolerance, tolerance, max_dt,
                                            odeint::runge_kutta_dopri5<state_type>());
   const double dt0 = std::fmin(max_dt, std::fmax(1e-6, 0.05 * std::pow(tolerance, 0.2)));
+  const double t0 = t;
   stepper.initialize(y, t, dt0);
   auto eval = [&](double tt, state_type& out) { stepper.calc_state(tt, out); };
 
-  guard_type g0, g1;
+  guard_type g0, g1, d0, d1;
   sys.guards(y, g0);
+  sys.guard_rates(y, d0);
+  constexpr std::size_t kGuards = std::tuple_size<guard_type>::value;
+  std::array<int, kGuards> order{};
+  std::array<double, kGuards> floor{}, noise_time{};
+  std::array<bool, kGuards> armed{};
+  for (std::size_t i = 0; i < g0.size(); ++i) {
+    const auto s = sys.guard_start(static_cast<int>(i));
+    order[i] = s.order;
+    floor[i] = s.floor;
+    armed[i] = s.order > 0;
+    if (s.order > 0) {
+      g0[i] = s.lead;  // the limit of g / (t - t0)^order at t0
+      noise_time[i] = std::pow(1e-3 * s.floor / std::fabs(s.lead), 1.0 / s.order);
+    }
+  }
   state_type y1;
-  for (;;) {
-    const auto interval = stepper.do_step(std::cref(sys));
+  std::int64_t steps = 0;
+  for (bool first = true;; first = false) {
+    std::pair<double, double> interval;
+    try {
+      interval = stepper.do_step(std::cref(sys));
+    } catch (const std::exception&) {  // the step size could not be controlled: a non-finite flow
+      return {Crossing::non_finite, -1, stepper.current_time()};
+    }
     ++stats.steps;
     const double ta = interval.first;
     const double tb = std::fmin(interval.second, t_end);
@@ -76,22 +129,95 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
     } else {
       y1 = stepper.current_state();
     }
+    if (!detail::finite(y1)) return {Crossing::non_finite, -1, ta};
+    if (++steps > max_steps) {
+      stepper.calc_state(ta, y);
+      t = ta;
+      return {Crossing::step_limit, -1, ta};
+    }
     sys.guards(y1, g1);
+    sys.guard_rates(y1, d1);
     int hit = -1;
     double t_hit = tb;
+    auto guard_at = [&](std::size_t i, double tt) {
+      state_type yy;
+      guard_type gg;
+      stepper.calc_state(tt, yy);
+      sys.guards(yy, gg);
+      ++stats.root_evaluations;
+      return gg[i];
+    };
     for (std::size_t i = 0; i < g0.size(); ++i) {
+      if (armed[i]) {
+        if (first && order[i] > 0 && tb - t0 < noise_time[i]) {
+          g1[i] = -std::numeric_limits<double>::min();  // within rounding of the start: as expanded
+        } else if (g1[i] < -floor[i]) {
+          armed[i] = false;  // clearly open: an ordinary guard from here on
+        } else if (g1[i] <= floor[i]) {
+          g1[i] = -std::numeric_limits<double>::min();  // still zero: not a crossing
+        }
+        continue;
+      }
+      // Negative at both ends: a touch in between? Peak of the Hermite cubic on [ta, tb] (not in
+      // the first step of a guard that started at zero: its g0 is the scaled lead, not a value).
+      if (!(g0[i] < 0.0 && g1[i] < 0.0) || std::isnan(d0[i]) || std::isnan(d1[i]) || !(d0[i] > 0.0) ||
+          !(tb > ta) || (first && order[i] > 0)) {
+        continue;
+      }
+      const double h = tb - ta;
+      const double a = 6.0 * (g0[i] - g1[i]) + 3.0 * h * (d0[i] + d1[i]);  // p'(s) = a s^2 + b s + c
+      const double b = 6.0 * (g1[i] - g0[i]) - 2.0 * h * (2.0 * d0[i] + d1[i]);
+      const double c = h * d0[i];
+      double s_peak = -1.0;
+      if (std::fabs(a) < 1e-300) {
+        if (b < 0.0) s_peak = -c / b;
+      } else {
+        const double disc = b * b - 4.0 * a * c;
+        if (disc >= 0.0) {
+          const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+          for (double root : {q / a, q != 0.0 ? c / q : -1.0}) {
+            if (root > 0.0 && root < 1.0 && 2.0 * a * root + b < 0.0) s_peak = root;  // a maximum
+          }
+        }
+      }
+      if (!(s_peak > 0.0 && s_peak < 1.0)) continue;
+      const double s2 = s_peak * s_peak, s3 = s2 * s_peak;
+      const double peak = (2 * s3 - 3 * s2 + 1) * g0[i] + (s3 - 2 * s2 + s_peak) * h * d0[i] +
+                          (-2 * s3 + 3 * s2) * g1[i] + (s3 - s2) * h * d1[i];
+      if (peak < 0.5 * g0[i] && peak < 0.5 * g1[i]) continue;  // not even close to zero
+      // Look at the real guard around the predicted peak; if it is >= 0 there, the touch is
+      // located between ta and that point like any crossing.
+      for (double frac : {s_peak, 0.5 * s_peak, 0.5 * (1.0 + s_peak)}) {
+        const double tt = ta + frac * h;
+        const double gv = guard_at(i, tt);
+        if (gv >= 0.0) {
+          std::uintmax_t iterations = 200;
+          auto stop = [&](double x, double y) { return std::fabs(y - x) <= time_tolerance; };
+          auto f = [&](double t2) { return guard_at(i, t2); };
+          const auto bracket = boost::math::tools::toms748_solve(f, ta, tt, g0[i], gv, stop, iterations);
+          const double root = f(bracket.first) >= 0.0 ? bracket.first : bracket.second;
+          if (hit < 0 || root < t_hit) hit = static_cast<int>(i), t_hit = root;
+          break;
+        }
+      }
+    }
+    for (std::size_t i = 0; i < g0.size() && tb > ta; ++i) {
       if (!(g0[i] < 0.0 && g1[i] >= 0.0)) continue;
+      const int p = first ? order[i] : 0;
+      const double scale_b = p > 0 ? std::pow(tb - t0, p) : 1.0;
       auto f = [&](double tt) {
+        if (p > 0 && tt - t0 < noise_time[i]) return g0[i];
         state_type yy;
         guard_type gg;
         stepper.calc_state(tt, yy);
         sys.guards(yy, gg);
         ++stats.root_evaluations;
-        return gg[i];
+        return p > 0 ? gg[i] / std::pow(tt - t0, p) : gg[i];
       };
       std::uintmax_t iterations = 200;
       auto stop = [&](double a, double b) { return std::fabs(b - a) <= time_tolerance; };
-      const auto bracket = boost::math::tools::toms748_solve(f, ta, tb, g0[i], g1[i], stop, iterations);
+      const auto bracket =
+          boost::math::tools::toms748_solve(f, ta, tb, g0[i], g1[i] / scale_b, stop, iterations);
       // The end of the bracket where the guard has fired (f >= 0).
       const double root = f(bracket.first) >= 0.0 ? bracket.first : bracket.second;
       if (hit < 0 || root < t_hit) hit = static_cast<int>(i), t_hit = root;
@@ -100,14 +226,15 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
       detail::sample_until<System>(grid, t_hit, eval, sample);
       stepper.calc_state(t_hit, y);
       t = t_hit;
-      return {hit, t_hit};
+      return {Crossing::event, hit, t_hit};
     }
     detail::sample_until<System>(grid, tb, eval, sample);
     g0 = g1;
+    d0 = d1;
     if (tb >= t_end) {
       y = y1;
       t = t_end;
-      return {-1, t_end};
+      return {Crossing::end, -1, t_end};
     }
   }
 }
@@ -123,12 +250,31 @@ Crossing integrate_fixed(const System& sys, typename System::state_type& y, doub
   Stepper stepper;
   guard_type g0, g1;
   sys.guards(y, g0);
+  constexpr std::size_t kGuards = std::tuple_size<guard_type>::value;
+  std::array<double, kGuards> floor{};
+  std::array<bool, kGuards> armed{};
+  for (std::size_t i = 0; i < g0.size(); ++i) {
+    const auto s = sys.guard_start(static_cast<int>(i));
+    armed[i] = s.order > 0;
+    floor[i] = s.floor;
+    if (s.order > 0) g0[i] = s.lead;  // zero now, negative just after: see above
+  }
   for (;;) {
     const double h = std::fmin(dt, t_end - t);
+    const double t_before = t;
     stepper.do_step(std::cref(sys), y, t, h);
     t = (t_end - t <= dt) ? t_end : t + h;
     ++stats.steps;
+    if (!detail::finite(y)) return {Crossing::non_finite, -1, t_before};
     sys.guards(y, g1);
+    for (std::size_t i = 0; i < g0.size(); ++i) {
+      if (!armed[i]) continue;
+      if (g1[i] < -floor[i]) {
+        armed[i] = false;
+      } else if (g1[i] <= floor[i]) {
+        g1[i] = -std::numeric_limits<double>::min();
+      }
+    }
     int hit = -1;
     double best = 2.0;
     for (std::size_t i = 0; i < g0.size(); ++i) {
@@ -142,8 +288,8 @@ Crossing integrate_fixed(const System& sys, typename System::state_type& y, doub
         ++grid.next;
       }
     }
-    if (hit >= 0) return {hit, t};
-    if (t >= t_end) return {-1, t_end};
+    if (hit >= 0) return {Crossing::event, hit, t};
+    if (t >= t_end) return {Crossing::end, -1, t_end};
     g0 = g1;
   }
 }

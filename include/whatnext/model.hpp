@@ -1,5 +1,7 @@
-// The mode automaton of MODEL.md: flows, guards and jumps, each written once.
-// It knows nothing of integrators; simulate.cpp couples it to one.
+// The machine as a hybrid automaton: flows, guards and jumps, each written once.
+// Which contacts hold (sandbag on the arm, rope taut, lid on the box) is decided at every event by
+// one mechanism, the complementarity problems of contact.hpp; the modes M1-M5 are names of the
+// resulting contact sets. It knows nothing of integrators; simulate.cpp couples it to one.
 #pragma once
 
 #include <array>
@@ -7,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "whatnext/contact.hpp"
 #include "whatnext/events.hpp"
 #include "whatnext/geometry.hpp"
 #include "whatnext/params.hpp"
@@ -14,28 +17,34 @@
 
 namespace whatnext {
 
-// Guard functions: each fires when its value crosses from negative to >= 0.
-// Inactive guards read -infinity. The order is the priority for events found in the same step.
+// Guard functions: each fires when its value crosses from negative to >= 0. Inactive guards read
+// -infinity. A contact's guard is its gap while it is open (it fires on touching) and minus its
+// force while it is closed (it fires when the force would change sign); which contacts change is
+// then decided by the contact problem, not by the guard. The order is the priority for events
+// found at the same instant.
 enum Guard : int {
-  kGuardLands,
-  kGuardRopeTaut,
-  kGuardRopeSlack,
-  kGuardLidRests,
-  kGuardLidLifts,
-  kGuardBalloonCaught,
-  kGuardBalloonFree,
+  kGuardBag,        // sandbag: height above the arm's line, or minus the arm's push on it
+  kGuardRope,       // rope: |R - E| - l_R, or minus its tension
+  kGuardLid,        // lid: phiL0 - phiL, or minus the box's push on it
+  kGuardArmEnd,     // sandbag on a finite arm reaches its end
+  kGuardBalloon,    // free balloon reaches the lid, or the lid pulls away faster than it can follow
   kGuardLidOpen,
   kGuardSeesawVertical,
   kGuardAtPivot,
-  kGuardRopeLocked,
-  kGuardFallsOff,  // extensions (docs/extensions.md) come last: ties keep MODEL.md's priorities
-  kGuardLeaves,
+  kGuardRopeLocked,  // the linkage's dead centre: the lid along the rope, or R on the line P-E
   kGuardRadioOn,
+  kGuardChart,  // on the rope's closure: time to integrate the other angle (no event)
   kGuardCount
 };
+static_assert(kGuardCount <= kGuardSlots, "Discrete::armed holds every guard");
 using GuardValues = std::array<double, kGuardCount>;
 constexpr double kInactive = -std::numeric_limits<double>::infinity();
-EventType event_of(Guard g);
+// Guards whose value at or past zero at the start of a smooth piece means "happens now"
+// (stops, and a stuck balloon the lid already leaves); the others are contacts, decided there.
+bool fires_at_once(Guard g);
+
+// The contacts of the contact problem, and its coordinates (x, h of the sandbag, phiS, phiL).
+enum ContactIndex : int { kBag = 0, kRope = 1, kLid = 2 };
 
 // Full kinematics at one instant, whatever the layout of the continuous state.
 struct Kinematics {
@@ -54,27 +63,38 @@ class Model {
   const RopeGeometry& rope() const { return rope_; }
   const BalloonLimit& balloon_limit() const { return limit_; }
 
-  // Start state (MODEL.md "Start"); events at t = 0 (none in a usual start) are appended to out.
+  // Start state: the contacts that touch at t = 0 are decided like those at any event; a rope or a
+  // sandbag that touches but lets go at once is reported in out (at t = 0).
   HybridState initial(std::vector<Event>& out) const;
 
   // Flow: dy/dt in the discrete state d.
   void flow(const Discrete& d, const State& y, State& dy) const;
   // Guard values in the discrete state d.
   void guards(const Discrete& d, const State& y, GuardValues& g) const;
-  // Jump for the guard that fired at hs.t; every resulting event (the fired one first, then any
-  // that follow at the same instant) is appended to out. Returns true when the run ends.
+  // Their rates where they are gaps of open contacts (NaN elsewhere: not known).
+  void guard_rates(const Discrete& d, const State& y, GuardValues& dg) const;
+  // Jump for the guard that fired at hs.t; every resulting event is appended to out in the order
+  // it happens (all at hs.t). Returns true when the run ends.
   bool jump(Guard fired, HybridState& hs, std::vector<Event>& out) const;
   // The run ends at t_max.
   void timeout(HybridState& hs, std::vector<Event>& out) const;
+  // The rounding band of a guard in d (see GuardStart): values within it count as zero.
+  double guard_floor(Guard g, const Discrete& d) const;
 
   Kinematics kinematics(const Discrete& d, const State& y) const;
   Snapshot snapshot(const HybridState& hs) const;
+  // The contact problem at this instant: masses, forces, the contacts' gap gradients and
+  // curvatures in the coordinates (x, h, phiS, phiL).
+  contact::System contact_system(const Discrete& d, const Kinematics& k) const;
+  // Forces of the closed contacts in d (arm on sandbag [N], rope tension [N], box on lid [N m]),
+  // from the contact problem; false where d's contacts do not determine them (then all zero).
+  bool contact_forces(const Discrete& d, const Kinematics& k, contact::PerContact& force) const;
   // The machine's energy: sandbag, lid and seesaw.
   double energy(const Kinematics& k) const;
   // The balloon's: (1/2) m_B v^2 - m_B a_B h (its net lift as a potential).
   double balloon_energy(double h, double v) const;
   // The balloon's upward acceleration at speed v (lift, weights and air drag): the flow, the
-  // balloon_free guard and the jumps all use this one function.
+  // balloon guard and the jumps all use this one function.
   double balloon_acceleration(double v) const { return a_b_ - drag_ * v * std::fabs(v); }
 
  private:
@@ -85,22 +105,43 @@ class Model {
     Transfer tr;
   };
   Swing swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const;
+  // The same motion on the rope's closure in the lid chart: phiL integrated, phiS = S(phiL).
+  struct LidSwing {
+    double ddr, ddphi_l;
+    RopeGeometry::InverseClosure s;
+  };
+  LidSwing swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side) const;
+  static void lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l);
+  // The lid swings on the straight rope, driven through it by something with inertia.
+  static bool on_closure(const Discrete& d) {
+    return d.taut && !d.lid_resting && !d.latched && (d.on_seesaw || d.heavy);
+  }
   double lid_free_acceleration(double phi_l, double dphi_l) const;
-  double lid_rope_torque(const Kinematics& k) const;
-  // Torque of sandbag and seesaw weights about the pivot, over g (+ = left arm down).
-  double seesaw_load(bool on, double r, double phi_s) const;
-  bool lid_lifts_now(bool on, double r, double phi_s) const;
-  double normal_force(const Kinematics& k) const;
   double radio_gap(double balloon_h) const;
   void dissipation(const Discrete& d, const Kinematics& k, State& dy) const;
+  // The sandbag's height above the arm's line and its distance along it from the pivot.
+  static double height_above_arm(const Kinematics& k);
+  static double along_arm(const Kinematics& k);
 
-  // Pieces of jumps, each used by several events.
-  void impact(HybridState& hs, const Kinematics& before, bool bag, bool rope) const;
+  // Contact changes. How the contact that triggered them tends: touching, letting go (its force
+  // vanished) or forced off (the sandbag past the arm's end).
+  enum class Trend { closing, releasing, forced_off };
+  // Decides the contacts after an event: an impact on velocities if some touching contact is
+  // closing, then the contacts that carry the motion on; updates hs and reports the changes.
+  void resolve(HybridState& hs, const Kinematics& k0, int trigger, Trend trend,
+               std::vector<Event>& out) const;
+  contact::Set touching(const Discrete& d, const Kinematics& k) const;
+  contact::Choice choice(const Discrete& d, const contact::System& sys, const Kinematics& k,
+                         int trigger, Trend trend) const;
+  // The chosen impact law's velocities for a rope impulse (MODEL.md's laws); false where they are
+  // not finite (then the perfectly inelastic ones stand).
+  bool law_velocity(const Kinematics& k, bool bag, contact::Coords& u) const;
+  void set_contacts(Discrete& d, contact::Set s, const Kinematics& k) const;
+  static contact::Set active_set(const Discrete& d);
   // Writes the continuous state for hs.d's layout from full kinematics.
   void place(HybridState& hs, const Kinematics& k) const;
-  void set_seesaw_rate(HybridState& hs, double rate) const;
-  Event make_event(EventType type, HybridState& hs, Mode before) const;
-  void settle(HybridState& hs, std::vector<Event>& out) const;
+  static Kinematics with_velocity(Kinematics k, const contact::Coords& u);
+  Event make_event(EventType type, HybridState& hs, Mode before, Mode after) const;
   void release_balloon_if_lid_jumped(HybridState& hs, double limit_rate_before,
                                      const Books& opened, std::vector<Event>& out) const;
   void free_balloon(HybridState& hs, const Kinematics& k, double v) const;
@@ -118,6 +159,7 @@ class Model {
   bool heavy_, radio_;
   Vec2 switch_;
   double string_, balloon_x_;
+  double length_scale_;  // for the contact problem's tolerances
 };
 
 }  // namespace whatnext

@@ -22,6 +22,17 @@ struct Books {
   double machine_mark = 0.0, balloon_v_mark = 0.0, balloon_e_mark = 0.0, drag_mark = 0.0;
 };
 
+// A guard that is zero where a smooth piece starts but known to turn negative at once, because a
+// contact was just released (or a force just appeared): g(t) ~ lead (t - t0)^order with lead < 0.
+// order 0: an ordinary guard. The integrators look for its next zero past the start; until the
+// guard leaves the band |g| <= floor (rounding) it counts as zero, so it fires only beyond it.
+struct GuardStart {
+  int order = 0;
+  double lead = 0.0;
+  double floor = 0.0;
+};
+constexpr int kGuardSlots = 12;
+
 struct Discrete {
   bool on_seesaw = false;      // sandbag on the arm (massless seesaw: once landed, for good)
   bool taut = false;           // rope straight
@@ -31,19 +42,26 @@ struct Discrete {
   bool latched = false;        // radio: lid latched open after lid_open, rope slack for good
   bool heavy = false;          // the seesaw has inertia (copied from the machine at the start)
   double parked_seesaw = 0.0;  // seesaw angle while nothing moves it (M1) [rad]
+  int side = 1;                // R's side of the line P-E, for the inverse closure phiS(phiL)
+  // On the rope's closure (lid swinging on a straight rope, something with inertia on the seesaw)
+  // the angle integrated is the seesaw's, or the lid's near the lid's dead centre (|k| large).
+  bool lid_chart = false;
+  std::array<GuardStart, kGuardSlots> armed{};  // for the smooth piece that starts here
   Books books;
 
-  Mode mode() const {
-    if (!on_seesaw) return taut ? Mode::M2 : Mode::M1;
+  Mode mode() const { return mode_of(on_seesaw, taut, lid_resting); }
+  static Mode mode_of(bool on, bool taut, bool resting) {
+    if (!on) return taut ? Mode::M2 : Mode::M1;
     if (!taut) return Mode::M3;
-    return lid_resting ? Mode::M5 : Mode::M4;
+    return resting ? Mode::M5 : Mode::M4;
   }
   // While the sandbag rides a taut rope, or a seesaw with inertia, its motion is polar (r, phiS);
   // otherwise Cartesian (on a massless seesaw with the rope slack that is free fall).
   bool polar() const { return on_seesaw && (taut || heavy); }
 };
 
-// Continuous state. Cartesian layout: x, h, x', h' of the sandbag; polar layout: r, phiS, r', phiS'.
+// Continuous state. Cartesian layout: x, h, x', h' of the sandbag; polar layout: r, phiS, r', phiS'
+// (r, phiL, r', phiL' in the lid chart, and likewise the seesaw slots below).
 // Then phiL, phiL' (unused while the lid is slaved to the seesaw or resting), then the balloon's
 // height and rate (unused while it is stuck under the lid); then a seesaw with inertia's angle and
 // rate while the sandbag is off it; then the energy dissipated so far by the damped pivot, the
@@ -77,6 +95,7 @@ struct Snapshot {
   double tension = 0;                         // rope tension [N]
   double sandbag_kinetic = 0, sandbag_potential = 0, lid_kinetic = 0, lid_potential = 0;
   double normal_force = 0;                    // arm on the sandbag [N] (0 when off the arm)
+  double box_reaction = 0;                    // box on the resting lid [N m] (0 when swinging)
   // Energy ledger (docs/extensions.md). Potentials: zero at the pivot level (sandbag, seesaw), at
   // the hinge (lid) and, for the balloon's net lift, at the hinge level.
   double seesaw_kinetic = 0, seesaw_potential = 0, balloon_kinetic = 0, balloon_potential = 0;
