@@ -5,6 +5,7 @@
 #include <gif_lib.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -142,6 +143,61 @@ AnimationOptions small_animation() {
   return o;
 }
 
+// A text box must not touch a polyline: checked by walking every segment in 0.05 mm steps.
+bool touches(const Box& b, const std::vector<std::pair<double, double>>& line) {
+  auto in = [&](double x, double y) { return x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1; };
+  if (line.size() == 1) return in(line[0].first, line[0].second);
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    const auto [ax, ay] = line[i - 1];
+    const auto [cx, cy] = line[i];
+    const int n = 1 + static_cast<int>(std::hypot(cx - ax, cy - ay) / 0.05);
+    for (int k = 0; k <= n; ++k) {
+      const double f = static_cast<double>(k) / n;
+      if (in(ax + f * (cx - ax), ay + f * (cy - ay))) return true;
+    }
+  }
+  return false;
+}
+bool overlaps(const Box& a, const Box& b) {
+  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+bool within(const Box& a, const Box& b) {
+  return a.x0 >= b.x0 && a.x1 <= b.x1 && a.y0 >= b.y0 && a.y1 <= b.y1;
+}
+
+// What every figure page promises: texts stay on the page and apart, legends and the event key stay
+// out of the axes, and what is inside the axes touches no curve.
+void check_layout(const PageLayout& page) {
+  SCOPED_TRACE(page.name);
+  const Box whole{0.0, 0.0, page.width, page.height};
+  for (std::size_t i = 0; i < page.texts.size(); ++i) {
+    const PlacedText& t = page.texts[i];
+    SCOPED_TRACE(t.text);
+    EXPECT_TRUE(within(t.box, whole));
+    for (std::size_t j = i + 1; j < page.texts.size(); ++j) {
+      EXPECT_FALSE(overlaps(t.box, page.texts[j].box)) << "overlaps " << page.texts[j].text;
+    }
+    for (const Box& r : page.axis_labels) EXPECT_FALSE(overlaps(t.box, r)) << "on the axis labels";
+    for (const Box& s : page.legend_samples) EXPECT_FALSE(overlaps(t.box, s)) << "on a legend sample";
+    bool in_axes = false;
+    for (const Box& a : page.axes) in_axes = in_axes || overlaps(t.box, a);
+    if (t.kind == PlacedText::legend || t.kind == PlacedText::key || t.kind == PlacedText::title) {
+      EXPECT_FALSE(in_axes) << "inside the axes";
+    }
+    if (in_axes) {
+      for (const Box& a : page.axes) {
+        if (overlaps(t.box, a)) {
+          EXPECT_TRUE(within(t.box, a)) << "across the axes' edge";
+        }
+      }
+      for (const auto& line : page.data) EXPECT_FALSE(touches(t.box, line)) << "hides data";
+    }
+  }
+  for (const Box& s : page.legend_samples) {
+    for (const Box& a : page.axes) EXPECT_FALSE(overlaps(s, a)) << "legend sample inside the axes";
+  }
+}
+
 }  // namespace
 
 TEST(VizPlots, FigureSetDecodesWithSizeAndContent) {
@@ -171,6 +227,132 @@ TEST(VizPlots, FigureSetDecodesWithSizeAndContent) {
   EXPECT_GT(angles.count({230, 120, 20}), 200);
   // Nothing half-written is left behind.
   for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().extension(), ".part");
+}
+
+TEST(VizPlots, TextNeverHidesDataOrOtherText) {
+  for (int n = 1; n <= 4; ++n) {
+    SCOPED_TRACE("example " + std::to_string(n));
+    const fs::path dir = fresh_dir("layout" + std::to_string(n));
+    FigureOptions opts;
+    opts.formats = {Format::png};
+    opts.title = "example " + std::to_string(n);
+    std::vector<PageLayout> pages;
+    const Scenario sc = example(n);
+    write_run_figures(record(sc), dir.string(), opts, &pages);
+    write_law_comparison(sc, dir.string(), opts, &pages);
+    write_integrator_comparison(sc, IntegratorKind::euler, 0.002, dir.string(), opts, &pages);
+    ASSERT_EQ(pages.size(), 9u);
+    int numbers = 0;
+    for (const PageLayout& page : pages) {
+      check_layout(page);
+      for (const PlacedText& t : page.texts) numbers += t.kind == PlacedText::event_number;
+    }
+    EXPECT_GT(numbers, 0);
+  }
+}
+
+TEST(VizPlots, TrajectoryIsToScaleOrSaysSo) {
+  bool stretched = false, scaled = false;
+  for (int n = 1; n <= 4; ++n) {
+    SCOPED_TRACE("example " + std::to_string(n));
+    FigureOptions opts;
+    opts.formats = {Format::png};
+    std::vector<PageLayout> pages;
+    write_run_figures(record(example(n)), fresh_dir("scale").string(), opts, &pages);
+    const PageLayout& tr = pages.at(2);
+    ASSERT_EQ(tr.name, "trajectory");
+    std::string title;
+    for (const PlacedText& t : tr.texts) {
+      if (t.kind == PlacedText::title) title = t.text;
+    }
+    const Box& a = tr.axes.at(0);
+    const Box& w = tr.windows.at(0);
+    const double mx = (w.x1 - w.x0) / (a.x1 - a.x0), my = (w.y1 - w.y0) / (a.y1 - a.y0);
+    if (title.find("(to scale)") != std::string::npos) {
+      EXPECT_NEAR(mx / my, 1.0, 1e-9);
+      scaled = true;
+    } else {
+      ASSERT_NE(title.find("not to scale"), std::string::npos) << title;
+      EXPECT_GT(std::max(mx / my, my / mx), 8.0);
+      stretched = true;
+    }
+  }
+  EXPECT_TRUE(scaled);     // examples 1 and 2
+  EXPECT_TRUE(stretched);  // 3 and 4: 2 km down, 30 m across
+}
+
+// The measured text widths are not too small: just right of every legend entry, key entry and
+// title the PNG is blank (in pixels: the Cairo drivers draw one pixel per point).
+TEST(VizPlots, TextIsNoWiderThanMeasured) {
+  const fs::path dir = fresh_dir("widths");
+  FigureOptions opts;
+  opts.formats = {Format::png};
+  opts.title = "example 4";
+  std::vector<PageLayout> pages;
+  write_run_figures(record(example(4)), dir.string(), opts, &pages);
+  int checked = 0;
+  for (const PageLayout& page : pages) {
+    SCOPED_TRACE(page.name);
+    cairo_surface_t* s = cairo_image_surface_create_from_png((dir / (page.name + ".png")).c_str());
+    ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
+    const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+    const unsigned char* data = cairo_image_surface_get_data(s);
+    const int stride = cairo_image_surface_get_stride(s);
+    const double px_per_mm = w / page.width;
+    for (const PlacedText& t : page.texts) {
+      if (t.kind != PlacedText::legend && t.kind != PlacedText::key && t.kind != PlacedText::title) continue;
+      SCOPED_TRACE(t.text);
+      // From 0.3 mm to 1.2 mm right of the box, over the middle of its height.
+      const int x0 = static_cast<int>(std::ceil((t.box.x1 + 0.3) * px_per_mm));
+      const int x1 = std::min(w - 1, static_cast<int>((t.box.x1 + 1.2) * px_per_mm));
+      const int y0 = static_cast<int>(h - (t.box.y1 - 0.2 * (t.box.y1 - t.box.y0)) * px_per_mm);
+      const int y1 = static_cast<int>(h - (t.box.y0 + 0.3 * (t.box.y1 - t.box.y0)) * px_per_mm);
+      int ink = 0;
+      for (int y = std::max(0, y0); y <= std::min(h - 1, y1); ++y) {
+        const auto* row = reinterpret_cast<const std::uint32_t*>(data + y * stride);
+        for (int x = x0; x <= x1; ++x) ink += (row[x] & 0xffffff) != 0xffffff;
+      }
+      EXPECT_EQ(ink, 0);
+      ++checked;
+    }
+    cairo_surface_destroy(s);
+  }
+  EXPECT_GT(checked, 20);
+}
+
+// PLplot's svg driver writes text as <text> elements (Cairo's SVG would draw outlines).
+TEST(VizPlots, SvgKeepsTextAsText) {
+  const fs::path dir = fresh_dir("svgtext");
+  FigureOptions opts;
+  opts.formats = {Format::svg};
+  write_run_figures(record(example(1)), dir.string(), opts);
+  struct Collect {
+    int depth = 0, elements = 0;
+    std::string text;
+  } c;
+  const std::string svg = slurp(dir / "angles.svg");
+  XML_Parser parser = XML_ParserCreate(nullptr);
+  XML_SetUserData(parser, &c);
+  XML_SetElementHandler(
+      parser,
+      [](void* u, const XML_Char* name, const XML_Char**) {
+        auto* c = static_cast<Collect*>(u);
+        if (std::string(name) == "text") ++c->depth, ++c->elements;
+      },
+      [](void* u, const XML_Char* name) {
+        auto* c = static_cast<Collect*>(u);
+        if (std::string(name) == "text") --c->depth, c->text += '|';
+      });
+  XML_SetCharacterDataHandler(parser, [](void* u, const XML_Char* s, int len) {
+    auto* c = static_cast<Collect*>(u);
+    if (c->depth > 0) c->text.append(s, static_cast<std::size_t>(len));
+  });
+  ASSERT_EQ(XML_Parse(parser, svg.data(), static_cast<int>(svg.size()), 1), XML_STATUS_OK);
+  XML_ParserFree(parser);
+  EXPECT_GT(c.elements, 20);
+  for (const char* words : {"seesaw and lid angles", "0.820 s lid open", "angle [deg]", "φ", "time t [s]"}) {
+    EXPECT_NE(c.text.find(words), std::string::npos) << words;
+  }
 }
 
 TEST(VizPlots, SameInputSameBytes) {

@@ -165,7 +165,7 @@ double follow_radius(const Recording& rec, double left_arm) {
   return 2.2 * std::max({m.seesaw_right_arm, left_arm, norm(m.hinge) + 2.0 * m.lid_half_length});
 }
 
-struct Box {
+struct Bounds {
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, h0 = x0, h1 = -x0;
   void add(Vec2 p) {
     if (!std::isfinite(p.x) || !std::isfinite(p.h)) return;
@@ -372,7 +372,7 @@ View make_view(const Recording& rec, int width, int height) {
   v.left_arm = std::max(m.seesaw_right_arm, 1.2 * landing_distance(rec.scenario));
   const double follow = follow_radius(rec, v.left_arm);
 
-  Box box;
+  Bounds box;
   const double g = ground_level(m), rl = m.lid_half_length;
   box.add({0.0, 0.0});
   box.add({-0.15, g});
