@@ -15,7 +15,10 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "whatnext/config.hpp"
+#include "whatnext/events.hpp"
 #include "whatnext/geometry.hpp"
 #include "whatnext/viz/animation.hpp"
 #include "whatnext/viz/plots.hpp"
@@ -438,8 +441,158 @@ TEST(VizAnimation, LongRunsAreFastForwardedBetweenEvents) {
   double screen = 0.0;
   double fastest = 0.0;
   for (const Frame& f : plan_frames(rec, o)) screen += f.delay, fastest = std::max(fastest, f.speed);
-  EXPECT_LT(screen, 25.0);  // slow motion throughout would take 200 s
+  EXPECT_LE(screen, o.max_length);  // slow motion throughout would take 200 s
   EXPECT_GT(fastest, 1.0 / o.slowmo);
+}
+
+TEST(VizAnimation, MaxLengthIsHonouredWithHeldFramesAndAll) {
+  Scenario radio_sc = build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"));
+  std::vector<Recording> runs{record(example(1)), record(example(3)), record(example(4)), record(radio_sc)};
+  for (const Recording& rec : runs) {
+    for (double max_length : {3.0, 10.0, 31.0}) {
+      AnimationOptions o;  // the defaults: 25 frames per second, 1.2 s held at each event
+      o.max_length = max_length;
+      double screen = 0.0;
+      for (const Frame& f : plan_frames(rec, o)) screen += f.delay;
+      // At most max_length, and not much shorter when the run needs the time.
+      EXPECT_LE(screen, max_length + 1e-9) << rec.t_end() << " s run";
+      const double natural = rec.t_end() * o.slowmo;
+      if (natural > max_length) {
+        EXPECT_GT(screen, 0.75 * max_length) << rec.t_end() << " s run";
+      }
+    }
+  }
+}
+
+TEST(VizAnimation, GifFrameRateIsCappedAtFifty) {
+  const Recording rec = record(example(2));
+  AnimationOptions o = small_animation();
+  const fs::path dir = fresh_dir("fps");
+  fs::create_directories(dir);
+  o.fps = 60;
+  EXPECT_THROW(write_animation(rec, (dir / "a.gif").string(), o), InputError);
+  EXPECT_FALSE(fs::exists(dir / "a.gif"));
+  o.fps = 50;
+  write_animation(rec, (dir / "b.gif").string(), o);
+  const Gif gif = read_gif(dir / "b.gif");
+  int shortest = 1000;
+  for (std::size_t i = 0; i + 1 < gif.delays_cs.size(); ++i) shortest = std::min(shortest, gif.delays_cs[i]);
+  EXPECT_EQ(shortest, 2);
+}
+
+TEST(VizAnimation, ProgressIsReportedForEveryFrame) {
+  const Recording rec = record(example(2));
+  const AnimationOptions o = small_animation();
+  const fs::path dir = fresh_dir("progress");
+  fs::create_directories(dir);
+  std::vector<int> seen;
+  int total_seen = 0;
+  const int n = write_animation(rec, (dir / "a.gif").string(), o, "", "--out", [&](int done, int total) {
+    seen.push_back(done);
+    total_seen = total;
+  });
+  ASSERT_EQ(static_cast<int>(seen.size()), n);
+  EXPECT_EQ(total_seen, n);
+  for (int i = 0; i < n; ++i) EXPECT_EQ(seen[i], i + 1);
+}
+
+// With the default height the machine fills the picture: over the run, what is drawn reaches
+// across nearly all of the drawing area, in both directions.
+TEST(VizAnimation, TheMachineFillsThePicture) {
+  Scenario radio_sc = build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"));
+  std::vector<Recording> runs{record(example(1)), record(example(2)), record(example(3)),
+                              record(example(4)), record(radio_sc)};
+  for (const Recording& rec : runs) {
+    SCOPED_TRACE(rec.t_end());
+    AnimationOptions o;
+    o.width = 400;
+    const View view = make_view(rec, o.width, 0);
+    EXPECT_GE(view.height, 0.45 * o.width);
+    EXPECT_LE(view.height, 1.25 * o.width);
+    int x0 = view.width, x1 = -1, y0 = view.height, y1 = -1;
+    const auto frames = plan_frames(rec, o);
+    for (std::size_t i = 0; i < frames.size(); i += std::max<std::size_t>(1, frames.size() / 12)) {
+      const Image img = render_frame(rec, view, frames[i], o);
+      for (int y = view.top; y < view.bottom; ++y) {
+        for (int x = 0; x < view.width; ++x) {
+          const Rgb c = img.at(x, y);
+          if (c.r == 255 && c.g == 255 && c.b == 255) continue;
+          x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+        }
+      }
+    }
+    EXPECT_GT(x1 - x0, 0.9 * view.width);
+    EXPECT_GT(y1 - y0, 0.85 * (view.bottom - view.top));
+  }
+}
+
+// At t = 0 in example 1 the rope has 0.43 m to spare: it must lie on the lid, not hang through it.
+TEST(VizAnimation, SlackRopeStaysOutOfTheBox) {
+  const Recording rec = record(example(1));
+  const Machine& m = rec.scenario.machine;
+  const View view = make_view(rec, 480, 0);
+  Frame f;
+  f.state = rec.at(0.0);
+  const Image img = render_frame(rec, view, f, small_animation());
+  const RopeGeometry geo(m);
+  const Vec2 edge = geo.lid_edge(f.state.phi_l);
+  const double wall = 0.02 * view.scale + 2.0;  // a wall's half width and antialiasing, in pixels
+  int rope = 0, inside = 0;
+  for (int y = view.top; y < view.bottom; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      // Back to metres: inside the walls and more than a rope's width under the lid.
+      const double px = (x - view.origin_x) / view.scale, ph = (view.origin_y - y) / view.scale;
+      if (px < m.hinge.x + wall / view.scale || px > m.hinge.x + 2.0 * m.lid_half_length - wall / view.scale) continue;
+      const double lid_h = m.hinge.h + (px - m.hinge.x) * (edge.h - m.hinge.h) / (edge.x - m.hinge.x);
+      if (ph > lid_h - wall / view.scale || ph < m.hinge.h - 2.0 * m.lid_half_length) continue;
+      ++inside;
+      const Rgb c = img.at(x, y);
+      rope += c.r == 51 && c.g == 42 && c.b == 51;  // the rope's colour
+    }
+  }
+  EXPECT_GT(inside, 1000);
+  EXPECT_EQ(rope, 0);
+}
+
+// With the radio, the lid latches at lid_open and the sandbag flies free; the seesaw keeps its
+// angle, and the arm the length it had (it does not shrink back to a stub).
+TEST(VizAnimation, ArmKeepsItsLengthAfterTheRadiosLatch) {
+  const Recording rec = record(build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml")));
+  const View view = make_view(rec, 480, 0);
+  double latch = -1.0;
+  for (const Event& e : rec.result.events) {
+    if (e.type == EventType::lid_open) latch = e.t;
+  }
+  ASSERT_GT(latch, 0.0);
+  Frame f;
+  f.t = latch + 0.2;
+  f.state = rec.at(f.t);
+  ASSERT_FALSE(f.state.on_seesaw);
+  const Image img = render_frame(rec, view, f, small_animation());
+  // 0.7 m out along the left arm: beyond the arm drawn before the landing (0.4 m), within the
+  // picture, and far short of where the sandbag was at the latch (2 m).
+  const Pixel p = to_pixel(view, polar(-0.7, f.state.phi_s));
+  ASSERT_TRUE(p.x >= 0 && p.x < view.width && p.y >= view.top && p.y < view.bottom);
+  const Rgb c = img.at(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
+  EXPECT_TRUE(same(c, Rgb{153, 85, 51})) << int(c.r) << "," << int(c.g) << "," << int(c.b);
+}
+
+// Every event tick on the time bar has its name under it (drawn in the events' red).
+TEST(VizAnimation, TimeBarNamesItsEvents) {
+  const Recording rec = record(example(4));
+  const View view = make_view(rec, 480, 0);
+  Frame f;
+  f.state = rec.at(0.0);
+  const Image img = render_frame(rec, view, f, small_animation());
+  const int label_row = static_cast<int>(view.bottom + 1.6 * view.font);
+  int red = 0;
+  for (int y = label_row; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      const Rgb c = img.at(x, y);
+      red += c.r > 150 && c.g < 110 && c.b < 110;  // the events' red, antialiased
+    }
+  }
+  EXPECT_GT(red, 50);
 }
 
 TEST(VizAnimation, GifDecodesAndShowsTheSandbagWhereTheSimulationPutsIt) {
@@ -464,14 +617,15 @@ TEST(VizAnimation, GifDecodesAndShowsTheSandbagWhereTheSimulationPutsIt) {
   for (const Frame& f : frames) planned += f.delay;
   EXPECT_NEAR(total_cs, planned * 100.0, 1.0);
 
-  // Probe: one frame while falling, one on the seesaw after the impact, one held at an event.
+  // Probe: one frame while falling, one on the seesaw, one held at the landing (later the sandbag
+  // slides down the endless arm out of the picture).
   const View view = make_view(rec, o.width, o.height);
   int probed = 0;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const Frame& f = frames[i];
     const bool pick = (f.event_group < 0 && f.t > 0.25 && probed == 0) ||
-                      (f.event_group < 0 && f.t > 0.65 && probed == 1) ||
-                      (f.event_group >= 0 && f.t > 0.8 && probed == 2);
+                      (f.event_group >= 0 && f.t > 0.4 && probed == 1) ||
+                      (f.event_group < 0 && f.t > 0.6 && probed == 2);
     if (!pick) continue;
     const Pixel p = to_pixel(view, {f.state.x, f.state.h});
     const int x = static_cast<int>(p.x), y = static_cast<int>(p.y);
@@ -547,4 +701,23 @@ TEST(VizCli, RunWritesPlotsAndAnimationAndRejectsBadOptions) {
   const std::string bad2 = cli + " plot --example 2 --out " + dir.string() + " --compare nothing 2> /dev/null";
   EXPECT_EQ(WEXITSTATUS(std::system(bad2.c_str())), 2);
   EXPECT_FALSE(fs::exists(dir / "x.avi"));
+}
+
+TEST(VizCli, AnimateReportsProgressAndCapsTheGifFrameRate) {
+  const fs::path dir = fresh_dir("cli_animate");
+  fs::create_directories(dir);
+  const std::string cli = WHATNEXT_CLI;
+  const std::string fast = cli + " animate --example 2 --fps 60 --out " + (dir / "fast.gif").string() +
+                           " 2> " + (dir / "fast.err").string();
+  EXPECT_EQ(WEXITSTATUS(std::system(fast.c_str())), 2);
+  EXPECT_FALSE(fs::exists(dir / "fast.gif"));
+  EXPECT_NE(slurp(dir / "fast.err").find("--fps"), std::string::npos);
+  // Not a terminal: a line every 100 frames and one at the end.
+  const std::string ok = cli + " animate --example 2 --width 200 --out " + (dir / "ok.gif").string() +
+                         " > " + (dir / "ok.out").string() + " 2> " + (dir / "ok.err").string();
+  ASSERT_EQ(std::system(ok.c_str()), 0);
+  const std::string err = slurp(dir / "ok.err"), out = slurp(dir / "ok.out");
+  const int frames = std::stoi(out.substr(out.find(": ") + 2));
+  EXPECT_NE(err.find(fmt::format("animate: frame {} of {}\n", frames, frames)), std::string::npos) << err;
+  EXPECT_NE(err.find(fmt::format("animate: frame 100 of {}\n", frames)), std::string::npos) << err;
 }

@@ -27,6 +27,7 @@
 
 #include "whatnext/config.hpp"
 #include "whatnext/events.hpp"
+#include "placement.hpp"
 
 namespace whatnext::viz {
 
@@ -174,23 +175,8 @@ Box grow(Box b, double d) { return {b.x0 - d, b.y0 - d, b.x1 + d, b.y1 + d}; }
 using Point = std::pair<double, double>;
 using Polyline = std::vector<Point>;
 
-// Does the segment a-b cross the box? (Liang-Barsky clipping.)
 bool segment_hits(const Box& b, Point a, Point c) {
-  double t0 = 0.0, t1 = 1.0;
-  const double dx = c.first - a.first, dy = c.second - a.second;
-  const double p[4] = {-dx, dx, -dy, dy};
-  const double q[4] = {a.first - b.x0, b.x1 - a.first, a.second - b.y0, b.y1 - a.second};
-  for (int i = 0; i < 4; ++i) {
-    if (p[i] == 0.0) {
-      if (q[i] < 0.0) return false;
-    } else {
-      const double r = q[i] / p[i];
-      if (p[i] < 0.0) t0 = std::max(t0, r);
-      else t1 = std::min(t1, r);
-      if (t0 > t1) return false;
-    }
-  }
-  return true;
+  return placement::segment_crosses_box(b.x0, b.y0, b.x1, b.y1, a.first, a.second, c.first, c.second);
 }
 
 bool hits_data(const Box& b, const std::vector<Polyline>& data) {
@@ -262,23 +248,6 @@ void data_range(const Panel& p, bool along_x, double& lo, double& hi) {
   }
   if (!(lo <= hi)) lo = 0.0, hi = 1.0;
   if (hi - lo < 1e-9 * std::max(1.0, std::fabs(hi))) lo -= 0.5, hi += 0.5;
-}
-
-// Positions [mm] for labels of widths w wanting centres c (sorted), in one row between lo and hi,
-// at least gap apart; false if they do not fit.
-bool pack_row(const std::vector<double>& c, const std::vector<double>& w, double lo, double hi,
-              double gap, std::vector<double>& pos) {
-  const std::size_t n = c.size();
-  pos.assign(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    pos[i] = std::max(c[i], lo + 0.5 * w[i]);
-    if (i > 0) pos[i] = std::max(pos[i], pos[i - 1] + 0.5 * (w[i - 1] + w[i]) + gap);
-  }
-  for (std::size_t k = n; k-- > 0;) {
-    pos[k] = std::min(pos[k], hi - 0.5 * w[k]);
-    if (k + 1 < n) pos[k] = std::min(pos[k], pos[k + 1] - 0.5 * (w[k] + w[k + 1]) - gap);
-  }
-  return n == 0 || pos[0] >= lo + 0.5 * w[0] - 1e-9;
 }
 
 // Entries of the given widths in a table as wide as fits between x0 and x1: row by row, in as many
@@ -387,7 +356,7 @@ PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_b
         w.push_back(tag_w[i]);
         tag_members[row].push_back(i);
       }
-      ok = pack_row(c, w, tag_lo, tag_hi, 0.5 * tag_h, tag_pos[row]);
+      ok = placement::pack_row(c, w, tag_lo, tag_hi, 0.5 * tag_h, tag_pos[row]);
     }
     if (ok) break;
   }
