@@ -391,7 +391,7 @@ PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_b
   // Room above the highest reference level for its name.
   const double line_h = 0.7 * ch;
   for (const auto& l : p.hlines) {
-    const double k = 1.9 * line_h / ah;
+    const double k = (1.6 * line_h + 0.7 * ch) / ah;
     if (wy1 - l.first < k * (wy1 - wy0)) wy1 = (l.first - k * wy0) / (1.0 - k);
   }
   g.wx0 = wx0, g.wx1 = wx1, g.wy0 = wy0, g.wy1 = wy1;
@@ -692,6 +692,8 @@ void draw_panel(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) 
   viewport(pg, g.axes);
   plwind(g.wx0, g.wx1, g.wy0, g.wy1);
   plschr(ch, 1.0);
+  plsmaj(0.5 * ch, 1.0);  // tick lengths [mm], short enough to stay clear of texts inside the axes
+  plsmin(0.3 * ch, 1.0);
   plcol0(kLightGrey);
   plwidth(0.5);
   plbox("g", 0.0, 0, "g", 0.0, 0);
