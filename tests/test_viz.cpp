@@ -31,9 +31,11 @@ namespace {
 
 Scenario example(int n) { return build_scenario(example_config(n)); }
 
+// An empty folder of the given name under the temporary directory.
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("whatnext_test_viz_" + name);
   fs::remove_all(dir);
+  fs::create_directories(dir);
   return dir;
 }
 
@@ -468,7 +470,6 @@ TEST(VizAnimation, GifFrameRateIsCappedAtFifty) {
   const Recording rec = record(example(2));
   AnimationOptions o = small_animation();
   const fs::path dir = fresh_dir("fps");
-  fs::create_directories(dir);
   o.fps = 60;
   EXPECT_THROW(write_animation(rec, (dir / "a.gif").string(), o), InputError);
   EXPECT_FALSE(fs::exists(dir / "a.gif"));
@@ -484,7 +485,6 @@ TEST(VizAnimation, ProgressIsReportedForEveryFrame) {
   const Recording rec = record(example(2));
   const AnimationOptions o = small_animation();
   const fs::path dir = fresh_dir("progress");
-  fs::create_directories(dir);
   std::vector<int> seen;
   int total_seen = 0;
   const int n = write_animation(rec, (dir / "a.gif").string(), o, "", "--out", [&](int done, int total) {
@@ -599,7 +599,6 @@ TEST(VizAnimation, GifDecodesAndShowsTheSandbagWhereTheSimulationPutsIt) {
   const Recording rec = record(example(1));
   const AnimationOptions o = small_animation();
   const fs::path dir = fresh_dir("gif");
-  fs::create_directories(dir);
   const fs::path path = dir / "a.gif";
   const int n = write_animation(rec, path.string(), o);
   const auto frames = plan_frames(rec, o);
@@ -648,7 +647,6 @@ TEST(VizAnimation, GifIsDeterministicAndBadOutputsFailCleanly) {
   o.width = 120;
   o.height = 90;
   const fs::path dir = fresh_dir("gif_det");
-  fs::create_directories(dir);
   write_animation(rec, (dir / "a.gif").string(), o);
   write_animation(rec, (dir / "b.gif").string(), o);
   EXPECT_EQ(slurp(dir / "a.gif"), slurp(dir / "b.gif"));
@@ -705,7 +703,6 @@ TEST(VizCli, RunWritesPlotsAndAnimationAndRejectsBadOptions) {
 
 TEST(VizCli, AnimateReportsProgressAndCapsTheGifFrameRate) {
   const fs::path dir = fresh_dir("cli_animate");
-  fs::create_directories(dir);
   const std::string cli = WHATNEXT_CLI;
   const std::string fast = cli + " animate --example 2 --fps 60 --out " + (dir / "fast.gif").string() +
                            " 2> " + (dir / "fast.err").string();

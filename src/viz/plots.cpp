@@ -960,6 +960,19 @@ Curve event_points(const Recording& rec, bool lid, int colour) {
   return c;
 }
 
+Page make_page(std::string name, int width, int height, int nx, int ny, std::vector<Panel> panels,
+               std::vector<EventGroup> key = {}) {
+  Page page;
+  page.name = std::move(name);
+  page.width = width;
+  page.height = height;
+  page.nx = nx;
+  page.ny = ny;
+  page.panels = std::move(panels);
+  page.key = std::move(key);
+  return page;
+}
+
 }  // namespace
 
 std::string_view extension(Format f) {
@@ -1014,24 +1027,12 @@ std::vector<std::string> write_run_figures(const Recording& rec, const std::stri
                                       "angles",    "balloon",   "energy"};
   std::vector<std::string> written;
   for (std::size_t i = 0; i < panels.size(); ++i) {
-    Page page;
-    page.name = names[i];
-    page.width = opts.width;
-    page.height = opts.height;
-    page.panels = {panels[i]};
-    page.key = key;
-    auto w = write_page(dir, page, opts, layouts);
+    auto w = write_page(dir, make_page(names[i], opts.width, opts.height, 1, 1, {panels[i]}, key),
+                        opts, layouts);
     written.insert(written.end(), w.begin(), w.end());
   }
-  Page overview;
-  overview.name = "overview";
-  overview.width = opts.width * 9 / 5;
-  overview.height = opts.height * 3 / 2;
-  overview.nx = 3;
-  overview.ny = 2;
+  Page overview = make_page("overview", opts.width * 9 / 5, opts.height * 3 / 2, 3, 2, panels, key);
   overview.text_scale = 1.35;
-  overview.panels = panels;
-  overview.key = key;
   auto w = write_page(dir, overview, opts, layouts);
   written.insert(written.end(), w.begin(), w.end());
   return written;
@@ -1073,13 +1074,8 @@ std::vector<std::string> write_law_comparison(const Scenario& scenario, const st
     ++i;
   }
   for (Panel* p : {&ps, &pl}) p->x1 = t_end * 1.04;
-  Page page;
-  page.name = "compare_laws";
-  page.width = opts.width;
-  page.height = opts.height * 8 / 5;
-  page.ny = 2;
-  page.panels = {ps, pl};
-  return write_page(dir, page, opts, layouts);
+  return write_page(dir, make_page("compare_laws", opts.width, opts.height * 8 / 5, 1, 2, {ps, pl}),
+                    opts, layouts);
 }
 
 std::vector<std::string> write_integrator_comparison(const Scenario& scenario,
@@ -1126,14 +1122,9 @@ std::vector<std::string> write_integrator_comparison(const Scenario& scenario,
   en.curves.clear();
   en.curves.push_back(total_energy(ra, "adaptive", kBlack));
   en.curves.push_back(total_energy(rf, fixed_name, kRed, 2, 2.0));
-  Page page;
-  page.name = "compare_integrator";
-  page.width = opts.width;
-  page.height = opts.height * 8 / 5;
-  page.ny = 2;
-  page.panels = {ang, en};
-  page.key = ang.events;
-  return write_page(dir, page, opts, layouts);
+  return write_page(dir, make_page("compare_integrator", opts.width, opts.height * 8 / 5, 1, 2,
+                                   {ang, en}, ang.events),
+                    opts, layouts);
 }
 
 }  // namespace whatnext::viz
