@@ -1,4 +1,7 @@
 // `whatnext animate`: the machine to scale as an animated GIF (or MP4 through ffmpeg).
+#include <unistd.h>
+
+#include <cstdio>
 #include <memory>
 
 #include <fmt/format.h>
@@ -24,12 +27,14 @@ void register_animate(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", opts->out, "FILE.gif, or FILE.mp4 (needs ffmpeg on PATH)")->required();
   cmd->add_option("--slowmo", opts->anim.slowmo, "one simulated second lasts this many seconds")
       ->capture_default_str();
-  cmd->add_option("--fps", opts->anim.fps, "frames per second")->capture_default_str();
+  cmd->add_option("--fps", opts->anim.fps,
+                  "frames per second (a GIF: at most 50, viewers slow down shorter frames)")
+      ->capture_default_str();
   cmd->add_option("--width", opts->anim.width, "[px]")->capture_default_str();
-  cmd->add_option("--height", opts->anim.height, "[px]")->capture_default_str();
+  cmd->add_option("--height", opts->anim.height, "[px] (default: as high as the machine needs)");
   cmd->add_option("--hold", opts->anim.hold, "seconds each event's frame is held")->capture_default_str();
   cmd->add_option("--max-length", opts->anim.max_length,
-                  "seconds on screen; longer runs are fast-forwarded between events")
+                  "seconds on screen at most; longer runs are fast-forwarded between events")
       ->capture_default_str();
   cmd->add_option("--dump-frames", opts->dump,
                   "also write the held frames and one frame per second as PNG into this directory");
@@ -38,7 +43,19 @@ void register_animate(CLI::App& app, int& exit_code) {
     const LoadedInput in = load_input(opts->input);
     viz::validate(opts->anim);
     viz::is_mp4(opts->out);  // rejects other extensions before the run
-    const int frames = viz::write_animation(viz::record(in.scenario), opts->out, opts->anim, opts->dump);
+    // Progress on stderr: a counter on a terminal, otherwise a line every 100 frames.
+    const bool tty = ::isatty(STDERR_FILENO) != 0;
+    auto progress = [&](int done, int total) {
+      if (opts->quiet) return;
+      if (tty) {
+        std::fprintf(stderr, "\ranimate: frame %d of %d", done, total);
+        if (done == total) std::fputc('\n', stderr);
+      } else if (done % 100 == 0 || done == total) {
+        std::fprintf(stderr, "animate: frame %d of %d\n", done, total);
+      }
+    };
+    const int frames = viz::write_animation(viz::record(in.scenario), opts->out, opts->anim,
+                                            opts->dump, "--out", progress);
     if (!opts->quiet) fmt::print("{}: {} frames\n", opts->out, frames);
     exit_code = 0;
   });

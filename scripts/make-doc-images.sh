@@ -1,7 +1,8 @@
 #!/bin/sh
-# Regenerates the pictures in docs/img/ that docs/pictures.md and the README show: example 1's
-# figures, the comparisons of impact laws and integrators, and a small animation of example 1
-# (reduced size and frame rate so that it stays well under 1.5 MB).
+# Regenerates the pictures in docs/img/ that the README, docs/pictures.md and docs/explore.md show:
+# example 1's figures, the comparisons of impact laws and integrators, the heat map of a sweep
+# around example 2, and small animations of examples 1 and 3 (reduced width and frame rate so that
+# each stays well under 1.5 MB; their height fits the machine).
 # Usage: scripts/make-doc-images.sh [path/to/whatnext]   (default: build/whatnext)
 set -eu
 cd "$(dirname "$0")/.."
@@ -23,7 +24,9 @@ cp "$TMP/ex1/energy.png" "$IMG/example1-energy.png"
 cp "$TMP/ex2/compare_laws.png" "$IMG/example2-compare-laws.png"
 "$WN" plot --example 1 --compare integrator --integrator euler --step 0.002 --out "$TMP/ex1e" --format png -q
 cp "$TMP/ex1e/compare_integrator.png" "$IMG/example1-compare-euler.png"
-"$WN" animate --example 1 --out "$IMG/example1.gif" --width 480 --height 360 --fps 15 -q
-"$WN" animate --example 3 --out "$IMG/example3.gif" --width 400 --height 300 --fps 10 --max-length 14 -q
+"$WN" sweep --example 2 --vary geometry.rope_length=0.62:1.0:40 --vary masses.sandbag=0.2:2.0:40 \
+  --out "$TMP/sweep.csv" --heatmap "$IMG/example2-sweep-heatmap.png" --heatmap-value lid_open > /dev/null
+"$WN" animate --example 1 --out "$IMG/example1.gif" --width 480 --fps 15 -q
+"$WN" animate --example 3 --out "$IMG/example3.gif" --width 400 --fps 10 --max-length 14 -q
 
 ls -l "$IMG"

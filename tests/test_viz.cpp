@@ -5,6 +5,7 @@
 #include <gif_lib.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -14,7 +15,10 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "whatnext/config.hpp"
+#include "whatnext/events.hpp"
 #include "whatnext/geometry.hpp"
 #include "whatnext/viz/animation.hpp"
 #include "whatnext/viz/plots.hpp"
@@ -27,9 +31,11 @@ namespace {
 
 Scenario example(int n) { return build_scenario(example_config(n)); }
 
+// An empty folder of the given name under the temporary directory.
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("whatnext_test_viz_" + name);
   fs::remove_all(dir);
+  fs::create_directories(dir);
   return dir;
 }
 
@@ -142,6 +148,61 @@ AnimationOptions small_animation() {
   return o;
 }
 
+// A text box must not touch a polyline: checked by walking every segment in 0.05 mm steps.
+bool touches(const Box& b, const std::vector<std::pair<double, double>>& line) {
+  auto in = [&](double x, double y) { return x >= b.x0 && x <= b.x1 && y >= b.y0 && y <= b.y1; };
+  if (line.size() == 1) return in(line[0].first, line[0].second);
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    const auto [ax, ay] = line[i - 1];
+    const auto [cx, cy] = line[i];
+    const int n = 1 + static_cast<int>(std::hypot(cx - ax, cy - ay) / 0.05);
+    for (int k = 0; k <= n; ++k) {
+      const double f = static_cast<double>(k) / n;
+      if (in(ax + f * (cx - ax), ay + f * (cy - ay))) return true;
+    }
+  }
+  return false;
+}
+bool overlaps(const Box& a, const Box& b) {
+  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+bool within(const Box& a, const Box& b) {
+  return a.x0 >= b.x0 && a.x1 <= b.x1 && a.y0 >= b.y0 && a.y1 <= b.y1;
+}
+
+// What every figure page promises: texts stay on the page and apart, legends and the event key stay
+// out of the axes, and what is inside the axes touches no curve.
+void check_layout(const PageLayout& page) {
+  SCOPED_TRACE(page.name);
+  const Box whole{0.0, 0.0, page.width, page.height};
+  for (std::size_t i = 0; i < page.texts.size(); ++i) {
+    const PlacedText& t = page.texts[i];
+    SCOPED_TRACE(t.text);
+    EXPECT_TRUE(within(t.box, whole));
+    for (std::size_t j = i + 1; j < page.texts.size(); ++j) {
+      EXPECT_FALSE(overlaps(t.box, page.texts[j].box)) << "overlaps " << page.texts[j].text;
+    }
+    for (const Box& r : page.axis_labels) EXPECT_FALSE(overlaps(t.box, r)) << "on the axis labels";
+    for (const Box& s : page.legend_samples) EXPECT_FALSE(overlaps(t.box, s)) << "on a legend sample";
+    bool in_axes = false;
+    for (const Box& a : page.axes) in_axes = in_axes || overlaps(t.box, a);
+    if (t.kind == PlacedText::legend || t.kind == PlacedText::key || t.kind == PlacedText::title) {
+      EXPECT_FALSE(in_axes) << "inside the axes";
+    }
+    if (in_axes) {
+      for (const Box& a : page.axes) {
+        if (overlaps(t.box, a)) {
+          EXPECT_TRUE(within(t.box, a)) << "across the axes' edge";
+        }
+      }
+      for (const auto& line : page.data) EXPECT_FALSE(touches(t.box, line)) << "hides data";
+    }
+  }
+  for (const Box& s : page.legend_samples) {
+    for (const Box& a : page.axes) EXPECT_FALSE(overlaps(s, a)) << "legend sample inside the axes";
+  }
+}
+
 }  // namespace
 
 TEST(VizPlots, FigureSetDecodesWithSizeAndContent) {
@@ -171,6 +232,132 @@ TEST(VizPlots, FigureSetDecodesWithSizeAndContent) {
   EXPECT_GT(angles.count({230, 120, 20}), 200);
   // Nothing half-written is left behind.
   for (const auto& e : fs::directory_iterator(dir)) EXPECT_NE(e.path().extension(), ".part");
+}
+
+TEST(VizPlots, TextNeverHidesDataOrOtherText) {
+  for (int n = 1; n <= 4; ++n) {
+    SCOPED_TRACE("example " + std::to_string(n));
+    const fs::path dir = fresh_dir("layout" + std::to_string(n));
+    FigureOptions opts;
+    opts.formats = {Format::png};
+    opts.title = "example " + std::to_string(n);
+    std::vector<PageLayout> pages;
+    const Scenario sc = example(n);
+    write_run_figures(record(sc), dir.string(), opts, &pages);
+    write_law_comparison(sc, dir.string(), opts, &pages);
+    write_integrator_comparison(sc, IntegratorKind::euler, 0.002, dir.string(), opts, &pages);
+    ASSERT_EQ(pages.size(), 9u);
+    int numbers = 0;
+    for (const PageLayout& page : pages) {
+      check_layout(page);
+      for (const PlacedText& t : page.texts) numbers += t.kind == PlacedText::event_number;
+    }
+    EXPECT_GT(numbers, 0);
+  }
+}
+
+TEST(VizPlots, TrajectoryIsToScaleOrSaysSo) {
+  bool stretched = false, scaled = false;
+  for (int n = 1; n <= 4; ++n) {
+    SCOPED_TRACE("example " + std::to_string(n));
+    FigureOptions opts;
+    opts.formats = {Format::png};
+    std::vector<PageLayout> pages;
+    write_run_figures(record(example(n)), fresh_dir("scale").string(), opts, &pages);
+    const PageLayout& tr = pages.at(2);
+    ASSERT_EQ(tr.name, "trajectory");
+    std::string title;
+    for (const PlacedText& t : tr.texts) {
+      if (t.kind == PlacedText::title) title = t.text;
+    }
+    const Box& a = tr.axes.at(0);
+    const Box& w = tr.windows.at(0);
+    const double mx = (w.x1 - w.x0) / (a.x1 - a.x0), my = (w.y1 - w.y0) / (a.y1 - a.y0);
+    if (title.find("(to scale)") != std::string::npos) {
+      EXPECT_NEAR(mx / my, 1.0, 1e-9);
+      scaled = true;
+    } else {
+      ASSERT_NE(title.find("not to scale"), std::string::npos) << title;
+      EXPECT_GT(std::max(mx / my, my / mx), 8.0);
+      stretched = true;
+    }
+  }
+  EXPECT_TRUE(scaled);     // examples 1 and 2
+  EXPECT_TRUE(stretched);  // 3 and 4: 2 km down, 30 m across
+}
+
+// The measured text widths are not too small: just right of every legend entry, key entry and
+// title the PNG is blank (in pixels: the Cairo drivers draw one pixel per point).
+TEST(VizPlots, TextIsNoWiderThanMeasured) {
+  const fs::path dir = fresh_dir("widths");
+  FigureOptions opts;
+  opts.formats = {Format::png};
+  opts.title = "example 4";
+  std::vector<PageLayout> pages;
+  write_run_figures(record(example(4)), dir.string(), opts, &pages);
+  int checked = 0;
+  for (const PageLayout& page : pages) {
+    SCOPED_TRACE(page.name);
+    cairo_surface_t* s = cairo_image_surface_create_from_png((dir / (page.name + ".png")).c_str());
+    ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
+    const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+    const unsigned char* data = cairo_image_surface_get_data(s);
+    const int stride = cairo_image_surface_get_stride(s);
+    const double px_per_mm = w / page.width;
+    for (const PlacedText& t : page.texts) {
+      if (t.kind != PlacedText::legend && t.kind != PlacedText::key && t.kind != PlacedText::title) continue;
+      SCOPED_TRACE(t.text);
+      // From 0.3 mm to 1.2 mm right of the box, over the middle of its height.
+      const int x0 = static_cast<int>(std::ceil((t.box.x1 + 0.3) * px_per_mm));
+      const int x1 = std::min(w - 1, static_cast<int>((t.box.x1 + 1.2) * px_per_mm));
+      const int y0 = static_cast<int>(h - (t.box.y1 - 0.2 * (t.box.y1 - t.box.y0)) * px_per_mm);
+      const int y1 = static_cast<int>(h - (t.box.y0 + 0.3 * (t.box.y1 - t.box.y0)) * px_per_mm);
+      int ink = 0;
+      for (int y = std::max(0, y0); y <= std::min(h - 1, y1); ++y) {
+        const auto* row = reinterpret_cast<const std::uint32_t*>(data + y * stride);
+        for (int x = x0; x <= x1; ++x) ink += (row[x] & 0xffffff) != 0xffffff;
+      }
+      EXPECT_EQ(ink, 0);
+      ++checked;
+    }
+    cairo_surface_destroy(s);
+  }
+  EXPECT_GT(checked, 20);
+}
+
+// PLplot's svg driver writes text as <text> elements (Cairo's SVG would draw outlines).
+TEST(VizPlots, SvgKeepsTextAsText) {
+  const fs::path dir = fresh_dir("svgtext");
+  FigureOptions opts;
+  opts.formats = {Format::svg};
+  write_run_figures(record(example(1)), dir.string(), opts);
+  struct Collect {
+    int depth = 0, elements = 0;
+    std::string text;
+  } c;
+  const std::string svg = slurp(dir / "angles.svg");
+  XML_Parser parser = XML_ParserCreate(nullptr);
+  XML_SetUserData(parser, &c);
+  XML_SetElementHandler(
+      parser,
+      [](void* u, const XML_Char* name, const XML_Char**) {
+        auto* c = static_cast<Collect*>(u);
+        if (std::string(name) == "text") ++c->depth, ++c->elements;
+      },
+      [](void* u, const XML_Char* name) {
+        auto* c = static_cast<Collect*>(u);
+        if (std::string(name) == "text") --c->depth, c->text += '|';
+      });
+  XML_SetCharacterDataHandler(parser, [](void* u, const XML_Char* s, int len) {
+    auto* c = static_cast<Collect*>(u);
+    if (c->depth > 0) c->text.append(s, static_cast<std::size_t>(len));
+  });
+  ASSERT_EQ(XML_Parse(parser, svg.data(), static_cast<int>(svg.size()), 1), XML_STATUS_OK);
+  XML_ParserFree(parser);
+  EXPECT_GT(c.elements, 20);
+  for (const char* words : {"seesaw and lid angles", "0.820 s lid open", "angle [deg]", "φ", "time t [s]"}) {
+    EXPECT_NE(c.text.find(words), std::string::npos) << words;
+  }
 }
 
 TEST(VizPlots, SameInputSameBytes) {
@@ -256,15 +443,162 @@ TEST(VizAnimation, LongRunsAreFastForwardedBetweenEvents) {
   double screen = 0.0;
   double fastest = 0.0;
   for (const Frame& f : plan_frames(rec, o)) screen += f.delay, fastest = std::max(fastest, f.speed);
-  EXPECT_LT(screen, 25.0);  // slow motion throughout would take 200 s
+  EXPECT_LE(screen, o.max_length);  // slow motion throughout would take 200 s
   EXPECT_GT(fastest, 1.0 / o.slowmo);
+}
+
+TEST(VizAnimation, MaxLengthIsHonouredWithHeldFramesAndAll) {
+  Scenario radio_sc = build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"));
+  std::vector<Recording> runs{record(example(1)), record(example(3)), record(example(4)), record(radio_sc)};
+  for (const Recording& rec : runs) {
+    for (double max_length : {3.0, 10.0, 31.0}) {
+      AnimationOptions o;  // the defaults: 25 frames per second, 1.2 s held at each event
+      o.max_length = max_length;
+      double screen = 0.0;
+      for (const Frame& f : plan_frames(rec, o)) screen += f.delay;
+      // At most max_length, and not much shorter when the run needs the time.
+      EXPECT_LE(screen, max_length + 1e-9) << rec.t_end() << " s run";
+      const double natural = rec.t_end() * o.slowmo;
+      if (natural > max_length) {
+        EXPECT_GT(screen, 0.75 * max_length) << rec.t_end() << " s run";
+      }
+    }
+  }
+}
+
+TEST(VizAnimation, GifFrameRateIsCappedAtFifty) {
+  const Recording rec = record(example(2));
+  AnimationOptions o = small_animation();
+  const fs::path dir = fresh_dir("fps");
+  o.fps = 60;
+  EXPECT_THROW(write_animation(rec, (dir / "a.gif").string(), o), InputError);
+  EXPECT_FALSE(fs::exists(dir / "a.gif"));
+  o.fps = 50;
+  write_animation(rec, (dir / "b.gif").string(), o);
+  const Gif gif = read_gif(dir / "b.gif");
+  int shortest = 1000;
+  for (std::size_t i = 0; i + 1 < gif.delays_cs.size(); ++i) shortest = std::min(shortest, gif.delays_cs[i]);
+  EXPECT_EQ(shortest, 2);
+}
+
+TEST(VizAnimation, ProgressIsReportedForEveryFrame) {
+  const Recording rec = record(example(2));
+  const AnimationOptions o = small_animation();
+  const fs::path dir = fresh_dir("progress");
+  std::vector<int> seen;
+  int total_seen = 0;
+  const int n = write_animation(rec, (dir / "a.gif").string(), o, "", "--out", [&](int done, int total) {
+    seen.push_back(done);
+    total_seen = total;
+  });
+  ASSERT_EQ(static_cast<int>(seen.size()), n);
+  EXPECT_EQ(total_seen, n);
+  for (int i = 0; i < n; ++i) EXPECT_EQ(seen[i], i + 1);
+}
+
+// With the default height the machine fills the picture: over the run, what is drawn reaches
+// across nearly all of the drawing area, in both directions.
+TEST(VizAnimation, TheMachineFillsThePicture) {
+  Scenario radio_sc = build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"));
+  std::vector<Recording> runs{record(example(1)), record(example(2)), record(example(3)),
+                              record(example(4)), record(radio_sc)};
+  for (const Recording& rec : runs) {
+    SCOPED_TRACE(rec.t_end());
+    AnimationOptions o;
+    o.width = 400;
+    const View view = make_view(rec, o.width, 0);
+    EXPECT_GE(view.height, 0.45 * o.width);
+    EXPECT_LE(view.height, 1.25 * o.width);
+    int x0 = view.width, x1 = -1, y0 = view.height, y1 = -1;
+    const auto frames = plan_frames(rec, o);
+    for (std::size_t i = 0; i < frames.size(); i += std::max<std::size_t>(1, frames.size() / 12)) {
+      const Image img = render_frame(rec, view, frames[i], o);
+      for (int y = view.top; y < view.bottom; ++y) {
+        for (int x = 0; x < view.width; ++x) {
+          const Rgb c = img.at(x, y);
+          if (c.r == 255 && c.g == 255 && c.b == 255) continue;
+          x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+        }
+      }
+    }
+    EXPECT_GT(x1 - x0, 0.9 * view.width);
+    EXPECT_GT(y1 - y0, 0.85 * (view.bottom - view.top));
+  }
+}
+
+// At t = 0 in example 1 the rope has 0.43 m to spare: it must lie on the lid, not hang through it.
+TEST(VizAnimation, SlackRopeStaysOutOfTheBox) {
+  const Recording rec = record(example(1));
+  const Machine& m = rec.scenario.machine;
+  const View view = make_view(rec, 480, 0);
+  Frame f;
+  f.state = rec.at(0.0);
+  const Image img = render_frame(rec, view, f, small_animation());
+  const RopeGeometry geo(m);
+  const Vec2 edge = geo.lid_edge(f.state.phi_l);
+  const double wall = 0.02 * view.scale + 2.0;  // a wall's half width and antialiasing, in pixels
+  int rope = 0, inside = 0;
+  for (int y = view.top; y < view.bottom; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      // Back to metres: inside the walls and more than a rope's width under the lid.
+      const double px = (x - view.origin_x) / view.scale, ph = (view.origin_y - y) / view.scale;
+      if (px < m.hinge.x + wall / view.scale || px > m.hinge.x + 2.0 * m.lid_half_length - wall / view.scale) continue;
+      const double lid_h = m.hinge.h + (px - m.hinge.x) * (edge.h - m.hinge.h) / (edge.x - m.hinge.x);
+      if (ph > lid_h - wall / view.scale || ph < m.hinge.h - 2.0 * m.lid_half_length) continue;
+      ++inside;
+      const Rgb c = img.at(x, y);
+      rope += c.r == 51 && c.g == 42 && c.b == 51;  // the rope's colour
+    }
+  }
+  EXPECT_GT(inside, 1000);
+  EXPECT_EQ(rope, 0);
+}
+
+// With the radio, the lid latches at lid_open and the sandbag flies free; the seesaw keeps its
+// angle, and the arm the length it had (it does not shrink back to a stub).
+TEST(VizAnimation, ArmKeepsItsLengthAfterTheRadiosLatch) {
+  const Recording rec = record(build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml")));
+  const View view = make_view(rec, 480, 0);
+  double latch = -1.0;
+  for (const Event& e : rec.result.events) {
+    if (e.type == EventType::lid_open) latch = e.t;
+  }
+  ASSERT_GT(latch, 0.0);
+  Frame f;
+  f.t = latch + 0.2;
+  f.state = rec.at(f.t);
+  ASSERT_FALSE(f.state.on_seesaw);
+  const Image img = render_frame(rec, view, f, small_animation());
+  // 0.7 m out along the left arm: beyond the arm drawn before the landing (0.4 m), within the
+  // picture, and far short of where the sandbag was at the latch (2 m).
+  const Pixel p = to_pixel(view, polar(-0.7, f.state.phi_s));
+  ASSERT_TRUE(p.x >= 0 && p.x < view.width && p.y >= view.top && p.y < view.bottom);
+  const Rgb c = img.at(static_cast<int>(std::lround(p.x)), static_cast<int>(std::lround(p.y)));
+  EXPECT_TRUE(same(c, Rgb{153, 85, 51})) << int(c.r) << "," << int(c.g) << "," << int(c.b);
+}
+
+// Every event tick on the time bar has its name under it (drawn in the events' red).
+TEST(VizAnimation, TimeBarNamesItsEvents) {
+  const Recording rec = record(example(4));
+  const View view = make_view(rec, 480, 0);
+  Frame f;
+  f.state = rec.at(0.0);
+  const Image img = render_frame(rec, view, f, small_animation());
+  const int label_row = static_cast<int>(view.bottom + 1.6 * view.font);
+  int red = 0;
+  for (int y = label_row; y < view.height; ++y) {
+    for (int x = 0; x < view.width; ++x) {
+      const Rgb c = img.at(x, y);
+      red += c.r > 150 && c.g < 110 && c.b < 110;  // the events' red, antialiased
+    }
+  }
+  EXPECT_GT(red, 50);
 }
 
 TEST(VizAnimation, GifDecodesAndShowsTheSandbagWhereTheSimulationPutsIt) {
   const Recording rec = record(example(1));
   const AnimationOptions o = small_animation();
   const fs::path dir = fresh_dir("gif");
-  fs::create_directories(dir);
   const fs::path path = dir / "a.gif";
   const int n = write_animation(rec, path.string(), o);
   const auto frames = plan_frames(rec, o);
@@ -282,14 +616,15 @@ TEST(VizAnimation, GifDecodesAndShowsTheSandbagWhereTheSimulationPutsIt) {
   for (const Frame& f : frames) planned += f.delay;
   EXPECT_NEAR(total_cs, planned * 100.0, 1.0);
 
-  // Probe: one frame while falling, one on the seesaw after the impact, one held at an event.
+  // Probe: one frame while falling, one on the seesaw, one held at the landing (later the sandbag
+  // slides down the endless arm out of the picture).
   const View view = make_view(rec, o.width, o.height);
   int probed = 0;
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const Frame& f = frames[i];
     const bool pick = (f.event_group < 0 && f.t > 0.25 && probed == 0) ||
-                      (f.event_group < 0 && f.t > 0.65 && probed == 1) ||
-                      (f.event_group >= 0 && f.t > 0.8 && probed == 2);
+                      (f.event_group >= 0 && f.t > 0.4 && probed == 1) ||
+                      (f.event_group < 0 && f.t > 0.6 && probed == 2);
     if (!pick) continue;
     const Pixel p = to_pixel(view, {f.state.x, f.state.h});
     const int x = static_cast<int>(p.x), y = static_cast<int>(p.y);
@@ -312,7 +647,6 @@ TEST(VizAnimation, GifIsDeterministicAndBadOutputsFailCleanly) {
   o.width = 120;
   o.height = 90;
   const fs::path dir = fresh_dir("gif_det");
-  fs::create_directories(dir);
   write_animation(rec, (dir / "a.gif").string(), o);
   write_animation(rec, (dir / "b.gif").string(), o);
   EXPECT_EQ(slurp(dir / "a.gif"), slurp(dir / "b.gif"));
@@ -365,4 +699,22 @@ TEST(VizCli, RunWritesPlotsAndAnimationAndRejectsBadOptions) {
   const std::string bad2 = cli + " plot --example 2 --out " + dir.string() + " --compare nothing 2> /dev/null";
   EXPECT_EQ(WEXITSTATUS(std::system(bad2.c_str())), 2);
   EXPECT_FALSE(fs::exists(dir / "x.avi"));
+}
+
+TEST(VizCli, AnimateReportsProgressAndCapsTheGifFrameRate) {
+  const fs::path dir = fresh_dir("cli_animate");
+  const std::string cli = WHATNEXT_CLI;
+  const std::string fast = cli + " animate --example 2 --fps 60 --out " + (dir / "fast.gif").string() +
+                           " 2> " + (dir / "fast.err").string();
+  EXPECT_EQ(WEXITSTATUS(std::system(fast.c_str())), 2);
+  EXPECT_FALSE(fs::exists(dir / "fast.gif"));
+  EXPECT_NE(slurp(dir / "fast.err").find("--fps"), std::string::npos);
+  // Not a terminal: a line every 100 frames and one at the end.
+  const std::string ok = cli + " animate --example 2 --width 200 --out " + (dir / "ok.gif").string() +
+                         " > " + (dir / "ok.out").string() + " 2> " + (dir / "ok.err").string();
+  ASSERT_EQ(std::system(ok.c_str()), 0);
+  const std::string err = slurp(dir / "ok.err"), out = slurp(dir / "ok.out");
+  const int frames = std::stoi(out.substr(out.find(": ") + 2));
+  EXPECT_NE(err.find(fmt::format("animate: frame {} of {}\n", frames, frames)), std::string::npos) << err;
+  EXPECT_NE(err.find(fmt::format("animate: frame 100 of {}\n", frames)), std::string::npos) << err;
 }

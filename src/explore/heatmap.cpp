@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 #include <plplot/plplot.h>
 
+#include "whatnext/config.hpp"
+
 namespace whatnext::explore {
 
 namespace {
@@ -18,6 +20,12 @@ constexpr PLINT kInk = 1, kNever = 2, kInvalid = 3;
 std::string with_unit(std::string_view value) {
   const char* unit = value == "final_r" ? "m" : value == "final_phi_l_deg" ? "deg" : "s";
   return fmt::format("{} [{}]", value, unit);
+}
+
+// An input key with its unit, for an axis: "geometry.rope_length [m]".
+std::string key_with_unit(const std::string& key) {
+  const KeySpec* spec = find_key(key);
+  return spec && !spec->unit.empty() ? fmt::format("{} [{}]", key, spec->unit) : key;
 }
 
 void fill_rect(double x0, double x1, double y0, double y1) {
@@ -134,7 +142,7 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
   }
   plcol0(kInk);
   plbox("bcnst", 0.0, 0, "bcnstv", 0.0, 0);
-  pllab(rx.key.c_str(), ry.key.c_str(), fmt::format("{} by {} and {}", with_unit(value), rx.key, ry.key).c_str());
+  pllab(key_with_unit(rx.key).c_str(), key_with_unit(ry.key).c_str(), fmt::format("{} by {} and {}", with_unit(value), rx.key, ry.key).c_str());
   std::string legend;
   if (any_never) legend += fmt::format("grey: no {}", value);
   if (any_closed) legend += fmt::format("{}hatched: the lid never opens", legend.empty() ? "" : "   ");

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -22,6 +23,7 @@
 #include "whatnext/events.hpp"
 #include "whatnext/geometry.hpp"
 #include "whatnext/viz/plots.hpp"
+#include "placement.hpp"
 
 namespace whatnext::viz {
 
@@ -79,7 +81,7 @@ std::uint8_t palette_index(std::uint32_t argb) {
 constexpr Rgb kWhite{255, 255, 255}, kBlack{0, 0, 0}, kDark{51, 42, 51}, kGrey{96, 96, 96},
     kMidGrey{160, 160, 160}, kLightGrey{224, 224, 224}, kSeesaw{153, 85, 51},
     kBoxWall{153, 127, 51}, kBoxInside{255, 255, 204}, kLid{51, 85, 153}, kRadio{51, 42, 102},
-    kDial{204, 212, 255}, kEventRed{204, 0, 0}, kCursor{0, 85, 204}, kFastForward{204, 212, 255};
+    kDial{204, 212, 255}, kEventRed{204, 0, 0}, kBagText{153, 85, 0}, kCursor{0, 85, 204}, kFastForward{204, 212, 255};
 
 void set(cairo_t* cr, Rgb c) { cairo_set_source_rgb(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0); }
 
@@ -109,6 +111,41 @@ std::vector<Vec2> sag_curve(Vec2 a, Vec2 b, double length, int n = 48) {
   }
   for (int i = 0; i <= n; ++i) pts.push_back(point(static_cast<double>(i) / n, d));
   return pts;
+}
+
+// Is a point inside the box, under its lid (or under the box's top while the lid is open)?
+bool in_box(const Machine& m, Vec2 lid_edge, Vec2 p) {
+  const Vec2 hinge = m.hinge;
+  if (p.x <= hinge.x || p.x >= hinge.x + 2.0 * m.lid_half_length) return false;
+  double top = hinge.h;
+  if (lid_edge.x > hinge.x + 1e-9 && p.x <= lid_edge.x) {
+    top = std::max(top, hinge.h + (p.x - hinge.x) * (lid_edge.h - hinge.h) / (lid_edge.x - hinge.x));
+  }
+  return p.h < top;
+}
+
+// The slack rope from the seesaw's end a to the lid's edge e, as long as the rope: a parabola under
+// its chord, unless that would hang through the lid into the box. Then the rope lies on the lid
+// from its edge back towards the hinge and hangs from the hinge (or, with less rope to spare, runs
+// straight from the seesaw to a point on the lid).
+std::vector<Vec2> slack_rope(const Machine& m, Vec2 a, Vec2 e, double length) {
+  std::vector<Vec2> pts = sag_curve(a, e, length);
+  if (std::none_of(pts.begin(), pts.end(), [&](Vec2 p) { return in_box(m, e, p); })) return pts;
+  const Vec2 hinge = m.hinge;
+  const double rest = length - norm(e - hinge);
+  if (rest >= norm(a - hinge)) {
+    pts = sag_curve(a, hinge, rest);
+    pts.push_back(e);
+    return pts;
+  }
+  // |e - p| + |p - a| = length for p between e (too short) and the hinge (too long).
+  double lo = 0.0, hi = 1.0;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    const Vec2 p = e + mid * (hinge - e);
+    (norm(e - p) + norm(p - a) < length ? lo : hi) = mid;
+  }
+  return {a, e + lo * (hinge - e), e};
 }
 
 // The balloon's string from its knot to the radio switch. While the knot is inside the box the
@@ -152,11 +189,17 @@ RadioBox radio_box(const Machine& m) {
   return {m.radio_switch.x - 0.5 * w, m.radio_switch.x + 0.5 * w, bottom, top};
 }
 
-// Drawn length of the left arm: a finite arm as it is; the model's endless arm as long as needed
-// to hold the sandbag (and a little more), before the landing long enough to catch it.
-double drawn_arm(const Machine& m, double endless_default, const Snapshot& s) {
+// Drawn length of the left arm at time t: a finite arm as it is; the model's endless arm long
+// enough to catch the sandbag, and once it is on the arm as long as the farthest it has been out
+// (and a little more). It does not shrink when the sandbag leaves it (the radio's latch sets it free).
+double drawn_arm(const Recording& rec, double endless_default, double t) {
+  const Machine& m = rec.scenario.machine;
   if (std::isfinite(m.seesaw_left_arm)) return m.seesaw_left_arm;
-  return s.on_seesaw ? std::max(endless_default, s.r + 0.1) : endless_default;
+  double far = 0.0;
+  for (std::size_t i = 0; i < rec.states.size() && rec.states[i].t <= t; ++i) {
+    if (rec.states[i].on_seesaw) far = std::max(far, rec.states[i].r);
+  }
+  return std::max(endless_default, far + 0.1);
 }
 
 // Distance from the pivot beyond which the view no longer follows the sandbag.
@@ -165,7 +208,7 @@ double follow_radius(const Recording& rec, double left_arm) {
   return 2.2 * std::max({m.seesaw_right_arm, left_arm, norm(m.hinge) + 2.0 * m.lid_half_length});
 }
 
-struct Box {
+struct Bounds {
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, h0 = x0, h1 = -x0;
   void add(Vec2 p) {
     if (!std::isfinite(p.x) || !std::isfinite(p.h)) return;
@@ -173,10 +216,35 @@ struct Box {
   }
 };
 
-std::string speed_words(double speed, double slowmo) {
-  if (speed * slowmo <= 1.0 + 1e-9) return fmt::format("slow motion x{:g}", slowmo);
-  if (speed < 1.0) return fmt::format("quiet stretch: slow motion x{:.2g}", 1.0 / speed);
-  return fmt::format("quiet stretch: fast forward x{:.3g}", speed);
+// An event in a word or two, for the time bar.
+std::string_view short_words(EventType type) {
+  switch (type) {
+    case EventType::sandbag_lands: return "lands";
+    case EventType::rope_taut: return "taut";
+    case EventType::rope_slack: return "slack";
+    case EventType::lid_rests: return "lid rests";
+    case EventType::lid_lifts: return "lid lifts";
+    case EventType::balloon_caught: return "caught";
+    case EventType::balloon_free: return "balloon free";
+    case EventType::sandbag_falls_off: return "falls off";
+    case EventType::sandbag_leaves: return "leaves arm";
+    case EventType::lid_open: return "lid open";
+    case EventType::seesaw_vertical: return "vertical";
+    case EventType::sandbag_at_pivot: return "at pivot";
+    case EventType::rope_locked: return "locked";
+    case EventType::radio_on: return "radio on";
+    case EventType::timeout: return "t_max";
+    case EventType::event_limit: return "event limit";
+  }
+  return "";
+}
+
+// How fast the run goes by, relative to real time, in words a viewer can check against a clock.
+std::string speed_words(double speed, bool quiet) {
+  const std::string pre = quiet ? "quiet stretch, faster: " : "";
+  if (speed < 1.0 - 1e-9) return pre + fmt::format("slow motion, 1 s of the run = {:.3g} s here", 1.0 / speed);
+  if (speed > 1.0 + 1e-9) return pre + fmt::format("fast forward, 1 s here = {:.3g} s of the run", speed);
+  return pre + "real time";
 }
 
 void fit_text(cairo_t* cr, const std::string& text, double size, double max_width) {
@@ -190,42 +258,59 @@ void fit_text(cairo_t* cr, const std::string& text, double size, double max_widt
 
 struct Piece {  // a stretch of simulated time shown at one speed
   double t0, t1, speed;
+  bool quiet;
+};
+struct Warp {
+  std::vector<Piece> pieces;
+  double hold;  // seconds on screen of each event's frame
 };
 
-std::vector<Piece> time_warp(const Recording& rec, const AnimationOptions& opts) {
+// Which stretches of the run are shown how fast, so that the whole fits into max_length seconds.
+Warp time_warp(const Recording& rec, const AnimationOptions& opts) {
   const double t_end = rec.t_end();
-  const double slow = 1.0 / opts.slowmo;
+  const std::size_t groups = group_events(rec.result).size();
   std::vector<double> keys{0.0};
   for (const EventGroup& g : group_events(rec.result)) keys.push_back(g.t);
   keys.push_back(t_end);
   std::sort(keys.begin(), keys.end());
   const double pad = 0.4;  // simulated seconds shown slowly on either side of an event
-  std::vector<Piece> pieces;
+  Warp w;
   double active = 0.0, quiet = 0.0;
-  int n_quiet = 0;
   for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
     const double a = keys[i], b = keys[i + 1];
     if (b <= a) continue;
     if (b - a > 3.0 * pad) {
-      pieces.push_back({a, a + pad, slow});
-      pieces.push_back({a + pad, b - pad, -1.0});  // speed decided below
-      pieces.push_back({b - pad, b, slow});
-      active += 2.0 * pad, quiet += b - a - 2.0 * pad, ++n_quiet;
+      w.pieces.push_back({a, a + pad, 0.0, false});
+      w.pieces.push_back({a + pad, b - pad, 0.0, true});
+      w.pieces.push_back({b - pad, b, 0.0, false});
+      active += 2.0 * pad, quiet += b - a - 2.0 * pad;
     } else {
-      pieces.push_back({a, b, slow});
+      w.pieces.push_back({a, b, 0.0, false});
       active += b - a;
     }
   }
-  double quiet_speed = slow;
-  if ((active + quiet) * opts.slowmo > opts.max_length && n_quiet > 0) {
-    const double budget = std::max(opts.max_length - active * opts.slowmo, 2.0 * n_quiet);
-    quiet_speed = std::max(slow, quiet / budget);
+  if (w.pieces.empty()) w.pieces.push_back({0.0, t_end, 0.0, false}), active = t_end;
+
+  // Screen time: the held frames (the last one twice), the slow stretches, the quiet ones. Each
+  // piece may run over by up to one frame; that is kept free.
+  const double budget = opts.max_length - static_cast<double>(w.pieces.size()) / opts.fps;
+  const double holds = static_cast<double>(groups) + 1.0;
+  w.hold = std::min(opts.hold, std::max(0.0, 0.5 * budget / holds));
+  const double rest = std::max(1e-3, budget - holds * w.hold);
+  double slow = 1.0 / opts.slowmo, fast = slow;  // simulated seconds per second on screen
+  if ((active + quiet) / slow > rest) {
+    if (quiet > 0.0 && active / slow <= 0.75 * rest) {
+      fast = quiet / (rest - active / slow);
+    } else {
+      slow = active / ((quiet > 0.0 ? 0.75 : 1.0) * rest);
+      fast = quiet > 0.0 ? std::max(slow, quiet / (0.25 * rest)) : slow;
+    }
   }
-  for (Piece& p : pieces) {
-    if (p.speed < 0.0) p.speed = quiet_speed;
+  for (Piece& p : w.pieces) {
+    p.quiet = p.quiet && fast > slow;
+    p.speed = p.quiet ? fast : slow;
   }
-  if (pieces.empty()) pieces.push_back({0.0, t_end, slow});
-  return pieces;
+  return w;
 }
 
 // ---- GIF output through giflib's low-level encoder ----
@@ -339,10 +424,12 @@ void validate(const AnimationOptions& o) {
   if (!(o.slowmo > 0.0 && o.slowmo <= 1e6)) bad("--slowmo", "> 0 and <= 1e6", o.slowmo);
   if (!(o.fps >= 1.0 && o.fps <= 100.0)) bad("--fps", "between 1 and 100", o.fps);
   if (!(o.width >= 64 && o.width <= 4096)) bad("--width", "between 64 and 4096 pixels", o.width);
-  if (!(o.height >= 64 && o.height <= 4096)) bad("--height", "between 64 and 4096 pixels", o.height);
+  if (!(o.height == 0 || (o.height >= 64 && o.height <= 4096))) {
+    bad("--height", "0 (fit the machine) or between 64 and 4096 pixels", o.height);
+  }
   if (!(o.hold >= 0.0 && o.hold <= 60.0)) bad("--hold", "between 0 and 60 s", o.hold);
-  if (!(o.max_length > 0.0 && o.max_length <= 3600.0)) {
-    bad("--max-length", "> 0 and <= 3600 s", o.max_length);
+  if (!(o.max_length >= 1.0 && o.max_length <= 3600.0)) {
+    bad("--max-length", "between 1 and 3600 s", o.max_length);
   }
 }
 
@@ -365,14 +452,12 @@ View make_view(const Recording& rec, int width, int height) {
   const RopeGeometry geo(m);
   View v;
   v.width = width;
-  v.height = height;
-  const double font = std::clamp(height / 30.0, 9.0, 22.0);
-  v.top = static_cast<int>(std::lround(2.7 * font));
-  v.bottom = height - static_cast<int>(std::lround(1.9 * font));
   v.left_arm = std::max(m.seesaw_right_arm, 1.2 * landing_distance(rec.scenario));
   const double follow = follow_radius(rec, v.left_arm);
 
-  Box box;
+  // The machine over the whole run, and the sandbag while it falls onto the arm or stays on the
+  // part of the arm drawn at its shortest.
+  Bounds box;
   const double g = ground_level(m), rl = m.lid_half_length;
   box.add({0.0, 0.0});
   box.add({-0.15, g});
@@ -383,12 +468,18 @@ View make_view(const Recording& rec, int width, int height) {
   const RadioBox radio = radio_box(m);
   box.add({radio.x0 - 0.05, radio.h0});
   box.add({radio.x1 + 0.05, radio.h1 + 0.05});
+  if (rec.result.outcome().type == EventType::radio_on) box.add({radio.x1, radio.h1 + 0.25});  // notes
+  bool landed = false;
+  const double bag = 0.05;  // the sandbag's drawn radius [m] (at least 6 px)
   for (const Snapshot& s : rec.states) {
     box.add(geo.seesaw_end(s.phi_s));
     box.add(geo.lid_edge(s.phi_l));
-    const double shown = std::min(drawn_arm(m, v.left_arm, s), follow);
-    box.add({-shown * std::cos(s.phi_s), -shown * std::sin(s.phi_s)});
-    if (std::hypot(s.x, s.h) <= follow) box.add({s.x, s.h});
+    box.add(polar(-v.left_arm, s.phi_s));
+    landed = landed || s.on_seesaw;
+    if (!landed || std::hypot(s.x, s.h) <= v.left_arm) {
+      box.add({s.x - bag, s.h - bag});
+      box.add({s.x + bag, s.h + bag});
+    }
     const Vec2 c = balloon_centre(m, s);
     if (c.h - m.hinge.h <= follow) {
       box.add(c + Vec2{m.balloon_radius, m.balloon_radius});
@@ -398,8 +489,21 @@ View make_view(const Recording& rec, int width, int height) {
   for (const Snapshot* s : {&rec.states.front(), &rec.states.back()}) {
     for (Vec2 p : string_path(m, balloon_centre(m, *s))) box.add(p);
   }
-  const double pad = 0.05 * std::max(box.x1 - box.x0, box.h1 - box.h0);
+  const double pad = 0.04 * std::max(box.x1 - box.x0, box.h1 - box.h0);
   box.x0 -= pad, box.x1 += pad, box.h0 -= pad, box.h1 += pad;
+
+  // Text above, the time bar with its event names below, the machine in between.
+  v.font = std::clamp(height > 0 ? std::min(width / 40.0, height / 30.0) : width / 40.0, 9.0, 22.0);
+  v.top = static_cast<int>(std::lround(2.7 * v.font));
+  const int below = static_cast<int>(std::lround(3.3 * v.font));
+  if (height <= 0) {
+    const double needed = (box.h1 - box.h0) * width / (box.x1 - box.x0);
+    height = static_cast<int>(std::lround(v.top + needed + below));
+    height = std::clamp(height, static_cast<int>(0.45 * width), static_cast<int>(1.25 * width));
+    height += height % 2;  // even, as H.264 wants
+  }
+  v.height = height;
+  v.bottom = height - below;
   const double area_w = width, area_h = v.bottom - v.top;
   v.scale = std::min(area_w / (box.x1 - box.x0), area_h / (box.h1 - box.h0));
   v.origin_x = 0.5 * area_w - 0.5 * (box.x0 + box.x1) * v.scale;
@@ -409,7 +513,7 @@ View make_view(const Recording& rec, int width, int height) {
 
 std::vector<Frame> plan_frames(const Recording& rec, const AnimationOptions& opts) {
   validate(opts);
-  const std::vector<Piece> pieces = time_warp(rec, opts);
+  const Warp warp = time_warp(rec, opts);
   const std::vector<EventGroup> groups = group_events(rec.result);
   std::vector<Frame> frames;
   std::size_t next_group = 0;
@@ -419,15 +523,15 @@ std::vector<Frame> plan_frames(const Recording& rec, const AnimationOptions& opt
       Frame f;
       f.t = g.t;
       f.state = rec.result.events[g.events.back()].after;
-      f.delay = opts.hold;
+      f.delay = warp.hold;
       f.event_group = static_cast<int>(next_group);
-      f.speed = frames.empty() ? 1.0 / opts.slowmo : frames.back().speed;
+      f.speed = frames.empty() ? warp.pieces.front().speed : frames.back().speed;
       frames.push_back(f);
       ++next_group;
     }
   };
   const double dt_screen = 1.0 / opts.fps;
-  for (const Piece& p : pieces) {
+  for (const Piece& p : warp.pieces) {
     const double step = p.speed * dt_screen;
     const auto n = static_cast<long>(std::ceil((p.t1 - p.t0) / step - 1e-9));
     for (long k = 0; k < n; ++k) {
@@ -439,12 +543,13 @@ std::vector<Frame> plan_frames(const Recording& rec, const AnimationOptions& opt
       f.state = rec.at(t);
       f.delay = dt_screen;
       f.speed = p.speed;
+      f.quiet = p.quiet;
       frames.push_back(f);
     }
   }
   hold_events_until(std::numeric_limits<double>::infinity());
   // The last picture stays a little longer before the GIF starts over.
-  if (!frames.empty()) frames.back().delay = std::max(frames.back().delay, 2.0 * opts.hold);
+  if (!frames.empty()) frames.back().delay = std::max(frames.back().delay, 2.0 * warp.hold);
   return frames;
 }
 
@@ -455,7 +560,7 @@ Rgb Image::at(int x, int y) const {
 }
 
 Image render_frame(const Recording& rec, const View& v, const Frame& frame,
-                   const AnimationOptions& opts) {
+                   const AnimationOptions& /*opts*/) {
   const Machine& m = rec.scenario.machine;
   const RopeGeometry geo(m);
   const Snapshot& s = frame.state;
@@ -546,14 +651,16 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   line(m.radio_switch);
   cairo_stroke(cr);
 
-  // Once the radio is on, notes rise from it.
+  // Once the radio is on, notes rise from it (above it, where make_view keeps room).
   for (const Event& e : rec.result.events) {
     if (e.type != EventType::radio_on || e.t > frame.t) continue;
     set(cr, kRadio);
     cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
     cairo_set_font_size(cr, std::max(10.0, 0.12 * v.scale));
-    const Pixel q = px({radio.x1, radio.h1 + 0.05});
-    cairo_move_to(cr, q.x, q.y);
+    cairo_text_extents_t ext;
+    cairo_text_extents(cr, "\u266A \u266B", &ext);
+    const Pixel q = px({0.5 * (radio.x0 + radio.x1), radio.h1 + 0.08});
+    cairo_move_to(cr, q.x - 0.5 * ext.x_advance, q.y);
     cairo_show_text(cr, "\u266A \u266B");
   }
 
@@ -568,7 +675,7 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   cairo_fill(cr);
 
   // Seesaw: the left arm is as long as needed (the model's arm is endless).
-  const double arm = drawn_arm(m, v.left_arm, s);
+  const double arm = drawn_arm(rec, v.left_arm, frame.t);
   set(cr, kSeesaw);
   width_m(0.03, 4.0);
   move(polar(-arm, s.phi_s));
@@ -578,7 +685,7 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   circle({0.0, 0.0}, std::max(2.5, 0.015 * v.scale));
   cairo_fill(cr);
 
-  // Rope: straight when taut, sagging when slack.
+  // Rope: straight when taut; slack, sagging or lying on the lid.
   const Vec2 rope_r = geo.seesaw_end(s.phi_s), rope_e = geo.lid_edge(s.phi_l);
   set(cr, kDark);
   cairo_set_line_width(cr, std::max(1.5, 0.008 * v.scale));
@@ -586,7 +693,7 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
     move(rope_r);
     line(rope_e);
   } else {
-    polyline(sag_curve(rope_r, rope_e, m.rope_length));
+    polyline(slack_rope(m, rope_r, rope_e, m.rope_length));
   }
   cairo_stroke(cr);
 
@@ -606,10 +713,10 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   }
   cairo_restore(cr);
 
-  const double font = std::clamp(v.height / 30.0, 9.0, 22.0);
+  const double font = v.font;
   cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
   if (!bag_visible) {
-    // An arrow at the edge of the picture, pointing along the arm to the sandbag far out.
+    // An arrow at the edge of the picture, pointing from the pivot to the sandbag far out.
     const Pixel o = px({0.0, 0.0});
     const double dx = bag.x - o.x, dy = bag.y - o.y, len = std::hypot(dx, dy);
     const double ux = dx / len, uy = dy / len;
@@ -625,16 +732,6 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
     cairo_line_to(cr, tx - 14 * ux + 7 * uy, ty - 14 * uy - 7 * ux);
     cairo_close_path(cr);
     cairo_fill(cr);
-    set(cr, kBlack);
-    const std::string text = fmt::format("sandbag {:.4g} m out", std::hypot(s.x, s.h));
-    fit_text(cr, text, 0.85 * font, 0.45 * v.width);
-    cairo_text_extents_t ext;
-    cairo_text_extents(cr, text.c_str(), &ext);
-    const double lx = std::clamp(tx - 0.5 * ext.x_advance + 30 * std::fabs(uy) * 0, 4.0,
-                                 v.width - ext.x_advance - 4.0);
-    const double ly = std::clamp(ty - 18 * uy - 10, v.top + font, v.bottom - 4.0);
-    cairo_move_to(cr, lx, ly);
-    cairo_show_text(cr, text.c_str());
   }
 
   // Text: time and mode; on held frames the event, otherwise the speed.
@@ -647,6 +744,19 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   fit_text(cr, line1, font, v.width - 2 * margin);
   cairo_move_to(cr, margin, 1.15 * font);
   cairo_show_text(cr, line1.c_str());
+  // A sandbag beyond the picture: its distance at the right end of the second line (next to the
+  // arrow it would cover the machine or jump about from frame to frame).
+  double room = v.width - 2 * margin;
+  if (!bag_visible) {
+    const std::string out = fmt::format("sandbag {:.4g} m out", std::hypot(s.x, s.h));
+    fit_text(cr, out, 0.9 * font, 0.45 * v.width);
+    cairo_text_extents_t ext;
+    cairo_text_extents(cr, out.c_str(), &ext);
+    set(cr, kBagText);
+    cairo_move_to(cr, v.width - margin - ext.x_advance, 2.3 * font);
+    cairo_show_text(cr, out.c_str());
+    room -= ext.x_advance + font;
+  }
   std::string line2;
   if (frame.event_group >= 0) {
     const EventGroup& grp = groups[frame.event_group];
@@ -656,17 +766,17 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
     }
     set(cr, kEventRed);
   } else {
-    line2 = speed_words(frame.speed, opts.slowmo);
+    line2 = speed_words(frame.speed, frame.quiet);
     set(cr, kGrey);
   }
-  fit_text(cr, line2, 0.9 * font, v.width - 2 * margin);
+  fit_text(cr, line2, 0.9 * font, room);
   cairo_move_to(cr, margin, 2.3 * font);
   cairo_show_text(cr, line2.c_str());
 
-  // Time bar: the whole run, its events and where this frame is.
+  // Time bar: the whole run, its events (named under their ticks) and where this frame is.
   const double t_end = std::max(rec.t_end(), 1e-9);
   const double bx0 = margin + 3.2 * font, bx1 = v.width - margin - 4.2 * font;
-  const double by = 0.5 * (v.bottom + v.height);
+  const double by = v.bottom + 0.9 * font;
   auto bar_x = [&](double t) { return bx0 + (bx1 - bx0) * std::clamp(t / t_end, 0.0, 1.0); };
   set(cr, kMidGrey);
   cairo_set_line_width(cr, 3.0);
@@ -679,6 +789,54 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
     cairo_move_to(cr, bar_x(grp.t), by - 0.45 * font);
     cairo_line_to(cr, bar_x(grp.t), by + 0.45 * font);
     cairo_stroke(cr);
+  }
+  {
+    std::vector<std::string> names;
+    std::vector<double> want, widths, at;
+    for (const EventGroup& grp : groups) {
+      const Event& first = rec.result.events[grp.events.front()];
+      names.push_back(std::string(short_words(first.type)) + (grp.events.size() > 1 ? "+" : ""));
+      want.push_back(bar_x(grp.t));
+    }
+    // One row if the names fit, else two rows of smaller ones, alternating.
+    int rows = 1;
+    double size = 0.62 * font;
+    std::vector<std::vector<std::size_t>> members;
+    std::vector<std::vector<double>> pos;
+    for (; rows <= 2; ++rows, size = 0.5 * font) {
+      cairo_set_font_size(cr, size);
+      widths.clear();
+      for (const std::string& n : names) {
+        cairo_text_extents_t ext;
+        cairo_text_extents(cr, n.c_str(), &ext);
+        widths.push_back(ext.x_advance);
+      }
+      members.assign(rows, {});
+      pos.assign(rows, {});
+      bool ok = true;
+      for (int r = 0; r < rows; ++r) {
+        std::vector<double> c, w;
+        for (std::size_t i = r; i < names.size(); i += rows) {
+          members[r].push_back(i), c.push_back(want[i]), w.push_back(widths[i]);
+        }
+        ok = placement::pack_row(c, w, margin, v.width - margin, 0.4 * size, pos[r]) && ok;
+      }
+      if (ok || rows == 2) break;
+    }
+    for (int r = 0; r < static_cast<int>(members.size()); ++r) {
+      const double base = by + (rows == 1 ? 1.55 : 1.35 + 0.6 * r) * font;
+      for (std::size_t k = 0; k < members[r].size(); ++k) {
+        const std::size_t i = members[r][k];
+        set(cr, kMidGrey);
+        cairo_set_line_width(cr, 1.0);
+        cairo_move_to(cr, want[i], by + 0.5 * font);
+        cairo_line_to(cr, pos[r][k], base - 0.8 * size);
+        cairo_stroke(cr);
+        set(cr, kEventRed);
+        cairo_move_to(cr, pos[r][k] - 0.5 * widths[i], base);
+        cairo_show_text(cr, names[i].c_str());
+      }
+    }
   }
   set(cr, kCursor);
   cairo_new_sub_path(cr);
@@ -741,15 +899,29 @@ void check_animation_target(const std::string& path, const std::string& option) 
 }
 
 int write_animation(const Recording& rec, const std::string& path, const AnimationOptions& opts,
-                    const std::string& dump_dir, const std::string& option) {
+                    const std::string& dump_dir, const std::string& option,
+                    const std::function<void(int, int)>& progress) {
   validate(opts);
-  check_animation_target(path, option);
   const bool mp4 = is_mp4(path, option);
+  if (!mp4 && opts.fps > 50.0) {
+    throw InputError(fmt::format(
+        "--fps: a GIF takes at most 50 frames per second (its delays count in 1/100 s and viewers "
+        "slow down shorter ones), got {:g}; write an .mp4 for more",
+        opts.fps));
+  }
+  check_animation_target(path, option);
   const std::string ffmpeg = mp4 ? find_on_path("ffmpeg") : std::string();
   if (!dump_dir.empty()) prepare_output_dir(dump_dir, "--dump-frames");
   const std::vector<Frame> frames = plan_frames(rec, opts);
   const View view = make_view(rec, opts.width, opts.height);
   const std::string tmp = path + ".part";
+  const int total = static_cast<int>(frames.size());
+  // The held frames and one frame per second on screen, for looking at single frames.
+  const int dump_every = std::max(1, static_cast<int>(std::lround(opts.fps)));
+  auto dump = [&](const Image& img, const Frame& f, int index) {
+    if (dump_dir.empty() || (f.event_group < 0 && index % dump_every != 0)) return;
+    write_png(img, (fs::path(dump_dir) / fmt::format("frame{:05d}.png", index)).string());
+  };
 
   if (mp4) {
     // Raw BGRA frames (Cairo's ARGB32 in memory on little-endian machines) into ffmpeg; held
@@ -757,7 +929,7 @@ int write_animation(const Recording& rec, const std::string& path, const Animati
     const std::string cmd = fmt::format(
         "{} -loglevel error -y -f rawvideo -pix_fmt bgra -s {}x{} -r {:g} -i - "
         "-vf pad=ceil(iw/2)*2:ceil(ih/2)*2 -c:v libx264 -pix_fmt yuv420p -f mp4 {}",
-        shell_quote(ffmpeg), opts.width, opts.height, opts.fps, shell_quote(tmp));
+        shell_quote(ffmpeg), view.width, view.height, opts.fps, shell_quote(tmp));
     FILE* pipe = ::popen(cmd.c_str(), "w");
     if (!pipe) throw std::runtime_error("cannot start ffmpeg");
     double shown = 0.0;
@@ -765,15 +937,14 @@ int write_animation(const Recording& rec, const std::string& path, const Animati
     int index = 0;
     for (const Frame& f : frames) {
       const Image img = render_frame(rec, view, f, opts);
-      if (!dump_dir.empty()) {
-        write_png(img, (fs::path(dump_dir) / fmt::format("frame{:05d}.png", index)).string());
-      }
+      dump(img, f, index);
       shown += f.delay;
       const long until = std::lround(shown * opts.fps);
       for (; written < std::max(until, written + 1); ++written) {
         std::fwrite(img.pixels.data(), sizeof(std::uint32_t), img.pixels.size(), pipe);
       }
       ++index;
+      if (progress) progress(index, total);
     }
     if (::pclose(pipe) != 0) {
       std::remove(tmp.c_str());
@@ -787,17 +958,14 @@ int write_animation(const Recording& rec, const std::string& path, const Animati
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw InputError(fmt::format("{}: cannot write '{}'", option, path));
     try {
-      GifEncoder gif(out, opts.width, opts.height);
+      GifEncoder gif(out, view.width, view.height);
       double shown = 0.0;
       long shown_cs = 0;
-      const int dump_every = std::max(1, static_cast<int>(std::lround(opts.fps)));
       int index = 0;
-      std::vector<std::uint8_t> idx(static_cast<std::size_t>(opts.width) * opts.height);
+      std::vector<std::uint8_t> idx(static_cast<std::size_t>(view.width) * view.height);
       for (const Frame& f : frames) {
         const Image img = render_frame(rec, view, f, opts);
-        if (!dump_dir.empty() && (f.event_group >= 0 || index % dump_every == 0)) {
-          write_png(img, (fs::path(dump_dir) / fmt::format("frame{:05d}.png", index)).string());
-        }
+        dump(img, f, index);
         for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = palette_index(img.pixels[i]);
         // Delays in centiseconds, rounded on the running total so that they do not drift.
         shown += f.delay;
@@ -805,6 +973,7 @@ int write_animation(const Recording& rec, const std::string& path, const Animati
         gif.add(idx, static_cast<int>(std::max(1L, until - shown_cs)));
         shown_cs = std::max(until, shown_cs + 1);
         ++index;
+        if (progress) progress(index, total);
       }
       gif.close();
     } catch (...) {

@@ -1,11 +1,19 @@
-// Figures with PLplot (C API) and its Cairo drivers. PLplot keeps global state, so each page is
-// drawn by one function that sets everything it needs, from plinit to plend1.
+// Figures with PLplot (C API): PNG and PDF through its Cairo drivers, SVG through its svg driver,
+// which writes text as <text> (Cairo's SVG surface turns every glyph into an outline).
+//
+// Every page is laid out first, in millimetres, and then drawn from that layout in each format.
+// Legends, event numbers and the event key sit outside the axes; the few texts inside the axes
+// (event numbers on the trajectory, the 90° line's name) are placed by a collision test against
+// the curves and the other texts. Text widths are measured with Cairo in DejaVu Sans, the font
+// PLplot's drivers use here.
 #include "whatnext/viz/plots.hpp"
 
+#include <cairo.h>
 #include <plplot/plplot.h>
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,14 +21,13 @@
 #include <functional>
 #include <iterator>
 #include <limits>
-#include <map>
-#include <cctype>
 #include <sstream>
 
 #include <fmt/format.h>
 
 #include "whatnext/config.hpp"
 #include "whatnext/events.hpp"
+#include "placement.hpp"
 
 namespace whatnext::viz {
 
@@ -29,6 +36,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kDeg = 180.0 / 3.14159265358979323846;
+constexpr double kMmPerPt = 25.4 / 72.0;  // the Cairo drivers map one pixel to one point
 
 // Colour map 0 (PLplot's indexed colours).
 enum Colour : int {
@@ -57,13 +65,12 @@ struct Curve {
   int colour = kBlack;
   int style = 1;  // PLplot line style: 1 solid, 2 and up dashed
   double width = 2.0;
-  int symbol = -1;  // Hershey/Unicode symbol for point markers (no line) when >= 0
+  bool dots = false;  // point markers (no line)
 };
 
-struct Mark {  // a labelled point (events on the trajectory)
+struct Mark {  // a numbered point (events on the trajectory)
   double x, y;
-  std::string label;
-  int colour = kBlack;
+  int number;
 };
 
 struct ModeSpan {
@@ -75,80 +82,154 @@ struct Panel {
   std::string title, xlabel, ylabel;
   std::vector<Curve> curves;
   std::vector<Mark> marks;
-  std::vector<EventGroup> events;  // vertical lines on a time axis
+  std::vector<EventGroup> events;  // vertical lines on a time axis, numbered 1, 2, ...
   std::vector<ModeSpan> modes;     // strip above the plot
   std::vector<std::pair<double, std::string>> hlines;  // reference levels
   double x0 = 0.0, x1 = 1.0;
   bool fixed_x = false;
-  bool equal_aspect = false;
-  PLINT legend_position = PL_POSITION_TOP | PL_POSITION_RIGHT;
+  bool to_scale = false;     // same metres per millimetre on both axes, or say in the title
+  bool show_legend = true;   // false: another panel of the page shows the same legend
+  std::size_t legend_columns = 0;  // 0: as many as fit
 };
 
-std::string tmp_name(const std::string& path) { return path + ".part"; }
+// A page: panels in a grid and, under them, the key to the numbered events.
+struct Page {
+  std::string name;
+  int width = 1000, height = 650;  // pixels of the PNG (points of SVG and PDF)
+  int nx = 1, ny = 1;
+  double text_scale = 1.0;
+  std::vector<Panel> panels;
+  std::vector<EventGroup> key;
+};
 
-// Cairo's PDF surface stamps the wall-clock time; a fixed date of the same length keeps the byte
-// offsets of the cross-reference table valid and makes the file reproducible.
-void pin_pdf_date(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  in.close();
-  const std::string key = "/CreationDate (D:";
-  auto pos = data.find(key);
-  if (pos == std::string::npos) return;
-  pos += key.size();
-  const std::string fixed = "19700101000000Z";
-  if (data.compare(pos + fixed.size(), 1, ")") != 0) return;
-  data.replace(pos, fixed.size(), fixed);
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << data;
+// ---- text measurement ----
+
+// Advance width of UTF-8 text in em of DejaVu Sans.
+double text_em(const std::string& text) {
+  if (text.empty()) return 0.0;
+  static cairo_surface_t* const surface = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);
+  static cairo_t* const cr = [] {
+    cairo_t* c = cairo_create(surface);
+    cairo_select_font_face(c, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(c, 100.0);
+    return c;
+  }();
+  cairo_text_extents_t ext;
+  cairo_text_extents(cr, text.c_str(), &ext);
+  return ext.x_advance / 100.0;
 }
 
-// Cairo names SVG groups "surfaceN" with a counter that runs across the whole process, so the
-// second figure drawn by one process would differ from the same figure drawn first. Renumbering
-// per file, in order of appearance, makes the bytes depend on the figure only.
-void renumber_svg_surfaces(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  in.close();
-  std::map<std::string, int> ids;
-  std::string out;
-  out.reserve(data.size());
-  const std::string key = "surface";
-  std::size_t pos = 0;
-  for (;;) {
-    const std::size_t at = data.find(key, pos);
-    if (at == std::string::npos) break;
-    std::size_t end = at + key.size();
-    while (end < data.size() && std::isdigit(static_cast<unsigned char>(data[end]))) ++end;
-    out.append(data, pos, at + key.size() - pos);
-    if (end > at + key.size()) {
-      const std::string num = data.substr(at + key.size(), end - at - key.size());
-      auto it = ids.emplace(num, static_cast<int>(ids.size()) + 1).first;
-      out += std::to_string(it->second);
+// PLplot's character height h [mm] is 3/4 of the font size; #d and #u shift to 3/4 size.
+constexpr double kEmPerHeight = 1.0 / 0.75;
+constexpr double kSubScale = 0.75;
+
+bool has_subscript(const std::string& s) { return s.find("#d") != std::string::npos; }
+
+// Width [mm] of a PLplot string (with #d/#u escapes) at character height h [mm], a little generous.
+double text_width(const std::string& s, double h) {
+  double em = 0.0, scale = 1.0;
+  int level = 0;
+  std::string run;
+  auto flush = [&] {
+    em += text_em(run) * scale;
+    run.clear();
+  };
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '#' && i + 1 < s.size()) {
+      const char c = s[i + 1];
+      if (c == 'd' || c == 'u') {
+        flush();
+        level += c == 'd' ? -1 : 1;
+        scale = std::pow(kSubScale, std::abs(level));
+        ++i;
+        continue;
+      }
+      if (c == '#') {
+        run += '#';
+        ++i;
+        continue;
+      }
     }
-    pos = end;
+    run += s[i];
   }
-  out.append(data, pos, std::string::npos);
-  std::ofstream o(path, std::ios::binary | std::ios::trunc);
-  o << out;
+  flush();
+  return 1.03 * em * kEmPerHeight * h;
 }
 
-const char* device(Format f) {
-  switch (f) {
-    case Format::png: return "pngcairo";
-    case Format::svg: return "svgcairo";
-    case Format::pdf: return "pdfcairo";
-  }
-  return "pngcairo";
+// plptex puts its reference point half a character height above the baseline. Box of a text at
+// reference height y, horizontal position x with justification just (0 left, 0.5 centre, 1 right).
+Box text_box(const std::string& s, double x, double y, double just, double h) {
+  const double w = text_width(s, h);
+  const double below = has_subscript(s) ? 1.4 : 0.85;
+  return {x - just * w, y - below * h, x + (1.0 - just) * w, y + 0.55 * h};
 }
 
-void set_palette() {
-  std::array<PLINT, kColourCount> r{}, g{}, b{};
-  for (int i = 0; i < kColourCount; ++i) {
-    r[i] = kPalette[i][0], g[i] = kPalette[i][1], b[i] = kPalette[i][2];
-  }
-  plscmap0(r.data(), g.data(), b.data(), kColourCount);
+bool overlap(const Box& a, const Box& b) {
+  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
 }
+bool inside(const Box& in, const Box& out) {
+  return in.x0 >= out.x0 && in.x1 <= out.x1 && in.y0 >= out.y0 && in.y1 <= out.y1;
+}
+Box grow(Box b, double d) { return {b.x0 - d, b.y0 - d, b.x1 + d, b.y1 + d}; }
+
+using Point = std::pair<double, double>;
+using Polyline = std::vector<Point>;
+
+bool segment_hits(const Box& b, Point a, Point c) {
+  return placement::segment_crosses_box(b.x0, b.y0, b.x1, b.y1, a.first, a.second, c.first, c.second);
+}
+
+bool hits_data(const Box& b, const std::vector<Polyline>& data) {
+  for (const Polyline& line : data) {
+    if (line.size() == 1 && segment_hits(b, line[0], line[0])) return true;
+    for (std::size_t i = 1; i < line.size(); ++i) {
+      if (segment_hits(b, line[i - 1], line[i])) return true;
+    }
+  }
+  return false;
+}
+
+// ---- layout ----
+
+struct Text {
+  PlacedText::Kind kind;
+  std::string text;
+  double x, y, just, h;  // reference point [mm], justification, character height [mm]
+  int colour = kBlack;
+  Box box;
+};
+Text make_text(PlacedText::Kind kind, std::string s, double x, double y, double just, double h,
+               int colour = kBlack) {
+  Text t{kind, std::move(s), x, y, just, h, colour, {}};
+  t.box = text_box(t.text, x, y, just, h);
+  return t;
+}
+
+struct Segment {
+  double x0, y0, x1, y1;
+  int colour;
+  int style;
+  double width;
+};
+
+struct PanelGeometry {
+  Box axes, strip;
+  double wx0 = 0, wx1 = 1, wy0 = 0, wy1 = 1;  // the data window
+  std::vector<Text> texts;
+  std::vector<Segment> strokes;  // legend samples and leader lines, in mm
+  std::vector<Box> samples;
+  std::vector<Polyline> data;    // curves and dots in mm
+  std::vector<Box> reserved;     // tick numbers and axis titles
+  double h = 1.0;                // base character height [mm]
+  double bands = 0.0;            // height of the bands above the axes [mm]
+  double ylabel_h = 1.0;         // character height of the y axis' title [mm]
+};
+
+struct PageGeometry {
+  double w = 0, h = 0, ch = 1.0;  // page [mm], base character height [mm]
+  std::vector<PanelGeometry> panels;
+  std::vector<Text> texts;
+};
 
 void data_range(const Panel& p, bool along_x, double& lo, double& hi) {
   lo = std::numeric_limits<double>::infinity();
@@ -169,208 +250,486 @@ void data_range(const Panel& p, bool along_x, double& lo, double& hi) {
   if (hi - lo < 1e-9 * std::max(1.0, std::fabs(hi))) lo -= 0.5, hi += 0.5;
 }
 
-// Vertical event lines with their labels written upwards along them. Labels that would overlap
-// are pushed to the right (the line stays at the true time).
-void draw_event_lines(const Panel& p, double x0, double x1, double y0, double y1,
-                      double vp_width_mm, double scale) {
-  if (p.events.empty()) return;
-  PLFLT def_ht = 0, ht = 0;
-  plschr(0.0, 0.75 * scale);
-  plgchr(&def_ht, &ht);
-  const double mm_to_x = (x1 - x0) / vp_width_mm;
-  const double gap = 1.25 * ht * mm_to_x;
-  double last = -std::numeric_limits<double>::infinity();
-  pllsty(2);
-  plwidth(1.0);
-  for (const EventGroup& g : p.events) {
-    plcol0(kGrey);
-    const PLFLT xs[2] = {g.t, g.t}, ys[2] = {y0, y1};
-    plline(2, xs, ys);
-    double xl = std::max(g.t + 0.75 * ht * mm_to_x, last + gap);
-    if (xl > x1 - 0.3 * gap) xl = g.t - 0.75 * ht * mm_to_x;  // no room on the right: left side
-    last = xl;
-    plcol0(kBlack);
-    plptex(xl, y1 - 0.02 * (y1 - y0), 0.0, 1.0, 1.0, g.label.c_str());
+// Entries of the given widths in a table as wide as fits between x0 and x1: row by row, in as many
+// columns as fit (each column as wide as its widest entry).
+struct Grid {
+  std::vector<std::vector<std::size_t>> rows;
+  std::vector<double> column_x;  // left edge of each column
+  double x(std::size_t i) const { return column_x[i % column_x.size()]; }
+};
+Grid grid(const std::vector<double>& widths, double x0, double x1, double spacing,
+          std::size_t max_columns = 0) {
+  Grid g;
+  const std::size_t n = widths.size();
+  if (n == 0) return g;
+  for (std::size_t k = max_columns ? std::min(n, max_columns) : n; k >= 1; --k) {
+    std::vector<double> col(k, 0.0);
+    for (std::size_t i = 0; i < n; ++i) col[i % k] = std::max(col[i % k], widths[i]);
+    double total = spacing * static_cast<double>(k - 1);
+    for (double c : col) total += c;
+    if (total <= x1 - x0 || k == 1) {
+      double x = x0;
+      for (double c : col) g.column_x.push_back(x), x += c + spacing;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (i % k == 0) g.rows.emplace_back();
+        g.rows.back().push_back(i);
+      }
+      return g;
+    }
   }
-  pllsty(1);
-  plschr(0.0, scale);
+  return g;
 }
 
-void draw_mode_strip(const Panel& p, double vx0, double vx1, double vy0, double vy1, double x0,
-                     double x1, double scale) {
-  plvpor(vx0, vx1, vy0, vy1);
-  plwind(x0, x1, 0.0, 1.0);
-  plschr(0.0, 0.7 * scale);
+// The panel in rect r with base character height ch; the bands above the axes (title, legend, mode
+// strip, event numbers) take at least min_bands, so that panels side by side line up.
+PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_bands = 0.0) {
+  PanelGeometry g;
+  g.h = ch;
+  const double pad = 0.5 * ch;
+  g.axes.x0 = r.x0 + 6.0 * ch;
+  g.axes.x1 = r.x1 - 1.5 * ch;
+  g.axes.y0 = r.y0 + 4.4 * ch;
+  const double aw = g.axes.x1 - g.axes.x0;
+  double y = r.y1 - 0.8 * ch;
+
+  // Title, shrunk to the panel's width if need be (the scale note is added below, when known).
+  std::string title = p.title;
+  double wx0, wx1, wy0, wy1;
+  if (p.fixed_x) {
+    wx0 = p.x0, wx1 = p.x1;
+  } else {
+    data_range(p, true, wx0, wx1);
+    const double pad_x = 0.04 * (wx1 - wx0);
+    wx0 -= pad_x, wx1 += pad_x;
+  }
+  data_range(p, false, wy0, wy1);
+  const double pad_y = 0.06 * (wy1 - wy0);
+  wy0 -= pad_y, wy1 += pad_y;
+
+  // Heights of the bands above the axes, to know the axes' height for the scale note.
+  std::vector<const Curve*> entries;
+  if (p.show_legend) {
+    for (const Curve& c : p.curves) {
+      if (!c.label.empty()) entries.push_back(&c);
+    }
+  }
+  const double title_h = 1.1 * ch;
+  double legend_h = 0.8 * ch;
+  const double sample = 2.2 * ch, sample_gap = 0.6 * ch, entry_gap = 1.6 * ch;
+  std::vector<double> entry_w;
+  auto measure_entries = [&] {
+    entry_w.clear();
+    for (const Curve* c : entries) entry_w.push_back(sample + sample_gap + text_width(c->label, legend_h));
+  };
+  measure_entries();
+  const double widest = entry_w.empty() ? 0.0 : *std::max_element(entry_w.begin(), entry_w.end());
+  if (widest > aw) {
+    legend_h *= aw / widest;
+    measure_entries();
+  }
+  const Grid legend = grid(entry_w, g.axes.x0, g.axes.x1, entry_gap, p.legend_columns);
+  const auto& legend_lines = legend.rows;
+  bool legend_sub = false;
+  for (const Curve* c : entries) legend_sub = legend_sub || has_subscript(c->label);
+  const double legend_line = (legend_sub ? 2.0 : 1.7) * legend_h;
+
+  const double tag_h = 0.75 * ch;
+  const double tag_row = 1.5 * tag_h, leader = 0.8 * ch;
+  // Event numbers: one row if they fit, otherwise alternate between more rows.
+  std::vector<double> tag_w;
+  for (std::size_t i = 0; i < p.events.size(); ++i) {
+    tag_w.push_back(text_width(std::to_string(i + 1), tag_h));
+  }
+  int tag_rows = p.events.empty() ? 0 : 1;
+  std::vector<std::vector<double>> tag_pos;  // per row
+  std::vector<std::vector<std::size_t>> tag_members;
+  const double tag_lo = g.axes.x0, tag_hi = g.axes.x1 + 1.2 * ch;
+  auto tag_centre = [&](double t) { return g.axes.x0 + (t - wx0) / (wx1 - wx0) * aw; };
+  for (; tag_rows > 0 && tag_rows <= 6; ++tag_rows) {
+    tag_pos.assign(tag_rows, {});
+    tag_members.assign(tag_rows, {});
+    bool ok = true;
+    for (int row = 0; row < tag_rows && ok; ++row) {
+      std::vector<double> c, w;
+      for (std::size_t i = row; i < p.events.size(); i += tag_rows) {
+        c.push_back(tag_centre(p.events[i].t));
+        w.push_back(tag_w[i]);
+        tag_members[row].push_back(i);
+      }
+      ok = placement::pack_row(c, w, tag_lo, tag_hi, 0.5 * tag_h, tag_pos[row]);
+    }
+    if (ok) break;
+  }
+  tag_rows = std::min(tag_rows, 6);
+
+  const double tag_band = tag_rows ? tag_rows * tag_row + leader : 0.3 * ch;
+  g.bands = 0.8 * ch + title_h * 1.45 + 0.3 * ch +
+                       (legend_lines.empty() ? 0.0 : legend_lines.size() * legend_line + 0.3 * ch) +
+                       (p.modes.empty() ? 0.0 : 1.25 * ch) +
+                       tag_band;
+  g.axes.y1 = r.y1 - std::max(g.bands, min_bands);
+  const double ah = g.axes.y1 - g.axes.y0;
+
+  if (p.to_scale) {
+    // Same data units per millimetre on both axes, as long as that leaves a readable plot;
+    // otherwise the title says how much one axis is stretched.
+    const double sx = (wx1 - wx0) / aw, sy = (wy1 - wy0) / ah;
+    const double stretch = std::max(sx, sy) / std::min(sx, sy);
+    if (stretch <= 8.0) {
+      if (sx > sy) {
+        const double c = 0.5 * (wy0 + wy1), half = 0.5 * sx * ah;
+        wy0 = c - half, wy1 = c + half;
+      } else {
+        const double c = 0.5 * (wx0 + wx1), half = 0.5 * sy * aw;
+        wx0 = c - half, wx1 = c + half;
+      }
+      title += " (to scale)";
+    } else {
+      title += fmt::format(" (not to scale: {} stretched {:.0f}×)", sx > sy ? "h" : "x", stretch);
+    }
+  }
+  // Room above the highest reference level for its name.
+  const double line_h = 0.7 * ch;
+  for (const auto& l : p.hlines) {
+    const double k = (1.6 * line_h + 0.7 * ch) / ah;
+    if (wy1 - l.first < k * (wy1 - wy0)) wy1 = (l.first - k * wy0) / (1.0 - k);
+  }
+  g.wx0 = wx0, g.wx1 = wx1, g.wy0 = wy0, g.wy1 = wy1;
+
+  // Title.
+  double th = title_h;
+  const double tw = text_width(title, th);
+  if (tw > r.x1 - r.x0 - 2.0 * pad) th *= (r.x1 - r.x0 - 2.0 * pad) / tw;
+  y -= 0.55 * title_h;
+  const double title_x = std::clamp(0.5 * (g.axes.x0 + g.axes.x1), r.x0 + pad + 0.5 * text_width(title, th),
+                                    r.x1 - pad - 0.5 * text_width(title, th));
+  g.texts.push_back(make_text(PlacedText::title, title, title_x, y, 0.5, th));
+  y -= 0.9 * title_h + 0.3 * ch;
+
+  // Legend rows, left-aligned with the axes.
+  for (const auto& line : legend_lines) {
+    const double ty = y - 0.55 * legend_h;
+    for (std::size_t i : line) {
+      const double x = legend.x(i);
+      const Curve& c = *entries[i];
+      const Box sb{x, ty - 0.35 * legend_h, x + sample, ty + 0.35 * legend_h};
+      if (c.dots) {
+        g.strokes.push_back({x + 0.5 * sample, ty, x + 0.5 * sample, ty, c.colour, 0, c.width});
+      } else {
+        g.strokes.push_back({x, ty, x + sample, ty, c.colour, c.style, c.width});
+      }
+      g.samples.push_back(sb);
+      g.texts.push_back(make_text(PlacedText::legend, c.label, x + sample + sample_gap, ty, 0.0, legend_h));
+    }
+    y -= legend_line;
+  }
+  if (!legend_lines.empty()) y -= 0.3 * ch;
+
+  if (!p.modes.empty()) {
+    g.strip = {g.axes.x0, g.axes.y1 + tag_band, g.axes.x1, g.axes.y1 + tag_band + 1.0 * ch};
+  }
+
+  // Event numbers above the axes, with a leader down to the event's line where they had to move.
+  for (int row = 0; row < tag_rows; ++row) {
+    const double ty = g.axes.y1 + leader + (row + 0.5) * tag_row;
+    for (std::size_t k = 0; k < tag_members[row].size(); ++k) {
+      const std::size_t i = tag_members[row][k];
+      const double cx = tag_centre(p.events[i].t), tx = tag_pos[row][k];
+      Text t = make_text(PlacedText::event_number, std::to_string(i + 1), tx, ty, 0.5, tag_h);
+      g.strokes.push_back({cx, g.axes.y1, tx, t.box.y0 - 0.1 * ch, kGrey, 1, 0.8});
+      g.texts.push_back(std::move(t));
+    }
+  }
+
+  // The y axis' title, smaller if it is longer than the axes are high.
+  g.ylabel_h = std::min(ch, ch * 0.97 * (g.axes.y1 - g.axes.y0) / std::max(1e-9, text_width(p.ylabel, ch)));
+
+  // Where PLplot writes tick numbers and axis titles.
+  g.reserved.push_back({r.x0, g.axes.y0 - 0.6 * ch, g.axes.x0, g.axes.y1 + 0.6 * ch});
+  g.reserved.push_back({g.axes.x0 - 2.0 * ch, r.y0, g.axes.x1 + 2.0 * ch, g.axes.y0});
+
+  // Data in millimetres, for the collision tests and the layout's users.
+  auto to_mm = [&](double x, double yv) {
+    return Point{g.axes.x0 + (x - wx0) / (wx1 - wx0) * aw, g.axes.y0 + (yv - wy0) / (wy1 - wy0) * ah};
+  };
+  for (const Curve& c : p.curves) {
+    if (c.dots) {
+      for (std::size_t i = 0; i < c.x.size(); ++i) g.data.push_back({to_mm(c.x[i], c.y[i])});
+      continue;
+    }
+    Polyline line;
+    for (std::size_t i = 0; i < c.x.size(); ++i) line.push_back(to_mm(c.x[i], c.y[i]));
+    g.data.push_back(std::move(line));
+  }
+  for (const Mark& m : p.marks) g.data.push_back({to_mm(m.x, m.y)});
+  std::vector<Polyline> obstacles = g.data;
+  const std::vector<Polyline> curves_only = g.data;
+  for (const EventGroup& e : p.events) {
+    obstacles.push_back({to_mm(e.t, wy0), to_mm(e.t, wy1)});
+  }
+  auto free_spot = [&](const Box& b, const std::vector<Polyline>& avoid) {
+    if (!inside(b, grow(g.axes, -0.6 * ch))) return false;  // clear of the tick marks
+    if (hits_data(grow(b, 0.15 * ch), avoid)) return false;
+    for (const Text& t : g.texts) {
+      if (overlap(grow(b, 0.15 * ch), t.box)) return false;
+    }
+    return true;
+  };
+
+  // Numbers of the events on the trajectory: near their dot, away from the curves and each other.
+  const double mark_h = 0.8 * ch;
+  for (const Mark& m : p.marks) {
+    const Point at = to_mm(m.x, m.y);
+    const std::string s = std::to_string(m.number);
+    const double w = text_width(s, mark_h);
+    bool placed = false;
+    for (int ring = 1; ring <= 8 && !placed; ++ring) {
+      const double d = 0.5 * ch + (ring - 1) * 1.1 * ch;
+      for (int k = 0; k < 16 && !placed; ++k) {
+        if (ring == 1 && k % 2) continue;  // the first ring: 8 directions
+        const double a = k * 3.14159265358979323846 / 8.0;
+        const double ux = std::cos(a), uy = std::sin(a);
+        const double cx = at.first + ux * (d + 0.5 * w), cy = at.second + uy * (d + 0.6 * mark_h);
+        Text t = make_text(PlacedText::event_number, s, cx, cy + 0.15 * mark_h, 0.5, mark_h);
+        if (!free_spot(t.box, obstacles)) continue;
+        if (ring > 1) {
+          // The leader must not cross a curve either.
+          const Point end{std::clamp(at.first, t.box.x0, t.box.x1), std::clamp(at.second, t.box.y0, t.box.y1)};
+          const Point from{at.first + 0.35 * ch * ux, at.second + 0.35 * ch * uy};
+          bool crosses = false;
+          for (const Polyline& line : curves_only) {
+            if (line.size() == 1) continue;
+            for (std::size_t i = 1; i < line.size() && !crosses; ++i) {
+              const double d1x = end.first - from.first, d1y = end.second - from.second;
+              const double d2x = line[i].first - line[i - 1].first, d2y = line[i].second - line[i - 1].second;
+              const double den = d1x * d2y - d1y * d2x;
+              if (den == 0.0) continue;
+              const double ex = line[i - 1].first - from.first, ey = line[i - 1].second - from.second;
+              const double s1 = (ex * d2y - ey * d2x) / den, s2 = (ex * d1y - ey * d1x) / den;
+              crosses = s1 > 0.0 && s1 < 1.0 && s2 >= 0.0 && s2 <= 1.0;
+            }
+          }
+          if (crosses) continue;
+          g.strokes.push_back({from.first, from.second, end.first, end.second, kGrey, 1, 0.8});
+        }
+        g.texts.push_back(std::move(t));
+        placed = true;
+      }
+    }
+  }
+
+  // Names of reference levels: on a free stretch of their line (crossing an event line if needed).
+  for (const auto& [level, name] : p.hlines) {
+    const Point at = to_mm(wx0, level);
+    bool placed = false;
+    for (int pass = 0; pass < 2 && !placed; ++pass) {
+      const std::vector<Polyline>& avoid = pass == 0 ? obstacles : curves_only;
+      for (double fx : {0.0, 1.0, 0.25, 0.5, 0.75}) {
+        for (double side : {1.0, -1.0}) {
+          const double just = fx == 1.0 ? 1.0 : fx == 0.0 ? 0.0 : 0.5;
+          const double x = g.axes.x0 + 0.8 * ch + fx * (aw - 1.6 * ch);
+          const double ty = at.second + (side > 0 ? 0.95 * line_h : -0.65 * line_h);
+          Text t = make_text(PlacedText::label, name, x, ty, just, line_h, kGrey);
+          if (!free_spot(t.box, avoid)) continue;
+          g.texts.push_back(std::move(t));
+          placed = true;
+          break;
+        }
+        if (placed) break;
+      }
+    }
+  }
+  return g;
+}
+
+PageGeometry layout_page(const Page& page) {
+  PageGeometry pg;
+  pg.w = page.width * kMmPerPt;
+  pg.h = page.height * kMmPerPt;
+  // PLplot's default for a 1000 x 650 page, scaled with the size of one panel.
+  pg.ch = 5.82 * std::sqrt(page.width * static_cast<double>(page.height) / (page.nx * page.ny) / 650000.0) *
+          page.text_scale;
+  const double ch = pg.ch;
+
+  // The key to the event numbers, under everything; shrunk if it would take too much room.
+  double key_top = 0.0;
+  if (!page.key.empty()) {
+    std::vector<std::string> items;
+    for (std::size_t i = 0; i < page.key.size(); ++i) {
+      items.push_back(fmt::format("{}: {}", i + 1, page.key[i].label));
+    }
+    const double x0 = 1.2 * ch, x1 = pg.w - 1.2 * ch;
+    double kh = 0.8 * ch;
+    Grid key;
+    std::vector<double> widths;
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      widths.clear();
+      for (const std::string& s : items) widths.push_back(std::min(text_width(s, kh), x1 - x0));
+      key = grid(widths, x0, x1, 2.0 * kh);
+      if (key.rows.size() * 1.7 * kh <= 0.3 * pg.h || kh < 0.5 * ch) break;
+      kh *= 0.85;
+    }
+    const double line_h = 1.7 * kh;
+    double y = 0.6 * ch + (key.rows.size() - 1) * line_h + 0.85 * kh;
+    key_top = y + 0.55 * kh + 0.6 * ch;
+    for (const auto& line : key.rows) {
+      for (std::size_t i : line) pg.texts.push_back(make_text(PlacedText::key, items[i], key.x(i), y, 0.0, kh));
+      y -= line_h;
+    }
+  }
+  const double cell_w = pg.w / page.nx, cell_h = (pg.h - key_top) / page.ny;
+  auto cell = [&](std::size_t i) {
+    const int col = static_cast<int>(i) % page.nx, row = static_cast<int>(i) / page.nx;
+    return Box{col * cell_w, pg.h - (row + 1) * cell_h, (col + 1) * cell_w, pg.h - row * cell_h};
+  };
+  std::vector<double> row_bands(page.ny, 0.0);
+  for (std::size_t i = 0; i < page.panels.size(); ++i) {
+    double& b = row_bands[i / page.nx];
+    b = std::max(b, layout_panel(page.panels[i], cell(i), ch).bands);
+  }
+  for (std::size_t i = 0; i < page.panels.size(); ++i) {
+    pg.panels.push_back(layout_panel(page.panels[i], cell(i), ch, row_bands[i / page.nx]));
+  }
+  return pg;
+}
+
+PageLayout public_layout(const Page& page, const PageGeometry& pg) {
+  PageLayout out;
+  out.name = page.name;
+  out.width = pg.w;
+  out.height = pg.h;
+  auto add = [&](const Text& t) { out.texts.push_back({t.kind, t.text, t.box}); };
+  for (const PanelGeometry& g : pg.panels) {
+    out.axes.push_back(g.axes);
+    out.windows.push_back({g.wx0, g.wy0, g.wx1, g.wy1});
+    out.axis_labels.insert(out.axis_labels.end(), g.reserved.begin(), g.reserved.end());
+    for (const Text& t : g.texts) add(t);
+    out.legend_samples.insert(out.legend_samples.end(), g.samples.begin(), g.samples.end());
+    out.data.insert(out.data.end(), g.data.begin(), g.data.end());
+  }
+  for (const Text& t : pg.texts) add(t);
+  return out;
+}
+
+// ---- drawing ----
+
+std::string tmp_name(const std::string& path) { return path + ".part"; }
+
+// Cairo's PDF surface stamps the wall-clock time; a fixed date of the same length keeps the byte
+// offsets of the cross-reference table valid and makes the file reproducible.
+void pin_pdf_date(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  const std::string key = "/CreationDate (D:";
+  auto pos = data.find(key);
+  if (pos == std::string::npos) return;
+  pos += key.size();
+  const std::string fixed = "19700101000000Z";
+  if (data.compare(pos + fixed.size(), 1, ")") != 0) return;
+  data.replace(pos, fixed.size(), fixed);
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << data;
+}
+
+const char* device(Format f) {
+  switch (f) {
+    case Format::png: return "pngcairo";
+    case Format::svg: return "svg";
+    case Format::pdf: return "pdfcairo";
+  }
+  return "pngcairo";
+}
+
+void set_palette() {
+  std::array<PLINT, kColourCount> r{}, g{}, b{};
+  for (int i = 0; i < kColourCount; ++i) {
+    r[i] = kPalette[i][0], g[i] = kPalette[i][1], b[i] = kPalette[i][2];
+  }
+  plscmap0(r.data(), g.data(), b.data(), kColourCount);
+}
+
+void viewport(const PageGeometry& pg, const Box& b) {
+  plvpor(b.x0 / pg.w, b.x1 / pg.w, b.y0 / pg.h, b.y1 / pg.h);
+}
+void mm_space(const PageGeometry& pg) {
+  plvpor(0.0, 1.0, 0.0, 1.0);
+  plwind(0.0, pg.w, 0.0, pg.h);
+}
+
+void draw_text(const Text& t) {
+  plschr(t.h, 1.0);
+  plcol0(t.colour);
+  plptex(t.x, t.y, 1.0, 0.0, t.just, t.text.c_str());
+}
+
+void draw_mode_strip(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) {
+  viewport(pg, g.strip);
+  plwind(g.wx0, g.wx1, 0.0, 1.0);
+  plschr(0.7 * g.h, 1.0);
   for (const ModeSpan& m : p.modes) {
-    const double a = std::max(x0, m.t0), b = std::min(x1, m.t1);
+    const double a = std::max(g.wx0, m.t0), b = std::min(g.wx1, m.t1);
     if (b <= a) continue;
     plcol0(kModeFirst + static_cast<int>(m.mode) - 1);
     const PLFLT xs[4] = {a, b, b, a}, ys[4] = {0, 0, 1, 1};
     plfill(4, xs, ys);
     plcol0(kBlack);
     // Only where there is room for the two characters.
-    if ((b - a) / (x1 - x0) > 0.025) {
-      plptex(0.5 * (a + b), 0.5, 1.0, 0.0, 0.5, std::string(to_string(m.mode)).c_str());
+    const std::string name(to_string(m.mode));
+    if ((b - a) / (g.wx1 - g.wx0) * (g.strip.x1 - g.strip.x0) > 1.3 * text_width(name, 0.7 * g.h)) {
+      plptex(0.5 * (a + b), 0.5, 1.0, 0.0, 0.5, name.c_str());
     }
   }
   plcol0(kBlack);
   plwidth(1.0);
   plbox("bc", 0.0, 0, "bc", 0.0, 0);
-  plschr(0.0, scale);
 }
 
-// The corner where the legend hides the fewest curve points and event labels. Sizes are
-// estimates in fractions of the plot (character height known, width about 0.55 of it).
-struct LegendPlace {
-  PLINT corner;
-  double cost, height;  // fraction of data it hides; its height as a fraction of the plot
-};
-LegendPlace legend_corner(const Panel& p, double x0, double x1, double y0, double y1, double w_mm,
-                          double h_mm, double text_scale) {
-  std::size_t chars = 0, n = 0;
-  for (const Curve& c : p.curves) {
-    if (!c.label.empty()) chars = std::max(chars, c.label.size()), ++n;
-  }
-  PLFLT def_ht = 0, ht = 0;
-  plgchr(&def_ht, &ht);
-  const double fw = std::min(1.0, (chars * 0.55 * ht * text_scale + 0.14 * w_mm) / w_mm);
-  const double fh = std::min(1.0, (n * 1.7 * ht * text_scale + 2.0 * ht) / h_mm);
-  const PLINT corners[4] = {PL_POSITION_TOP | PL_POSITION_RIGHT, PL_POSITION_TOP | PL_POSITION_LEFT,
-                            PL_POSITION_BOTTOM | PL_POSITION_RIGHT,
-                            PL_POSITION_BOTTOM | PL_POSITION_LEFT};
-  PLINT best = p.legend_position;
-  double best_cost = std::numeric_limits<double>::infinity();
-  for (PLINT corner : corners) {
-    const bool right = corner & PL_POSITION_RIGHT, top = corner & PL_POSITION_TOP;
-    const double ax = right ? 1.0 - fw : 0.0, bx = right ? 1.0 : fw;
-    const double ay = top ? 1.0 - fh : 0.0, by = top ? 1.0 : fh;
-    double cost = 0.0;
-    for (const Curve& c : p.curves) {
-      for (std::size_t i = 0; i < c.x.size(); ++i) {
-        const double u = (c.x[i] - x0) / (x1 - x0), v = (c.y[i] - y0) / (y1 - y0);
-        if (u >= ax && u <= bx && v >= ay && v <= by) cost += 1.0 / c.x.size();
-      }
-    }
-    for (const Mark& m : p.marks) {
-      const double u = (m.x - x0) / (x1 - x0), v = (m.y - y0) / (y1 - y0);
-      const double len = m.label.size() * 0.55 * ht * 0.75 / w_mm;
-      if (v >= ay && v <= by && u <= bx && u + len >= ax) cost += 0.5;
-    }
-    if (corner == p.legend_position) cost -= 1e-6;  // the caller's choice wins ties
-    if (cost < best_cost) best_cost = cost, best = corner;
-  }
-  return {best, n ? best_cost : 0.0, fh};
-}
+void draw_panel(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) {
+  const double ch = g.h;
+  if (!p.modes.empty()) draw_mode_strip(p, g, pg);
 
-void draw_legend(const Panel& p, double scale) {
-  std::vector<const Curve*> shown;
-  for (const Curve& c : p.curves) {
-    if (!c.label.empty()) shown.push_back(&c);
-  }
-  if (shown.empty()) return;
-  const PLINT n = static_cast<PLINT>(shown.size());
-  std::vector<PLINT> opt(n), text_colors(n, kBlack), line_colors(n), line_styles(n),
-      symbol_colors(n), symbol_numbers(n, 1), box_colors(n, 0), box_patterns(n, 0);
-  std::vector<PLFLT> line_widths(n), symbol_scales(n, 1.0), box_scales(n, 0.0),
-      box_line_widths(n, 0.0);
-  std::vector<const char*> text(n), symbols(n);
-  for (PLINT i = 0; i < n; ++i) {
-    const Curve& c = *shown[i];
-    opt[i] = c.symbol >= 0 ? PL_LEGEND_SYMBOL : PL_LEGEND_LINE;
-    line_colors[i] = symbol_colors[i] = c.colour;
-    line_styles[i] = c.style;
-    line_widths[i] = c.width;
-    text[i] = c.label.c_str();
-    symbols[i] = c.symbol >= 0 ? "•" : "";
-  }
-  PLFLT w = 0, h = 0;
-  // pllegend scales its text from the current character height by text_scale.
-  plschr(0.0, scale);
-  pllegend(&w, &h, PL_LEGEND_BACKGROUND | PL_LEGEND_BOUNDING_BOX, p.legend_position | PL_POSITION_INSIDE,
-           0.015, 0.03, 0.06, kWhite, kGrey, 1, 0, 0, n, opt.data(), 1.0, 0.75, 1.8, 0.0,
-           text_colors.data(), text.data(), box_colors.data(), box_patterns.data(),
-           box_scales.data(), box_line_widths.data(), line_colors.data(), line_styles.data(),
-           line_widths.data(), symbol_colors.data(), symbol_scales.data(), symbol_numbers.data(),
-           symbols.data());
-  plschr(0.0, scale);
-}
-
-// One panel in the current subpage; scale sizes the text.
-void draw_panel(const Panel& p, double scale) {
-  plschr(0.0, scale);
-  PLFLT sx0, sx1, sy0, sy1;  // subpage in mm
-  plgspa(&sx0, &sx1, &sy0, &sy1);
-  const double vx0 = 0.115, vx1 = 0.975, vy0 = 0.13;
-  const double vy1 = p.modes.empty() ? 0.89 : 0.84;
-  double x0, x1, y0, y1;
-  if (p.fixed_x) {
-    x0 = p.x0, x1 = p.x1;
-  } else {
-    data_range(p, true, x0, x1);
-  }
-  data_range(p, false, y0, y1);
-  const double pad_y = 0.06 * (y1 - y0);
-  y0 -= pad_y, y1 += pad_y;
-  if (!p.fixed_x) {
-    const double pad_x = 0.04 * (x1 - x0);
-    x0 -= pad_x, x1 += pad_x;
-  }
-  const double w_mm = (vx1 - vx0) * (sx1 - sx0), h_mm = (vy1 - vy0) * (sy1 - sy0);
-  if (p.equal_aspect) {
-    // Same metres per millimetre on both axes, as long as that leaves a readable plot.
-    const double sx = (x1 - x0) / w_mm, sy = (y1 - y0) / h_mm;
-    if (std::max(sx, sy) / std::min(sx, sy) < 8.0) {
-      if (sx > sy) {
-        const double c = 0.5 * (y0 + y1), half = 0.5 * sx * h_mm;
-        y0 = c - half, y1 = c + half;
-      } else {
-        const double c = 0.5 * (x0 + x1), half = 0.5 * sy * w_mm;
-        x0 = c - half, x1 = c + half;
-      }
-    }
-  }
-  // Where the legend goes; if every corner hides data, room is made above the data.
-  Panel placed = p;
-  LegendPlace place = legend_corner(p, x0, x1, y0, y1, w_mm, h_mm, 0.75);
-  if (place.cost > 0.02 && !p.equal_aspect && place.height < 0.5) {
-    y1 += (y1 - y0) * place.height / (1.0 - place.height);
-    place.corner = PL_POSITION_TOP | PL_POSITION_RIGHT;
-  }
-  placed.legend_position = place.corner;
-  if (!p.modes.empty()) draw_mode_strip(p, vx0, vx1, vy1 + 0.012, vy1 + 0.045, x0, x1, scale);
-
-  plvpor(vx0, vx1, vy0, vy1);
-  plwind(x0, x1, y0, y1);
+  viewport(pg, g.axes);
+  plwind(g.wx0, g.wx1, g.wy0, g.wy1);
+  plschr(ch, 1.0);
+  plsmaj(0.5 * ch, 1.0);  // tick lengths [mm], short enough to stay clear of texts inside the axes
+  plsmin(0.3 * ch, 1.0);
   plcol0(kLightGrey);
   plwidth(0.5);
   plbox("g", 0.0, 0, "g", 0.0, 0);
   plcol0(kBlack);
   plwidth(1.0);
+  // Plain numbers on the axes: no "(x10^3)" above the axis where the title and legend are.
+  plsxax(12, 0);
+  plsyax(12, 0);
   plbox("bcnst", 0.0, 0, "bcnstv", 0.0, 0);
   plmtex("b", 3.0, 0.5, 0.5, p.xlabel.c_str());
-  plmtex("l", 4.6, 0.5, 0.5, p.ylabel.c_str());
-  plschr(0.0, 1.1 * scale);
-  plmtex("t", p.modes.empty() ? 1.0 : 3.4, 0.5, 0.5, p.title.c_str());
-  plschr(0.0, scale);
+  plschr(g.ylabel_h, 1.0);
+  plmtex("l", 4.6 * ch / g.ylabel_h, 0.5, 0.5, p.ylabel.c_str());
+  plschr(ch, 1.0);
 
   for (const auto& l : p.hlines) {
     plcol0(kGrey);
     pllsty(3);
     plwidth(1.0);
-    const PLFLT xs[2] = {x0, x1}, ys[2] = {l.first, l.first};
+    const PLFLT xs[2] = {g.wx0, g.wx1}, ys[2] = {l.first, l.first};
     plline(2, xs, ys);
     pllsty(1);
-    plschr(0.0, 0.7 * scale);
-    plptex(x0 + 0.01 * (x1 - x0), l.first + 0.012 * (y1 - y0), 1.0, 0.0, 0.0, l.second.c_str());
-    plschr(0.0, scale);
   }
-  draw_event_lines(p, x0, x1, y0, y1, w_mm, scale);
+  pllsty(2);
+  plwidth(1.0);
+  plcol0(kGrey);
+  for (const EventGroup& e : p.events) {
+    const PLFLT xs[2] = {e.t, e.t}, ys[2] = {g.wy0, g.wy1};
+    plline(2, xs, ys);
+  }
+  pllsty(1);
 
+  plschr(ch, 1.0);
   for (const Curve& c : p.curves) {
     if (c.x.empty()) continue;
     plcol0(c.colour);
-    if (c.symbol >= 0) {
-      plschr(0.0, scale);
+    if (c.dots) {
       for (std::size_t i = 0; i < c.x.size(); ++i) plptex(c.x[i], c.y[i], 1.0, 0.0, 0.5, "•");
       continue;
     }
@@ -379,56 +738,51 @@ void draw_panel(const Panel& p, double scale) {
     plline(static_cast<PLINT>(c.x.size()), c.x.data(), c.y.data());
     pllsty(1);
   }
+  plcol0(kRed);
+  for (const Mark& m : p.marks) plptex(m.x, m.y, 1.0, 0.0, 0.5, "•");
   plwidth(1.0);
-  plschr(0.0, 0.75 * scale);
-  // Marks closer than a few per cent of the plot to the last labelled one share its label.
-  std::vector<std::string> labels;
-  std::vector<const Mark*> anchors;
-  for (const Mark& m : p.marks) {
-    plcol0(m.colour);
-    plptex(m.x, m.y, 1.0, 0.0, 0.5, "•");
-    if (!anchors.empty() && std::fabs(m.x - anchors.back()->x) < 0.03 * (x1 - x0) &&
-        std::fabs(m.y - anchors.back()->y) < 0.04 * (y1 - y0)) {
-      const auto at = labels.back().find(" (+");
-      int more = 1;
-      if (at != std::string::npos) more = std::stoi(labels.back().substr(at + 3)) + 1;
-      labels.back() = labels.back().substr(0, at) + fmt::format(" (+{} more)", more);
+
+  // Everything placed in millimetres: legends, event numbers, leaders, labels, the title.
+  mm_space(pg);
+  for (const Segment& s : g.strokes) {
+    plcol0(s.colour);
+    if (s.style == 0) {
+      plschr(ch, 1.0);
+      plptex(s.x0, s.y0, 1.0, 0.0, 0.5, "•");
       continue;
     }
-    anchors.push_back(&m);
-    labels.push_back(m.label);
+    pllsty(s.style);
+    plwidth(s.width);
+    const PLFLT xs[2] = {s.x0, s.x1}, ys[2] = {s.y0, s.y1};
+    plline(2, xs, ys);
   }
-  plcol0(kBlack);
-  for (std::size_t i = 0; i < anchors.size(); ++i) {
-    plptex(anchors[i]->x + 0.012 * (x1 - x0), anchors[i]->y, 1.0, 0.0, 0.0, labels[i].c_str());
-  }
-  plschr(0.0, scale);
-  draw_legend(placed, scale);
+  pllsty(1);
+  plwidth(1.0);
+  for (const Text& t : g.texts) draw_text(t);
 }
 
-// Draws one page (nx by ny panels) in every requested format; files appear only when complete.
-std::vector<std::string> write_page(const std::string& dir, const std::string& name,
-                                    const FigureOptions& opts, int width, int height, int nx,
-                                    int ny, const std::vector<Panel>& panels, double scale) {
+// Draws one page in every requested format; files appear only when complete.
+std::vector<std::string> write_page(const std::string& dir, const Page& page,
+                                    const FigureOptions& opts, std::vector<PageLayout>* layouts) {
+  const PageGeometry pg = layout_page(page);
+  if (layouts) layouts->push_back(public_layout(page, pg));
   std::vector<std::string> written;
   for (Format f : opts.formats) {
-    const std::string path = (fs::path(dir) / (name + "." + std::string(extension(f)))).string();
+    const std::string path = (fs::path(dir) / (page.name + "." + std::string(extension(f)))).string();
     const std::string tmp = tmp_name(path);
     plsdev(device(f));
     plsfnam(tmp.c_str());
-    plsetopt("geometry", fmt::format("{}x{}", width, height).c_str());
+    plsetopt("geometry", fmt::format("{}x{}", page.width, page.height).c_str());
     set_palette();
     plsfam(0, 0, 0);
-    plssub(nx, ny);
+    plssub(1, 1);
     plinit();
-    plfontld(0);
-    for (const Panel& p : panels) {
-      pladv(0);
-      draw_panel(p, scale);
-    }
+    pladv(0);
+    for (std::size_t i = 0; i < page.panels.size(); ++i) draw_panel(page.panels[i], pg.panels[i], pg);
+    mm_space(pg);
+    for (const Text& t : pg.texts) draw_text(t);
     plend1();
     if (f == Format::pdf) pin_pdf_date(tmp);
-    if (f == Format::svg) renumber_svg_surfaces(tmp);
     std::error_code ec;
     fs::rename(tmp, path, ec);
     if (ec) throw InputError(fmt::format("--out: cannot write '{}': {}", path, ec.message()));
@@ -521,41 +875,35 @@ std::vector<Panel> run_panels(const Recording& rec, const std::string& title) {
   std::vector<Panel> panels;
 
   Panel x = time_panel(rec, pre + "sandbag, horizontal position", "x [m] (from the pivot)");
-  x.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.x; }, "x", kBlue));
-  x.curves.back().label.clear();
+  x.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.x; }, "", kBlue));
   panels.push_back(x);
 
   Panel h = time_panel(rec, pre + "sandbag, height", "h [m] (above the pivot)");
-  h.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.h; }, "h", kBlue));
-  h.curves.back().label.clear();
+  h.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.h; }, "", kBlue));
   panels.push_back(h);
 
   Panel tr;
   tr.title = pre + "sandbag, trajectory";
-  tr.xlabel = "x [m]";
-  tr.ylabel = "h [m]";
-  tr.equal_aspect = true;
-  tr.legend_position = PL_POSITION_BOTTOM | PL_POSITION_LEFT;
+  tr.xlabel = "x [m] (from the pivot)";
+  tr.ylabel = "h [m] (above the pivot)";
+  tr.to_scale = true;
   tr.curves.push_back(series(
       rec, [](const Snapshot& s) { return s.x; }, [](const Snapshot& s) { return s.h; },
       "sandbag", kBlue));
   {
-    // The seesaw's left arm at the start, for orientation.
+    // The seesaw at the start, for orientation.
     const Snapshot& s0 = rec.states.front();
-    const double len = std::max(rec.scenario.machine.seesaw_right_arm,
-                                1.2 * std::fabs(s0.x) / std::max(0.2, std::cos(s0.phi_s)));
-    Curve arm;
-    arm.label = "seesaw at t = 0";
-    arm.colour = kBrown;
-    arm.width = 1.5;
-    arm.style = 2;
-    arm.x = {-len * std::cos(s0.phi_s), rec.scenario.machine.seesaw_right_arm * std::cos(s0.phi_s)};
-    arm.y = {-len * std::sin(s0.phi_s), rec.scenario.machine.seesaw_right_arm * std::sin(s0.phi_s)};
+    const double right = rec.scenario.machine.seesaw_right_arm;
+    const double len = std::max(right, 1.2 * std::fabs(s0.x) / std::max(0.2, std::cos(s0.phi_s)));
+    Curve arm = styled("seesaw at t = 0", kBrown, 2, 1.5);
+    arm.x = {-len * std::cos(s0.phi_s), right * std::cos(s0.phi_s)};
+    arm.y = {-len * std::sin(s0.phi_s), right * std::sin(s0.phi_s)};
     tr.curves.push_back(arm);
   }
-  for (const EventGroup& g : group_events(rec.result)) {
-    const Snapshot& s = rec.result.events[g.events.back()].after;
-    tr.marks.push_back({s.x, s.h, g.label, kRed});
+  const std::vector<EventGroup> groups = group_events(rec.result);
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    const Snapshot& s = rec.result.events[groups[i].events.back()].after;
+    tr.marks.push_back({s.x, s.h, static_cast<int>(i) + 1});
   }
   panels.push_back(tr);
 
@@ -565,26 +913,23 @@ std::vector<Panel> run_panels(const Recording& rec, const std::string& title) {
   ang.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_l * kDeg; },
                               "φ#dL#u lid", kOrange));
   ang.hlines.push_back({90.0, "90°: vertical"});
-  ang.legend_position = PL_POSITION_BOTTOM | PL_POSITION_RIGHT;
   panels.push_back(ang);
 
-  Panel bal = time_panel(rec, pre + "balloon", "height of the balloon's centre [m] (from the box top)");
+  Panel bal = time_panel(rec, pre + "balloon", "height [m] (from the box top)");
   bal.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.balloon_h; },
                               "balloon h#dB#u", kBlue));
   bal.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.balloon_limit; },
                               "limit under the lid h#dlim#u", kOrange, 2, 2.0));
-  bal.legend_position = PL_POSITION_TOP | PL_POSITION_LEFT;
   panels.push_back(bal);
 
   Panel en = time_panel(rec, pre + "mechanical energy", "energy [J]");
   en.curves.push_back(total_energy(rec, "total", kBlack));
   en.curves.push_back(series(
       rec, time_of, [](const Snapshot& s) { return s.sandbag_kinetic + s.sandbag_potential; },
-      "sandbag (zero: at the pivot's height, at rest)", kGreen, 1, 1.5));
+      "sandbag (zero: at rest at the pivot's height)", kGreen, 1, 1.5));
   en.curves.push_back(series(
       rec, time_of, [](const Snapshot& s) { return s.lid_kinetic + s.lid_potential; },
-      "lid (zero: horizontal, at rest)", kPurple, 1, 1.5));
-  en.legend_position = PL_POSITION_BOTTOM | PL_POSITION_LEFT;
+      "lid (zero: at rest, horizontal)", kPurple, 1, 1.5));
   panels.push_back(en);
   return panels;
 }
@@ -607,12 +952,25 @@ std::string outcome_words(const Result& r) {
 Curve event_points(const Recording& rec, bool lid, int colour) {
   Curve c;
   c.colour = colour;
-  c.symbol = 1;
+  c.dots = true;
   for (const Event& e : rec.result.events) {
     c.x.push_back(e.t);
     c.y.push_back((lid ? e.after.phi_l : e.after.phi_s) * kDeg);
   }
   return c;
+}
+
+Page make_page(std::string name, int width, int height, int nx, int ny, std::vector<Panel> panels,
+               std::vector<EventGroup> key = {}) {
+  Page page;
+  page.name = std::move(name);
+  page.width = width;
+  page.height = height;
+  page.nx = nx;
+  page.ny = ny;
+  page.panels = std::move(panels);
+  page.key = std::move(key);
+  return page;
 }
 
 }  // namespace
@@ -660,28 +1018,33 @@ void prepare_output_dir(const std::string& dir, std::string_view option) {
 }
 
 std::vector<std::string> write_run_figures(const Recording& rec, const std::string& dir,
-                                           const FigureOptions& opts) {
+                                           const FigureOptions& opts,
+                                           std::vector<PageLayout>* layouts) {
   prepare_output_dir(dir, "--out");
   const std::vector<Panel> panels = run_panels(rec, opts.title);
+  const std::vector<EventGroup> key = group_events(rec.result);
   static const char* const names[] = {"sandbag_x", "sandbag_h", "trajectory",
                                       "angles",    "balloon",   "energy"};
   std::vector<std::string> written;
   for (std::size_t i = 0; i < panels.size(); ++i) {
-    auto w = write_page(dir, names[i], opts, opts.width, opts.height, 1, 1, {panels[i]}, 1.0);
+    auto w = write_page(dir, make_page(names[i], opts.width, opts.height, 1, 1, {panels[i]}, key),
+                        opts, layouts);
     written.insert(written.end(), w.begin(), w.end());
   }
-  auto w = write_page(dir, "overview", opts, opts.width * 9 / 5, opts.height * 3 / 2, 3, 2, panels,
-                      0.62);
+  Page overview = make_page("overview", opts.width * 9 / 5, opts.height * 3 / 2, 3, 2, panels, key);
+  overview.text_scale = 1.35;
+  auto w = write_page(dir, overview, opts, layouts);
   written.insert(written.end(), w.begin(), w.end());
   return written;
 }
 
 std::vector<std::string> write_law_comparison(const Scenario& scenario, const std::string& dir,
-                                              const FigureOptions& opts) {
+                                              const FigureOptions& opts,
+                                              std::vector<PageLayout>* layouts) {
   prepare_output_dir(dir, "--out");
   const std::string pre = opts.title.empty() ? "" : opts.title + ": ";
   Panel ps, pl;
-  ps.title = pre + "seesaw angle for the four impact laws";
+  ps.title = pre + "seesaw angle for the four impact laws (dots: events)";
   pl.title = pre + "lid angle for the four impact laws";
   for (Panel* p : {&ps, &pl}) {
     p->xlabel = "time t [s]";
@@ -690,8 +1053,7 @@ std::vector<std::string> write_law_comparison(const Scenario& scenario, const st
   }
   ps.ylabel = "φ#dS#u [deg]";
   pl.ylabel = "φ#dL#u [deg]";
-  ps.legend_position = PL_POSITION_BOTTOM | PL_POSITION_RIGHT;
-  pl.legend_position = PL_POSITION_TOP | PL_POSITION_LEFT;
+  pl.show_legend = false;  // the same four laws as above
   const int colours[] = {kBlue, kOrange, kGreen, kRed};
   const int styles[] = {1, 2, 3, 4};
   double t_end = 0.0;
@@ -712,13 +1074,15 @@ std::vector<std::string> write_law_comparison(const Scenario& scenario, const st
     ++i;
   }
   for (Panel* p : {&ps, &pl}) p->x1 = t_end * 1.04;
-  return write_page(dir, "compare_laws", opts, opts.width, opts.height * 8 / 5, 1, 2, {ps, pl}, 1.0);
+  return write_page(dir, make_page("compare_laws", opts.width, opts.height * 8 / 5, 1, 2, {ps, pl}),
+                    opts, layouts);
 }
 
 std::vector<std::string> write_integrator_comparison(const Scenario& scenario,
                                                      IntegratorKind fixed, double step,
                                                      const std::string& dir,
-                                                     const FigureOptions& opts) {
+                                                     const FigureOptions& opts,
+                                                     std::vector<PageLayout>* layouts) {
   if (fixed == IntegratorKind::adaptive) {
     throw InputError("--integrator: compare the adaptive integrator with euler or rk4, not with itself");
   }
@@ -739,7 +1103,7 @@ std::vector<std::string> write_integrator_comparison(const Scenario& scenario,
   ang.fixed_x = true;
   ang.x1 = std::max(ra.t_end(), rf.t_end()) * 1.04;
   ang.hlines.push_back({90.0, "90°: vertical"});
-  ang.legend_position = PL_POSITION_BOTTOM | PL_POSITION_RIGHT;
+  ang.legend_columns = 2;  // a row per integrator
   ang.events = group_events(ra.result);
   auto phs = [](const Snapshot& s) { return s.phi_s * kDeg; };
   auto phl = [](const Snapshot& s) { return s.phi_l * kDeg; };
@@ -756,11 +1120,11 @@ std::vector<std::string> write_integrator_comparison(const Scenario& scenario,
   en.ylabel = "energy [J]";
   en.hlines.clear();
   en.curves.clear();
-  en.legend_position = PL_POSITION_TOP | PL_POSITION_RIGHT;
   en.curves.push_back(total_energy(ra, "adaptive", kBlack));
   en.curves.push_back(total_energy(rf, fixed_name, kRed, 2, 2.0));
-  return write_page(dir, "compare_integrator", opts, opts.width, opts.height * 8 / 5, 1, 2,
-                    {ang, en}, 1.0);
+  return write_page(dir, make_page("compare_integrator", opts.width, opts.height * 8 / 5, 1, 2,
+                                   {ang, en}, ang.events),
+                    opts, layouts);
 }
 
 }  // namespace whatnext::viz

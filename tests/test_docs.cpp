@@ -1,0 +1,107 @@
+// What the README and docs/ promise a reader: the shipped inputs they use exist and run, they cite
+// no file the reader does not have, and the output references name every column and key the
+// program writes.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <regex>
+#include <sstream>
+#include <set>
+#include <string>
+
+#include "cli_runner.hpp"
+#include "whatnext/config.hpp"
+#include "whatnext/output.hpp"
+#include "whatnext/simulate.hpp"
+
+namespace {
+
+using namespace whatnext;
+using namespace whatnext::test_support;
+
+const std::string kSource = WHATNEXT_SOURCE_DIR;
+
+// Every `name` written in backticks in a Markdown text (code fences left out).
+std::set<std::string> backticked(const std::string& markdown) {
+  std::string text;
+  std::istringstream in(markdown);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("```", 0) != 0) text += line + "\n";
+  }
+  std::set<std::string> names;
+  const std::regex tick("`([^`\n]+)`");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), tick); it != std::sregex_iterator(); ++it) {
+    names.insert((*it)[1]);
+  }
+  return names;
+}
+
+std::vector<std::string> split(const std::string& line, char sep) {
+  std::vector<std::string> out(1);
+  for (char c : line) {
+    if (c == sep) out.emplace_back();
+    else if (c != '\n' && c != '\r') out.back() += c;
+  }
+  return out;
+}
+
+class Docs : public CliTest {};
+
+// The README's `whatnext run examples/whatnext.inp --dat whatnext.dat`: the file is shipped, is
+// example 1's machine in the paper's layout, and writes the .dat.
+TEST_F(Docs, ShippedInpIsExampleOneInThePapersLayout) {
+  const Scenario inp = build_scenario(load_config_file(kSource + "/examples/whatnext.inp"));
+  const Scenario ex1 = build_scenario(example_config(1));
+  EXPECT_EQ(to_toml(Scenario{inp.machine, ex1.start, ex1.run}), to_toml(ex1));  // same machine
+  EXPECT_EQ(to_toml(Scenario{ex1.machine, inp.start, ex1.run}), to_toml(ex1));  // same start
+  EXPECT_EQ(outcome_sentence(simulate(inp)), outcome_sentence(simulate(ex1)));
+  const CliResult r = whatnext("run " + kSource + "/examples/whatnext.inp --dat " + (dir_ / "w.dat").string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "w.dat"));
+}
+
+// Users have docs/model.md; the specification MODEL.md is not in the repository.
+TEST_F(Docs, UserPagesCiteNoMissingSpecification) {
+  for (const char* page : {"README.md", "docs/inputs.md", "docs/pictures.md", "docs/explore.md",
+                           "examples/example1.toml", "examples/example2.toml", "examples/example3.toml",
+                           "examples/example4.toml", "examples/example1-radio.toml", "examples/whatnext.inp"}) {
+    EXPECT_EQ(slurp(kSource + "/" + page).find("MODEL.md"), std::string::npos) << page;
+  }
+}
+
+// inputs.md names every column of the run's CSV and of a sweep's CSV, and every key of the JSON.
+TEST_F(Docs, InputsPageNamesEveryOutputColumnAndKey) {
+  const std::set<std::string> documented = backticked(slurp(kSource + "/docs/inputs.md"));
+  const auto header = split(CsvWriter::header(), ',');
+  EXPECT_EQ(header.size(), 32u);
+  for (const std::string& column : header) EXPECT_TRUE(documented.count(column)) << "CSV column " << column;
+
+  const Scenario ex1 = build_scenario(example_config(1));
+  const nlohmann::json doc = nlohmann::json::parse(events_json(simulate(ex1), ex1, "example 1"));
+  std::set<std::string> keys;
+  std::function<void(const nlohmann::json&)> walk = [&](const nlohmann::json& j) {
+    if (j.is_object()) {
+      for (auto it = j.begin(); it != j.end(); ++it) keys.insert(it.key()), walk(it.value());
+    } else if (j.is_array()) {
+      for (const auto& e : j) walk(e);
+    }
+  };
+  walk(doc);
+  EXPECT_GT(keys.size(), 30u);
+  for (const std::string& key : keys) EXPECT_TRUE(documented.count(key)) << "JSON key " << key;
+
+  const CliResult r = whatnext("sweep --example 2 --vary geometry.rope_length=0.62:0.7:2 --out " +
+                               (dir_ / "s.csv").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string csv = slurp(dir_ / "s.csv");
+  const auto columns = split(csv.substr(0, csv.find('\n')), ',');
+  for (const std::string& column : columns) {
+    if (column == "geometry.rope_length") continue;  // the varied key
+    EXPECT_TRUE(documented.count(column)) << "sweep column " << column;
+  }
+  EXPECT_TRUE(documented.count("invalid"));
+}
+
+}  // namespace
