@@ -48,23 +48,32 @@ def _mode_spans(run: "Run") -> List[Tuple[float, float, str]]:
     change = np.flatnonzero(mode[1:] != mode[:-1]) + 1
     starts = np.concatenate(([0], change))
     ends = np.concatenate((change, [len(t) - 1]))
-    return [(float(t[a]), float(t[b]), str(mode[a])) for a, b in zip(starts, ends) if t[b] > t[a]]
+    spans: List[Tuple[float, float, str]] = []
+    for a, b in zip(starts, ends):
+        if t[b] <= t[a]:
+            continue  # a mode held for no time (M4 for the instant of an impact) gets no band
+        if spans and spans[-1][2] == mode[a]:
+            spans[-1] = (spans[-1][0], float(t[b]), spans[-1][2])
+        else:
+            spans.append((float(t[a]), float(t[b]), str(mode[a])))
+    return spans
 
 
 def _time_axes(ax: "Axes", run: "Run", ylabel: str, labels: bool = False) -> None:
-    """Mode bands, a dashed line at every event (labelled if asked), the time axis."""
-    seen = set()
+    """Mode bands named at their foot, a dashed line at every event (labelled if asked), the time axis."""
+    t_end = run.outcome.time * 1.04 if run.outcome.time > 0 else 1.0
     for t0, t1, mode in _mode_spans(run):
-        ax.axvspan(t0, t1, color=_MODE_COLOURS.get(mode, "#eeeeee"), alpha=0.45, lw=0,
-                   label=None if mode in seen else mode)
-        seen.add(mode)
+        ax.axvspan(t0, t1, color=_MODE_COLOURS.get(mode, "#eeeeee"), alpha=0.45, lw=0)
+        if (t1 - t0) / t_end > 0.04:  # only where the name fits
+            ax.annotate(mode, (t0, 0.0), xycoords=("data", "axes fraction"), xytext=(2, 2),
+                        textcoords="offset points", fontsize=7, color="0.35")
     for t, names in _event_groups(run):
         ax.axvline(t, color="0.45", ls="--", lw=0.8)
         if labels:
             ax.annotate(f"{t:.3f} s {names}", (t, 1.0), xycoords=("data", "axes fraction"),
                         xytext=(3, -4), textcoords="offset points", rotation=90, va="top",
                         ha="left", fontsize=7)
-    ax.set_xlim(0.0, run.outcome.time * 1.04 if run.outcome.time > 0 else 1.0)
+    ax.set_xlim(0.0, t_end)
     ax.set_xlabel("time t [s]")
     ax.set_ylabel(ylabel)
 
@@ -118,13 +127,13 @@ def figure8(run: "Run", *, title: Optional[str] = None, figsize: Tuple[float, fl
     ax_ang.plot(t, s["phi_l_deg"], color="C1", label="φL lid")
     ax_ang.axhline(90.0, color="0.3", ls=":", lw=1)
     ax_ang.set_title("seesaw and lid angles")
-    ax_ang.legend(loc="lower right", fontsize=8)
+    ax_ang.legend(loc="best", fontsize=8)
 
-    _time_axes(ax_bal, run, "height of the balloon's centre [m]")
+    _time_axes(ax_bal, run, "balloon's centre [m] (from the hinge level)")
     ax_bal.plot(t, s["balloon_h_m"], color="C0", label="balloon h_B")
     ax_bal.plot(t, s["balloon_limit_m"], color="C1", ls="--", label="limit under the lid h_lim")
     ax_bal.set_title("balloon")
-    ax_bal.legend(loc="upper left", fontsize=8)
+    ax_bal.legend(loc="best", fontsize=8)
 
     _time_axes(ax_en, run, "energy [J]")
     ax_en.plot(t, s["energy_J"], color="k", lw=2, label="total")
@@ -134,7 +143,7 @@ def figure8(run: "Run", *, title: Optional[str] = None, figsize: Tuple[float, fl
         if e.impact:
             ax_en.plot([e.time, e.time], [e.energy_before, e.energy_after], color="k", lw=2)
     ax_en.set_title("mechanical energy")
-    ax_en.legend(loc="lower left", fontsize=8)
+    ax_en.legend(loc="best", fontsize=8)
     return fig
 
 
@@ -184,8 +193,11 @@ def heatmap(sweep: "Sweep", value: str = "lid_open", *, ax: Optional["Axes"] = N
     if not valid.all():
         ax.pcolormesh(xs, ys, np.ma.masked_where(valid, np.zeros_like(z)).T, shading="nearest",
                       cmap="gray", vmin=0, vmax=1)
-    fig.colorbar(mesh, ax=ax, label=f"{value} [s]" if value not in ("final_r", "final_phi_l_deg") else value)
-    ax.set_xlabel(kx)
-    ax.set_ylabel(ky)
+    from . import input_keys
+    units = {k: unit for k, (unit, _) in input_keys().items()}
+    value_unit = {"final_r": "m", "final_phi_l_deg": "deg"}.get(value, "s")
+    fig.colorbar(mesh, ax=ax, label=f"{value} [{value_unit}]")
+    ax.set_xlabel(f"{kx} [{units[kx]}]" if units.get(kx) else kx)
+    ax.set_ylabel(f"{ky} [{units[ky]}]" if units.get(ky) else ky)
     ax.set_title(f"{value}: grey where it never happens" + (", black: invalid" if not valid.all() else ""))
     return fig
