@@ -17,8 +17,6 @@ Input keys are those of docs/inputs.md (``whatnext.input_keys()`` lists them): a
 everything else SI. Bad input raises :class:`InputError` with the command's one-line message.
 """
 
-from __future__ import annotations
-
 import dataclasses
 import os
 from typing import Any, Dict, Iterator, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
@@ -33,6 +31,7 @@ __all__ = [
     "simulate", "Run", "Event", "Outcome", "sweep", "grid", "Sweep", "plot",
 ]
 
+InputError.__module__ = SimulationError.__module__ = "whatnext"  # as users import them
 InputError.__doc__ = """Bad input: the message is the command line's one line, naming the input
 (file and line, or the set() as a --set), the rule and the value given. A ValueError."""
 SimulationError.__doc__ = """A run that cannot go on (its state turned non-finite, or the
