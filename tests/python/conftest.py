@@ -4,12 +4,12 @@ CTest sets WHATNEXT_CLI and PYTHONPATH (tests/CMakeLists.txt); by hand:
     PYTHONPATH=build/python WHATNEXT_CLI=build/whatnext /usr/bin/python3 -m pytest tests/python
 """
 
+import csv
 import os
 import pathlib
 import subprocess
 from typing import List
 
-import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 CLI = os.environ.get("WHATNEXT_CLI", str(ROOT / "build" / "whatnext"))
@@ -24,6 +24,8 @@ def run_cli(args: List[str], cwd=None, check: bool = True) -> subprocess.Complet
     return proc
 
 
-@pytest.fixture
-def cli():
-    return run_cli
+def read_csv(path):
+    """A CSV file as its header and its rows of text fields."""
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    return rows[0], rows[1:]

@@ -2,25 +2,18 @@
 bit), the same samples (the CSV's columns at the CSV's precision), the same timeline and JSON,
 and the same one-line error messages."""
 
-import csv
 import json
 
 import numpy as np
 import pytest
 
 import whatnext
-from conftest import EXAMPLES, run_cli
+from conftest import EXAMPLES, read_csv, run_cli
 
 # The events JSON's "state" fields and the CSV column with the same quantity.
 JSON_TO_COLUMN = {"x": "x_m", "h": "h_m", "r": "r_m", "dr": "dr_m_per_s", "phi_s_deg": "phi_s_deg",
                   "dphi_s_deg_per_s": "dphi_s_deg_per_s", "phi_l_deg": "phi_l_deg",
                   "dphi_l_deg_per_s": "dphi_l_deg_per_s", "balloon_h": "balloon_h_m", "energy": "energy_J"}
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    return rows[0], rows[1:]
 
 
 def csv_number(v: float) -> float:

@@ -1,7 +1,6 @@
 """Sweeps from Python against `whatnext sweep`: the same columns and numbers as its CSV, for a grid
 and a Latin hypercube; rows independent of the thread count; the GIL released while it runs."""
 
-import csv
 import os
 import signal
 import threading
@@ -11,15 +10,9 @@ import numpy as np
 import pytest
 
 import whatnext
-from conftest import run_cli
+from conftest import read_csv, run_cli
 
 RANGES = {"geometry.rope_length": (0.5, 0.9, 9), "masses.sandbag": (0.2, 2.0, 5)}
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    return rows[0], rows[1:]
 
 
 def assert_columns_equal_csv(result, path):
