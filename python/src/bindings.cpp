@@ -171,7 +171,10 @@ py::array text_array(const std::vector<std::string>& texts) {
   std::size_t width = 1;
   for (std::size_t i = 0; i < texts.size(); ++i) {
     if (texts[i].empty()) continue;
-    decoded[i] = py::str(texts[i]);
+    // "replace": a path with bytes that are not UTF-8 must not turn a whole sweep into an exception.
+    decoded[i] = py::reinterpret_steal<py::str>(
+        PyUnicode_DecodeUTF8(texts[i].data(), static_cast<Py_ssize_t>(texts[i].size()), "replace"));
+    if (!decoded[i]) throw py::error_already_set();
     width = std::max(width, static_cast<std::size_t>(PyUnicode_GetLength(decoded[i].ptr())));
   }
   py::array a(py::dtype(fmt::format("<U{}", width)), std::vector<py::ssize_t>{static_cast<py::ssize_t>(texts.size())});
@@ -243,9 +246,9 @@ py::dict run_machine(const MachineHandle& m, bool samples) {
   ColumnRecorder rec;
   {
     py::gil_scoped_release nogil;
-    if (samples) {
+    if (samples) {  // the rows up to t_max, but not gigabytes for a run that may stop early
       const RunSettings& r = m.scenario.run;
-      rec.reserve(static_cast<std::size_t>(std::min(1e7, r.t_max / r.output_step)) + 64);
+      rec.reserve(static_cast<std::size_t>(std::min(1e5, r.t_max / r.output_step)) + 64);
     }
     result = simulate(m.scenario, samples ? &rec : nullptr);
   }

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import whatnext
-from conftest import read_csv, run_cli
+from conftest import EXAMPLES, read_csv, run_cli
 
 RANGES = {"geometry.rope_length": (0.5, 0.9, 9), "masses.sandbag": (0.2, 2.0, 5)}
 
@@ -54,6 +54,18 @@ def test_latin_hypercube_equals_the_cli_csv(tmp_path):
                             samples=40, seed=7)
     assert_columns_equal_csv(result, out)
     assert result.shape == (40,)
+
+
+def test_errors_naming_a_file_equal_the_cli_csv(tmp_path):
+    # Longer hinge distances leave the file's rope too short: the error names the file's line, and
+    # the file's name is not ASCII.
+    machine = tmp_path / "mäschine.toml"
+    machine.write_text((EXAMPLES / "example2.toml").read_text())
+    out = tmp_path / "u.csv"
+    run_cli(["sweep", machine, "--vary", "geometry.hinge_distance=0.8:1.2:3", "--out", out])
+    result = whatnext.sweep(whatnext.load(machine), {"geometry.hinge_distance": whatnext.grid(0.8, 1.2, 3)})
+    assert "mäschine.toml:" in result["error"][-1]
+    assert_columns_equal_csv(result, out)
 
 
 def test_columns_dtypes_and_grid_shape():
