@@ -19,7 +19,7 @@
     run: null,
     committed: null, previous: null,  // machines before and after the last finished change
     compare: { mode: 'none', law: 'kinetic-energy', step: '0.001', run: null, label: '', message: '' },
-    t: 0, playing: false, speed: 0.1, holdUntil: 0, last: 0,
+    t: 0, playing: false, speed: 'auto', holdUntil: 0, last: 0,
     view: null, dpr: 1, font: 16, aspect: 0.7, runMs: 0, runs: 0,
   };
 
@@ -80,11 +80,13 @@
     $('problem').hidden = false;
   }
 
-  // Remembers the machine after a finished change, so that "previous parameters" can show the one before.
+  const sameMachine = (a, b) => a && b && a.base === b.base && JSON.stringify([...a.sets]) === JSON.stringify([...b.sets]);
+
+  // Remembers the machine after a finished change (a field left, a slider let go), so that "the
+  // previous parameters" can show the one before.
   function commitChange() {
     const now = { base: st.base, sets: new Map(st.good) };
-    const same = (a, b) => a && a.base === b.base && JSON.stringify([...a.sets]) === JSON.stringify([...b.sets]);
-    if (st.committed && !same(st.committed, now)) st.previous = st.committed;
+    if (st.committed && !sameMachine(st.committed, now)) st.previous = st.committed;
     st.committed = now;
     if (st.compare.mode === 'previous') {
       runCompare();
@@ -104,7 +106,11 @@
       input = inputFor(st.base, st.good, ['run.integrator=euler', `run.step=${c.step}`]);
       c.label = `Euler, step ${c.step} s`;
     } else if (c.mode === 'previous') {
-      if (st.previous) input = inputFor(st.previous.base, st.previous.sets);
+      // While a change is under way (a slider moving) the machine before it; after it, the one
+      // before the last change.
+      const shown = { base: st.base, sets: st.good };
+      const before = st.committed && !sameMachine(st.committed, shown) ? st.committed : st.previous;
+      if (before) input = inputFor(before.base, before.sets);
       else c.message = 'Change a parameter: the run before the change is then drawn dashed.';
       c.label = 'previous parameters';
     }
@@ -129,7 +135,7 @@
     $('compare-outcome').hidden = c.mode === 'none';
     $('compare-outcome').textContent = c.run ? `Dashed, ${c.label}: ${c.run.outcome.sentence}.` : c.message;
     $('compare-note').textContent = c.run ? 'dashed in the plots, blue outline in the drawing' : '';
-    plots.show(run, c.run, c.run ? c.label : '');
+    plots.show(run, c.run);
     panel.show(run.values, st.sets);
     showTicks();
     showCommandLine();
@@ -221,9 +227,24 @@
     render();
   }
 
+  // Simulated seconds per second on screen. "auto" does what the animation does: slow motion
+  // (×10) near the events, and a quiet stretch between them crossed in about two seconds.
+  const kSlow = 0.1, kPad = 0.3;
+  function speedAt(t) {
+    if (st.speed !== 'auto') return st.speed;
+    const times = [0, ...st.run.groups.map((g) => g.t), st.run.tEnd];
+    const b = times.find((x) => x > t);
+    const a = [...times].reverse().find((x) => x <= t);
+    if (b === undefined || t - a < kPad || b - t < kPad) return kSlow;
+    return Math.max(kSlow, (b - a - 2 * kPad) / 2);
+  }
+
   function speedWords() {
     if (!st.playing) return st.t >= st.run.tEnd ? 'end of the run (Space plays it again)' : 'paused (Space plays)';
-    return st.speed === 1 ? 'real time' : `slow motion ×${Math.round(1 / st.speed)}`;
+    const v = speedAt(st.t);
+    if (Math.abs(v - 1) < 1e-9) return 'real time';
+    const words = v < 1 ? `slow motion ×${Number((1 / v).toPrecision(2))}` : `fast forward ×${Number(v.toPrecision(2))}`;
+    return st.speed === 'auto' && v > kSlow ? `quiet stretch: ${words}` : words;
   }
 
   function render() {
@@ -288,7 +309,7 @@
       const dt = Math.min(0.1, (now - st.last) / 1000);
       st.last = now;
       if (now >= st.holdUntil) {
-        let t = st.t + dt * st.speed;
+        let t = st.t + dt * speedAt(st.t);
         const next = st.run.groups.find((g) => g.t > st.t);
         if (next && next.t <= t) {
           t = next.t;
@@ -451,7 +472,8 @@
   $('to-start').addEventListener('click', () => { pause(); seek(0); });
   $('prev-event').addEventListener('click', () => jumpEvent(-1));
   $('next-event').addEventListener('click', () => jumpEvent(1));
-  $('speed').addEventListener('change', (e) => { st.speed = Number(e.target.value); render(); });
+  const readSpeed = (text) => (text === 'auto' ? 'auto' : Number(text));
+  $('speed').addEventListener('change', (e) => { st.speed = readSpeed(e.target.value); render(); });
   $('scrub').addEventListener('input', (e) => { st.playing = false; seek(Number(e.target.value)); });
 
   function showCompareControls() {
@@ -492,8 +514,9 @@
     } else if (e.key === 'End' && target.type !== 'range') {
       pause(); seek(st.run.tEnd);
     } else if (e.key === '+' || e.key === '-') {
-      const speeds = [...$('speed').options].map((o) => Number(o.value));
-      const i = speeds.indexOf(st.speed) + (e.key === '+' ? -1 : 1);
+      // Through the fixed speeds, fastest first; from "auto" as from its slow motion.
+      const speeds = [...$('speed').options].map((o) => readSpeed(o.value)).filter((v) => v !== 'auto');
+      const i = speeds.indexOf(st.speed === 'auto' ? kSlow : st.speed) + (e.key === '+' ? -1 : 1);
       st.speed = speeds[Math.min(Math.max(i, 0), speeds.length - 1)];
       $('speed').value = String(st.speed);
       render();

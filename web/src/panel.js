@@ -34,6 +34,7 @@
     'radio.string_length': '1', 'damping.pivot': '0', 'damping.lid_hinge': '0', 'seesaw.left_arm': 'endless',
     'seesaw.mass': '0', 'seesaw.inertia': 'bar', 'seesaw.com_offset': 'bar',
   };
+  const kSections = { balloon: 'Balloon', radio: 'Radio', damping: 'Damping', seesaw: 'A seesaw with mass' };
   const kNumberKinds = ['length', 'mass', 'density', 'angle', 'time', 'acceleration', 'positive'];
   const kSliderSteps = 1000;
 
@@ -62,6 +63,11 @@
 
     for (const spec of keys) {
       const group = groups.find((g) => g.match(spec.key));
+      const section = spec.key.slice(0, spec.key.indexOf('.'));
+      if (group.closed && group.section !== section) {  // the extensions, by the part they change
+        group.details.append(element('h3', { text: kSections[section] || section }));
+        group.section = section;
+      }
       group.details.append(makeField(spec));
     }
 
@@ -106,7 +112,11 @@
         }
       } else {
         const input = element('input', { id, type: 'text', inputmode: 'decimal', size: 9 });
-        input.addEventListener('input', () => send(input.value.trim() || null, false));
+        const moveSlider = () => {
+          const v = Number(input.value.trim() || input.placeholder);
+          if (field.slider && input.value.trim() !== '' && Number.isFinite(v)) field.slider.value = String(Math.round(field.toSlider(v)));
+        };
+        input.addEventListener('input', () => { moveSlider(); send(input.value.trim() || null, false); });
         input.addEventListener('change', () => send(input.value.trim() || null, true));
         field.inputs.push(input);
         row.append(input);

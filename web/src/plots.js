@@ -59,10 +59,27 @@
     return cols;
   }
 
+  // The rows of two runs' tables in one, in time order, each row holding one run's values and
+  // gaps for the other's (uPlot draws across the gaps). Unlike uPlot.join this keeps rows with the
+  // same time, which an instant with several events has.
+  function merge(a, b) {
+    const n = a.length - 1, m = b.length - 1;
+    const out = [[]].concat(Array.from({ length: n + m }, () => []));
+    let i = 0, j = 0;
+    while (i < a[0].length || j < b[0].length) {
+      const fromA = j >= b[0].length || (i < a[0].length && a[0][i] <= b[0][j]);
+      out[0].push(fromA ? a[0][i] : b[0][j]);
+      for (let k = 1; k <= n; ++k) out[k].push(fromA ? a[k][i] : null);
+      for (let k = 1; k <= m; ++k) out[n + k].push(fromA ? null : b[k][j]);
+      if (fromA) ++i; else ++j;
+    }
+    return out;
+  }
+
   function create(opts) {
     const { onSeek } = opts;
     const charts = [];
-    let hovering = null, time = 0, groups = [], compareLabel = '';
+    let hovering = null, time = 0, groups = [];
 
     for (const plot of kPlots) {
       const figure = document.getElementById(plot.id);
@@ -72,13 +89,24 @@
 
     function seriesFor(plot, withCompare) {
       const series = [{ label: 't [s]', value: (u, v) => (v == null ? '' : v.toFixed(4)) }];
-      const value = (u, v) => (v == null ? '—' : Number(v.toPrecision(5)).toString());
+      const format = (v) => (v == null ? '—' : Number(v.toPrecision(5)).toString());
+      // With two runs a row holds one run's values only: the other's value at that time is its
+      // nearest row.
+      const value = (u, v, sidx, idx) => {
+        if (v != null || idx == null) return format(v);
+        const col = u.data[sidx];
+        for (let d = 1; idx - d >= 0 || idx + d < col.length; ++d) {
+          if (col[idx - d] != null) return format(col[idx - d]);
+          if (col[idx + d] != null) return format(col[idx + d]);
+        }
+        return format(null);
+      };
       for (const c of plot.curves) {
         series.push({ label: c.label, stroke: c.stroke, width: 2, dash: c.dash, value, spanGaps: true, points: { show: false } });
       }
       if (withCompare) {
         for (const c of plot.curves) {
-          series.push({ label: `${c.label} (${compareLabel})`, stroke: c.stroke, width: 1.5, dash: [8, 5], alpha: 0.8,
+          series.push({ label: `${c.label}, dashed`, stroke: c.stroke, width: 1.5, dash: [8, 5], alpha: 0.8,
                         value, spanGaps: true, points: { show: false } });
         }
       }
@@ -120,7 +148,7 @@
           { label: plot.axis, labelSize: 20, size: 56 },
         ],
         series: seriesFor(plot, withCompare),
-        cursor: { sync: { key: 'whatnext' }, drag: { x: true, y: false }, points: { size: 6 } },
+        cursor: { y: false, sync: { key: 'whatnext' }, drag: { x: true, y: false }, points: { size: 6 } },
         legend: { live: true },
         hooks: {
           draw: [(uu) => drawMarks(uu, plot)],
@@ -174,16 +202,13 @@
 
     return {
       // A new run (and maybe a second run to compare): rebuild the data, keeping any zoom.
-      show(run, other, otherLabel) {
+      show(run, other) {
         groups = run.groups;
         const withCompare = Boolean(other);
-        const label = withCompare ? otherLabel : '';
-        const relabel = compareLabel !== label;
-        compareLabel = label;
         for (const chart of charts) {
           let data = table(chart.plot, run);
-          if (withCompare) data = uPlot.join([data, table(chart.plot, other)]);
-          if (!chart.u || chart.withCompare !== withCompare || relabel) {
+          if (withCompare) data = merge(data, table(chart.plot, other));
+          if (!chart.u || chart.withCompare !== withCompare) {
             build(chart, data, withCompare);
             chart.withCompare = withCompare;
           } else {
