@@ -20,7 +20,7 @@
     committed: null, previous: null,  // machines before and after the last finished change
     compare: { mode: 'none', law: 'kinetic-energy', step: '0.001', run: null, label: '', message: '' },
     t: 0, playing: false, speed: 'auto', holdUntil: 0, last: 0,
-    view: null, dpr: 1, font: 16, aspect: 0.7, runMs: 0, runs: 0,
+    view: null, dpr: 1, font: 16, lines: 1, band: 46, aspect: 0.7, runMs: 0, runs: 0, problem: '',
   };
 
   // ---- running the library --------------------------------------------------------------------
@@ -72,6 +72,7 @@
   }
 
   function showProblem(r, editedKey) {
+    st.problem = r.message;
     const key = keyIn(r.message);
     if (key) panel.showError(key, r.message);
     if (editedKey && editedKey !== key) panel.showError(editedKey, r.message);
@@ -212,7 +213,9 @@
   function sizeCanvas() {
     const width = $('canvas-box').clientWidth;
     st.font = Math.min(Math.max(width / 42, 13), 24);
-    const height = Math.round(Math.min(Math.max(st.aspect * width + 2.9 * st.font, 240), 0.75 * window.innerHeight));
+    st.lines = width < 600 ? 2 : 1;  // a narrow caption wraps the event's words
+    st.band = (1.8 + 1.1 * st.lines) * st.font;
+    const height = Math.round(Math.min(Math.max(st.aspect * width + st.band, 240), 0.75 * window.innerHeight));
     st.dpr = window.devicePixelRatio || 1;
     canvas.style.height = `${height}px`;
     canvas.width = Math.round(width * st.dpr);
@@ -251,7 +254,7 @@
     const run = st.run;
     if (!run) return;
     if (!st.view) {
-      st.view = Machine.makeView(run, canvas.width / st.dpr, canvas.height / st.dpr, 2.9 * st.font);
+      st.view = Machine.makeView(run, canvas.width / st.dpr, canvas.height / st.dpr, st.band);
     }
     const s = Machine.stateAt(run.samples, st.t);
     const group = groupAt(run, st.t);
@@ -262,7 +265,7 @@
     const other = st.compare.run;
     const ghost = other ? { run: other, state: Machine.stateAt(other.samples, Math.min(st.t, other.tEnd)) } : null;
     ctx.setTransform(st.dpr, 0, 0, st.dpr, 0, 0);
-    Machine.draw(ctx, st.view, { run, state: s, ghost, caption, event: group, font: st.font });
+    Machine.draw(ctx, st.view, { run, state: s, ghost, caption, event: group, font: st.font, lines: st.lines });
 
     $('clock').textContent = `t = ${st.t.toFixed(6)} s`;
     const scrub = $('scrub');
@@ -545,11 +548,14 @@
   st.sets = new Map(start.sets);
   showPresetChoice();
   if (!simulate(null)) {
-    // A link whose changes do not run: show its machine without them, and say why.
-    const problem = $('problem').textContent;
+    // A link whose changes do not run: its machine without them, and why.
+    const problem = st.problem;
     st.sets = new Map();
-    if (!simulate(null)) { st.base = presets[0]; simulate(null); }
-    $('problem').textContent = `The link's changes do not run: ${problem}`;
+    if (!simulate(null)) {
+      st.base = presets[0];
+      simulate(null);
+    }
+    $('problem').textContent = `The link's machine does not run (${problem}); this is ${st.base.title} without its changes.`;
     $('problem').hidden = false;
     showPresetChoice();
   }

@@ -241,13 +241,24 @@
       ctx.restore();
     }
     p.circle(c, m.balloon_radius * v.scale);
+    paint(ctx, ghost, colour.balloon, null);
+  }
+
+  // Fills the path just made in the part's colour (with an outline if given); a ghost only
+  // outlines it.
+  function paint(ctx, ghost, fill, outline) {
     if (ghost) {
       ctx.strokeStyle = colour.ghost;
       ctx.lineWidth = 2;
       ctx.stroke();
-    } else {
-      ctx.fillStyle = colour.balloon;
-      ctx.fill();
+      return;
+    }
+    ctx.fillStyle = fill;
+    ctx.fill();
+    if (outline) {
+      ctx.strokeStyle = outline;
+      ctx.lineWidth = 1;
+      ctx.stroke();
     }
   }
 
@@ -285,17 +296,7 @@
     const radius = Math.max(6, 0.05 * v.scale);
     ctx.beginPath();
     ctx.arc(bag.x, bag.y, radius, 0, 2 * Math.PI);
-    if (ghost) {
-      ctx.strokeStyle = colour.ghost;
-      ctx.lineWidth = 2;
-      ctx.stroke();
-    } else {
-      ctx.fillStyle = colour.sandbag;
-      ctx.fill();
-      ctx.strokeStyle = colour.dark;
-      ctx.lineWidth = 1;
-      ctx.stroke();
-    }
+    paint(ctx, ghost, colour.sandbag, colour.dark);
     return { x: bag.x, y: bag.y, radius };
   }
 
@@ -325,8 +326,24 @@
                  Math.min(Math.max(v.top + font, ty - 18 * uy - 10), v.height - 4));
   }
 
+  // Splits text into at most n lines that fit the width, breaking between words (the last line
+  // takes the rest).
+  function wrap(ctx, text, width, n) {
+    const lines = [];
+    let rest = text.split(' ');
+    while (lines.length < n - 1 && rest.length) {
+      let k = rest.length;
+      while (k > 1 && ctx.measureText(rest.slice(0, k).join(' ')).width > width) --k;
+      if (k === rest.length) break;
+      lines.push(rest.slice(0, k).join(' '));
+      rest = rest.slice(k);
+    }
+    if (rest.length) lines.push(rest.join(' '));
+    return lines;
+  }
+
   // One picture: the main run at its state, the other run as a ghost, and the caption band
-  // (time and mode; the event in red on an event's frame).
+  // (time and mode; the event in red on an event's frame, on frame.lines lines at most).
   function draw(ctx, v, frame) {
     const { run, state: s, ghost, caption, event, font } = frame;
     const m = run.machine;
@@ -366,8 +383,12 @@
     fit(caption[0], font, '600');
     ctx.fillText(caption[0], margin, 1.2 * font);
     ctx.fillStyle = event ? colour.eventRed : colour.grey;
-    fit(caption[1], 0.9 * font, event ? '600' : '400');
-    ctx.fillText(caption[1], margin, 2.35 * font);
+    const weight = event ? '600' : '400';
+    ctx.font = `${weight} ${0.9 * font}px sans-serif`;
+    wrap(ctx, caption[1], v.width - 2 * margin, frame.lines || 1).forEach((line, i) => {
+      fit(line, 0.9 * font, weight);
+      ctx.fillText(line, margin, (2.35 + 1.1 * i) * font);
+    });
     if (event) {  // the event's frame, outlined as in the animation's held frames
       ctx.strokeStyle = colour.eventRed;
       ctx.lineWidth = 4;

@@ -275,16 +275,6 @@ val run(val input) {
   });
 }
 
-// Only the check of the input: {ok} or the message.
-val check(val input) {
-  return guarded([&] {
-    load(input);
-    val r = val::object();
-    r.set("ok", true);
-    return r;
-  });
-}
-
 // The downloads, as `whatnext run` writes them: TOML (to_toml), --events JSON, --csv.
 val toml(val input) {
   return guarded([&] { return text_result(to_toml(load(input).scenario)); });
@@ -371,7 +361,6 @@ val presets() {
 
 EMSCRIPTEN_BINDINGS(whatnext) {
   emscripten::function("run", &run);
-  emscripten::function("check", &check);
   emscripten::function("toml", &toml);
   emscripten::function("events", &events);
   emscripten::function("csv", &csv);
