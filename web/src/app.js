@@ -11,6 +11,17 @@
   // Longest first, so that a message naming balloon.drag_coefficient is not read as balloon.drag.
   const keyNames = keys.map((k) => k.key).sort((a, b) => b.length - a.length);
   const kHoldMs = 1000;  // an event's frame stays this long when playing
+  const icon = (d) => `<svg viewBox="0 0 24 24" aria-hidden="true"><path d="${d}"/></svg>`;
+  const kPlayIcon = `${icon('M7 4v16l13-8z')} Play`, kPauseIcon = `${icon('M6 4h4v16H6zM14 4h4v16h-4z')} Pause`;
+
+  // The library's answer, or its failure as one (a wasm abort, out of memory) instead of an exception.
+  function call(fn, input) {
+    try {
+      return fn(input);
+    } catch (e) {
+      return { ok: false, kind: 'error', message: `the WebAssembly module failed (${e.message || e}); reload the page` };
+    }
+  }
 
   const st = {
     base: presets[0],     // {id, title, toml, source, label, cli, format}
@@ -42,7 +53,7 @@
   // Runs the machine as it stands. A bad input leaves the last good run on screen and says why.
   function simulate(editedKey) {
     const t0 = performance.now();
-    const r = wasm.run(inputFor(st.base, st.sets));
+    const r = call(wasm.run, inputFor(st.base, st.sets));
     const ms = performance.now() - t0;
     panel.clearErrors();
     if (!r.ok) {
@@ -116,9 +127,9 @@
       c.label = 'previous parameters';
     }
     if (!input) return;
-    const r = wasm.run(input);
+    const r = call(wasm.run, input);
     if (r.ok) c.run = prepare(r);
-    else c.message = `The run to compare with is not run: ${r.message}`;
+    else c.message = `Nothing to compare with: ${r.message}`;
   }
 
   // ---- showing a run ----------------------------------------------------------------------------
@@ -270,7 +281,10 @@
     $('clock').textContent = `t = ${st.t.toFixed(6)} s`;
     const scrub = $('scrub');
     if (document.activeElement !== scrub || st.playing) scrub.value = String(st.t);
-    $('play').textContent = st.playing ? '⏸ Pause' : '▶ Play';
+    if ($('play').dataset.playing !== String(st.playing)) {
+      $('play').dataset.playing = String(st.playing);
+      $('play').innerHTML = st.playing ? kPauseIcon : kPlayIcon;
+    }
     for (const row of $('timeline').tBodies[0].rows) {
       const e = run.events[Number(row.dataset.index)];
       row.classList.toggle('now', Boolean(group) && group.events.includes(Number(row.dataset.index)));
@@ -420,7 +434,7 @@
         return;
       }
     }
-    const r = kind === 'toml' ? wasm.toml(input) : kind === 'json' ? wasm.events(input) : wasm.csv(input);
+    const r = call(kind === 'toml' ? wasm.toml : kind === 'json' ? wasm.events : wasm.csv, input);
     if (!r.ok) {
       alert(r.message);
       return;
