@@ -39,6 +39,7 @@
   const kSliderSteps = 1000;
 
   const number = (x) => String(Number(x.toPrecision(12)));
+  const rounded = (x) => String(Number(x.toPrecision(6)));  // for values the page works out
   const words = (key) => key.slice(key.indexOf('.') + 1).replace(/_/g, ' ');
 
   function element(tag, attrs, ...children) {
@@ -148,13 +149,13 @@
       const eff = values.effective;
       if (key === 'geometry.hinge_distance' || key === 'geometry.hinge_angle') {
         const [dx, dh] = eff['geometry.hinge_offset'].pair;
-        return key.endsWith('distance') ? number(Math.hypot(dx, dh)) : number(Math.atan2(dh, dx) * 180 / Math.PI);
+        return key.endsWith('distance') ? rounded(Math.hypot(dx, dh)) : rounded(Math.atan2(dh, dx) * 180 / Math.PI);
       }
       const v = eff[key];
       if (!v) return kDefaults[key] || '';
-      if (v.pair) return v.pair.map(number);
+      if (v.pair) return v.pair.map(rounded);
       if (v.text !== undefined) return v.text;
-      return number(v.number);
+      return rounded(v.number);
     }
 
     return {
