@@ -3,6 +3,7 @@
 #   ./run.sh          install what is missing, build, run the paper's example 1 with its
 #                     timeline, plots and animation (into out/)
 #   ./run.sh test     install what is missing, build, run every test
+#   ./run.sh web      install what is missing, build, serve the page (build/web) on localhost
 set -euo pipefail
 cd "$(dirname "$0")"
 job="${1:-example}"
@@ -19,8 +20,33 @@ case "$job" in
   test)
     ctest --test-dir build --output-on-failure -j "$(nproc)"
     ;;
+  web)
+    # The page is static files: any web server does. This one takes the first free port from 8000.
+    exec /usr/bin/python3 - build/web <<'PY'
+import functools, http.server, sys
+
+class Quiet(http.server.SimpleHTTPRequestHandler):
+    def log_message(self, *args):
+        pass
+
+handler = functools.partial(Quiet, directory=sys.argv[1])
+for port in range(8000, 8100):
+    try:
+        server = http.server.ThreadingHTTPServer(("127.0.0.1", port), handler)
+        break
+    except OSError:
+        continue
+else:
+    sys.exit("whatnext: no free port between 8000 and 8099")
+print(f"whatnext: the page is at http://localhost:{port}/ (Ctrl-C stops the server)", flush=True)
+try:
+    server.serve_forever()
+except KeyboardInterrupt:
+    pass
+PY
+    ;;
   *)
-    echo "usage: ./run.sh [example|test]" >&2
+    echo "usage: ./run.sh [example|test|web]" >&2
     exit 2
     ;;
 esac

@@ -8,14 +8,24 @@ missing=()
 for p in "${wanted[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-if [ ${#missing[@]} -eq 0 ]; then
-  exit 0
+# apt-get install, as root (once with an apt-get update first).
+updated=0
+apt_install() {
+  echo "whatnext: installing $*"
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "whatnext: these Debian packages are missing and installing them needs root: $*" >&2
+    exit 1
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  [ "$updated" -eq 1 ] || apt-get update
+  updated=1
+  apt-get install -y --no-install-recommends "$@"
+}
+if [ ${#missing[@]} -gt 0 ]; then
+  apt_install "${missing[@]}"
 fi
-echo "whatnext: installing ${missing[*]}"
-if [ "$(id -u)" -ne 0 ]; then
-  echo "whatnext: these Debian packages are missing and installing them needs root: ${missing[*]}" >&2
-  exit 1
+# npm (for the web page): Debian 12's nodejs 18 comes without it, while the nodejs 20 some
+# machines are offered brings its own and conflicts with Debian's npm package.
+if ! command -v npm >/dev/null 2>&1; then
+  apt_install npm
 fi
-export DEBIAN_FRONTEND=noninteractive
-apt-get update
-apt-get install -y --no-install-recommends "${missing[@]}"

@@ -1,0 +1,401 @@
+// The machine drawn to scale on a canvas, with the parts, colours and conventions of the
+// animation that `whatnext animate` writes (src/viz/animation.cpp): x to the right, h up, metres,
+// origin at the seesaw's pivot. A second run can be drawn as a ghost over the first.
+(function () {
+  'use strict';
+
+  const colour = {
+    sandbag: 'rgb(204,127,0)',  // the pixel test looks for this one
+    balloon: 'rgb(255,42,51)',
+    seesaw: 'rgb(153,85,51)',
+    boxWall: 'rgb(153,127,51)',
+    boxInside: 'rgb(255,255,204)',
+    lid: 'rgb(51,85,153)',
+    radio: 'rgb(51,42,102)',
+    dial: 'rgb(204,212,255)',
+    dark: 'rgb(51,42,51)',
+    grey: 'rgb(96,96,96)',
+    midGrey: 'rgb(160,160,160)',
+    band: 'rgb(236,236,236)',
+    eventRed: 'rgb(204,0,0)',
+    ghost: 'rgb(60,90,200)',
+  };
+
+  const add = (a, b) => ({ x: a.x + b.x, h: a.h + b.h });
+  const sub = (a, b) => ({ x: a.x - b.x, h: a.h - b.h });
+  const scale = (k, a) => ({ x: k * a.x, h: k * a.h });
+  const norm = (a) => Math.hypot(a.x, a.h);
+  const polar = (length, angle) => ({ x: length * Math.cos(angle), h: length * Math.sin(angle) });
+
+  const seesawEnd = (m, phiS) => polar(m.seesaw_right_arm, phiS);
+  const lidEdge = (m, phiL) => add(m.hinge, polar(2 * m.lid_half_length, phiL));
+  const groundLevel = (m) => m.hinge.h - 2 * m.lid_half_length;
+  const balloonCentre = (m, s) => ({ x: m.hinge.x + m.lid_half_length, h: m.hinge.h + s.balloon_h });
+
+  // The radio stands on the ground under its switch (or hangs below a switch that is lower).
+  function radioBox(m) {
+    const w = 0.36 * Math.max(0.5, 2 * m.lid_half_length);
+    const top = m.radio_switch.h - 0.03;
+    const bottom = top - groundLevel(m) > 0.08 ? groundLevel(m) : top - 0.5 * w;
+    return { x0: m.radio_switch.x - 0.5 * w, x1: m.radio_switch.x + 0.5 * w, h0: bottom, h1: top };
+  }
+
+  // A slack rope or string: a parabola sagging under its chord, as long as the rope.
+  function sagCurve(a, b, length, n = 40) {
+    const point = (s, d) => add(add(a, scale(s, sub(b, a))), { x: 0, h: -4 * d * s * (1 - s) });
+    const arc = (d) => {
+      let len = 0, prev = a;
+      for (let i = 1; i <= n; ++i) {
+        const p = point(i / n, d);
+        len += norm(sub(p, prev));
+        prev = p;
+      }
+      return len;
+    };
+    let d = 0;
+    if (norm(sub(b, a)) < length - 1e-9) {
+      let lo = 0, hi = length;
+      for (let it = 0; it < 50; ++it) {
+        const mid = 0.5 * (lo + hi);
+        if (arc(mid) < length) lo = mid; else hi = mid;
+      }
+      d = 0.5 * (lo + hi);
+    }
+    const pts = [];
+    for (let i = 0; i <= n; ++i) pts.push(point(i / n, d));
+    return pts;
+  }
+
+  // The balloon's string from the balloon's skin to the radio's switch; while the balloon is in
+  // the box it runs over the box's far wall and hangs from there.
+  function stringPath(m, balloon) {
+    const corner = { x: m.hinge.x + 2 * m.lid_half_length, h: m.hinge.h };
+    const overWall = balloon.h < corner.h && m.radio_switch.x > corner.x;
+    const target = overWall ? corner : m.radio_switch;
+    const dir = sub(target, balloon);
+    const dist = norm(dir);
+    const knot = dist > 0 ? add(balloon, scale(m.balloon_radius / dist, dir)) : balloon;
+    const length = Math.max(0, m.string_length - m.balloon_radius);
+    if (!overWall) return sagCurve(knot, m.radio_switch, length);
+    const rest = Math.max(0, length - norm(sub(corner, knot)));
+    return [knot, ...sagCurve(corner, m.radio_switch, rest)];
+  }
+
+  function landingDistance(m) {
+    return Math.abs(m.start.sandbag_x) / Math.max(0.2, Math.cos(m.start.seesaw_angle));
+  }
+
+  // Left arm as drawn: a finite arm as it is; the paper's endless arm long enough to hold the
+  // sandbag, and before the landing long enough to catch it.
+  function drawnArm(m, endless, s) {
+    if (Number.isFinite(m.seesaw_left_arm)) return m.seesaw_left_arm;
+    return s.on_seesaw ? Math.max(endless, s.r + 0.1) : endless;
+  }
+
+  // The state at time t: continuous quantities interpolated between the recorded states around
+  // t, the contacts and the mode from the last recorded state at or before t (after an event at t).
+  const kContinuous = ['x', 'h', 'r', 'phi_s', 'phi_l', 'balloon_h', 'tension', 'energy'];
+  const kDiscrete = ['on_seesaw', 'rope_taut', 'mode', 'lid_resting', 'balloon_stuck'];
+  function stateAt(samples, t) {
+    const ts = samples.t;
+    let lo = 0, hi = ts.length;  // first index with ts[i] > t
+    while (lo < hi) {
+      const mid = (lo + hi) >> 1;
+      if (ts[mid] <= t) lo = mid + 1; else hi = mid;
+    }
+    const i = Math.max(0, lo - 1), j = lo;
+    const s = { t };
+    const w = j < ts.length && ts[j] > ts[i] && t > ts[i] ? (t - ts[i]) / (ts[j] - ts[i]) : 0;
+    for (const k of kContinuous) s[k] = w > 0 ? samples[k][i] + (samples[k][j] - samples[k][i]) * w : samples[k][i];
+    for (const k of kDiscrete) s[k] = samples[k][i];
+    return s;
+  }
+
+  // The region to show: the whole machine over the run, and the sandbag as long as it stays near
+  // the machine (further out an arrow points to it).
+  function extent(run) {
+    const m = run.machine, s = run.samples;
+    const leftArm = Math.max(m.seesaw_right_arm, 1.2 * landingDistance(m));
+    const follow = 2.2 * Math.max(m.seesaw_right_arm, leftArm, norm(m.hinge) + 2 * m.lid_half_length);
+    const box = { x0: Infinity, x1: -Infinity, h0: Infinity, h1: -Infinity, leftArm };
+    const put = (p) => {
+      if (!Number.isFinite(p.x) || !Number.isFinite(p.h)) return;
+      box.x0 = Math.min(box.x0, p.x); box.x1 = Math.max(box.x1, p.x);
+      box.h0 = Math.min(box.h0, p.h); box.h1 = Math.max(box.h1, p.h);
+    };
+    const g = groundLevel(m), rl = m.lid_half_length;
+    put({ x: 0, h: 0 }); put({ x: -0.15, h: g }); put({ x: 0.15, h: g });
+    put({ x: m.hinge.x - 0.05, h: g }); put({ x: m.hinge.x + 2 * rl + 0.05, h: m.hinge.h });
+    put(add(m.hinge, { x: 0, h: 2 * rl }));
+    const radio = radioBox(m);
+    put({ x: radio.x0 - 0.05, h: radio.h0 }); put({ x: radio.x1 + 0.05, h: radio.h1 + 0.05 });
+    const n = s.t.length, every = Math.max(1, Math.floor(n / 4000));
+    for (let i = 0; i < n; i += (s.event[i] >= 0 ? 1 : every)) {
+      const phiS = s.phi_s[i];
+      put(seesawEnd(m, phiS));
+      put(lidEdge(m, s.phi_l[i]));
+      const shown = Math.min(drawnArm(m, leftArm, { on_seesaw: s.on_seesaw[i], r: s.r[i] }), follow);
+      put(polar(-shown, phiS));
+      if (Math.hypot(s.x[i], s.h[i]) <= follow) put({ x: s.x[i], h: s.h[i] });
+      const c = balloonCentre(m, { balloon_h: s.balloon_h[i] });
+      if (c.h - m.hinge.h <= follow) {
+        put(add(c, { x: m.balloon_radius, h: m.balloon_radius }));
+        put(sub(c, { x: m.balloon_radius, h: m.balloon_radius }));
+      }
+    }
+    if (m.radio) {
+      for (const i of [0, n - 1]) for (const p of stringPath(m, balloonCentre(m, { balloon_h: s.balloon_h[i] }))) put(p);
+    }
+    const pad = 0.05 * Math.max(box.x1 - box.x0, box.h1 - box.h0);
+    box.x0 -= pad; box.x1 += pad; box.h0 -= pad; box.h1 += pad;
+    return box;
+  }
+
+  // World to canvas pixels: the extent fitted below the caption band, the same scale on both axes.
+  function makeView(run, width, height, top) {
+    const box = extent(run);
+    const areaH = height - top;
+    const k = Math.min(width / (box.x1 - box.x0), areaH / (box.h1 - box.h0));
+    return {
+      width, height, top, scale: k, leftArm: box.leftArm,
+      ox: 0.5 * width - 0.5 * (box.x0 + box.x1) * k,
+      oy: top + 0.5 * areaH + 0.5 * (box.h0 + box.h1) * k,
+    };
+  }
+
+  const toPixel = (v, p) => ({ x: v.ox + p.x * v.scale, y: v.oy - p.h * v.scale });
+
+  function painter(ctx, v) {
+    const px = (p) => toPixel(v, p);
+    return {
+      line(points) {
+        ctx.beginPath();
+        points.forEach((p, i) => { const q = px(p); if (i) ctx.lineTo(q.x, q.y); else ctx.moveTo(q.x, q.y); });
+        ctx.stroke();
+      },
+      circle(c, radius) {
+        const q = px(c);
+        ctx.beginPath();
+        ctx.arc(q.x, q.y, radius, 0, 2 * Math.PI);
+      },
+      width(metres, minPx) { ctx.lineWidth = Math.max(minPx, metres * v.scale); },
+      rect(x0, h0, x1, h1) {
+        const a = px({ x: x0, h: h1 });
+        ctx.fillRect(a.x, a.y, (x1 - x0) * v.scale, (h1 - h0) * v.scale);
+      },
+    };
+  }
+
+  // The parts that never move: floor, pivot stand, box, radio.
+  function drawStill(ctx, v, m, radioOn, radioPlaying) {
+    const p = painter(ctx, v);
+    const g = groundLevel(m), rl = m.lid_half_length, radio = radioBox(m);
+    ctx.strokeStyle = colour.midGrey;
+    p.width(0.01, 2);
+    for (const [a, b] of [[-0.15, 0.15], [m.hinge.x - 0.05, m.hinge.x + 2 * rl + 0.05], [radio.x0 - 0.05, radio.x1 + 0.05]]) {
+      p.line([{ x: a, h: g }, { x: b, h: g }]);
+    }
+    ctx.fillStyle = colour.grey;
+    ctx.beginPath();
+    for (const q of [{ x: 0, h: 0 }, { x: -0.07, h: g }, { x: 0.07, h: g }].map((w) => toPixel(v, w))) ctx.lineTo(q.x, q.y);
+    ctx.closePath();
+    ctx.fill();
+    ctx.fillStyle = colour.boxInside;
+    p.rect(m.hinge.x, g, m.hinge.x + 2 * rl, m.hinge.h);
+
+    ctx.save();
+    if (!radioOn) ctx.globalAlpha = 0.3;  // Kermit's radio, not part of this run
+    ctx.fillStyle = colour.radio;
+    p.rect(radio.x0, radio.h0, radio.x1, radio.h1);
+    ctx.fillStyle = colour.dial;
+    const w = radio.x1 - radio.x0, hgt = radio.h1 - radio.h0;
+    p.circle({ x: 0.5 * (radio.x0 + radio.x1), h: 0.5 * (radio.h0 + radio.h1) }, 0.3 * w * v.scale * Math.min(1, hgt / w));
+    ctx.fill();
+    ctx.strokeStyle = colour.dark;
+    p.width(0.012, 2);
+    p.line([{ x: m.radio_switch.x, h: radio.h1 }, m.radio_switch]);
+    if (radioPlaying) {
+      ctx.fillStyle = colour.radio;
+      ctx.font = `bold ${Math.max(12, 0.12 * v.scale)}px sans-serif`;
+      const q = toPixel(v, { x: radio.x1, h: radio.h1 + 0.05 });
+      ctx.fillText('\u266A \u266B', q.x, q.y);
+    }
+    ctx.restore();
+  }
+
+  function drawWalls(ctx, v, m) {
+    const p = painter(ctx, v), g = groundLevel(m), rl = m.lid_half_length;
+    ctx.strokeStyle = colour.boxWall;
+    p.width(0.02, 3);
+    p.line([m.hinge, { x: m.hinge.x, h: g }, { x: m.hinge.x + 2 * rl, h: g }, { x: m.hinge.x + 2 * rl, h: m.hinge.h }]);
+  }
+
+  function drawBalloon(ctx, v, m, s, ghost, radioOn) {
+    const p = painter(ctx, v), c = balloonCentre(m, s);
+    if (radioOn || !ghost) {
+      ctx.save();
+      if (!radioOn) ctx.globalAlpha = 0.3;
+      ctx.strokeStyle = ghost ? colour.ghost : colour.grey;
+      ctx.lineWidth = 1.5;
+      p.line(stringPath(m, c));
+      ctx.restore();
+    }
+    p.circle(c, m.balloon_radius * v.scale);
+    paint(ctx, ghost, colour.balloon, null);
+  }
+
+  // Fills the path just made in the part's colour (with an outline if given); a ghost only
+  // outlines it.
+  function paint(ctx, ghost, fill, outline) {
+    if (ghost) {
+      ctx.strokeStyle = colour.ghost;
+      ctx.lineWidth = 2;
+      ctx.stroke();
+      return;
+    }
+    ctx.fillStyle = fill;
+    ctx.fill();
+    if (outline) {
+      ctx.strokeStyle = outline;
+      ctx.lineWidth = 1;
+      ctx.stroke();
+    }
+  }
+
+  // Lid, seesaw, rope and sandbag. Returns where the sandbag is on the canvas.
+  function drawMoving(ctx, v, m, s, ghost) {
+    const p = painter(ctx, v);
+    ctx.lineCap = 'round';
+    ctx.lineJoin = 'round';
+    ctx.strokeStyle = ghost ? colour.ghost : colour.lid;
+    p.width(0.025, 3);
+    p.line([m.hinge, lidEdge(m, s.phi_l)]);
+    if (!ghost) {
+      ctx.fillStyle = 'black';
+      p.circle(m.hinge, Math.max(2, 0.012 * v.scale));
+      ctx.fill();
+    }
+    const arm = drawnArm(m, v.leftArm, s);
+    ctx.strokeStyle = ghost ? colour.ghost : colour.seesaw;
+    p.width(0.03, 4);
+    p.line([polar(-arm, s.phi_s), seesawEnd(m, s.phi_s)]);
+    if (!ghost) {
+      ctx.fillStyle = 'black';
+      p.circle({ x: 0, h: 0 }, Math.max(2.5, 0.015 * v.scale));
+      ctx.fill();
+    }
+    // The rope: straight when taut, sagging when slack.
+    const a = seesawEnd(m, s.phi_s), b = lidEdge(m, s.phi_l);
+    ctx.strokeStyle = ghost ? colour.ghost : colour.dark;
+    ctx.lineWidth = Math.max(1.5, 0.008 * v.scale);
+    if (ghost) ctx.setLineDash([6, 4]);
+    p.line(s.rope_taut ? [a, b] : sagCurve(a, b, m.rope_length));
+    ctx.setLineDash([]);
+    // The sandbag, centred on the simulated point.
+    const bag = toPixel(v, { x: s.x, h: s.h });
+    const radius = Math.max(6, 0.05 * v.scale);
+    ctx.beginPath();
+    ctx.arc(bag.x, bag.y, radius, 0, 2 * Math.PI);
+    paint(ctx, ghost, colour.sandbag, colour.dark);
+    return { x: bag.x, y: bag.y, radius };
+  }
+
+  // An arrow at the edge of the picture towards a sandbag that is far out, with its distance.
+  function drawFarSandbag(ctx, v, s, font) {
+    const o = toPixel(v, { x: 0, h: 0 }), bag = toPixel(v, { x: s.x, h: s.h });
+    const dx = bag.x - o.x, dy = bag.y - o.y, len = Math.hypot(dx, dy);
+    const ux = dx / len, uy = dy / len;
+    let reach = Infinity;
+    if (ux > 0) reach = Math.min(reach, (v.width - 14 - o.x) / ux);
+    if (ux < 0) reach = Math.min(reach, (14 - o.x) / ux);
+    if (uy > 0) reach = Math.min(reach, (v.height - 14 - o.y) / uy);
+    if (uy < 0) reach = Math.min(reach, (v.top + 14 - o.y) / uy);
+    const tx = o.x + ux * reach, ty = o.y + uy * reach;
+    ctx.fillStyle = colour.sandbag;
+    ctx.beginPath();
+    ctx.moveTo(tx, ty);
+    ctx.lineTo(tx - 16 * ux - 8 * uy, ty - 16 * uy + 8 * ux);
+    ctx.lineTo(tx - 16 * ux + 8 * uy, ty - 16 * uy - 8 * ux);
+    ctx.closePath();
+    ctx.fill();
+    const text = `sandbag ${Number(Math.hypot(s.x, s.h).toPrecision(4))} m out`;
+    ctx.font = `${0.85 * font}px sans-serif`;
+    const w = ctx.measureText(text).width;
+    ctx.fillStyle = 'black';
+    ctx.fillText(text, Math.min(Math.max(4, tx - 0.5 * w), v.width - w - 4),
+                 Math.min(Math.max(v.top + font, ty - 18 * uy - 10), v.height - 4));
+  }
+
+  // Splits text into at most n lines that fit the width, breaking between words (the last line
+  // takes the rest).
+  function wrap(ctx, text, width, n) {
+    const lines = [];
+    let rest = text.split(' ');
+    while (lines.length < n - 1 && rest.length) {
+      let k = rest.length;
+      while (k > 1 && ctx.measureText(rest.slice(0, k).join(' ')).width > width) --k;
+      if (k === rest.length) break;
+      lines.push(rest.slice(0, k).join(' '));
+      rest = rest.slice(k);
+    }
+    if (rest.length) lines.push(rest.join(' '));
+    return lines;
+  }
+
+  // One picture: the main run at its state, the other run as a ghost, and the caption band
+  // (time and mode; the event in red on an event's frame, on frame.lines lines at most).
+  function draw(ctx, v, frame) {
+    const { run, state: s, ghost, caption, event, font } = frame;
+    const m = run.machine;
+    ctx.save();
+    ctx.fillStyle = 'white';
+    ctx.fillRect(0, 0, v.width, v.height);
+    ctx.beginPath();
+    ctx.rect(0, v.top, v.width, v.height - v.top);
+    ctx.clip();
+    const radioPlaying = run.radioOnAt !== null && s.t >= run.radioOnAt;
+    drawStill(ctx, v, m, m.radio, radioPlaying);
+    if (ghost) drawBalloon(ctx, v, ghost.run.machine, ghost.state, true, ghost.run.machine.radio);
+    drawBalloon(ctx, v, m, s, false, m.radio);
+    drawWalls(ctx, v, m);
+    if (ghost) {
+      ctx.save();
+      ctx.globalAlpha = 0.6;
+      drawMoving(ctx, v, ghost.run.machine, ghost.state, true);
+      ctx.restore();
+    }
+    const bag = drawMoving(ctx, v, m, s, false);
+    ctx.restore();
+    const visible = bag.x >= -bag.radius && bag.x <= v.width + bag.radius &&
+                    bag.y >= v.top - bag.radius && bag.y <= v.height + bag.radius;
+    if (!visible) drawFarSandbag(ctx, v, s, font);
+
+    // Caption band, as in the animation.
+    ctx.fillStyle = event ? 'rgb(255,235,235)' : colour.band;
+    ctx.fillRect(0, 0, v.width, v.top);
+    const margin = 0.6 * font;
+    const fit = (text, size, weight) => {
+      ctx.font = `${weight} ${size}px sans-serif`;
+      const w = ctx.measureText(text).width, room = v.width - 2 * margin;
+      if (w > room) ctx.font = `${weight} ${size * room / w}px sans-serif`;
+    };
+    ctx.fillStyle = 'black';
+    fit(caption[0], font, '600');
+    ctx.fillText(caption[0], margin, 1.2 * font);
+    ctx.fillStyle = event ? colour.eventRed : colour.grey;
+    const weight = event ? '600' : '400';
+    ctx.font = `${weight} ${0.9 * font}px sans-serif`;
+    wrap(ctx, caption[1], v.width - 2 * margin, frame.lines || 1).forEach((line, i) => {
+      fit(line, 0.9 * font, weight);
+      ctx.fillText(line, margin, (2.35 + 1.1 * i) * font);
+    });
+    if (event) {  // the event's frame, outlined as in the animation's held frames
+      ctx.strokeStyle = colour.eventRed;
+      ctx.lineWidth = 4;
+      ctx.strokeRect(2, 2, v.width - 4, v.height - 4);
+    }
+    return bag;
+  }
+
+  window.whatnextMachine = { draw, extent, makeView, toPixel, stateAt, colour };
+})();

@@ -1,0 +1,221 @@
+// The parameter panel: a field for every input key the library knows (its own list, units and
+// help), grouped, with sliders for the numbers. A change is handed on as the text of a
+// `--set KEY=VALUE`, so that the page's machine and messages are the command line's.
+(function () {
+  'use strict';
+
+  const kGroups = [
+    { title: 'Geometry', match: (k) => k.startsWith('geometry.') },
+    { title: 'Masses', match: (k) => k.startsWith('masses.') },
+    { title: 'Air and balloon', match: (k) => k.startsWith('air.') || k === 'balloon.radius' || k === 'balloon.model' },
+    { title: 'Start', match: (k) => k.startsWith('start.') },
+    { title: 'Run: integrator and impact law', match: (k) => k.startsWith('run.') },
+    { title: 'Extensions beyond the paper', match: () => true, closed: true },
+  ];
+
+  // Slider ranges in the input's units (log: a logarithmic slider).
+  const kRanges = {
+    'geometry.seesaw_right_arm': [0.2, 1.2], 'geometry.lid_half_length': [0.05, 0.5],
+    'geometry.rope_length': [0.3, 2], 'geometry.hinge_distance': [0.3, 1.5], 'geometry.hinge_angle': [-30, 60],
+    'masses.sandbag': [0.05, 5, 'log'], 'masses.lid': [0.05, 5, 'log'],
+    'air.density': [0.5, 2], 'air.helium_density': [0.05, 1.2], 'balloon.radius': [0.05, 0.5],
+    'balloon.rubber_mass': [0, 0.05], 'balloon.drag_coefficient': [0.05, 1.5], 'radio.string_length': [0.3, 3],
+    'damping.pivot': [0, 1], 'damping.lid_hinge': [0, 0.2], 'seesaw.left_arm': [0.2, 3],
+    'seesaw.mass': [0, 2], 'seesaw.inertia': [0.001, 1, 'log'], 'seesaw.com_offset': [-1, 1],
+    'start.sandbag_x': [-1.5, -0.01], 'start.sandbag_height': [0, 3], 'start.seesaw_angle': [-60, 60],
+    'start.lid_angle': [0, 60], 'run.t_max': [0.5, 30], 'run.output_step': [1e-4, 0.05, 'log'],
+    'run.step': [1e-5, 1e-2, 'log'], 'run.tolerance': [1e-14, 1e-4, 'log'], 'run.vertical_margin': [0, 10],
+    'run.gravity': [1, 25],
+  };
+  // What a blank field means for the extension keys that a machine without them does not write
+  // (docs/inputs.md).
+  const kDefaults = {
+    'balloon.rubber_mass': '0', 'balloon.drag_coefficient': '0.47', 'radio.switch_offset': ['0.5', '0'],
+    'radio.string_length': '1', 'damping.pivot': '0', 'damping.lid_hinge': '0', 'seesaw.left_arm': 'endless',
+    'seesaw.mass': '0', 'seesaw.inertia': 'bar', 'seesaw.com_offset': 'bar',
+  };
+  const kSections = { balloon: 'Balloon', radio: 'Radio', damping: 'Damping', seesaw: 'A seesaw with mass' };
+  const kNumberKinds = ['length', 'mass', 'density', 'angle', 'time', 'acceleration', 'positive'];
+  const kSliderSteps = 1000;
+
+  const number = (x) => String(Number(x.toPrecision(12)));
+  const rounded = (x) => String(Number(x.toPrecision(6)));  // for values the page works out
+  const words = (key) => key.slice(key.indexOf('.') + 1).replace(/_/g, ' ');
+
+  function element(tag, attrs, ...children) {
+    const e = document.createElement(tag);
+    for (const [k, v] of Object.entries(attrs || {})) {
+      if (k === 'class') e.className = v; else if (k === 'text') e.textContent = v; else e.setAttribute(k, v);
+    }
+    for (const c of children) if (c) e.append(c);
+    return e;
+  }
+
+  function create(form, keys, names, onChange) {
+    const fields = new Map();  // key -> {spec, root, inputs, slider, error, reset}
+
+    const groups = kGroups.map((g) => {
+      const details = element('details', { class: 'group' });
+      if (!g.closed) details.open = true;
+      details.append(element('summary', { text: g.title }));
+      form.append(details);
+      return { ...g, details };
+    });
+
+    for (const spec of keys) {
+      const group = groups.find((g) => g.match(spec.key));
+      const section = spec.key.slice(0, spec.key.indexOf('.'));
+      if (group.closed && group.section !== section) {  // the extensions, by the part they change
+        group.details.append(element('h3', { text: kSections[section] || section }));
+        group.section = section;
+      }
+      group.details.append(makeField(spec));
+    }
+
+    function makeField(spec) {
+      const key = spec.key, id = `field-${key.replace(/\./g, '-')}`;
+      const root = element('div', { class: `field kind-${spec.kind}`, 'data-key': key });
+      const label = element('label', { for: id },
+                            element('span', { class: 'name', text: words(key) }),
+                            spec.unit ? element('span', { class: 'unit', text: spec.unit.replace('^2', '²').replace('^3', '³') }) : null);
+      const reset = element('button', { type: 'button', class: 'reset', title: 'back to the machine as loaded',
+                                        'aria-label': `reset ${key}` });
+      reset.textContent = '↺';
+      const row = element('div', { class: 'inputs' });
+      const field = { spec, root, inputs: [], slider: null, reset, error: null };
+      const send = (text, commit) => onChange(key, text, commit);
+
+      if (spec.kind === 'text') {
+        const select = element('select', { id });
+        for (const choice of names[key] || []) select.append(element('option', { value: choice, text: choice }));
+        select.addEventListener('change', () => send(select.value, true));
+        field.inputs.push(select);
+        row.append(select);
+      } else if (spec.kind === 'flag') {
+        const box = element('input', { id, type: 'checkbox' });
+        box.addEventListener('change', () => send(box.checked ? 'true' : 'false', true));
+        field.inputs.push(box);
+        row.append(box, element('span', { class: 'flag-words', text: 'on' }));
+      } else if (spec.kind === 'pair') {
+        for (const [i, part] of ['dx', 'dh'].entries()) {
+          const input = element('input', { id: i ? `${id}-dh` : id, type: 'text', inputmode: 'decimal',
+                                          'aria-label': `${key} ${part}`, size: 6 });
+          field.inputs.push(input);
+          row.append(element('span', { class: 'part', text: part }), input);
+        }
+        const pairText = () => {
+          const [a, b] = field.inputs.map((inp) => inp.value.trim() || inp.placeholder);
+          return field.inputs.every((inp) => !inp.value.trim()) ? null : `[${a}, ${b}]`;
+        };
+        for (const input of field.inputs) {
+          input.addEventListener('input', () => send(pairText(), false));
+          input.addEventListener('change', () => send(pairText(), true));
+        }
+      } else {
+        const input = element('input', { id, type: 'text', inputmode: 'decimal', size: 9 });
+        const moveSlider = () => {
+          const v = Number(input.value.trim() || input.placeholder);
+          if (field.slider && input.value.trim() !== '' && Number.isFinite(v)) field.slider.value = String(Math.round(field.toSlider(v)));
+        };
+        input.addEventListener('input', () => { moveSlider(); send(input.value.trim() || null, false); });
+        input.addEventListener('change', () => send(input.value.trim() || null, true));
+        field.inputs.push(input);
+        row.append(input);
+        if (kNumberKinds.includes(spec.kind) && kRanges[key]) {
+          const slider = element('input', { type: 'range', min: 0, max: kSliderSteps, step: 1, class: 'slider',
+                                           'aria-label': `${key} slider`, tabindex: -1 });
+          const [lo, hi, log] = kRanges[key];
+          field.toSlider = (v) => kSliderSteps * (log ? Math.log(v / lo) / Math.log(hi / lo) : (v - lo) / (hi - lo));
+          field.fromSlider = (p) => (log ? lo * Math.pow(hi / lo, p / kSliderSteps) : lo + (hi - lo) * p / kSliderSteps);
+          const text = () => String(Number(field.fromSlider(Number(slider.value)).toPrecision(3)));
+          slider.addEventListener('input', () => { input.value = text(); send(input.value, false); });
+          slider.addEventListener('change', () => send(text(), true));
+          field.slider = slider;
+        }
+      }
+      reset.addEventListener('click', () => send(null, true));
+      field.error = element('p', { class: 'error', role: 'alert' });
+      field.error.hidden = true;
+      root.append(label, row, reset);
+      if (field.slider) root.append(field.slider);
+      root.append(element('p', { class: 'help' }, spec.help + ' ', element('code', { text: key })), field.error);
+      fields.set(key, field);
+      return root;
+    }
+
+    // What a blank field stands for: the value this run has (as to_toml writes it), or the
+    // documented default of an extension that is off.
+    function blankMeaning(key, values) {
+      const eff = values.effective;
+      if (key === 'geometry.hinge_distance' || key === 'geometry.hinge_angle') {
+        const [dx, dh] = eff['geometry.hinge_offset'].pair;
+        return key.endsWith('distance') ? rounded(Math.hypot(dx, dh)) : rounded(Math.atan2(dh, dx) * 180 / Math.PI);
+      }
+      const v = eff[key];
+      if (!v) return kDefaults[key] || '';
+      if (v.pair) return v.pair.map(rounded);
+      if (v.text !== undefined) return v.text;
+      return rounded(v.number);
+    }
+
+    return {
+      // Shows the run's inputs: what the machine file and the changes give, blank (with the
+      // value it stands for in grey) where nothing is given. The field being typed in is left alone.
+      show(values, sets) {
+        for (const [key, field] of fields) {
+          const given = values.given[key], set = sets.get(key), blank = blankMeaning(key, values);
+          const kind = field.spec.kind;
+          field.root.classList.toggle('changed', sets.has(key));
+          field.reset.hidden = !sets.has(key);
+          if (field.inputs.includes(document.activeElement)) continue;
+          if (kind === 'text') {
+            field.inputs[0].value = set !== undefined ? set : given ? given.text : blank;
+          } else if (kind === 'flag') {
+            const on = set !== undefined ? set === 'true' : given ? given.number !== 0 : flagMeaning(key, values);
+            field.inputs[0].checked = on;
+          } else if (kind === 'pair') {
+            let parts = ['', ''];
+            if (set !== undefined) parts = set.replace(/[[\]\s]/g, '').split(',');
+            else if (given && given.pair) parts = given.pair.map(number);
+            field.inputs.forEach((inp, i) => { inp.value = parts[i] || ''; inp.placeholder = blank[i] || ''; });
+          } else {
+            const input = field.inputs[0];
+            input.value = set !== undefined ? set : given && given.number !== undefined ? number(given.number) : '';
+            input.placeholder = blank;
+            if (field.slider) {
+              const v = Number(input.value || blank);
+              if (Number.isFinite(v)) field.slider.value = String(Math.round(field.toSlider(v)));
+            }
+          }
+        }
+      },
+      showError(key, message) {
+        const field = fields.get(key);
+        if (!field) return false;
+        field.error.textContent = message;
+        field.error.hidden = false;
+        field.root.classList.add('invalid');
+        const details = field.root.closest('details');
+        if (details) details.open = true;
+        return true;
+      },
+      clearErrors() {
+        for (const field of fields.values()) {
+          field.error.hidden = true;
+          field.error.textContent = '';
+          field.root.classList.remove('invalid');
+        }
+      },
+      field(key) { return fields.get(key); },
+    };
+  }
+
+  // A flag that is not given is on when its extension is on in this run.
+  function flagMeaning(key, values) {
+    if (key === 'radio.enabled') return Boolean(values.effective['radio.enabled']);
+    if (key === 'balloon.drag') return Boolean(values.effective['balloon.drag_coefficient']);
+    return false;
+  }
+
+  window.whatnextPanel = { create };
+})();

@@ -1,0 +1,443 @@
+// The page in a real browser: Debian's Chromium driven by playwright-core, the page served from
+// build/web by a small local server, every number checked against the whatnext command line run
+// by the test itself.
+//   node web/tests/page.js CHECK       (CHECK: one of the names in `checks` below, or "speed")
+// Settings from the environment (CTest sets them; the defaults suit a run from the source folder):
+// WHATNEXT_WEB_DIR, WHATNEXT_CLI, WHATNEXT_SOURCE_DIR, WHATNEXT_CHROMIUM, WHATNEXT_TEST_OUT.
+'use strict';
+const assert = require('assert/strict');
+const fs = require('fs');
+const http = require('http');
+const os = require('os');
+const path = require('path');
+const { spawnSync } = require('child_process');
+
+const env = (name, fallback) => process.env[name] || fallback;
+const sourceDir = path.resolve(env('WHATNEXT_SOURCE_DIR', '.'));
+const webDir = path.resolve(env('WHATNEXT_WEB_DIR', path.join(sourceDir, 'build/web')));
+const cliPath = path.resolve(env('WHATNEXT_CLI', path.join(sourceDir, 'build/whatnext')));
+const chromiumPath = env('WHATNEXT_CHROMIUM', '/usr/bin/chromium');
+const outDir = path.resolve(env('WHATNEXT_TEST_OUT', path.join(sourceDir, 'build/web-test')));
+const { chromium } = require(require.resolve('playwright-core', {
+  paths: [...(process.env.NODE_PATH || '').split(':').filter(Boolean), path.join(sourceDir, 'build/web-npm/node_modules')],
+}));
+
+// Chromium as root in a container on a closed network: no sandbox, no GPU, and none of its own
+// connections (they would be refused); a fresh profile every time.
+const kChromiumFlags = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+                        '--disable-background-networking', '--disable-component-update', '--disable-sync'];
+const kSandbagColour = [204, 127, 0];  // web/src/machine.js, as the animation draws it
+
+// ---- the command line --------------------------------------------------------------------------
+
+function cli(...args) {
+  const p = spawnSync(cliPath, args, { cwd: sourceDir, encoding: 'utf8' });
+  return { status: p.status, stdout: p.stdout, stderr: p.stderr.trim() };
+}
+const sets = (list) => list.flatMap((s) => ['--set', s]);
+function cliOutcome(args) {
+  const r = cli('run', ...args, '-q');
+  assert.equal(r.status, 0, `whatnext run ${args.join(' ')}: ${r.stderr}`);
+  return r.stdout.trim();
+}
+function cliEvents(args) {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-events-'));
+  const file = path.join(dir, 'events.json');
+  try {
+    assert.equal(cli('run', ...args, '--events', file, '-q').status, 0);
+    return JSON.parse(fs.readFileSync(file, 'utf8'));
+  } finally {
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+}
+function cliError(args) {
+  const r = cli('run', ...args, '-q');
+  assert.equal(r.status, 2, `whatnext run ${args.join(' ')} should refuse the input`);
+  assert.match(r.stderr, /^whatnext: error: /);
+  return r.stderr.replace(/^whatnext: error: /, '');
+}
+
+// ---- the page ----------------------------------------------------------------------------------
+
+function serve(dir) {
+  const types = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.svg': 'image/svg+xml',
+                  '.txt': 'text/plain' };
+  const server = http.createServer((req, res) => {
+    const file = path.join(dir, decodeURIComponent(new URL(req.url, 'http://x').pathname).replace(/\/$/, '/index.html'));
+    if (!file.startsWith(dir) || !fs.existsSync(file)) {
+      res.writeHead(404);
+      res.end();
+      return;
+    }
+    res.writeHead(200, { 'Content-Type': types[path.extname(file)] || 'application/octet-stream' });
+    fs.createReadStream(file).pipe(res);
+  });
+  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => {
+    resolve({ url: `http://127.0.0.1:${server.address().port}/`, close: () => server.close() });
+  }));
+}
+
+// Opens the page in a fresh browser and runs fn(page, tools); fails on any console error, page
+// error, failed request or request that leaves the local server.
+async function withPage(fn, options = {}) {
+  const server = await serve(webDir);
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-chromium-'));
+  const downloads = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-downloads-'));
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: chromiumPath, headless: true, args: kChromiumFlags, acceptDownloads: true,
+    viewport: options.viewport || { width: 1400, height: 900 }, deviceScaleFactor: options.scale || 1,
+  });
+  const problems = [];
+  const watch = (page) => {
+    page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });
+    page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+    page.on('requestfailed', (r) => problems.push(`request failed: ${r.url()}`));
+    page.on('request', (r) => {
+      if (!r.url().startsWith(server.url) && !/^(data|blob):/.test(r.url())) problems.push(`network: ${r.url()}`);
+    });
+  };
+  context.on('page', watch);
+  const open = async (hash = '') => {
+    const page = await context.newPage();
+    await page.goto(server.url + hash);
+    await page.waitForSelector('body[data-ready]', { timeout: 30000 });
+    return page;
+  };
+  try {
+    const page = await open(options.hash);
+    await fn(page, { open, downloads, server });
+    assert.deepEqual(problems, [], 'the browser reported problems');
+  } finally {
+    await context.close();
+    server.close();
+    fs.rmSync(profile, { recursive: true, force: true });
+    fs.rmSync(downloads, { recursive: true, force: true });
+  }
+}
+
+const runs = (page) => page.evaluate(() => Number(document.body.dataset.runs));
+const outcomeText = (page) => page.textContent('#outcome');
+const fieldId = (key) => `#field-${key.replace(/\./g, '-')}`;
+
+// Types a value into a parameter's field and leaves it, as a user would; waits for the run.
+async function setField(page, key, value) {
+  const before = await runs(page);
+  await page.fill(fieldId(key), value);
+  await page.press(fieldId(key), 'Tab');
+  return before;
+}
+async function setFieldAndRun(page, key, value) {
+  const before = await setField(page, key, value);
+  await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, before);
+}
+
+// The timeline rows as the page shows them: the six columns of each event and its impact line.
+function pageTimeline(page) {
+  return page.$$eval('#timeline tbody tr', (rows) => {
+    const out = [];
+    for (const r of rows) {
+      const cells = [...r.cells].map((c) => c.textContent);
+      if (r.classList.contains('note')) out[out.length - 1].push(...cells[0].split(' '));
+      else out.push(cells);
+    }
+    return out;
+  });
+}
+// The same rows from `whatnext run`'s stdout.
+function cliTimeline(stdout) {
+  const lines = stdout.trimEnd().split('\n');
+  return { rows: lines.slice(2, -1).map((l) => l.trim().split(/\s+/)), outcome: lines[lines.length - 1] };
+}
+
+// Two outputs of the same run, one written in WebAssembly and one natively: the same text up to
+// the last digits of the numbers (the two builds' maths libraries round differently).
+function sameText(mine, theirs, what) {
+  const words = (text) => text.split(/([\s,:[\]{}"]+)/);
+  const a = words(mine), b = words(theirs);
+  assert.equal(a.length, b.length, `${what}: ${a.length} words here, ${b.length} from the CLI`);
+  a.forEach((w, i) => {
+    if (w === b[i]) return;
+    const x = Number(w), y = Number(b[i]);
+    const close = w !== '' && b[i] !== '' && Number.isFinite(x) && Number.isFinite(y) &&
+                  Math.abs(x - y) <= 1e-9 * Math.max(1, Math.abs(x), Math.abs(y));
+    assert.ok(close, `${what}: '${w}' here, '${b[i]}' from the CLI (word ${i})`);
+  });
+}
+
+async function download(page, button, dir) {
+  const [dl] = await Promise.all([page.waitForEvent('download'), page.click(button)]);
+  const file = path.join(dir, dl.suggestedFilename());
+  await dl.saveAs(file);
+  return file;
+}
+
+async function canvasColour(page, x, y) {
+  return page.evaluate(([px, py]) => {
+    const c = document.getElementById('machine');
+    return [...c.getContext('2d').getImageData(Math.round(px), Math.round(py), 1, 1).data].slice(0, 3);
+  }, [x, y]);
+}
+const near = (a, b, tol = 12) => a.every((v, i) => Math.abs(v - b[i]) <= tol);
+
+async function scrubTo(page, t) {
+  await page.evaluate((time) => {
+    const s = document.getElementById('scrub');
+    s.value = String(time);
+    s.dispatchEvent(new Event('input', { bubbles: true }));
+  }, t);
+  assert.equal(await page.evaluate(() => window.whatnext.time), t);
+}
+
+// ---- the checks --------------------------------------------------------------------------------
+
+const checks = {
+  // Every shipped machine loads, plays and compares without an error in the console, and nothing
+  // is fetched from outside the page's own folder.
+  async console() {
+    await withPage(async (page) => {
+      const ids = await page.$$eval('#preset option', (os) => os.map((o) => o.value));
+      assert.deepEqual(ids, ['example1', 'example2', 'example3', 'example4', 'radio']);
+      for (const id of ids) {
+        const before = await runs(page);
+        await page.selectOption('#preset', id);
+        await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, before);
+        const expected = id === 'radio' ? cliOutcome(['examples/example1-radio.toml']) : cliOutcome(['--example', id.slice(-1)]);
+        assert.equal(await outcomeText(page), `Outcome: ${expected}.`, id);
+        await page.click('#machine');
+        await page.keyboard.press('Space');
+        await page.waitForTimeout(250);
+        await page.keyboard.press('Space');
+        for (const mode of ['law', 'euler', 'previous', 'none']) await page.selectOption('#compare', mode);
+      }
+    });
+  },
+
+  // Example 1's timeline, row by row, and its outcome as `whatnext run --example 1` prints them;
+  // the outcome is the paper's 0.82 s.
+  async timeline() {
+    await withPage(async (page) => {
+      const expected = cli('run', '--example', '1');
+      assert.equal(expected.status, 0);
+      const { rows, outcome } = cliTimeline(expected.stdout);
+      assert.equal(outcome, 'Outcome: lid open at 0.820 s.');
+      assert.deepEqual(await pageTimeline(page), rows);
+      assert.equal(await outcomeText(page), outcome);
+      assert.equal(await page.textContent('#cli-text'), expected.stdout);
+      assert.equal(await page.textContent('#cli-command'), '$ whatnext run --example 1');
+    });
+  },
+
+  // A longer and a shorter rope: the page's outcome is the command line's for that input.
+  async rope_length() {
+    await withPage(async (page) => {
+      for (const length of ['0.95', '1.2', '0.8']) {
+        await setFieldAndRun(page, 'geometry.rope_length', length);
+        const args = ['--example', '1', ...sets([`geometry.rope_length=${length}`])];
+        assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(args)}.`, `rope ${length} m`);
+        assert.deepEqual(await pageTimeline(page), cliTimeline(cli('run', ...args).stdout).rows);
+      }
+    });
+  },
+
+  // A value the command line refuses: its message next to the field, and the last good run stays.
+  async bad_value() {
+    await withPage(async (page) => {
+      await setFieldAndRun(page, 'geometry.rope_length', '0.95');
+      const good = { outcome: await outcomeText(page), timeline: await pageTimeline(page), url: page.url() };
+      for (const bad of ['0.2', 'abc', '-1']) {
+        const before = await setField(page, 'geometry.rope_length', bad);
+        const message = cliError(['--example', '1', ...sets([`geometry.rope_length=${bad}`])]);
+        const shown = `${fieldId('geometry.rope_length')} >> xpath=ancestor::div[@data-key]//p[contains(@class,"error")]`;
+        await page.waitForSelector(shown, { state: 'visible' });
+        assert.equal(await page.textContent(shown), message);
+        assert.ok((await page.textContent('#problem')).includes(message));
+        assert.equal(await runs(page), before, 'no new run');
+        assert.equal(await outcomeText(page), good.outcome);
+        assert.deepEqual(await pageTimeline(page), good.timeline);
+        assert.equal(page.url(), good.url, 'the link keeps the last good machine');
+      }
+      // A key the rule is about that is not the one edited: the message goes to both.
+      const before = await setField(page, 'start.sandbag_height', '-5');
+      await page.waitForSelector('#problem', { state: 'visible' });
+      const message = cliError(['--example', '1', ...sets(['geometry.rope_length=-1', 'start.sandbag_height=-5'])]);
+      assert.ok((await page.textContent('#problem')).includes(message));
+      assert.equal(await runs(page), before);
+    });
+  },
+
+  // The sandbag is drawn where the command line's CSV puts it at the scrubbed time: its colour is
+  // at that pixel, and not where it is at another time. The pivot and the lid's hinge are black
+  // dots at their places, so the picture's scale is checked too.
+  async sandbag_pixels() {
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-csv-'));
+    const csvFile = path.join(dir, 'example1.csv');
+    assert.equal(cli('run', '--example', '1', '--csv', csvFile).status, 0);
+    const [header, ...lines] = fs.readFileSync(csvFile, 'utf8').trim().split('\n');
+    fs.rmSync(dir, { recursive: true, force: true });
+    const col = Object.fromEntries(header.split(',').map((name, i) => [name, i]));
+    const at = (t) => {
+      const row = lines.map((l) => l.split(',')).find((r) => r[col.event] === '' && Number(r[col.t_s]) === t);
+      return { x: Number(row[col.x_m]), h: Number(row[col.h_m]) };
+    };
+    await withPage(async (page) => {
+      for (const [t, other] of [[0.3, 0.75], [0.75, 0.3], [0.65, 0.45]]) {
+        await scrubTo(page, t);
+        const here = at(t), there = at(other);
+        const p = await page.evaluate(([x, h]) => window.whatnext.canvasPixel(x, h), [here.x, here.h]);
+        const q = await page.evaluate(([x, h]) => window.whatnext.canvasPixel(x, h), [there.x, there.h]);
+        assert.ok(Math.hypot(p.x - q.x, p.y - q.y) > 20, 'the two places are apart on the canvas');
+        assert.ok(near(await canvasColour(page, p.x, p.y), kSandbagColour), `sandbag at t = ${t} s`);
+        assert.ok(!near(await canvasColour(page, q.x, q.y), kSandbagColour), `no sandbag at the t = ${other} s place`);
+      }
+      const machine = await page.evaluate(() => window.whatnext.run.machine);
+      for (const [name, point] of [['pivot', { x: 0, h: 0 }], ['hinge', machine.hinge]]) {
+        const p = await page.evaluate(([x, h]) => window.whatnext.canvasPixel(x, h), [point.x, point.h]);
+        assert.ok(near(await canvasColour(page, p.x, p.y), [0, 0, 0], 40), `${name} drawn at its place`);
+      }
+    }, { scale: 2 });
+  },
+
+  // A link reopens the same machine, comparison and all, in a new page.
+  async shared_link() {
+    await withPage(async (page, { open }) => {
+      await setFieldAndRun(page, 'geometry.rope_length', '0.9');
+      await page.selectOption(fieldId('run.impact_law'), 'kinetic-energy');
+      await page.selectOption('#compare', 'law');
+      await page.selectOption('#compare-law', 'linear-momentum');
+      const url = new URL(page.url());
+      const again = await open(url.hash);
+      const look = (p) => p.evaluate(() => ({
+        outcome: document.getElementById('outcome').textContent,
+        compare: document.getElementById('compare-outcome').textContent,
+        timeline: window.whatnext.run.timeline,
+        rope: document.getElementById('field-geometry-rope_length').value,
+        law: document.getElementById('field-run-impact_law').value,
+      }));
+      const first = await look(page), second = await look(again);
+      assert.deepEqual(second, first);
+      const args = ['--example', '1', ...sets(['geometry.rope_length=0.9', 'run.impact_law=kinetic-energy'])];
+      assert.equal(second.outcome, `Outcome: ${cliOutcome(args)}.`);
+      assert.equal(second.compare, `Dashed, impact law linear-momentum: ${cliOutcome([...args, '--set', 'run.impact_law=linear-momentum'])}.`);
+    });
+  },
+
+  // The downloads are what the command line writes: the TOML runs in it to the page's outcome, the
+  // events JSON and the CSV are `whatnext run --events/--csv` for that input, word for word.
+  async downloads() {
+    await withPage(async (page, { downloads: dir }) => {
+      await setFieldAndRun(page, 'geometry.rope_length', '0.9');
+      await setFieldAndRun(page, 'masses.lid', '0.4');
+      const args = ['--example', '1', ...sets(['geometry.rope_length=0.9', 'masses.lid=0.4'])];
+      const toml = await download(page, '#dl-toml', dir);
+      assert.equal(`Outcome: ${cliOutcome([toml])}.`, await outcomeText(page));
+      const json = await download(page, '#dl-json', dir), csv = await download(page, '#dl-csv', dir);
+      const events = path.join(dir, 'cli.json'), rows = path.join(dir, 'cli.csv');
+      assert.equal(cli('run', ...args, '--events', events, '--csv', rows, '-q').status, 0);
+      sameText(fs.readFileSync(json, 'utf8'), fs.readFileSync(events, 'utf8'), 'events JSON');
+      sameText(fs.readFileSync(csv, 'utf8'), fs.readFileSync(rows, 'utf8'), 'CSV');
+    });
+  },
+
+  // Space plays and pauses, ] and PageDown go to the next event, [ back, End and Home to the ends,
+  // the arrows step a millisecond; the event's frame says what happened, as the animation does.
+  async keyboard() {
+    await withPage(async (page) => {
+      const events = cliEvents(['--example', '1']).events;
+      const times = [...new Set(events.map((e) => e.t))];
+      const time = () => page.evaluate(() => window.whatnext.time);
+      const at = async (t) => assert.ok(Math.abs((await time()) - t) < 1e-9, `at ${await time()} s, not ${t} s`);
+      await page.keyboard.press('Space');
+      await page.waitForTimeout(400);
+      await page.keyboard.press('Space');
+      const played = await time();
+      assert.ok(played > 0 && played < times[0], `played to ${played} s`);
+      await page.waitForTimeout(200);
+      assert.equal(await time(), played, 'paused');
+      await page.keyboard.press(']');
+      await at(times[0]);
+      await page.keyboard.press('PageDown');
+      await at(times[1]);
+      assert.equal(await page.textContent('#timeline tr.now td:nth-child(2)'), 'rope_taut');
+      await page.keyboard.press('[');
+      await at(times[0]);
+      await page.keyboard.press('End');
+      await at(times[times.length - 1]);
+      await page.keyboard.press('Home');
+      await page.keyboard.press('ArrowRight');
+      assert.equal(await time(), 1e-3);
+      await page.keyboard.press('-');
+      assert.equal(await page.inputValue('#speed'), '0.05');
+      await page.click('#timeline tbody tr.event >> nth=4');
+      await at(events[4].t);
+    });
+  },
+
+  // The second run: another impact law, the paper's Euler method at a chosen step, and the
+  // parameters before the last change; each one's outcome is the command line's.
+  async compare() {
+    await withPage(async (page) => {
+      const compared = () => page.textContent('#compare-outcome');
+      await page.selectOption('#compare', 'law');
+      await page.selectOption('#compare-law', 'kinetic-energy');
+      assert.equal(await compared(), `Dashed, impact law kinetic-energy: ${cliOutcome(['--example', '1', '--set', 'run.impact_law=kinetic-energy'])}.`);
+      await page.selectOption('#compare', 'euler');
+      await page.fill('#compare-step', '0.002');
+      assert.equal(await compared(), `Dashed, Euler, step 0.002 s: ${cliOutcome(['--example', '1', ...sets(['run.integrator=euler', 'run.step=0.002'])])}.`);
+      await page.selectOption('#compare', 'previous');
+      await setFieldAndRun(page, 'geometry.rope_length', '0.95');
+      assert.equal(await compared(), `Dashed, previous parameters: ${cliOutcome(['--example', '1'])}.`);
+      // The ghost is in the drawing: the picture differs with and without it.
+      await scrubTo(page, 0.7);
+      const picture = () => page.evaluate(() => document.getElementById('machine').toDataURL());
+      const withGhost = await picture();
+      await page.selectOption('#compare', 'none');
+      assert.notEqual(await picture(), withGhost);
+    });
+  },
+
+  // Phone and projector: nothing wider than the window, the machine and the outcome in view; the
+  // screenshots for the README (build/web-test/).
+  async layout() {
+    fs.mkdirSync(outDir, { recursive: true });
+    for (const [name, viewport, scale] of [['phone', { width: 390, height: 844 }, 3], ['projector', { width: 1280, height: 720 }, 1],
+                                           ['desktop', { width: 1600, height: 1000 }, 1]]) {
+      await withPage(async (page) => {
+        const fits = await page.evaluate(() => document.documentElement.scrollWidth <= window.innerWidth);
+        assert.ok(fits, `${name}: the page is wider than the window`);
+        const box = await page.locator('#machine').boundingBox();
+        const least = name === 'phone' ? viewport.width - 60 : 500;
+        assert.ok(box.width >= least, `${name}: the drawing is ${box.width} px wide`);
+        assert.ok(await page.locator('#outcome').isVisible());
+        await page.keyboard.press(']');
+        await page.keyboard.press(']');
+        if (name === 'desktop') {  // the README's picture: the two laws part after the hard pull
+          await page.selectOption('#compare', 'law');
+          await page.selectOption('#compare-law', 'kinetic-energy');
+          await page.evaluate(() => window.whatnext.seek(0.6));
+        }
+        await page.screenshot({ path: path.join(outDir, `web-${name}.png`), fullPage: name !== 'projector' });
+      }, { viewport, scale });
+    }
+  },
+
+  // Not a test: how long one run of example 2 takes in the page (printed for docs/web.md).
+  async speed() {
+    await withPage(async (page) => {
+      const times = await page.evaluate(() => { window.whatnext.timeRun('example2', 50); return window.whatnext.timeRun('example2', 500); });
+      const median = times[times.length >> 1];
+      const version = await page.evaluate(() => navigator.userAgent.match(/Chrome\/[\d.]+/)[0]);
+      console.log(`example 2 in the page (${version}): median ${median.toFixed(3)} ms, fastest ${times[0].toFixed(3)} ms ` +
+                  `over ${times.length} runs`);
+    });
+  },
+};
+
+const name = process.argv[2];
+if (!checks[name]) {
+  console.error(`usage: node page.js (${Object.keys(checks).join('|')})`);
+  process.exit(2);
+}
+checks[name]().then(() => console.log(`page ${name}: passed`), (e) => {
+  console.error(`page ${name}: FAILED\n${e.stack || e}`);
+  process.exit(1);
+});

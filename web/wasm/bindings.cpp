@@ -1,0 +1,372 @@
+// The page's door into the library (embind): a machine is built from TOML text plus `--set`
+// overrides exactly as the CLI builds it, then run; results come back as plain JS objects with the
+// samples as Float64Array columns. Bad input gives the CLI's one-line message instead of a result.
+// Nothing here computes physics or formats numbers: that is the library's (config, simulate, output).
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+
+#include <cmath>
+#include <exception>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "whatnext/config.hpp"
+#include "whatnext/events.hpp"
+#include "whatnext/output.hpp"
+#include "whatnext/simulate.hpp"
+#include "whatnext/viz/recording.hpp"
+
+namespace whatnext::web {
+
+std::string_view radio_example_toml();  // generated from examples/example1-radio.toml
+
+namespace {
+
+using emscripten::val;
+
+// What the page sends: {toml, source, label, sets: ["key=value", ...], format, maxRows}.
+// `toml` is the machine's text (the paper's whatnext.inp when format is "inp"), `source` names it
+// in messages (as a file name does for the CLI), `label` heads the timeline (the CLI's
+// "example 1" or file name).
+struct Input {
+  Config config;
+  Scenario scenario;
+  std::string label;
+};
+
+Input load(const val& in) {
+  Input out;
+  const std::string text = in["toml"].as<std::string>(), source = in["source"].as<std::string>();
+  const bool inp = in["format"].isString() && in["format"].as<std::string>() == "inp";
+  out.config = inp ? parse_inp(text, source) : parse_toml(text, source);
+  const std::vector<std::string> sets = emscripten::vecFromJSArray<std::string>(in["sets"]);
+  for (const std::string& s : sets) apply_set(out.config, s);
+  out.scenario = build_scenario(out.config);
+  // As the CLI labels its runs (apps/cli_common.cpp), so that timeline and JSON read the same.
+  out.label = in["label"].as<std::string>() + (sets.empty() ? "" : " with --set");
+  return out;
+}
+
+// Runs fn(); a bad input or a failed run becomes {ok: false, kind, message}.
+template <class Fn>
+val guarded(Fn&& fn) {
+  auto failure = [](const char* kind, const char* message) {
+    val r = val::object();
+    r.set("ok", false);
+    r.set("kind", std::string(kind));
+    r.set("message", std::string(message));
+    return r;
+  };
+  try {
+    return fn();
+  } catch (const InputError& e) {
+    return failure("input", e.what());
+  } catch (const SimulationError& e) {
+    return failure("simulation", e.what());
+  } catch (const std::exception& e) {
+    return failure("error", e.what());
+  }
+}
+
+val text_result(const std::string& text) {
+  val r = val::object();
+  r.set("ok", true);
+  r.set("text", text);
+  return r;
+}
+
+val xy(Vec2 p) {
+  val v = val::object();
+  v.set("x", p.x);
+  v.set("h", p.h);
+  return v;
+}
+
+// Every quantity of a Snapshot, by name: the columns of the samples and the fields of an event's
+// state. Angles stay in radians (the page converts at its edge, like the CLI's writers).
+struct Column {
+  const char* name;
+  double (*get)(const Snapshot&);
+};
+#define WHATNEXT_COLUMN(f) Column{#f, [](const Snapshot& s) { return static_cast<double>(s.f); }}
+const Column kColumns[] = {
+    WHATNEXT_COLUMN(t), WHATNEXT_COLUMN(x), WHATNEXT_COLUMN(h), WHATNEXT_COLUMN(vx),
+    WHATNEXT_COLUMN(vh), WHATNEXT_COLUMN(r), WHATNEXT_COLUMN(dr), WHATNEXT_COLUMN(phi_s),
+    WHATNEXT_COLUMN(dphi_s), WHATNEXT_COLUMN(phi_l), WHATNEXT_COLUMN(dphi_l),
+    WHATNEXT_COLUMN(balloon_h), WHATNEXT_COLUMN(balloon_v), WHATNEXT_COLUMN(balloon_limit),
+    WHATNEXT_COLUMN(tension), WHATNEXT_COLUMN(normal_force), WHATNEXT_COLUMN(sandbag_kinetic),
+    WHATNEXT_COLUMN(sandbag_potential), WHATNEXT_COLUMN(lid_kinetic), WHATNEXT_COLUMN(lid_potential),
+    WHATNEXT_COLUMN(seesaw_kinetic), WHATNEXT_COLUMN(seesaw_potential),
+    WHATNEXT_COLUMN(balloon_kinetic), WHATNEXT_COLUMN(balloon_potential),
+    WHATNEXT_COLUMN(lost_impacts), WHATNEXT_COLUMN(lost_balloon_catch),
+    WHATNEXT_COLUMN(dissipated_pivot), WHATNEXT_COLUMN(dissipated_hinge),
+    WHATNEXT_COLUMN(dissipated_drag), WHATNEXT_COLUMN(lid_push_work), WHATNEXT_COLUMN(initial_total),
+    WHATNEXT_COLUMN(on_seesaw), WHATNEXT_COLUMN(rope_taut), WHATNEXT_COLUMN(lid_resting),
+    WHATNEXT_COLUMN(balloon_stuck),
+    Column{"mode", [](const Snapshot& s) { return static_cast<double>(static_cast<int>(s.mode)); }},
+    Column{"energy", [](const Snapshot& s) { return s.energy(); }},
+    Column{"total_energy", [](const Snapshot& s) { return s.total_energy(); }},
+    Column{"dissipated", [](const Snapshot& s) { return s.dissipated(); }},
+};
+#undef WHATNEXT_COLUMN
+
+val snapshot_object(const Snapshot& s) {
+  val v = val::object();
+  for (const Column& c : kColumns) v.set(c.name, c.get(s));
+  return v;
+}
+
+// Keeps the samples (every stride-th, so that a fine output step cannot fill the memory) and each
+// event's state at its time, in time order: what the drawing and the plots need.
+class Columns : public Observer {
+ public:
+  explicit Columns(long stride) : stride_(stride) {}
+  void on_sample(const Snapshot& s) override {
+    if (samples_++ % stride_ == 0) add(s, -1.0);
+  }
+  void on_event(const Event& e) override { add(e.after, static_cast<double>(events_++)); }
+
+  val to_js() const {
+    val out = val::object();
+    for (std::size_t c = 0; c < std::size(kColumns); ++c) out.set(kColumns[c].name, array(data_[c]));
+    out.set("event", array(event_));
+    out.set("stride", static_cast<double>(stride_));
+    return out;
+  }
+
+ private:
+  void add(const Snapshot& s, double event) {
+    for (std::size_t c = 0; c < std::size(kColumns); ++c) data_[c].push_back(kColumns[c].get(s));
+    event_.push_back(event);
+  }
+  static val array(const std::vector<double>& v) {  // a copy, independent of the wasm memory
+    return val::global("Float64Array").new_(emscripten::typed_memory_view(v.size(), v.data()));
+  }
+  long stride_;
+  long samples_ = 0, events_ = 0;
+  std::vector<double> data_[std::size(kColumns)];
+  std::vector<double> event_;
+};
+
+val machine_object(const Scenario& sc) {
+  const Machine& m = sc.machine;
+  val v = val::object();
+  v.set("seesaw_right_arm", m.seesaw_right_arm);
+  v.set("seesaw_left_arm", m.seesaw_left_arm);  // Infinity: the paper's endless arm
+  v.set("lid_half_length", m.lid_half_length);
+  v.set("rope_length", m.rope_length);
+  v.set("hinge", xy(m.hinge));
+  v.set("balloon_radius", m.balloon_radius);
+  v.set("radio", m.radio);
+  v.set("radio_switch", xy(m.radio_switch));
+  v.set("string_length", m.string_length);
+  v.set("sandbag_mass", m.sandbag_mass);
+  v.set("lid_mass", m.lid_mass);
+  v.set("seesaw_mass", m.seesaw_mass);
+  v.set("gravity", m.gravity);
+  val start = val::object();
+  start.set("sandbag_x", sc.start.sandbag_x);
+  start.set("sandbag_h", sc.start.sandbag_h);
+  start.set("seesaw_angle", sc.start.seesaw_angle);
+  start.set("lid_angle", sc.start.lid_angle);
+  v.set("start", start);
+  val run = val::object();
+  run.set("t_max", sc.run.t_max);
+  run.set("output_step", sc.run.output_step);
+  run.set("integrator", std::string(to_string(sc.run.integrator)));
+  run.set("step", sc.run.step);
+  run.set("impact_law", std::string(to_string(sc.run.impact_law)));
+  run.set("vertical_margin", sc.run.vertical_margin);
+  v.set("run", run);
+  return v;
+}
+
+val config_value(const ConfigValue& c) {
+  val v = val::object();
+  switch (c.type) {
+    case ConfigValue::Type::number:
+      v.set("number", c.number);
+      break;
+    case ConfigValue::Type::text:
+      v.set("text", c.text);
+      break;
+    case ConfigValue::Type::pair: {
+      val p = val::array();
+      p.call<void>("push", c.pair[0]);
+      p.call<void>("push", c.pair[1]);
+      v.set("pair", p);
+      break;
+    }
+  }
+  return v;
+}
+
+// The value every key has in this run, as written in an input: the given ones as given, the
+// others as to_toml writes the built machine (so the panel can show what a blank field means).
+val values_object(const Input& in) {
+  const Config built = parse_toml(to_toml(in.scenario), "to_toml");
+  val given = val::object(), effective = val::object();
+  for (const auto& [key, value] : in.config.values) given.set(key, config_value(value));
+  for (const auto& [key, value] : built.values) effective.set(key, config_value(value));
+  val v = val::object();
+  v.set("given", given);
+  v.set("effective", effective);
+  return v;
+}
+
+val event_object(const Event& e) {
+  val v = val::object();
+  v.set("type", std::string(to_string(e.type)));
+  v.set("t", e.t);
+  v.set("mode_before", std::string(to_string(e.mode_before)));
+  v.set("mode_after", std::string(to_string(e.mode_after)));
+  v.set("impact", e.impact);
+  v.set("energy_before", e.energy_before);
+  v.set("energy_after", e.energy_after);
+  v.set("stop", is_stop(e.type));
+  v.set("words", viz::event_words(e, true));
+  v.set("state", snapshot_object(e.after));
+  return v;
+}
+
+// --- what the page calls ---------------------------------------------------------------------
+
+// Builds and runs the machine: {ok, label, machine, values, events, outcome, timeline, samples,
+// stats}. input.maxRows bounds the samples kept (default 50000).
+val run(val input) {
+  return guarded([&] {
+    const Input in = load(input);
+    const double max_rows = input["maxRows"].isNumber() ? input["maxRows"].as<double>() : 5e4;
+    const double rows = in.scenario.run.t_max / in.scenario.run.output_step;
+    Columns columns(std::max(1L, static_cast<long>(std::ceil(rows / std::max(1.0, max_rows)))));
+    const Result result = simulate(in.scenario, &columns);
+
+    val r = val::object();
+    r.set("ok", true);
+    r.set("label", in.label);
+    r.set("machine", machine_object(in.scenario));
+    r.set("values", values_object(in));
+    val events = val::array();
+    for (const Event& e : result.events) events.call<void>("push", event_object(e));
+    r.set("events", events);
+    val groups = val::array();  // events at one instant, as the animation holds them
+    for (const viz::EventGroup& g : viz::group_events(result)) {
+      val group = val::object(), members = val::array();
+      group.set("t", g.t);
+      for (int i : g.events) members.call<void>("push", i);
+      group.set("events", members);
+      group.set("label", g.label);
+      groups.call<void>("push", group);
+    }
+    r.set("groups", groups);
+    val outcome = val::object();
+    outcome.set("type", std::string(to_string(result.outcome().type)));
+    outcome.set("t", result.outcome().t);
+    outcome.set("sentence", outcome_sentence(result));
+    r.set("outcome", outcome);
+    r.set("timeline", timeline_text(result, in.scenario, in.label));
+    r.set("samples", columns.to_js());
+    val stats = val::object();
+    stats.set("steps", static_cast<double>(result.stats.steps));
+    stats.set("root_evaluations", static_cast<double>(result.stats.root_evaluations));
+    r.set("stats", stats);
+    return r;
+  });
+}
+
+// The downloads, as `whatnext run` writes them: TOML (to_toml), --events JSON, --csv.
+val toml(val input) {
+  return guarded([&] { return text_result(to_toml(load(input).scenario)); });
+}
+
+val events(val input) {
+  return guarded([&] {
+    const Input in = load(input);
+    return text_result(events_json(simulate(in.scenario), in.scenario, in.label));
+  });
+}
+
+val csv(val input) {
+  return guarded([&] {
+    const Input in = load(input);
+    std::ostringstream out;
+    CsvWriter writer(out);
+    simulate(in.scenario, &writer);
+    return text_result(out.str());
+  });
+}
+
+// Every input key, in documentation order: {key, kind, unit, help}.
+val keys() {
+  static const char* const kKinds[] = {"length", "mass",     "density", "angle", "time",
+                                       "acceleration", "positive", "text", "pair", "flag"};
+  val out = val::array();
+  for (const KeySpec& k : known_keys()) {
+    val v = val::object();
+    v.set("key", std::string(k.key));
+    v.set("kind", std::string(kKinds[static_cast<int>(k.kind)]));
+    v.set("unit", std::string(k.unit));
+    v.set("help", std::string(k.help));
+    out.call<void>("push", v);
+  }
+  return out;
+}
+
+// The names an input may give for the text keys, and the modes in words.
+val names() {
+  val out = val::object();
+  auto list = [](auto... items) {
+    val a = val::array();
+    (a.call<void>("push", std::string(to_string(items))), ...);
+    return a;
+  };
+  out.set("run.impact_law", list(ImpactLaw::rope, ImpactLaw::angular_momentum_sum, ImpactLaw::kinetic_energy,
+                                 ImpactLaw::linear_momentum));
+  out.set("run.integrator", list(IntegratorKind::adaptive, IntegratorKind::euler, IntegratorKind::rk4));
+  out.set("balloon.model", list(BalloonModel::program, BalloonModel::lagrangian, BalloonModel::added_mass));
+  val modes = val::object();
+  for (Mode m : {Mode::M1, Mode::M2, Mode::M3, Mode::M4, Mode::M5}) {
+    modes.set(static_cast<int>(m), viz::mode_words(m));
+  }
+  out.set("modes", modes);
+  return out;
+}
+
+// The shipped machines: the paper's examples as `--example N` reads them, and the radio example.
+val presets() {
+  auto preset = [](const std::string& id, const std::string& title, std::string_view text,
+                   const std::string& source, const std::string& label, const std::string& cli) {
+    val v = val::object();
+    v.set("id", id);
+    v.set("title", title);
+    v.set("toml", std::string(text));
+    v.set("source", source);
+    v.set("label", label);
+    v.set("cli", cli);
+    return v;
+  };
+  val out = val::array();
+  for (int n = 1; n <= 4; ++n) {
+    const std::string num = std::to_string(n);
+    out.call<void>("push", preset("example" + num, "Example " + num, example_toml(n),
+                                  "example" + num + ".toml", "example " + num, "--example " + num));
+  }
+  const std::string radio = "examples/example1-radio.toml";
+  out.call<void>("push", preset("radio", "Example 1 with the radio", radio_example_toml(), radio, radio, radio));
+  return out;
+}
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(whatnext) {
+  emscripten::function("run", &run);
+  emscripten::function("toml", &toml);
+  emscripten::function("events", &events);
+  emscripten::function("csv", &csv);
+  emscripten::function("keys", &keys);
+  emscripten::function("presets", &presets);
+  emscripten::function("names", &names);
+}
+
+}  // namespace whatnext::web
