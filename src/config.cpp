@@ -427,6 +427,11 @@ void build_extensions(const Reader& in, Machine& m) {
                           fmt_num(m.seesaw_inertia)));
     }
   }
+  if (m.pivot_damping > 0.0 && !m.heavy_seesaw()) {
+    // A massless seesaw can only take the damper's torque from the sandbag pushing the arm, which
+    // would have to pull whenever the seesaw turns back: no consistent motion (docs/extensions.md).
+    in.fail("damping.pivot", "needs a seesaw with inertia: give seesaw.mass (and seesaw.left_arm) too");
+  }
 }
 
 // Start conditions that only the extensions can violate.

@@ -169,9 +169,8 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
 }
 
 void Model::dissipation(const Discrete& d, const Kinematics& k, State& dy) const {
-  // Power turned into heat. The pivot's damper acts where the seesaw has inertia or is coupled
-  // to the lid (M4); a massless seesaw elsewhere carries no load that could resist it.
-  if (d.heavy || (d.on_seesaw && d.taut)) dy[slot::lost_pivot] = c_p_ * k.dphi_s * k.dphi_s;
+  // Power turned into heat (the pivot's damper comes with a seesaw that has inertia).
+  dy[slot::lost_pivot] = c_p_ * k.dphi_s * k.dphi_s;
   dy[slot::lost_hinge] = c_l_ * k.dphi_l * k.dphi_l;
   const double v = std::fabs(k.balloon_v);
   dy[slot::lost_drag] = m_b_ * drag_ * v * v * v;
@@ -315,9 +314,9 @@ contact::System Model::contact_system(const Discrete& d, const Kinematics& k) co
   s.velocity = {k.vx, k.vh, k.dphi_s, k.dphi_l};
   const double cs = std::cos(k.phi_s), sn = std::sin(k.phi_s);
   const double cl = std::cos(k.phi_l), sl = std::sin(k.phi_l);
-  // The pivot's damper: see dissipation() for where a massless seesaw carries it.
-  const double damper = (heavy_ || (d.on_seesaw && d.taut)) ? c_p_ * k.dphi_s : 0.0;
-  s.force = {0.0, -m_s_ * g_, -w_s_ * g_ * cs - damper, -m_l_ * g_ * r_l_ * cl - c_l_ * k.dphi_l};
+  // The pivot's damper needs a seesaw with inertia (validation rejects it on a massless one).
+  s.force = {0.0, -m_s_ * g_, -w_s_ * g_ * cs - c_p_ * k.dphi_s, -m_l_ * g_ * r_l_ * cl - c_l_ * k.dphi_l};
+  (void)d;
 
   const double height = -k.x * sn + k.h * cs;
   s.normal[kBag] = {-sn, cs, -k.x * cs - k.h * sn, 0.0};

@@ -206,11 +206,12 @@ TEST(HeavySeesaw, UniformBarDefaultsAndParallelAxis) {
 
 TEST(Ledger, BooksBalanceWithEverySwitchOn) {
   const std::vector<std::string> all = {"radio.enabled=true", "balloon.drag=true", "balloon.rubber_mass=0.003",
-                                        "balloon.model=added-mass", "damping.pivot=0.05", "damping.lid_hinge=0.02"};
+                                        "balloon.model=added-mass", "damping.lid_hinge=0.02"};
   for (int n = 1; n <= 4; ++n) {
     for (bool heavy : {false, true}) {
       std::vector<std::string> sets = all;
-      if (heavy) sets.insert(sets.end(), {"seesaw.mass=0.3", "seesaw.left_arm=1.5"});
+      // The pivot's damper needs a seesaw with inertia.
+      if (heavy) sets.insert(sets.end(), {"seesaw.mass=0.3", "seesaw.left_arm=1.5", "damping.pivot=0.05"});
       wn::Recorder rec;
       const wn::Result r = wn::simulate(example(n, sets), &rec);
       double worst = 0.0;

@@ -6,7 +6,7 @@
 // acos and pow differ in the last bit for a few percent of arguments), so bit-equal runs are not to
 // be had. Where a run differs by more than 1e-12 s, the native program is asked how much its own
 // result moves when an input changes in its last bits (kNudged, 1 to 3 ulps up or down): the
-// difference is accepted only if the native run moves as much, i.e. the machine itself is that
+// difference is accepted only if the native run moves about as much (within kSpreadFactor), i.e. the machine itself is that
 // sensitive to rounding (a grazing contact, a long run); such machines are counted and must stay rare.
 //   node wasm_native.js WHATNEXT_JS WHATNEXT_CLI SOURCE_DIR [COUNT]
 'use strict';
@@ -18,6 +18,9 @@ const { spawnSync } = require('child_process');
 const [modulePath, cli, sourceDir, countArg] = process.argv.slice(2);
 const count = Number(countArg || 300);
 const kTolerance = 1e-12;  // seconds
+// A few nudged inputs only sample a machine's sensitivity, while the two maths libraries differ in
+// many operations of a run: a difference within ten times the sampled spread is the same kind.
+const kSpreadFactor = 10;
 // The inputs changed by 1 to 3 units in the last place to see how sensitive a machine is to rounding.
 const kNudged = ['run.gravity', 'masses.sandbag', 'masses.lid', 'air.density', 'geometry.rope_length',
                  'geometry.seesaw_right_arm', 'start.sandbag_x', 'start.sandbag_height'];
@@ -140,10 +143,10 @@ async function main() {
       for (const step of [1, -1, 2, -2, 3, -3]) {
         const nudged = runCli(cliArgs([`${key}=${ulp(values[key].number, step)}`]), dir);
         if (nudged.ok) spread = Math.max(spread, difference(nudged.json, b));
-        if (spread >= d) break search;
+        if (kSpreadFactor * spread >= d) break search;
       }
     }
-    if (d <= spread) {
+    if (d <= kSpreadFactor * spread) {
       ++sensitive;
       if (d === Infinity) ++reordered;
       else worstSensitive = Math.max(worstSensitive, d);
