@@ -552,6 +552,14 @@ Scenario build_scenario(const Config& cfg) {
             fmt::format("is shorter than the distance from the seesaw's end to the lid's edge at the start "
                         "({:.4g} m < {:.4g} m)", m.rope_length, span0));
   }
+  // A rope straight at the start must run above the hinge: with the lid above it, it would run
+  // under the hinge, through the box (the closure's mirror branch).
+  if (span0 >= m.rope_length - 1e-9 && !rope.lid_below_rope(st.seesaw_angle, st.lid_angle)) {
+    in.fail("start.lid_angle",
+            fmt::format("puts the lid above the rope, which is straight at the start (geometry.rope_length = {} m "
+                        "at start.seesaw_angle = {} deg) and would run under the hinge, through the box (given {} deg)",
+                        fmt_num(m.rope_length), fmt_num(st.seesaw_angle / kDeg), fmt_num(st.lid_angle / kDeg)));
+  }
   const double reach = rope.max_span(st.lid_angle);
   if (m.rope_length > reach) {
     in.fail("geometry.rope_length",

@@ -345,3 +345,50 @@ TEST(LidLanding, HeavySeesawKeepsTurningAndTheRopeGoesSlack) {
   EXPECT_DOUBLE_EQ(after.dphi_l, 0.0);
   EXPECT_NEAR(after.dphi_s, before.dphi_s, 1e-12);
 }
+
+TEST(Linkage, ATautStartWithTheLidAboveTheRopeIsAnInputError) {
+  // Example 2 at -40 deg with the rope cut to the start span: the lid lies above the straight
+  // rope (the rope would run under the hinge, through the box), which the geometry shows directly.
+  wn::Config cfg = wn::example_config(2);
+  wn::set_number(cfg, "start.seesaw_angle", -40.0);
+  wn::set_number(cfg, "geometry.rope_length", 1.0);  // long enough to build the probe
+  const wn::Scenario probe = wn::build_scenario(cfg);
+  const wn::RopeGeometry rope(probe.machine);
+  const double phi_s = probe.start.seesaw_angle, phi_l = probe.start.lid_angle;
+  ASSERT_GT(rope.lid_side_of_rope(phi_s, phi_l), 0.0);
+  wn::set_number(cfg, "geometry.rope_length", rope.span(phi_s, phi_l));
+  try {
+    wn::build_scenario(cfg);
+    FAIL() << "accepted";
+  } catch (const wn::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("start.lid_angle"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("geometry.rope_length"), std::string::npos) << e.what();
+  }
+  // The same cut at -35 deg (example 2's start) has the lid below the rope and runs.
+  wn::Config ok = wn::example_config(2);
+  const wn::Scenario p2 = wn::build_scenario(ok);
+  const wn::RopeGeometry r2(p2.machine);
+  ASSERT_LT(r2.lid_side_of_rope(p2.start.seesaw_angle, p2.start.lid_angle), 0.0);
+  wn::set_number(ok, "geometry.rope_length", r2.span(p2.start.seesaw_angle, p2.start.lid_angle));
+  EXPECT_NO_THROW(wn::build_scenario(ok));
+}
+
+TEST(Linkage, TheLidAngleIsContinuousOnSteepStarts) {
+  // R left of the hinge and below it: atan2(R - H) - sigma leaves (-180, 180] there; the closure
+  // must give the lid's angle itself (between its resting angle and 90 deg), which the straight
+  // rope confirms: |R - E(phiL)| = l.
+  wn::Config cfg = wn::example_config(2);
+  const wn::Scenario sc = wn::build_scenario(cfg);
+  const wn::RopeGeometry rope(sc.machine);
+  int checked = 0;
+  for (double deg = -60.0; deg <= -25.0; deg += 1.0) {
+    double phi_l = 0.0;
+    if (!rope.lid_angle_for(deg * kDeg, phi_l)) continue;
+    EXPECT_GT(phi_l, -kPi);
+    EXPECT_LE(phi_l, kPi);
+    EXPECT_NEAR(rope.span(deg * kDeg, phi_l), rope.rope_length(), 1e-12);
+    EXPECT_LT(rope.lid_side_of_rope(deg * kDeg, phi_l), 0.0);
+    ++checked;
+  }
+  EXPECT_GT(checked, 10);
+}
