@@ -472,10 +472,12 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g) const {
     // A free-falling sandbag can only leave the left arm through the pivot's vertical line.
     g[kGuardAtPivot] = k.x;
   }
-  // A seesaw that moves ends the model when it turns vertical, either way round (with the
-  // sandbag on it that is MODEL.md's stop; an unloaded heavy seesaw would hit the ground).
-  if (d.on_seesaw || d.heavy || (d.taut && !d.lid_resting)) g[kGuardSeesawVertical] = std::fabs(k.phi_s) - vertical_;
-  if (d.on_seesaw && arm_ < kNoEnd) g[kGuardArmEnd] = k.r - arm_;
+  // With the sandbag on it, the seesaw turning vertical ends the model (MODEL.md); an unloaded
+  // seesaw with inertia may swing on past it.
+  if (d.on_seesaw) {
+    g[kGuardSeesawVertical] = k.phi_s - vertical_;
+    if (arm_ < kNoEnd) g[kGuardArmEnd] = k.r - arm_;
+  }
 }
 
 double Model::guard_floor(Guard g, const Discrete& d) const {
@@ -702,6 +704,19 @@ void Model::resolve(HybridState& hs, const Kinematics& k0, int trigger, Trend tr
 
   // A touch that changes nothing (no impulse, the same contacts) leaves the state as it was.
   if (s2 == s0 && !impacted) k2 = k0;
+  // The contact that closed here is at zero gap by definition: take back the overshoot of the
+  // event's location (the event-time tolerance times the closing speed), so that if it lets go
+  // again at once it starts from exactly zero and is not seen to close again at once.
+  if (trend == Trend::closing && trigger == kRope && !has(s2, kLid)) {
+    double projected = 0.0;
+    if (rope_.lid_angle_for(k2.phi_s, projected) && rope_.lid_below_rope(k2.phi_s, projected) &&
+        std::fabs(projected - k2.phi_l) < 1e-9) {
+      k2.phi_l = projected;
+    }
+  }
+  if (trend == Trend::closing && trigger == kLid && k2.phi_l < phi_l0_ && k2.phi_l > phi_l0_ - 1e-9) {
+    k2.phi_l = phi_l0_;
+  }
 
   const Mode before = d.mode();
   set_contacts(d, s2, k2);

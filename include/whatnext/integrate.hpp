@@ -90,9 +90,8 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
   using guard_type = typename System::guard_type;
   auto stepper = odeint::make_dense_output(tolerance, tolerance, max_dt,
                                            odeint::runge_kutta_dopri5<state_type>());
-  const double dt0 = std::fmin(max_dt, std::fmax(1e-6, 0.05 * std::pow(tolerance, 0.2)));
+  double dt0 = std::fmin(max_dt, std::fmax(1e-6, 0.05 * std::pow(tolerance, 0.2)));
   const double t0 = t;
-  stepper.initialize(y, t, dt0);
   auto eval = [&](double tt, state_type& out) { stepper.calc_state(tt, out); };
 
   guard_type g0, g1, d0, d1;
@@ -112,9 +111,18 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
       noise_time[i] = std::pow(1e-3 * s.floor / std::fabs(s.lead), 1.0 / s.order);
     }
   }
+  // Where a contact was just released, start with a short step: its gap may close again within
+  // what would be the first step, by less than the dense output's error over so long a step.
+  for (std::size_t i = 0; i < g0.size(); ++i) {
+    if (armed[i]) dt0 = std::fmin(dt0, 1e-6);
+  }
+  stepper.initialize(y, t, dt0);
   state_type y1;
   std::int64_t steps = 0;
-  for (bool first = true;; first = false) {
+  bool first = true;
+  for (;;) {
+    const bool in_first = first;
+    first = false;
     std::pair<double, double> interval;
     try {
       interval = stepper.do_step(std::cref(sys));
@@ -149,7 +157,7 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
     };
     for (std::size_t i = 0; i < g0.size(); ++i) {
       if (armed[i]) {
-        if (first && order[i] > 0 && tb - t0 < noise_time[i]) {
+        if (in_first && order[i] > 0 && tb - t0 < noise_time[i]) {
           g1[i] = -std::numeric_limits<double>::min();  // within rounding of the start: as expanded
         } else if (g1[i] < -floor[i]) {
           armed[i] = false;  // clearly open: an ordinary guard from here on
@@ -161,7 +169,7 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
       // Negative at both ends: a touch in between? Peak of the Hermite cubic on [ta, tb] (not in
       // the first step of a guard that started at zero: its g0 is the scaled lead, not a value).
       if (!(g0[i] < 0.0 && g1[i] < 0.0) || std::isnan(d0[i]) || std::isnan(d1[i]) || !(d0[i] > 0.0) ||
-          !(tb > ta) || (first && order[i] > 0)) {
+          !(tb > ta) || (in_first && order[i] > 0)) {
         continue;
       }
       const double h = tb - ta;
@@ -203,7 +211,7 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
     }
     for (std::size_t i = 0; i < g0.size() && tb > ta; ++i) {
       if (!(g0[i] < 0.0 && g1[i] >= 0.0)) continue;
-      const int p = first ? order[i] : 0;
+      const int p = in_first ? order[i] : 0;
       const double scale_b = p > 0 ? std::pow(tb - t0, p) : 1.0;
       auto f = [&](double tt) {
         if (p > 0 && tt - t0 < noise_time[i]) return g0[i];
