@@ -183,6 +183,15 @@ void check_invariants(const Machine& m, const wn::Scenario& sc, const wn::Record
     }
     prev_t = s.t, prev_l = s.phi_l, prev_w = s.dphi_l;
   }
+  for (std::size_t i = 0; i + 1 < rec.events.size(); ++i) {
+    // Every event of one instant carries the one state the motion goes on with.
+    const wn::Snapshot &a = rec.events[i].after, &b = rec.events[i + 1].after;
+    if (rec.events[i].t == rec.events[i + 1].t &&
+        (a.mode != b.mode || a.phi_l != b.phi_l || a.dphi_l != b.dphi_l || a.tension != b.tension ||
+         a.balloon_v != b.balloon_v || a.dphi_s != b.dphi_s)) {
+      out.fail(m, "events at one instant with different states at t=" + std::to_string(a.t));
+    }
+  }
   for (const wn::Event& e : rec.events) {
     if (e.t < latched_at) check(e.after, wn::to_string(e.type).data());
     if (e.impact) {
