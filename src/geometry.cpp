@@ -55,21 +55,47 @@ Transfer RopeGeometry::transfer(double phi_s, double phi_l) const {
   return transfer_at(seesaw_end(phi_s), polar(2.0 * r_l_, phi_l));
 }
 
-RopeGeometry::Closure RopeGeometry::closure(double phi_s) const {
-  const Vec2 r = seesaw_end(phi_s);
+namespace {
+double clamp_unit(double c) { return c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c); }
+}  // namespace
+
+RopeGeometry::Linkage RopeGeometry::from_seesaw(double cos_s, double sin_s) const {
+  const Vec2 r{r_h_ * cos_s, r_h_ * sin_s};
   const Vec2 hr = r - hinge_;
-  const double d = std::sqrt(dot(hr, hr));  // not hypot: slower, and d is never near over/underflow
-  double cs = (4.0 * r_l_ * r_l_ + d * d - l_r_ * l_r_) / (4.0 * r_l_ * d);
-  cs = cs > 1.0 ? 1.0 : (cs < -1.0 ? -1.0 : cs);
+  const double d = std::sqrt(dot(hr, hr));
+  const double cs = clamp_unit((4.0 * r_l_ * r_l_ + d * d - l_r_ * l_r_) / (4.0 * r_l_ * d));
   const double sn = std::sqrt(1.0 - cs * cs);  // sin sigma >= 0
   // E - H is HR turned clockwise by sigma and scaled to 2 r_L (the lid below the rope).
   const double f = 2.0 * r_l_ / d;
   const Vec2 el{f * (hr.x * cs + hr.h * sn), f * (hr.h * cs - hr.x * sn)};
-  Closure c;
-  c.phi_l = wrap(std::atan2(hr.h, hr.x) - std::acos(cs));
-  c.cos_phi_l = el.x / (2.0 * r_l_);
-  c.transfer = transfer_at(r, el);
-  return c;
+  return linkage_at(r, el);
+}
+
+RopeGeometry::Linkage RopeGeometry::from_lid(double cos_l, double sin_l, int side) const {
+  const Vec2 el{2.0 * r_l_ * cos_l, 2.0 * r_l_ * sin_l};
+  const Vec2 e = hinge_ + el;
+  const double de = std::sqrt(dot(e, e));
+  const double cr = clamp_unit((r_h_ * r_h_ + de * de - l_r_ * l_r_) / (2.0 * r_h_ * de));
+  const double sr = (side > 0 ? 1.0 : -1.0) * std::sqrt(1.0 - cr * cr);
+  // R is the direction of E turned by +-rho (counterclockwise for side +1), scaled to r_H.
+  const double f = r_h_ / de;
+  const Vec2 r{f * (e.x * cr - e.h * sr), f * (e.h * cr + e.x * sr)};
+  return linkage_at(r, el);
+}
+
+RopeGeometry::Linkage RopeGeometry::linkage_at(Vec2 r, Vec2 el) const {
+  const Partials c = partials_at(r, el);
+  Linkage g;
+  g.cos_s = r.x / r_h_;
+  g.sin_s = r.h / r_h_;
+  g.cos_l = el.x / (2.0 * r_l_);
+  g.sin_l = el.h / (2.0 * r_l_);
+  g.transfer.k = -c.c_s / c.c_l;
+  g.transfer.dk = -(c.c_ss + 2.0 * c.c_sl * g.transfer.k + c.c_ll * g.transfer.k * g.transfer.k) / c.c_l;
+  // The same implicit differentiation with the roles of the angles swapped.
+  g.ds = -c.c_l / c.c_s;
+  g.dds = -(c.c_ll + 2.0 * c.c_sl * g.ds + c.c_ss * g.ds * g.ds) / c.c_s;
+  return g;
 }
 
 RopeGeometry::Partials RopeGeometry::partials_at(Vec2 r, Vec2 el) const {
@@ -88,17 +114,6 @@ Transfer RopeGeometry::transfer_at(Vec2 r, Vec2 el) const {
   t.k = -c.c_s / c.c_l;
   t.dk = -(c.c_ss + 2.0 * c.c_sl * t.k + c.c_ll * t.k * t.k) / c.c_l;
   return t;
-}
-
-bool RopeGeometry::inverse_closure(double phi_l, int side, InverseClosure& out) const {
-  double phi_s = 0.0;
-  if (!seesaw_angle_for(phi_l, side, phi_s)) return false;
-  // Implicit differentiation of C(phiS(phiL), phiL) = 0, the roles of the angles swapped.
-  const Partials c = partials_at(seesaw_end(phi_s), polar(2.0 * r_l_, phi_l));
-  out.phi_s = phi_s;
-  out.ds = -c.c_l / c.c_s;
-  out.dds = -(c.c_ll + 2.0 * c.c_sl * out.ds + c.c_ss * out.ds * out.ds) / c.c_s;
-  return true;
 }
 
 double RopeGeometry::lid_side_of_rope(double phi_s, double phi_l) const {
@@ -154,17 +169,17 @@ double RopeGeometry::max_span(double phi_l_min) const {
   return best;
 }
 
-double BalloonLimit::height(double phi_l) const {
-  return -radius * std::cos(phi_l) / (1.0 + std::sin(phi_l));
+double BalloonLimit::height_at(double cos_l, double sin_l) const {
+  return -radius * cos_l / (1.0 + sin_l);
 }
 
-double BalloonLimit::rate(double phi_l, double dphi_l) const {
-  return radius * dphi_l / (1.0 + std::sin(phi_l));
+double BalloonLimit::rate_at(double sin_l, double dphi_l) const {
+  return radius * dphi_l / (1.0 + sin_l);
 }
 
-double BalloonLimit::acceleration(double phi_l, double dphi_l, double ddphi_l) const {
-  const double s = 1.0 + std::sin(phi_l);
-  return radius * (ddphi_l / s - dphi_l * dphi_l * std::cos(phi_l) / (s * s));
+double BalloonLimit::acceleration_at(double cos_l, double sin_l, double dphi_l, double ddphi_l) const {
+  const double s = 1.0 + sin_l;
+  return radius * (ddphi_l / s - dphi_l * dphi_l * cos_l / (s * s));
 }
 
 }  // namespace whatnext

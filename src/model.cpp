@@ -77,21 +77,24 @@ Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr,
                           double dphi_s) const {
   // J phiS'' = Q with J = I_S + [on] m_S r^2 + [taut] I_L k^2. With I_S = 0, no seesaw weight and no
   // damping (MODEL.md) the extra terms are exact zeros and this is eqs. (3) and (4) of the paper.
+  // This is the flow's hot path: one sincos of phiS serves the weights and the whole linkage.
   Swing p{};
-  double num = -w_s_ * g_ * std::cos(phi_s) - c_p_ * dphi_s;
+  const double cs = std::cos(phi_s), ss = std::sin(phi_s);
+  if (taut) {  // the lid on the rope's closure phiL(phiS), with analytic k, k'
+    p.lk = rope_.from_seesaw(cs, ss);
+  } else {
+    p.lk.cos_s = cs, p.lk.sin_s = ss;
+  }
+  double num = -w_s_ * g_ * cs - c_p_ * dphi_s;
   double den = i_s_;
   if (on) {
-    p.ddr = g_ * std::sin(phi_s) + r * dphi_s * dphi_s;
-    num += m_s_ * g_ * r * std::cos(phi_s) - 2.0 * m_s_ * r * dr * dphi_s;
+    p.ddr = g_ * ss + r * dphi_s * dphi_s;
+    num += m_s_ * g_ * r * cs - 2.0 * m_s_ * r * dr * dphi_s;
     den += m_s_ * r * r;
   }
-  if (taut) {  // the lid on the rope's closure phiL(phiS), with analytic k, k'
-    // One call for phiL, cos phiL, k and k': this is the flow's hot path (see docs/performance.md).
-    const RopeGeometry::Closure c = rope_.closure(phi_s);
-    p.phi_l = c.phi_l;
-    p.tr = c.transfer;
-    const double k = p.tr.k;
-    num -= (m_l_ * g_ * r_l_ * c.cos_phi_l + i_l_ * p.tr.dk * dphi_s * dphi_s) * k +
+  if (taut) {
+    const double k = p.lk.transfer.k;
+    num -= (m_l_ * g_ * r_l_ * p.lk.cos_l + i_l_ * p.lk.transfer.dk * dphi_s * dphi_s) * k +
            c_l_ * k * k * dphi_s;
     den += i_l_ * k * k;
   }
@@ -107,17 +110,17 @@ Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, 
   //   [(I_S + m r^2) S'^2 + I_L] phiL'' = S' Q_S + Q_L - (I_S + m r^2) S' S'' phiL'^2 - 2 m r r' S'^2 phiL'
   // with Q_S, Q_L the weights' and dampers' torques. Finite where k = 1/S' is not.
   LidSwing p{};
-  rope_.inverse_closure(phi_l, side, p.s);
-  const double ds = p.s.ds, dphi_s = ds * dphi_l;
-  const double cs = std::cos(p.s.phi_s);
+  p.lk = rope_.from_lid(std::cos(phi_l), std::sin(phi_l), side);
+  const double ds = p.lk.ds, dphi_s = ds * dphi_l;
+  const double cs = p.lk.cos_s;
   const double carried = i_s_ + (on ? m_s_ * r * r : 0.0);
   double q_s = -w_s_ * g_ * cs - c_p_ * dphi_s;
   if (on) {
     q_s += m_s_ * g_ * r * cs;
-    p.ddr = g_ * std::sin(p.s.phi_s) + r * dphi_s * dphi_s;
+    p.ddr = g_ * p.lk.sin_s + r * dphi_s * dphi_s;
   }
-  const double q_l = -m_l_ * g_ * r_l_ * std::cos(phi_l) - c_l_ * dphi_l;
-  const double num = ds * q_s + q_l - carried * ds * p.s.dds * dphi_l * dphi_l -
+  const double q_l = -m_l_ * g_ * r_l_ * p.lk.cos_l - c_l_ * dphi_l;
+  const double num = ds * q_s + q_l - carried * ds * p.lk.dds * dphi_l * dphi_l -
                      (on ? 2.0 * m_s_ * r * dr * ds * ds * dphi_l : 0.0);
   p.ddphi_l = num / (carried * ds * ds + i_l_);
   return p;
@@ -180,6 +183,7 @@ void Model::dissipation(const Discrete& d, const Kinematics& k, State& dy) const
 
 Kinematics Model::kinematics(const Discrete& d, const State& y) const {
   Kinematics k;
+  bool trig_s = false, trig_l = false;  // cos and sin of phiS / phiL already known
   auto free_lid = [&] {
     if (d.lid_resting) {
       k.phi_l = phi_l0_;
@@ -191,29 +195,45 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
       k.ddphi_l = lid_free_acceleration(k.phi_l, k.dphi_l);
     }
   };
+  // The lid on the rope's closure, from the seesaw's swing (chart S) or the lid's (chart L).
+  auto on_rope = [&](const Swing& p) {
+    k.phi_l = p.lk.phi_l();
+    k.transfer = p.lk.transfer;
+    k.ddphi_s = p.ddphi_s;
+    k.dphi_l = p.lk.transfer.k * k.dphi_s;
+    k.ddphi_l = p.lk.transfer.k * p.ddphi_s + p.lk.transfer.dk * k.dphi_s * k.dphi_s;
+    k.cos_l = p.lk.cos_l, k.sin_l = p.lk.sin_l;
+    trig_l = true;
+  };
+  auto by_lid = [&](const LidSwing& p, double phi_l, double dphi_l) {
+    lid_chart(k, p, phi_l, dphi_l);
+    trig_s = trig_l = true;
+  };
   if (d.polar()) {
     k.r = y[slot::r];
     k.phi_s = y[slot::phi_s];
     k.dr = y[slot::dr];
     k.dphi_s = y[slot::dphi_s];
     if (!d.taut) {  // a heavy seesaw carrying the sandbag, the lid on its own
-      k.ddphi_s = swing(true, false, k.r, k.phi_s, k.dr, k.dphi_s).ddphi_s;
+      const Swing p = swing(true, false, k.r, k.phi_s, k.dr, k.dphi_s);
+      k.ddphi_s = p.ddphi_s;
+      k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
+      trig_s = true;
       free_lid();
     } else if (d.lid_resting) {
       k.phi_l = phi_l0_;
       k.transfer = rope_.transfer(k.phi_s, k.phi_l);
     } else if (d.lid_chart) {
-      lid_chart(k, swing_by_lid(true, k.r, y[slot::phi_s], k.dr, y[slot::dphi_s], d.side), y[slot::phi_s],
-                y[slot::dphi_s]);
+      by_lid(swing_by_lid(true, k.r, y[slot::phi_s], k.dr, y[slot::dphi_s], d.side), y[slot::phi_s],
+             y[slot::dphi_s]);
     } else {
       const Swing p = swing(true, true, k.r, k.phi_s, k.dr, k.dphi_s);
-      k.phi_l = p.phi_l;
-      k.transfer = p.tr;
-      k.ddphi_s = p.ddphi_s;
-      k.dphi_l = p.tr.k * k.dphi_s;
-      k.ddphi_l = p.tr.k * p.ddphi_s + p.tr.dk * k.dphi_s * k.dphi_s;
+      k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
+      trig_s = true;
+      on_rope(p);
     }
-    const double c = std::cos(k.phi_s), s = std::sin(k.phi_s);
+    if (!trig_s) k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s), trig_s = true;
+    const double c = k.cos_s, s = k.sin_s;
     k.x = -k.r * c;
     k.h = -k.r * s;
     k.vx = -k.dr * c + k.r * s * k.dphi_s;
@@ -223,12 +243,14 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
     k.h = y[slot::h];
     k.vx = y[slot::vx];
     k.vh = y[slot::vh];
-    k.r = std::hypot(k.x, k.h);
+    k.r = std::sqrt(k.x * k.x + k.h * k.h);
     k.dr = k.r > 0.0 ? (k.x * k.vx + k.h * k.vh) / k.r : 0.0;
     if (!(d.heavy && d.taut)) free_lid();
     if (d.on_seesaw) {  // M3: the massless seesaw turns with the sandbag
       k.phi_s = std::atan2(-k.h, -k.x);
-      const double c = std::cos(k.phi_s), s = std::sin(k.phi_s);
+      const double c = -k.x / k.r, s = -k.h / k.r;
+      k.cos_s = c, k.sin_s = s;
+      trig_s = k.r > 0.0;
       k.dphi_s = (k.vx * s - k.vh * c) / k.r;
       k.ddphi_s = (g_ * c - 2.0 * k.dr * k.dphi_s) / k.r;
     } else if (d.heavy) {  // the unloaded heavy seesaw, on its own or with the lid on the rope
@@ -238,17 +260,14 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
         k.phi_l = phi_l0_;
         k.transfer = rope_.transfer(k.phi_s, k.phi_l);
       } else if (d.lid_chart && d.taut) {
-        lid_chart(k, swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side),
-                  y[slot::seesaw_phi], y[slot::seesaw_dphi]);
+        by_lid(swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side),
+               y[slot::seesaw_phi], y[slot::seesaw_dphi]);
       } else {
         const Swing p = swing(false, d.taut, 0.0, k.phi_s, 0.0, k.dphi_s);
         k.ddphi_s = p.ddphi_s;
-        if (d.taut) {
-          k.phi_l = p.phi_l;
-          k.transfer = p.tr;
-          k.dphi_l = p.tr.k * k.dphi_s;
-          k.ddphi_l = p.tr.k * p.ddphi_s + p.tr.dk * k.dphi_s * k.dphi_s;
-        }
+        k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
+        trig_s = true;
+        if (d.taut) on_rope(p);
       }
     } else if (d.taut) {  // M2: the unloaded massless seesaw follows the lid, on its side of P-E
       k.phi_s = d.parked_seesaw;  // exact while the lid rests
@@ -259,9 +278,11 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
       k.phi_s = d.parked_seesaw;
     }
   }
+  if (!trig_s) k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s);
+  if (!trig_l) k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
   if (d.balloon_stuck) {
-    k.balloon_h = limit_.height(k.phi_l);
-    k.balloon_v = limit_.rate(k.phi_l, k.dphi_l);
+    k.balloon_h = limit_.height_at(k.cos_l, k.sin_l);
+    k.balloon_v = limit_.rate_at(k.sin_l, k.dphi_l);
   } else {
     k.balloon_h = y[slot::balloon_h];
     k.balloon_v = y[slot::balloon_v];
@@ -272,21 +293,18 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
 void Model::lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l) {
   // The lid's angle and rate are the state; the seesaw follows on the closure.
   k.phi_l = phi_l;
-  k.phi_s = p.s.phi_s;
+  k.phi_s = p.lk.phi_s();
   k.dphi_l = dphi_l;
-  k.dphi_s = p.s.ds * dphi_l;
+  k.dphi_s = p.lk.ds * dphi_l;
   k.ddphi_l = p.ddphi_l;
-  k.ddphi_s = p.s.ds * p.ddphi_l + p.s.dds * dphi_l * dphi_l;
-  k.transfer = {1.0 / p.s.ds, -p.s.dds / (p.s.ds * p.s.ds * p.s.ds)};
+  k.ddphi_s = p.lk.ds * p.ddphi_l + p.lk.dds * dphi_l * dphi_l;
+  k.transfer = p.lk.transfer;
+  k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s, k.cos_l = p.lk.cos_l, k.sin_l = p.lk.sin_l;
 }
 
-double Model::height_above_arm(const Kinematics& k) {
-  return -k.x * std::sin(k.phi_s) + k.h * std::cos(k.phi_s);
-}
+double Model::height_above_arm(const Kinematics& k) { return -k.x * k.sin_s + k.h * k.cos_s; }
 
-double Model::along_arm(const Kinematics& k) {
-  return -k.x * std::cos(k.phi_s) - k.h * std::sin(k.phi_s);
-}
+double Model::along_arm(const Kinematics& k) { return -k.x * k.cos_s - k.h * k.sin_s; }
 
 Kinematics Model::with_velocity(Kinematics k, const contact::Coords& u) {
   k.vx = u[0];
@@ -312,8 +330,7 @@ contact::System Model::contact_system(const Discrete& d, const Kinematics& k) co
   s.contacts = 3;
   s.mass = {m_s_, m_s_, i_s_, i_l_};
   s.velocity = {k.vx, k.vh, k.dphi_s, k.dphi_l};
-  const double cs = std::cos(k.phi_s), sn = std::sin(k.phi_s);
-  const double cl = std::cos(k.phi_l), sl = std::sin(k.phi_l);
+  const double cs = k.cos_s, sn = k.sin_s, cl = k.cos_l, sl = k.sin_l;
   // The pivot's damper needs a seesaw with inertia (validation rejects it on a massless one).
   s.force = {0.0, -m_s_ * g_, -w_s_ * g_ * cs - c_p_ * k.dphi_s, -m_l_ * g_ * r_l_ * cl - c_l_ * k.dphi_l};
   (void)d;
@@ -322,8 +339,8 @@ contact::System Model::contact_system(const Discrete& d, const Kinematics& k) co
   s.normal[kBag] = {-sn, cs, -k.x * cs - k.h * sn, 0.0};
   s.curvature[kBag] = -2.0 * k.dphi_s * (k.vx * cs + k.vh * sn) - k.dphi_s * k.dphi_s * height;
 
-  const Vec2 r = rope_.seesaw_end(k.phi_s);
-  const Vec2 el = rope_.lid_edge(k.phi_l) - rope_.hinge();
+  const Vec2 r{sc_.machine.seesaw_right_arm * cs, sc_.machine.seesaw_right_arm * sn};
+  const Vec2 el{2.0 * r_l_ * cl, 2.0 * r_l_ * sl};
   const Vec2 dv = r - (rope_.hinge() + el);  // D = R - E
   const double dn = norm(dv);
   const Vec2 r_s{-r.h, r.x}, e_l{-el.h, el.x};  // dR/dphiS, dE/dphiL
@@ -332,7 +349,6 @@ contact::System Model::contact_system(const Discrete& d, const Kinematics& k) co
   const Vec2 d_acc = (k.dphi_l * k.dphi_l) * el - (k.dphi_s * k.dphi_s) * r;  // D'' without phiS'', phiL''
   const double along = dot(dv, d_rate) / dn;
   s.curvature[kRope] = -(dot(dv, d_acc) + dot(d_rate, d_rate) - along * along) / dn;
-  (void)sl;
 
   s.normal[kLid] = {0.0, 0.0, 0.0, 1.0};
   s.curvature[kLid] = 0.0;
@@ -388,8 +404,8 @@ Snapshot Model::snapshot(const HybridState& hs) const {
   s.x = k.x, s.h = k.h, s.vx = k.vx, s.vh = k.vh, s.r = k.r, s.dr = k.dr;
   s.phi_s = k.phi_s, s.dphi_s = k.dphi_s;
   s.phi_l = k.phi_l, s.dphi_l = k.dphi_l, s.ddphi_l = k.ddphi_l;
-  s.balloon_limit = limit_.height(k.phi_l);
-  s.balloon_limit_rate = limit_.rate(k.phi_l, k.dphi_l);
+  s.balloon_limit = limit_.height_at(k.cos_l, k.sin_l);
+  s.balloon_limit_rate = limit_.rate_at(k.sin_l, k.dphi_l);
   s.balloon_h = k.balloon_h;
   s.balloon_v = k.balloon_v;
   if (!hs.d.latched) {
@@ -426,9 +442,9 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g) const {
   if (radio_) g[kGuardRadioOn] = radio_gap(k.balloon_h);
   if (d.balloon_stuck) {
     g[kGuardBalloon] =
-        limit_.acceleration(k.phi_l, k.dphi_l, k.ddphi_l) - balloon_acceleration(k.balloon_v);
+        limit_.acceleration_at(k.cos_l, k.sin_l, k.dphi_l, k.ddphi_l) - balloon_acceleration(k.balloon_v);
   } else if (!d.latched) {
-    g[kGuardBalloon] = y[slot::balloon_h] - limit_.height(k.phi_l);
+    g[kGuardBalloon] = y[slot::balloon_h] - limit_.height_at(k.cos_l, k.sin_l);
   }
   if (d.latched) return;  // the radio's wait: only the balloon matters now
 
@@ -498,7 +514,7 @@ void Model::guard_rates(const Discrete& d, const State& y, GuardValues& dg) cons
   dg.fill(std::numeric_limits<double>::quiet_NaN());
   if (d.latched) return;
   const Kinematics k = kinematics(d, y);
-  if (!d.balloon_stuck) dg[kGuardBalloon] = y[slot::balloon_v] - limit_.rate(k.phi_l, k.dphi_l);
+  if (!d.balloon_stuck) dg[kGuardBalloon] = y[slot::balloon_v] - limit_.rate_at(k.sin_l, k.dphi_l);
   if (d.on_seesaw && d.taut && d.lid_resting) return;  // nothing is open
   // A gap guard is minus the gap, so its rate is minus the gap's rate W_i . v.
   const contact::System sys = contact_system(d, k);
@@ -800,6 +816,8 @@ HybridState Model::initial(std::vector<Event>& out) const {
   k.h = st.sandbag_h;
   k.phi_s = st.seesaw_angle;
   k.phi_l = phi_l0_;
+  k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s);
+  k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
   // What touches at t = 0: the sandbag placed on the arm, the rope straight, the lid on the box.
   Set touch = bit(kLid);
   const double c = std::cos(st.seesaw_angle), s = std::sin(st.seesaw_angle);

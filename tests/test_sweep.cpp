@@ -351,12 +351,18 @@ TEST(FastPaths, ClosureMatchesLidAngleAndTransfer) {
       double phi_l = 0.0;
       if (!g.lid_angle_for(phi_s, phi_l)) continue;
       ++checked;
-      const RopeGeometry::Closure c = g.closure(phi_s);
+      const RopeGeometry::Linkage c = g.from_seesaw(std::cos(phi_s), std::sin(phi_s));
       const Transfer t = g.transfer(phi_s, phi_l);
-      EXPECT_NEAR(c.phi_l, phi_l, 1e-13) << deg;
-      EXPECT_NEAR(c.cos_phi_l, std::cos(phi_l), 1e-14) << deg;
+      EXPECT_NEAR(c.phi_l(), phi_l, 1e-13) << deg;
+      EXPECT_NEAR(c.cos_l, std::cos(phi_l), 1e-14) << deg;
+      EXPECT_NEAR(c.sin_l, std::sin(phi_l), 1e-14) << deg;
       EXPECT_NEAR(c.transfer.k, t.k, 1e-12 * (1.0 + std::fabs(t.k))) << deg;
       EXPECT_NEAR(c.transfer.dk, t.dk, 1e-11 * (1.0 + std::fabs(t.dk))) << deg;
+      // The lid's chart: from the lid's angle, on the side the seesaw is, back to the seesaw.
+      const int side = RopeGeometry::side_of(g.lid_edge(phi_l), g.seesaw_end(phi_s));
+      const RopeGeometry::Linkage b = g.from_lid(std::cos(phi_l), std::sin(phi_l), side);
+      EXPECT_NEAR(b.phi_s(), phi_s, 1e-9) << deg;
+      if (std::fabs(t.k) > 1e-3) EXPECT_NEAR(b.ds, 1.0 / t.k, 1e-9 * (1.0 + std::fabs(1.0 / t.k))) << deg;
     }
     EXPECT_GT(checked, 20) << rope;
   }

@@ -2,6 +2,8 @@
 // balloon's height limit under the lid. Every geometric formula of the model lives here, once.
 #pragma once
 
+#include <cmath>
+
 #include "whatnext/params.hpp"
 #include "whatnext/vec2.hpp"
 
@@ -46,24 +48,23 @@ class RopeGeometry {
   // Analytic k = -C_S/C_L and k' by implicit differentiation of C(phiS, phiL) = 0.
   Transfer transfer(double phi_s, double phi_l) const;
 
-  // The closure phiL(phiS) together with cos phiL, k and k', for the flow's hot path: one sincos
-  // instead of five (the lid edge follows from the triangle, not from cos/sin of phiL).
-  // |cos sigma| is clamped to 1; callers stop the run at rope_locked before it gets there.
-  struct Closure {
-    double phi_l = 0.0;
-    double cos_phi_l = 0.0;
-    Transfer transfer;
+  // The straight rope's linkage at one instant, for the flow's hot path: both angles' cosines and
+  // sines and each angle's derivatives along the closure, from the sine and cosine of one angle
+  // (the other follows from the triangle, not from trigonometric functions).
+  struct Linkage {
+    double cos_s = 1.0, sin_s = 0.0, cos_l = 1.0, sin_l = 0.0;
+    Transfer transfer;       // k = dphiL/dphiS, k'
+    double ds = 0.0;         // 1/k = dphiS/dphiL
+    double dds = 0.0;        // d2phiS/dphiL2
+    double phi_s() const { return std::atan2(sin_s, cos_s); }
+    double phi_l() const { return std::atan2(sin_l, cos_l); }  // in (-pi, pi]: continuous
   };
-  Closure closure(double phi_s) const;
-  // The inverse closure phiS(phiL) on a side of the line P-E, with dphiS/dphiL = 1/k and
-  // d2phiS/dphiL2: the chart in which a lid approaching its dead centre (k -> infinity) moves
-  // smoothly. false where the rope cannot be straight.
-  struct InverseClosure {
-    double phi_s = 0.0;
-    double ds = 0.0;   // dphiS/dphiL
-    double dds = 0.0;  // d2phiS/dphiL2
-  };
-  bool inverse_closure(double phi_l, int side, InverseClosure& out) const;
+  // From the seesaw's angle: the lid below the rope. |cos sigma| is clamped to 1; callers stop
+  // the run at rope_locked before it gets there.
+  Linkage from_seesaw(double cos_s, double sin_s) const;
+  // From the lid's angle: the seesaw on a side of the line P-E (the chart in which a lid near
+  // its dead centre, k -> infinity, moves smoothly). |cos rho| is clamped likewise.
+  Linkage from_lid(double cos_l, double sin_l, int side) const;
   // Where the lid stands against the straight rope: < 0 below it (MODEL.md's branch), 0 along
   // it (the dead centre: the rope would touch the hinge), > 0 on the mirror side. Dimensionless.
   double lid_side_of_rope(double phi_s, double phi_l) const;
@@ -85,6 +86,7 @@ class RopeGeometry {
     double c_s, c_l, c_ss, c_sl, c_ll;
   };
   Partials partials_at(Vec2 r, Vec2 el) const;
+  Linkage linkage_at(Vec2 r, Vec2 el) const;
   // transfer() given the seesaw end R and the lid vector E - H.
   Transfer transfer_at(Vec2 r, Vec2 el) const;
   double r_h_, r_l_, l_r_;
@@ -96,9 +98,15 @@ class RopeGeometry {
 // finite and smooth up to 90 deg.
 struct BalloonLimit {
   double radius;
-  double height(double phi_l) const;
-  double rate(double phi_l, double dphi_l) const;
-  double acceleration(double phi_l, double dphi_l, double ddphi_l) const;
+  double height(double phi_l) const { return height_at(std::cos(phi_l), std::sin(phi_l)); }
+  double rate(double phi_l, double dphi_l) const { return rate_at(std::sin(phi_l), dphi_l); }
+  double acceleration(double phi_l, double dphi_l, double ddphi_l) const {
+    return acceleration_at(std::cos(phi_l), std::sin(phi_l), dphi_l, ddphi_l);
+  }
+  // The same from the lid angle's cosine and sine, where the caller has them.
+  double height_at(double cos_l, double sin_l) const;
+  double rate_at(double sin_l, double dphi_l) const;
+  double acceleration_at(double cos_l, double sin_l, double dphi_l, double ddphi_l) const;
 };
 
 }  // namespace whatnext

@@ -53,6 +53,7 @@ struct Kinematics {
   double phi_l = 0, dphi_l = 0, ddphi_l = 0;
   double balloon_h = 0, balloon_v = 0;  // the balloon's centre from the hinge level
   Transfer transfer;  // valid while the rope is taut
+  double cos_s = 1, sin_s = 0, cos_l = 1, sin_l = 0;  // of phi_s and phi_l, computed once
 };
 
 class Model {
@@ -101,14 +102,14 @@ class Model {
   // The seesaw's angular acceleration with whatever it carries (J phiS'' = Q, docs/extensions.md),
   // and the lid's angle on the rope's closure when the rope is taut.
   struct Swing {
-    double ddr, ddphi_s, phi_l;
-    Transfer tr;
+    double ddr, ddphi_s;
+    RopeGeometry::Linkage lk;  // the seesaw's cos and sin always; the rest while taut
   };
   Swing swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const;
   // The same motion on the rope's closure in the lid chart: phiL integrated, phiS = S(phiL).
   struct LidSwing {
     double ddr, ddphi_l;
-    RopeGeometry::InverseClosure s;
+    RopeGeometry::Linkage lk;
   };
   LidSwing swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side) const;
   static void lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l);
