@@ -436,8 +436,9 @@ Snapshot Model::snapshot(const HybridState& hs) const {
 
 // --- guards ------------------------------------------------------------------------------------
 
-void Model::guards(const Discrete& d, const State& y, GuardValues& g) const {
+void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates) const {
   g.fill(kInactive);
+  if (rates) rates->fill(std::numeric_limits<double>::quiet_NaN());
   const Kinematics k = kinematics(d, y);
   if (radio_) g[kGuardRadioOn] = radio_gap(k.balloon_h);
   if (d.balloon_stuck) {
@@ -445,6 +446,9 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g) const {
         limit_.acceleration_at(k.cos_l, k.sin_l, k.dphi_l, k.ddphi_l) - balloon_acceleration(k.balloon_v);
   } else if (!d.latched) {
     g[kGuardBalloon] = y[slot::balloon_h] - limit_.height_at(k.cos_l, k.sin_l);
+  }
+  if (rates && !d.balloon_stuck && !d.latched) {
+    (*rates)[kGuardBalloon] = y[slot::balloon_v] - limit_.rate_at(k.sin_l, k.dphi_l);
   }
   if (d.latched) return;  // the radio's wait: only the balloon matters now
 
@@ -457,8 +461,17 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g) const {
   // arm's push is the tension times the coupling k (torque balance), so the sandbag's guard is
   // the sign of k and the rope's the tension.
   const bool loaded = heavy_ || (d.on_seesaw && d.taut);
-  if (loaded && (d.on_seesaw || d.taut)) {
-    const contact::System sys = contact_system(d, k);
+  const bool forces = loaded && (d.on_seesaw || d.taut);
+  const bool open = !(d.on_seesaw && d.taut && d.lid_resting);
+  contact::System sys;
+  if (forces || (rates && open)) sys = contact_system(d, k);
+  if (rates && open) {
+    // An open contact's guard is minus its gap, so its rate is minus the gap's rate W_i . v.
+    if (!d.on_seesaw && !d.fallen_off) (*rates)[kGuardBag] = -sys.rate(kBag, sys.velocity);
+    if (!d.taut) (*rates)[kGuardRope] = -sys.rate(kRope, sys.velocity);
+    if (!d.lid_resting) (*rates)[kGuardLid] = -k.dphi_l;
+  }
+  if (forces) {
     contact::Coords acc;
     contact::PerContact f;
     if (contact::constrained_motion(sys, active_set(d), acc, f)) {
@@ -508,19 +521,6 @@ double Model::guard_floor(Guard g, const Discrete& d) const {
     case kGuardBalloon: return d.balloon_stuck ? 1e-10 * g_ : 1e-12 * len;
     default: return 0.0;
   }
-}
-
-void Model::guard_rates(const Discrete& d, const State& y, GuardValues& dg) const {
-  dg.fill(std::numeric_limits<double>::quiet_NaN());
-  if (d.latched) return;
-  const Kinematics k = kinematics(d, y);
-  if (!d.balloon_stuck) dg[kGuardBalloon] = y[slot::balloon_v] - limit_.rate_at(k.sin_l, k.dphi_l);
-  if (d.on_seesaw && d.taut && d.lid_resting) return;  // nothing is open
-  // A gap guard is minus the gap, so its rate is minus the gap's rate W_i . v.
-  const contact::System sys = contact_system(d, k);
-  if (!d.on_seesaw && !d.fallen_off) dg[kGuardBag] = -sys.rate(kBag, sys.velocity);
-  if (!d.taut) dg[kGuardRope] = -sys.rate(kRope, sys.velocity);
-  if (!d.lid_resting) dg[kGuardLid] = -k.dphi_l;
 }
 
 // --- contact changes ---------------------------------------------------------------------------

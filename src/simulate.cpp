@@ -15,8 +15,9 @@ struct MachineSystem {
   const Model* model;
   Discrete d;
   void operator()(const State& y, State& dy, double /*t*/) const { model->flow(d, y, dy); }
-  void guards(const State& y, GuardValues& g) const { model->guards(d, y, g); }
-  void guard_rates(const State& y, GuardValues& g) const { model->guard_rates(d, y, g); }
+  void guards(const State& y, GuardValues& g, GuardValues* rates = nullptr) const {
+    model->guards(d, y, g, rates);
+  }
   GuardStart guard_start(int i) const { return d.armed[i]; }
 };
 

@@ -1,9 +1,9 @@
 // Generic integrators with event location. They know nothing of seesaws: a System supplies
 //   using state_type = std::array<double, N>;  using guard_type = std::array<double, G>;
 //   void operator()(const state_type& y, state_type& dy, double t) const;   // the flow
-//   void guards(const state_type& y, guard_type& g) const;                   // event functions
+//   void guards(const state_type& y, guard_type& g, guard_type* dg) const;  // event functions,
+//                                       and their rates dg/dt if dg is given (NaN: not known)
 //   S guard_start(int i) const;  // S has .order, .lead and .floor, see below
-//   void guard_rates(const state_type& y, guard_type& dg) const;            // dg/dt, NaN: unknown
 // A guard fires when its value goes from negative to >= 0. Each call integrates one smooth piece
 // from t up to the first firing guard or t_end and hands samples on an output grid to a callback.
 //
@@ -95,8 +95,7 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
   auto eval = [&](double tt, state_type& out) { stepper.calc_state(tt, out); };
 
   guard_type g0, g1, d0, d1;
-  sys.guards(y, g0);
-  sys.guard_rates(y, d0);
+  sys.guards(y, g0, &d0);
   constexpr std::size_t kGuards = std::tuple_size<guard_type>::value;
   std::array<int, kGuards> order{};
   std::array<double, kGuards> floor{}, noise_time{};
@@ -143,15 +142,14 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
       t = ta;
       return {Crossing::step_limit, -1, ta};
     }
-    sys.guards(y1, g1);
-    sys.guard_rates(y1, d1);
+    sys.guards(y1, g1, &d1);
     int hit = -1;
     double t_hit = tb;
     auto guard_at = [&](std::size_t i, double tt) {
       state_type yy;
       guard_type gg;
       stepper.calc_state(tt, yy);
-      sys.guards(yy, gg);
+      sys.guards(yy, gg, nullptr);
       ++stats.root_evaluations;
       return gg[i];
     };
@@ -218,7 +216,7 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
         state_type yy;
         guard_type gg;
         stepper.calc_state(tt, yy);
-        sys.guards(yy, gg);
+        sys.guards(yy, gg, nullptr);
         ++stats.root_evaluations;
         return p > 0 ? gg[i] / std::pow(tt - t0, p) : gg[i];
       };
@@ -257,7 +255,7 @@ Crossing integrate_fixed(const System& sys, typename System::state_type& y, doub
   using guard_type = typename System::guard_type;
   Stepper stepper;
   guard_type g0, g1;
-  sys.guards(y, g0);
+  sys.guards(y, g0, nullptr);
   constexpr std::size_t kGuards = std::tuple_size<guard_type>::value;
   std::array<double, kGuards> floor{};
   std::array<bool, kGuards> armed{};
@@ -274,7 +272,7 @@ Crossing integrate_fixed(const System& sys, typename System::state_type& y, doub
     t = (t_end - t <= dt) ? t_end : t + h;
     ++stats.steps;
     if (!detail::finite(y)) return {Crossing::non_finite, -1, t_before};
-    sys.guards(y, g1);
+    sys.guards(y, g1, nullptr);
     for (std::size_t i = 0; i < g0.size(); ++i) {
       if (!armed[i]) continue;
       if (g1[i] < -floor[i]) {
