@@ -77,6 +77,9 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
     o.valid = true;
   } catch (const InputError& e) {
     o.error = e.what();
+  } catch (const SimulationError& e) {
+    o.failed = true;
+    o.error = e.what();
   } catch (const std::exception& e) {  // a bug, but one machine must not sink the whole sweep
     o.error = fmt::format("internal error: {}", e.what());
   }
@@ -86,7 +89,7 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
 }  // namespace
 
 Range parse_range(std::string_view spec, std::string_view option, bool need_count) {
-  const std::string where = fmt::format("{} {}", option, spec);
+  const std::string where = fmt::format("{} {}", option, printable(spec));
   const std::string_view form = need_count ? "KEY=A:B:N" : "KEY=A:B";
   const auto eq = spec.find('=');
   if (eq == std::string_view::npos) {
@@ -97,8 +100,8 @@ Range parse_range(std::string_view spec, std::string_view option, bool need_coun
   if (!find_key(r.key)) {
     const std::string near = nearest_key(r.key);
     throw InputError(near.empty()
-                         ? fmt::format("{}: unknown key '{}'", where, r.key)
-                         : fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, r.key, near));
+                         ? fmt::format("{}: unknown key '{}'", where, printable(r.key))
+                         : fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, printable(r.key), near));
   }
   try {  // set_number knows which kinds of key hold one number (text, pairs and flags do not)
     Config probe;
@@ -122,10 +125,10 @@ Range parse_range(std::string_view spec, std::string_view option, bool need_coun
     throw InputError(fmt::format("{}: expected {}: a grid needs the number of values N", where, form));
   }
   if (!parse_double(parts[0], r.lo)) {
-    throw InputError(fmt::format("{}: A must be a finite number (given '{}')", where, trim(parts[0])));
+    throw InputError(fmt::format("{}: A must be a finite number (given '{}')", where, printable(trim(parts[0]))));
   }
   if (!parse_double(parts[1], r.hi)) {
-    throw InputError(fmt::format("{}: B must be a finite number (given '{}')", where, trim(parts[1])));
+    throw InputError(fmt::format("{}: B must be a finite number (given '{}')", where, printable(trim(parts[1]))));
   }
   if (r.lo > r.hi) {
     throw InputError(fmt::format("{}: needs A <= B (given A = {}, B = {})", where, num(r.lo), num(r.hi)));
@@ -133,7 +136,7 @@ Range parse_range(std::string_view spec, std::string_view option, bool need_coun
   if (count_given) {
     double n = 0.0;
     if (!parse_double(parts[2], n) || n != std::floor(n) || n < 1.0 || n > 1e9) {
-      throw InputError(fmt::format("{}: N must be a whole number >= 1 (given '{}')", where, trim(parts[2])));
+      throw InputError(fmt::format("{}: N must be a whole number >= 1 (given '{}')", where, printable(trim(parts[2]))));
     }
     r.n = static_cast<int>(n);
   }
@@ -241,8 +244,10 @@ void check_value_name(std::string_view name, std::string_view option) {
   for (const std::string& v : value_names()) {
     if (v == name) return;
   }
-  throw InputError(fmt::format("{} {}: unknown value (use outcome_t, final_r, final_phi_l_deg or an "
-                               "event name such as lid_open)", option, name));
+  const std::string near = nearest_word(name, value_names());
+  throw InputError(fmt::format("{} {}: unknown value{} (use outcome_t, final_r, final_phi_l_deg or an event name "
+                               "such as lid_open)", option, printable(name),
+                               near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near)));
 }
 
 double value_of(const Outcome& o, std::string_view name) {
@@ -343,7 +348,7 @@ void write_csv(std::ostream& out, const Machines& machines, const SweepResult& r
       }
       put(",\n");
     } else {
-      put(",invalid,,,");
+      put(o.failed ? ",failed,,," : ",invalid,,,");
       for (std::size_t k = 0; k < o.first.size(); ++k) put(",");
       put(",");
       put(csv_quote(o.error));
