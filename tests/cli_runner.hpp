@@ -2,14 +2,20 @@
 // in a fresh temporary folder (tests run as parallel processes, so folders are named per test).
 #pragma once
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace whatnext::test_support {
 
@@ -36,6 +42,65 @@ inline CliResult run_whatnext(const std::string& args, const fs::path& dir) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
 
+// Runs `whatnext ARGS...` without a shell (for arguments holding newlines or control bytes).
+inline CliResult run_whatnext_argv(const std::vector<std::string>& args, const fs::path& dir) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  std::vector<char*> argv{const_cast<char*>(WHATNEXT_CLI)};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int in = ::open("/dev/null", O_RDONLY);
+    const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(in, 0);
+    dup2(o, 1);
+    dup2(e, 2);
+    execv(WHATNEXT_CLI, argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+// Starts `whatnext ARGS...` in the background (output to /dev/null) and returns its pid.
+inline pid_t spawn_whatnext(const std::vector<std::string>& args) {
+  std::vector<char*> argv{const_cast<char*>(WHATNEXT_CLI)};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_RDWR);
+    dup2(null, 0);
+    dup2(null, 1);
+    dup2(null, 2);
+    execv(WHATNEXT_CLI, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// Waits (up to about 20 s) until path exists; false if it never does.
+inline bool wait_for_file(const fs::path& path) {
+  for (int i = 0; i < 400; ++i) {
+    if (fs::exists(path)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return false;
+}
+
+// Sends sig once path exists (the command is at work) and returns the wait status.
+inline int interrupt_when(pid_t pid, const fs::path& path, int sig) {
+  const bool seen = wait_for_file(path);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  kill(pid, sig);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  EXPECT_TRUE(seen) << path << " never appeared";
+  return status;
+}
+
 class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -48,6 +113,7 @@ class CliTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   CliResult whatnext(const std::string& args) { return run_whatnext(args, dir_); }
+  CliResult whatnext_argv(const std::vector<std::string>& args) { return run_whatnext_argv(args, dir_); }
   fs::path write(const std::string& name, const std::string& text) {
     const fs::path p = dir_ / name;
     std::ofstream(p) << text;
