@@ -51,7 +51,10 @@ LoadedInput load_input(const InputOptions& opts) {
   for (const std::string& s : opts.sets) apply_set(in.config, s);
   if (!opts.sets.empty()) {
     std::string sets;
-    for (const std::string& s : opts.sets) sets += (sets.empty() ? "" : ", ") + s;
+    for (const std::string& s : opts.sets) {
+      if (!sets.empty()) sets += ", ";
+      sets += s;
+    }
     in.source += " with --set " + printable(sets, 120);
   }
   in.scenario = build_scenario(in.config);

@@ -109,12 +109,17 @@ void register_sweep(CLI::App& app, int& exit_code) {
                                      "KEY=A:B without a count", printable(v)));
       }
     }
+    // A Latin hypercube's points are made up front: its size is checked before.
+    const auto check_large = [&](std::int64_t n) {
+      if (n > kLargeSweep && !opts->force_large) {
+        throw InputError(fmt::format("sweep: {} machines would hold about {:.1f} GB in memory and write as much; "
+                                     "use fewer, or give --force-large", n,
+                                     static_cast<double>(n) * kSweepRowBytes / 1e9));
+      }
+    };
+    check_large(plan.samples);
     const explore::Machines machines(plan);
-    if (machines.size() > kLargeSweep && !opts->force_large) {
-      throw InputError(fmt::format("sweep: {} machines would hold about {:.1f} GB in memory and write as much; "
-                                   "use fewer, or give --force-large", machines.size(),
-                                   static_cast<double>(machines.size()) * kSweepRowBytes / 1e9));
-    }
+    check_large(machines.size());
     const LoadedInput in = load_input(opts->input);
     if (given(*cmd, "--heatmap")) {
       explore::check_heatmap_plan(plan, "--heatmap");

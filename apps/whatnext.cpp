@@ -41,7 +41,10 @@ void register_examples(CLI::App& app) {
       // The first sentence of each example's opening comment says what it is.
       std::istringstream toml{std::string(example_toml(i))};
       std::string line, text;
-      while (std::getline(toml, line) && line.rfind("# ", 0) == 0) text += (text.empty() ? "" : " ") + line.substr(2);
+      while (std::getline(toml, line) && line.rfind("# ", 0) == 0) {
+        if (!text.empty()) text += ' ';
+        text += line.substr(2);
+      }
       std::size_t end = text.find(". ");
       while (end != std::string::npos && end >= 3 && text.compare(end - 3, 3, "Fig") == 0) end = text.find(". ", end + 1);
       text = text.substr(0, end);
@@ -82,7 +85,10 @@ std::vector<std::string> command_names(const CLI::App& app) {
 
 std::string joined(const std::vector<std::string>& words) {
   std::string out;
-  for (const std::string& w : words) out += (out.empty() ? "" : ", ") + w;
+  for (const std::string& w : words) {
+    if (!out.empty()) out += ", ";
+    out += w;
+  }
   return out;
 }
 
@@ -93,13 +99,15 @@ void register_help(CLI::App& app) {
   cmd->add_option("COMMAND", *topic, "the command to explain");
   cmd->callback([topic, cmd, &app] {
     cli::check_leftovers(*cmd);
+    // Straight to the formatter: App::help() would describe the command being run, `help` itself.
     if (topic->empty()) {
-      fmt::print("{}", app.help());
+      fmt::print("{}", app.get_formatter()->make_help(&app, app.get_name(), CLI::AppFormatMode::Normal));
       return;
     }
     for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
       if (sub->get_name() == *topic) {
-        fmt::print("{}", sub->help());
+        fmt::print("{}", sub->get_formatter()->make_help(sub, app.get_name() + " " + sub->get_name(),
+                                                         CLI::AppFormatMode::Normal));
         return;
       }
     }
@@ -113,7 +121,7 @@ void register_help(CLI::App& app) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"whatnext: Kermit's What-Happens-Next machine, simulated event by event"};
+  CLI::App app{"whatnext: Kermit's What-Happens-Next machine, simulated event by event", "whatnext"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("whatnext ") + WHATNEXT_VERSION);
   int exit_code = 0;
@@ -148,6 +156,14 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::string message = e.what();
+    // A missing required option is often a mistyped one: say that instead, with a suggestion.
+    for (const CLI::App* sub : app.get_subcommands()) {
+      try {
+        whatnext::cli::check_leftovers(*sub);
+      } catch (const whatnext::InputError& leftover) {
+        message = leftover.what();
+      }
+    }
     if (first[0] == '-' && first != "--help" && first != "-h" && first != "--version") {
       const std::string near = nearest_word(first.substr(0, first.find('=')), {"--help", "--version"});
       message = fmt::format("unknown option '{}' before the command{}; say what to do: {}", first,

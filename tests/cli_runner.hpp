@@ -105,8 +105,9 @@ class CliTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("wn-" + std::string(info->test_suite_name()) + "-" + std::string(info->name()));
+    // The pid keeps runs of the same test in other build trees (or worktrees) apart.
+    dir_ = fs::temp_directory_path() / ("wn-" + std::string(info->test_suite_name()) + "-" +
+                                        std::string(info->name()) + "-" + std::to_string(getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
