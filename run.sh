@@ -2,7 +2,8 @@
 # whatnext in one command on a fresh Debian 12 machine (run as root, or with the packages present):
 #   ./run.sh          install what is missing, build, run the paper's example 1 with its
 #                     timeline, plots and animation (into out/)
-#   ./run.sh test     install what is missing, build, run every test
+#   ./run.sh test     install what is missing, build, run every test; then again under the
+#                     sanitizers with the fuzz harnesses (build-asan/)
 set -euo pipefail
 cd "$(dirname "$0")"
 job="${1:-example}"
@@ -18,6 +19,12 @@ case "$job" in
     ;;
   test)
     ctest --test-dir build --output-on-failure -j "$(nproc)"
+    # The same tests, and the fuzz harnesses of fuzz/ for a fixed number of inputs each, built with
+    # clang under AddressSanitizer and UndefinedBehaviorSanitizer (issue 12).
+    cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=Debug \
+      -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DWHATNEXT_SANITIZE=ON -DWHATNEXT_FUZZ=ON -DWHATNEXT_BENCH=OFF >/dev/null
+    cmake --build build-asan -j "$(nproc)"
+    ctest --test-dir build-asan --output-on-failure -j "$(nproc)"
     ;;
   *)
     echo "usage: ./run.sh [example|test]" >&2

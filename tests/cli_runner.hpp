@@ -33,11 +33,12 @@ struct CliResult {
   std::string out, err;
 };
 
-// Runs `whatnext ARGS` with no standard input; its output goes through files in dir.
-inline CliResult run_whatnext(const std::string& args, const fs::path& dir) {
+// Runs `whatnext ARGS` (or, without prefix, the shell command ARGS) with no standard input; its
+// output goes through files in dir.
+inline CliResult run_whatnext(const std::string& args, const fs::path& dir, bool prefix = true) {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = std::string(WHATNEXT_CLI) + " " + args + " >" + out.string() + " 2>" +
-                          err.string() + " </dev/null";
+  const std::string cmd = (prefix ? std::string(WHATNEXT_CLI) + " " : std::string()) + args + " >" + out.string() +
+                          " 2>" + err.string() + " </dev/null";
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
@@ -113,7 +114,7 @@ class CliTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  CliResult whatnext(const std::string& args) { return run_whatnext(args, dir_); }
+  CliResult whatnext(const std::string& args, bool prefix = true) { return run_whatnext(args, dir_, prefix); }
   CliResult whatnext_argv(const std::vector<std::string>& args) { return run_whatnext_argv(args, dir_); }
   fs::path write(const std::string& name, const std::string& text) {
     const fs::path p = dir_ / name;
