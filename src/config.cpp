@@ -86,7 +86,6 @@ constexpr double kMinMass = 1e-3, kMaxMass = 1e3;          // [kg]
 constexpr double kMinDensity = 1e-3, kMaxDensity = 1e3;    // [kg/m^3]
 constexpr double kMinGravity = 1e-2, kMaxGravity = 1e3;    // [m/s^2]
 constexpr double kMaxTime = 1e4;                           // run.t_max [s]
-constexpr double kMaxStep = 1.0;                           // run.step, run.output_step [s]
 constexpr double kMinTolerance = 1e-15, kMaxTolerance = 1e-3;
 constexpr double kMaxBalloonG = 1e3;                       // free balloon's acceleration [g]
 constexpr double kMaxDrag = 10.0;                          // drag coefficient
@@ -727,6 +726,19 @@ Scenario build_scenario(const Config& cfg) {
   if (run.integrator != IntegratorKind::adaptive && run.t_max / run.step > kMaxSteps) {
     in.fail("run.step", fmt::format("gives {:.3g} steps up to run.t_max = {} s; at most {:.0e} are allowed (given {})",
                                     run.t_max / run.step, fmt_num(run.t_max), kMaxSteps, fmt_num(run.step)));
+  }
+  if (run.integrator != IntegratorKind::adaptive) {
+    // An explicit fixed step is unstable when a damper takes the motion's speed away within one
+    // step: the lid then swings through its rest to -243 deg. Stay below the decay time I / c.
+    const auto stable = [&](const char* damper, double c, double inertia) {
+      if (c * run.step > inertia) {
+        in.fail("run.step", fmt::format("is longer than the {:.3g} s in which {} = {} N m s/rad stops the part it "
+                                        "damps: the fixed step is unstable (use a shorter step or the adaptive "
+                                        "integrator; given {} s)", inertia / c, damper, fmt_num(c), fmt_num(run.step)));
+      }
+    };
+    stable("damping.lid_hinge", m.lid_hinge_damping, m.lid_inertia());
+    if (m.heavy_seesaw()) stable("damping.pivot", m.pivot_damping, m.seesaw_inertia);
   }
   if (run.t_max / run.output_step > kMaxSamples) {
     in.fail("run.output_step", fmt::format("gives {:.3g} rows up to run.t_max = {} s; at most {:.0e} are allowed (given {})",

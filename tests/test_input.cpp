@@ -372,6 +372,18 @@ TEST(Toml, ToTomlWritesTheShortestNumbersThatReadBack) {
   EXPECT_EQ(std::stod(wn::shortest(0.1 + 0.2)), 0.1 + 0.2);
 }
 
+TEST(Limits, AFixedStepMustBeShorterThanADampersDecayTime) {
+  // The lid's inertia m_L (2 r_L)^2 / 3 = 0.5 * 0.16 / 3 kg m^2 decays under 1000 N m s/rad in
+  // 2.7e-5 s: a 1 ms Euler step is unstable, the adaptive integrator and a 10 us step are not.
+  wn::Config cfg = wn::example_config(1);
+  wn::apply_set(cfg, "damping.lid_hinge=1000");
+  EXPECT_NO_THROW(wn::build_scenario(cfg));
+  wn::apply_set(cfg, "run.integrator=euler");
+  expect_one_line([&] { wn::build_scenario(cfg); }, "2.67e-05 s");
+  wn::apply_set(cfg, "run.step=1e-5");
+  EXPECT_NO_THROW(wn::build_scenario(cfg));
+}
+
 TEST(Keys, EveryKeyHasAUnitKindAndADefaultToShow) {
   for (const wn::KeySpec& k : wn::known_keys()) {
     EXPECT_FALSE(k.default_text.empty()) << k.key;
