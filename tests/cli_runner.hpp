@@ -43,43 +43,34 @@ inline CliResult run_whatnext(const std::string& args, const fs::path& dir, bool
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }
 
-// Runs `whatnext ARGS...` without a shell (for arguments holding newlines or control bytes).
-inline CliResult run_whatnext_argv(const std::vector<std::string>& args, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+// Starts `whatnext ARGS...` without a shell (arguments may hold newlines or control bytes), with
+// no standard input and its output and errors going to the given files; returns its pid.
+inline pid_t start_whatnext(const std::vector<std::string>& args, const fs::path& out, const fs::path& err) {
   std::vector<char*> argv{const_cast<char*>(WHATNEXT_CLI)};
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   const pid_t pid = fork();
   if (pid == 0) {
-    const int in = ::open("/dev/null", O_RDONLY);
-    const int o = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int e = ::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(in, 0);
-    dup2(o, 1);
-    dup2(e, 2);
-    execv(WHATNEXT_CLI, argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
-
-// Starts `whatnext ARGS...` in the background (output to /dev/null) and returns its pid.
-inline pid_t spawn_whatnext(const std::vector<std::string>& args) {
-  std::vector<char*> argv{const_cast<char*>(WHATNEXT_CLI)};
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  const pid_t pid = fork();
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_RDWR);
-    dup2(null, 0);
-    dup2(null, 1);
-    dup2(null, 2);
+    dup2(::open("/dev/null", O_RDONLY), 0);
+    dup2(::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644), 1);
+    dup2(::open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644), 2);
     execv(WHATNEXT_CLI, argv.data());
     _exit(127);
   }
   return pid;
+}
+
+// Runs `whatnext ARGS...` without a shell; its output goes through files in dir.
+inline CliResult run_whatnext_argv(const std::vector<std::string>& args, const fs::path& dir) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  int status = 0;
+  waitpid(start_whatnext(args, out, err), &status, 0);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+}
+
+// Starts `whatnext ARGS...` in the background, its output thrown away.
+inline pid_t spawn_whatnext(const std::vector<std::string>& args) {
+  return start_whatnext(args, "/dev/null", "/dev/null");
 }
 
 // Waits (up to about 20 s) until path exists; false if it never does.
