@@ -39,6 +39,15 @@ bool parse_double(std::string_view text, double& out) {
 
 std::string num(double v) { return fmt::format("{}", v); }
 
+// lo + (hi - lo) f without overflow when hi - lo is beyond the largest double.
+double between(double lo, double hi, double f) {
+  const double span = hi - lo;
+  return std::isfinite(span) ? lo + span * f : lo * (1.0 - f) + hi * f;
+}
+
+// The value rounded to 15 significant digits: what a user would have typed for it.
+double tidy(double v) { return std::strtod(fmt::format("{:.15g}", v).c_str(), nullptr); }
+
 std::string csv_quote(std::string_view s) {
   if (s.find_first_of(",\"\n\r") == std::string_view::npos) return std::string(s);
   std::string out = "\"";
@@ -179,7 +188,7 @@ Machines::Machines(const Plan& plan) : plan_(plan) {
       for (std::int64_t i = 0; i < size_; ++i) {
         const double u = (static_cast<double>(perm[static_cast<std::size_t>(i)]) + unit(rng)) /
                          static_cast<double>(size_);
-        lhs_[static_cast<std::size_t>(i) * dims + d] = r.lo + (r.hi - r.lo) * u;
+        lhs_[static_cast<std::size_t>(i) * dims + d] = between(r.lo, r.hi, u);
       }
     }
     return;
@@ -207,10 +216,11 @@ void Machines::point(std::int64_t i, double* out) const {
     const Range& r = plan_.ranges[d];
     const std::int64_t j = i % r.n;
     i /= r.n;
-    // The ends are exactly A and B; a single value is A.
+    // The ends are exactly A and B; a single value is A. Inner values are rounded to 15 digits,
+    // so 0.62:0.9:29 gives 0.82 rather than the 0.8200000000000001 that the arithmetic makes.
     out[d] = r.n == 1 ? r.lo
              : j == r.n - 1 ? r.hi
-                            : r.lo + (r.hi - r.lo) * static_cast<double>(j) / static_cast<double>(r.n - 1);
+                            : tidy(between(r.lo, r.hi, static_cast<double>(j) / static_cast<double>(r.n - 1)));
   }
 }
 
