@@ -55,6 +55,8 @@ class Outputs {
 
 // Jobs bigger than this need --force-large: the estimate names the size and how to shrink it.
 constexpr double kLargeBytes = 256.0 * 1024 * 1024;
+// What one state kept in memory for the pictures takes, at most, for check_size.
+constexpr double kStateBytes = 600.0;
 // Output rows a run may write: one per run.output_step up to run.t_max, and the events.
 double max_rows(const Scenario& scenario);
 // Throws InputError when `bytes_per_row * max_rows` exceeds kLargeBytes and force is false.

@@ -38,7 +38,7 @@ void register_animate(CLI::App& app, int& exit_code) {
   cmd->callback([opts, cmd, &exit_code] {
     check_leftovers(*cmd);
     const LoadedInput in = load_input(opts->input);
-    check_size(in.scenario, 600.0, "animate", opts->force_large, "hold in memory");
+    check_size(in.scenario, kStateBytes, "animate", opts->force_large, "hold in memory");
     viz::validate(opts->anim);
     // Checked before the run: the extension, a regular file (symlinks followed), a writable place.
     const std::string target = regular_output_target(opts->out, "--out");
@@ -47,7 +47,7 @@ void register_animate(CLI::App& app, int& exit_code) {
     remove_on_interrupt(target + ".part");
     const int frames = viz::write_animation(viz::record(in.scenario), target, opts->anim, opts->dump);
     forget_on_interrupt(target + ".part");
-    if (!opts->quiet) fmt::print("{}: {} frames\n", opts->out, frames);
+    if (!opts->quiet) fmt::print("{}: {} frames\n", printable(opts->out, 96), frames);
     exit_code = 0;
   });
 }

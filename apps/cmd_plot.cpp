@@ -37,7 +37,7 @@ void register_plot(CLI::App& app, int& exit_code) {
   cmd->callback([opts, cmd, &exit_code] {
     check_leftovers(*cmd);
     const LoadedInput in = load_input(opts->input);
-    check_size(in.scenario, 600.0, "plot", opts->force_large, "hold in memory");
+    check_size(in.scenario, kStateBytes, "plot", opts->force_large, "hold in memory");
     viz::FigureOptions fig;
     if (!viz::parse_formats(opts->formats, fig.formats)) {
       throw InputError(fmt::format("--format: must list png, svg or pdf separated by commas, got '{}'",

@@ -19,9 +19,9 @@ struct RunOptions {
   bool quiet = false, force_large = false;
 };
 
-// Upper bounds of what one output row takes, for the size check: a CSV row of 32 numbers, a .dat
-// row (9F8.3 and a newline), and a state kept in memory for the pictures.
-constexpr double kCsvRowBytes = 400.0, kDatRowBytes = 73.0, kStateBytes = 600.0;
+// Upper bounds of what one output row takes, for the size check: a CSV row of 32 numbers and a
+// .dat row (9F8.3 and a newline).
+constexpr double kCsvRowBytes = 400.0, kDatRowBytes = 73.0;
 }  // namespace
 
 void register_run(CLI::App& app, int& exit_code) {
