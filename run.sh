@@ -18,13 +18,16 @@ case "$job" in
     echo "whatnext: plots, animation, events and CSV of example 1 are in out/"
     ;;
   test)
-    ctest --test-dir build --output-on-failure -j "$(nproc)"
+    failed=0
+    ctest --test-dir build --output-on-failure -j "$(nproc)" || failed=1
     # The same tests, and the fuzz harnesses of fuzz/ for a fixed number of inputs each, built with
-    # clang under AddressSanitizer and UndefinedBehaviorSanitizer (issue 12).
+    # clang under AddressSanitizer and UndefinedBehaviorSanitizer (issue 12); run even when the
+    # first round failed, so that one run reports everything.
     cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=Debug \
       -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DWHATNEXT_SANITIZE=ON -DWHATNEXT_FUZZ=ON -DWHATNEXT_BENCH=OFF >/dev/null
     cmake --build build-asan -j "$(nproc)"
-    ctest --test-dir build-asan --output-on-failure -j "$(nproc)"
+    ctest --test-dir build-asan --output-on-failure -j "$(nproc)" || failed=1
+    exit "$failed"
     ;;
   *)
     echo "usage: ./run.sh [example|test]" >&2
