@@ -31,9 +31,27 @@ namespace fs = std::filesystem;
 namespace {
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
-// Never let -0.000 or a NaN reach a file.
+// Never let -0.000 reach a file.
 double clean(double v) { return (std::isfinite(v) && v != 0.0) ? v : 0.0; }
+
+// Nor a NaN or an infinity: a state that is not finite ends the run as failed (the writers are
+// called from inside simulate(), so the run stops there and no file is committed).
+void require_finite(const Snapshot& s) {
+  const double values[] = {s.t,         s.x,         s.h,       s.r,        s.dr,
+                           s.phi_s,     s.dphi_s,    s.phi_l,   s.dphi_l,   s.balloon_h,
+                           s.balloon_v, s.tension,   s.energy(), s.total_energy(), s.ledger_residual()};
+  for (const double v : values) {
+    if (!std::isfinite(v)) {
+      throw SimulationError(fmt::format("the state is not finite at t = {} s in mode {}", s.t, to_string(s.mode)));
+    }
+  }
+}
+
 }  // namespace
+
+void require_finite(const Result& result) {
+  for (const Event& e : result.events) require_finite(e.after);
+}
 
 // --- interrupts ------------------------------------------------------------------------------
 
@@ -373,6 +391,7 @@ void AtomicFile::check_distinct(const std::vector<const AtomicFile*>& files) {
 // --- text --------------------------------------------------------------------------------------
 
 std::string outcome_sentence(const Result& result) {
+  require_finite(result);
   const Event& e = result.outcome();
   const Snapshot& s = e.after;
   switch (e.type) {
@@ -453,6 +472,7 @@ nlohmann::json ledger(const Snapshot& s) {
 }  // namespace
 
 std::string events_json(const Result& result, const Scenario& sc, const std::string& source) {
+  require_finite(result);
   using nlohmann::json;
   auto state = [](const Snapshot& s) {
     return json{{"x", clean(s.x)},
@@ -505,6 +525,7 @@ const char* CsvWriter::header() {
 }
 
 void CsvWriter::row(const Snapshot& s, const char* event) {
+  require_finite(s);
   fmt::memory_buffer b;
   fmt::format_to(std::back_inserter(b), "{:.9g},{},{},{:d}", s.t, event, to_string(s.mode),
                  s.rope_taut);
@@ -533,6 +554,7 @@ std::string fortran_f(double value, int width, int decimals) {
 }
 
 void DatWriter::on_sample(const Snapshot& s) {
+  require_finite(s);
   std::string line;
   for (double v : {s.t, s.x, s.h, s.phi_s, s.phi_l, s.balloon_limit, s.balloon_h,
                    slack_since_last_row_ ? 1.0 : 0.0, s.rope_taut ? 1.0 : 0.0}) {

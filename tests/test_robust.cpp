@@ -5,6 +5,8 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -230,6 +232,27 @@ TEST(AtomicFile, AFailedWriteIsAnOutputErrorAndNothingIsCommitted) {
   }
   signal(SIGPIPE, old);
   close(fds[1]);
+}
+
+TEST(Writers, ANonFiniteStateIsAFailedRunNotAFile) {
+  // The CSV and .dat writers and the JSON refuse NaN instead of writing 0 or null; the run then
+  // ends with SimulationError, which the command reports with exit code 3 and no file.
+  whatnext::Snapshot s;
+  s.phi_l = std::nan("");
+  std::ostringstream out;
+  whatnext::CsvWriter csv(out);
+  EXPECT_THROW(csv.on_sample(s), whatnext::SimulationError);
+  whatnext::DatWriter dat(out);
+  EXPECT_THROW(dat.on_sample(s), whatnext::SimulationError);
+  whatnext::Result r;
+  whatnext::Event e;
+  e.type = whatnext::EventType::timeout;
+  e.after = s;
+  r.events.push_back(e);
+  EXPECT_THROW(whatnext::outcome_sentence(r), whatnext::SimulationError);
+  r.events.back().after.phi_l = 0.1;
+  r.events.back().after.tension = INFINITY;
+  EXPECT_THROW(whatnext::events_json(r, whatnext::Scenario{}, "x"), whatnext::SimulationError);
 }
 
 // --- big jobs ------------------------------------------------------------------------------------

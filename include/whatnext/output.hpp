@@ -95,6 +95,12 @@ void remove_new_parts_on_interrupt(const std::string& dir);
 // interrupts end the process again.
 void set_interrupt_handler(std::function<void(int)> stop);
 
+// The writers below refuse states that are not finite: they throw SimulationError (from inside
+// simulate() for the observers), so a run that turned NaN is reported as failed, never written.
+// This is their check, for callers that keep a Result: SimulationError if an event's state is not
+// finite.
+void require_finite(const Result& result);
+
 // "lid open at 0.820 s" and its relatives.
 std::string outcome_sentence(const Result& result);
 // The timeline printed by `whatnext run`.

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <iterator>
 
+#include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
 
 namespace whatnext::explore {
@@ -74,6 +75,7 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
     set_values(work, keys, values);
     const Scenario sc = build_scenario(work);
     const Result res = simulate(sc);
+    require_finite(res);  // a NaN state is a failed run, not a row of nan
     for (const Event& e : res.events) {
       const auto idx = static_cast<std::size_t>(e.type);
       if (idx < o.first.size() && std::isnan(o.first[idx])) o.first[idx] = e.t;
