@@ -83,7 +83,11 @@ RandomMachine random_machine(Draw& d, int index) {
   set("geometry.seesaw_right_arm", b.seesaw_right_arm * d.factor(2.0));
   set("geometry.lid_half_length", b.lid_half_length * d.factor(2.0));
   set("geometry.rope_length", b.rope_length * d.factor(1.3));
-  m.sets.push_back(fmt::format("geometry.hinge_offset=[{}, {}]", b.hinge.x * d.factor(1.4), -b.hinge.h * d.factor(1.4)));
+  // One draw per statement: the order in which a call's arguments are evaluated differs between
+  // compilers, and the machines must be the same in every build.
+  const double hinge_dx = b.hinge.x * d.factor(1.4);
+  const double hinge_dh = -b.hinge.h * d.factor(1.4);
+  m.sets.push_back(fmt::format("geometry.hinge_offset=[{}, {}]", hinge_dx, hinge_dh));
   set("masses.sandbag", b.sandbag_mass * d.factor(2.0));
   set("masses.lid", b.lid_mass * d.factor(2.0));
   set("air.helium_density", b.helium_density * d.factor(2.0));
