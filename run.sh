@@ -2,7 +2,8 @@
 # whatnext in one command on a fresh Debian 12 machine (run as root, or with the packages present):
 #   ./run.sh          install what is missing, build, run the paper's example 1 with its
 #                     timeline, plots and animation (into out/)
-#   ./run.sh test     install what is missing, build, run every test
+#   ./run.sh test     install what is missing, build, run every test; then again under the
+#                     sanitizers with the fuzz harnesses (build-asan/)
 #   ./run.sh web      install what is missing, build, serve the page (build/web) on localhost
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -18,7 +19,17 @@ case "$job" in
     echo "whatnext: plots, animation, events and CSV of example 1 are in out/"
     ;;
   test)
-    ctest --test-dir build --output-on-failure -j "$(nproc)"
+    failed=0
+    ctest --test-dir build --output-on-failure -j "$(nproc)" || failed=1
+    # The same tests, and the fuzz harnesses of fuzz/ for a fixed number of inputs each, built with
+    # clang under AddressSanitizer and UndefinedBehaviorSanitizer (issue 12); run even when the
+    # first round failed, so that one run reports everything.
+    cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=Debug \
+      -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DWHATNEXT_SANITIZE=ON -DWHATNEXT_FUZZ=ON -DWHATNEXT_BENCH=OFF \
+      -DWHATNEXT_WEB=OFF -DWHATNEXT_PYTHON=OFF >/dev/null
+    cmake --build build-asan -j "$(nproc)"
+    ctest --test-dir build-asan --output-on-failure -j "$(nproc)" || failed=1
+    exit "$failed"
     ;;
   web)
     # The page is static files: any web server does. This one takes the first free port from 8000.

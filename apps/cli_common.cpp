@@ -1,33 +1,159 @@
 #include "cli_common.hpp"
 
+#include <filesystem>
+
 #include <fmt/format.h>
+
+#include "whatnext/viz/plots.hpp"
 
 namespace whatnext::cli {
 
+namespace fs = std::filesystem;
+
 void add_input_options(CLI::App& cmd, InputOptions& opts) {
-  auto* file = cmd.add_option("FILE", opts.file, "machine as TOML or the paper's whatnext.inp");
-  auto* ex = cmd.add_option("--example", opts.example, "the paper's example N (1-4) instead of FILE");
-  file->excludes(ex);
+  cmd.add_option("FILE", opts.file, "machine as TOML or the paper's whatnext.inp");
+  cmd.add_option("--example", opts.example, "the paper's example N (1-4) instead of FILE");
   cmd.add_option("--set", opts.sets, "override an input key, e.g. --set geometry.rope_length=0.9")
       ->take_all()
       ->allow_extra_args(false);
+  // Unknown options are left over rather than refused by CLI11, so that check_leftovers can say
+  // what was meant.
+  cmd.allow_extras();
 }
+
+namespace {
+int example_number(const std::string& text) {
+  if (text.size() == 1 && text[0] >= '1' && text[0] <= '4') return text[0] - '0';
+  throw InputError(fmt::format("--example: the paper has examples 1 to 4 (given '{}')", printable(text)));
+}
+}  // namespace
 
 LoadedInput load_input(const InputOptions& opts) {
   LoadedInput in;
-  if (opts.example != 0) {
-    in.config = example_config(opts.example);
-    in.source = fmt::format("example {}", opts.example);
+  if (!opts.example.empty() && !opts.file.empty()) {
+    if (opts.file.find('=') != std::string::npos) {
+      throw InputError(fmt::format("'{}' looks like an override: write --set before each KEY=VALUE",
+                                   printable(opts.file)));
+    }
+    throw InputError(fmt::format("give a machine FILE or --example N, not both (given '{}' and --example {})",
+                                 printable(opts.file), printable(opts.example)));
+  }
+  if (!opts.example.empty()) {
+    const int n = example_number(opts.example);
+    in.config = example_config(n);
+    in.source = fmt::format("example {}", n);
   } else if (!opts.file.empty()) {
     in.config = load_config_file(opts.file);
-    in.source = opts.file;
+    in.source = printable(opts.file, 96);
   } else {
     throw InputError("input: give a machine FILE or --example N (1-4)");
   }
   for (const std::string& s : opts.sets) apply_set(in.config, s);
-  if (!opts.sets.empty()) in.source += " with --set";
+  if (!opts.sets.empty()) {
+    std::string sets;
+    for (const std::string& s : opts.sets) {
+      if (!sets.empty()) sets += ", ";
+      sets += s;
+    }
+    in.source += " with --set " + printable(sets, 120);
+  }
   in.scenario = build_scenario(in.config);
   return in;
+}
+
+bool given(const CLI::App& cmd, const std::string& option) { return cmd.count(option) > 0; }
+
+void check_leftovers(const CLI::App& cmd) {
+  const std::vector<std::string> rest = cmd.remaining();
+  if (rest.empty()) return;
+  const std::string& first = rest.front();
+  if (first.size() > 1 && first[0] == '-') {
+    std::vector<std::string> names;
+    for (const CLI::Option* o : cmd.get_options()) {
+      for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
+    }
+    const std::string word = first.substr(0, first.find('='));
+    const std::string near = nearest_word(word, names);
+    throw InputError(fmt::format("{}: unknown option '{}'{} (see whatnext help {})", cmd.get_name(),
+                                 printable(word), near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                                 cmd.get_name()));
+  }
+  if (first.find('=') != std::string::npos) {
+    throw InputError(fmt::format("{}: '{}' looks like an override: write --set before each KEY=VALUE",
+                                 cmd.get_name(), printable(first)));
+  }
+  throw InputError(fmt::format("{}: unexpected argument '{}' (one machine FILE at most; see whatnext help {})",
+                               cmd.get_name(), printable(first), cmd.get_name()));
+}
+
+AtomicFile* Outputs::add(const CLI::App& cmd, const std::string& option, const std::string& path) {
+  if (!given(cmd, option)) return nullptr;
+  files_.push_back(std::make_unique<AtomicFile>(path, option));
+  return files_.back().get();
+}
+
+void Outputs::check_distinct() const {
+  std::vector<const AtomicFile*> all;
+  for (const auto& f : files_) all.push_back(f.get());
+  AtomicFile::check_distinct(all);
+}
+
+bool Outputs::any_to_stdout() const {
+  for (const auto& f : files_) {
+    if (f->to_stdout()) return true;
+  }
+  return false;
+}
+
+void Outputs::commit_all() {
+  for (const auto& f : files_) f->flush();
+  for (const auto& f : files_) f->commit();
+}
+
+double max_rows(const Scenario& sc) {
+  // Samples on the grid up to t_max, and a row per event (at most kMaxEvents).
+  return std::floor(sc.run.t_max / sc.run.output_step) + 1.0 + 64.0;
+}
+
+void check_size(const Scenario& sc, double bytes_per_row, const std::string& option, bool force,
+                const std::string& what) {
+  const double rows = max_rows(sc);
+  const double bytes = rows * bytes_per_row;
+  if (force || bytes <= kLargeBytes) return;
+  throw InputError(fmt::format("{}: up to {:.3g} rows (run.t_max {} s / run.output_step {} s) would {} about "
+                               "{:.1f} GB; raise run.output_step, or give --force-large",
+                               option, rows, shortest(sc.run.t_max), shortest(sc.run.output_step), what,
+                               bytes / 1e9));
+}
+
+namespace {
+std::vector<std::string> g_created_dirs;  // by prepare_picture_dir, outermost first
+}
+
+void prepare_picture_dir(const std::string& dir, const std::string& option) {
+  std::vector<std::string> created;
+  if (!dir.empty()) {
+    std::error_code ec;
+    for (fs::path p = fs::absolute(dir, ec).lexically_normal(); !p.empty() && !fs::exists(fs::symlink_status(p, ec));
+         p = p.parent_path()) {
+      created.insert(created.begin(), p.string());
+      if (p == p.parent_path()) break;
+    }
+  }
+  viz::prepare_output_dir(dir, option);
+  for (const std::string& d : created) {
+    g_created_dirs.push_back(d);
+    remove_on_interrupt(d);
+  }
+  remove_new_parts_on_interrupt(dir);
+}
+
+void remove_empty_picture_dirs() {
+  for (auto it = g_created_dirs.rbegin(); it != g_created_dirs.rend(); ++it) {
+    std::error_code ec;
+    if (fs::is_empty(*it, ec)) fs::remove(*it, ec);
+  }
+  g_created_dirs.clear();
 }
 
 }  // namespace whatnext::cli

@@ -1,18 +1,22 @@
-// Pieces shared by the subcommands of the whatnext command: how a run's input is chosen.
+// Pieces shared by the subcommands of the whatnext command: how a run's input is chosen, how its
+// output files are checked before any work, and how big a job may get without being asked.
 #pragma once
 
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "whatnext/config.hpp"
+#include "whatnext/output.hpp"
 
 namespace whatnext::cli {
 
 struct InputOptions {
   std::string file;
-  int example = 0;
+  std::string example;  // as typed, so that "--example 0" and "--example x" are named in the error
   std::vector<std::string> sets;
 };
 
@@ -22,10 +26,47 @@ void add_input_options(CLI::App& cmd, InputOptions& opts);
 struct LoadedInput {
   Config config;  // as read, with the --set overrides applied
   Scenario scenario;
-  std::string source;  // for messages and the timeline
+  std::string source;  // for messages, titles and the timeline: "example 4 with --set masses.lid=0.7"
 };
 // Throws InputError for anything wrong with the input.
 LoadedInput load_input(const InputOptions& opts);
+
+// Arguments CLI11 could not place (each subcommand allows extras so that we can say what they
+// are): a mistyped option gets "did you mean", a stray word a hint. Throws InputError.
+void check_leftovers(const CLI::App& cmd);
+
+// True when the option was given on the command line (even as an empty string).
+bool given(const CLI::App& cmd, const std::string& option);
+
+// The output files of one command, opened (and so checked) before any work, and committed
+// together: if one fails to write, none of the others appears.
+class Outputs {
+ public:
+  // Opens path for `option` if the option was given; nullptr otherwise.
+  AtomicFile* add(const CLI::App& cmd, const std::string& option, const std::string& path);
+  // Throws InputError when two outputs are the same file.
+  void check_distinct() const;
+  bool any_to_stdout() const;
+  void commit_all();
+
+ private:
+  std::vector<std::unique_ptr<AtomicFile>> files_;
+};
+
+// Jobs bigger than this need --force-large: the estimate names the size and how to shrink it.
+constexpr double kLargeBytes = 256.0 * 1024 * 1024;
+// What one state kept in memory for the pictures takes, at most, for check_size.
+constexpr double kStateBytes = 600.0;
+// Output rows a run may write: one per run.output_step up to run.t_max, and the events.
+double max_rows(const Scenario& scenario);
+// Throws InputError when `bytes_per_row * max_rows` exceeds kLargeBytes and force is false.
+void check_size(const Scenario& scenario, double bytes_per_row, const std::string& option, bool force,
+                const std::string& what = "writes");
+// The directory given to --plots or --out of plot: created if missing (and removed again if the
+// command then fails or is interrupted while it is still empty). Returns its path.
+void prepare_picture_dir(const std::string& dir, const std::string& option);
+// Removes the directories prepare_picture_dir created, if they are still empty.
+void remove_empty_picture_dirs();
 
 // Each subcommand registers itself and sets `exit_code` when it runs.
 void register_run(CLI::App& app, int& exit_code);       // cmd_run.cpp

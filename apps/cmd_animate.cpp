@@ -16,7 +16,7 @@ struct AnimateOptions {
   InputOptions input;
   std::string out, dump;
   viz::AnimationOptions anim;
-  bool quiet = false;
+  bool quiet = false, force_large = false;
 };
 }  // namespace
 
@@ -39,10 +39,16 @@ void register_animate(CLI::App& app, int& exit_code) {
   cmd->add_option("--dump-frames", opts->dump,
                   "also write the held frames and one frame per second as PNG into this directory");
   cmd->add_flag("-q,--quiet", opts->quiet, "print nothing");
-  cmd->callback([opts, &exit_code] {
+  cmd->add_flag("--force-large", opts->force_large, "animate runs whose states would take more than 256 MB of memory");
+  cmd->callback([opts, cmd, &exit_code] {
+    check_leftovers(*cmd);
     const LoadedInput in = load_input(opts->input);
+    check_size(in.scenario, kStateBytes, "animate", opts->force_large, "hold in memory");
     viz::validate(opts->anim);
-    viz::is_mp4(opts->out);  // rejects other extensions before the run
+    // Checked before the run: the extension, a regular file (symlinks followed), a writable place.
+    const std::string target = regular_output_target(opts->out, "--out");
+    viz::check_animation_target(target, "--out");
+    if (given(*cmd, "--dump-frames")) prepare_picture_dir(opts->dump, "--dump-frames");
     // Progress on stderr: a counter on a terminal, otherwise a line every 100 frames.
     const bool tty = ::isatty(STDERR_FILENO) != 0;
     auto progress = [&](int done, int total) {
@@ -54,9 +60,11 @@ void register_animate(CLI::App& app, int& exit_code) {
         std::fprintf(stderr, "animate: frame %d of %d\n", done, total);
       }
     };
-    const int frames = viz::write_animation(viz::record(in.scenario), opts->out, opts->anim,
-                                            opts->dump, "--out", progress);
-    if (!opts->quiet) fmt::print("{}: {} frames\n", opts->out, frames);
+    remove_on_interrupt(target + ".part");
+    const int frames = viz::write_animation(viz::record(in.scenario), target, opts->anim, opts->dump,
+                                            "--out", progress);
+    forget_on_interrupt(target + ".part");
+    if (!opts->quiet) fmt::print("{}: {} frames\n", printable(opts->out, 96), frames);
     exit_code = 0;
   });
 }

@@ -33,29 +33,46 @@ void register_optimize(CLI::App& app, int& exit_code) {
                              "final_r or final_phi_l_deg");
   auto* mx = cmd->add_option("--maximize", opts->maximize, "value to maximise (as --minimize)");
   mn->excludes(mx);
-  cmd->add_option("--out", opts->out, "write the best machine to this TOML file")->required();
+  cmd->add_option("--out", opts->out, "write the best machine to this TOML file ('-': standard output)")
+      ->required();
   cmd->add_option("--threads", opts->threads, "threads for the coarse grid (default: all cores)")
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--grid", opts->grid, "coarse grid points per key (default: about 400 machines in all)")
       ->check(CLI::Range(2, 100000));
   cmd->add_option("--starts", opts->starts, "local searches from the best grid points")->check(CLI::Range(1, 100));
   cmd->add_option("--max-evals", opts->max_evals, "machines per local search")->check(CLI::Range(1, 1000000));
-  cmd->callback([opts, &exit_code] {
+  cmd->callback([opts, cmd, &exit_code] {
+    check_leftovers(*cmd);
     if (opts->minimize.empty() == opts->maximize.empty()) {
       throw InputError("optimize: give one of --minimize VALUE or --maximize VALUE");
     }
     explore::OptimizeOptions o;
     o.maximize = !opts->maximize.empty();
     o.value = o.maximize ? opts->maximize : opts->minimize;
-    explore::check_value_name(o.value, o.maximize ? "--maximize" : "--minimize");
-    for (const std::string& v : opts->vary) o.bounds.push_back(explore::parse_range(v, "--vary", false));
+    const std::string option = o.maximize ? "--maximize" : "--minimize";
+    explore::check_value_name(o.value, option);
+    for (const std::string& v : opts->vary) {
+      o.bounds.push_back(explore::parse_range(v, "--vary", false));
+      if (o.bounds.back().n != 0) {
+        throw InputError(fmt::format("--vary {}: optimize searches the whole range; write KEY=A:B without a count "
+                                     "(--grid sets the coarse grid)", printable(v)));
+      }
+    }
     o.threads = opts->threads > 0 ? opts->threads
                                   : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     o.grid_points = opts->grid;
     o.starts = opts->starts;
     o.max_evaluations = opts->max_evals;
     const LoadedInput in = load_input(opts->input);
-    AtomicFile out(opts->out);  // a bad path fails before the search
+    bool radio_varied = false;
+    for (const explore::Range& r : o.bounds) radio_varied = radio_varied || r.key.rfind("radio.", 0) == 0;
+    if (o.value == "radio_on" && !in.scenario.machine.radio && !radio_varied) {
+      throw InputError(fmt::format("{} radio_on: the radio is off in this machine, so it never switches on "
+                                   "(add --set radio.enabled=true)", option));
+    }
+    Outputs outputs;
+    AtomicFile* out = outputs.add(*cmd, "--out", opts->out);  // a bad path fails before the search
+    std::FILE* text = outputs.any_to_stdout() ? stderr : stdout;
 
     const explore::OptimizeResult r = explore::optimize(in.config, o);
     if (!r.found) {
@@ -68,24 +85,32 @@ void register_optimize(CLI::App& app, int& exit_code) {
     std::string values;
     for (std::size_t k = 0; k < o.bounds.size(); ++k) {
       set_number(best, o.bounds[k].key, r.best[k]);
-      values += fmt::format("{}{} = {:.10g}", k ? ", " : "", o.bounds[k].key, r.best[k]);
+      values += fmt::format("{}{} = {}", k ? ", " : "", o.bounds[k].key, shortest(r.best[k]));
     }
     const Scenario sc = build_scenario(best);
+    if (r.at_time_limit) {
+      fmt::print(stderr, "whatnext: optimize: {} = {} s is the end of the run (run.t_max = {} s): within the "
+                 "bounds it can be put off as long as the run lasts, so there is no {}; no file written\n",
+                 o.value, shortest(r.value), shortest(sc.run.t_max), o.maximize ? "maximum" : "minimum");
+      exit_code = 1;
+      return;
+    }
     const std::string toml = to_toml(sc);
-    out.stream() << fmt::format("# whatnext optimize: {} {} over {} ({} machines): {}; {} = {:.10g}\n",
-                                o.maximize ? "maximise" : "minimise", o.value, in.source, r.evaluations,
-                                values, o.value, r.value)
-                 << toml;
-    out.commit();
+    out->stream() << fmt::format("# whatnext optimize: {} {} over {} ({} machines): {}; {} = {}\n",
+                                 o.maximize ? "maximise" : "minimise", o.value, in.source, r.evaluations, values,
+                                 o.value, shortest(r.value))
+                  << toml;
+    outputs.commit_all();
     // The file is only useful if it is the optimum: run it again from its own text.
     const explore::Outcome again = explore::evaluate(parse_toml(toml, opts->out), {}, nullptr);
     const double v = explore::value_of(again, o.value);
     if (!(std::fabs(v - r.value) <= 1e-9 * (1.0 + std::fabs(r.value)))) {
-      fmt::print(stderr, "whatnext: warning: {} gives {} = {:.10g}, not {:.10g}: to_toml() does not write "
-                 "every input key that was set\n", opts->out, o.value, v, r.value);
+      fmt::print(stderr, "whatnext: warning: {} gives {} = {}, not {}: to_toml() does not write every input key "
+                 "that was set\n", printable(opts->out, 96), o.value, shortest(v), shortest(r.value));
     }
-    fmt::print("best: {}\n{} = {:.10g}; outcome {} at {:.6f} s ({} machines tried)\nwritten to {}\n", values,
-               o.value, r.value, to_string(r.outcome.outcome), r.outcome.outcome_t, r.evaluations, opts->out);
+    fmt::print(text, "best: {}\n{} = {}; outcome {} at {:.6f} s ({} machines tried)\nwritten to {}\n", values,
+               o.value, shortest(r.value), to_string(r.outcome.outcome), r.outcome.outcome_t, r.evaluations,
+               printable(opts->out, 96));
     exit_code = 0;
   });
 }

@@ -14,7 +14,7 @@ struct PlotOptions {
   std::string out, compare, integrator = "euler", formats = "png,svg,pdf";
   double step = 0.0;
   int width = 1000, height = 650;
-  bool quiet = false;
+  bool quiet = false, force_large = false;
 };
 }  // namespace
 
@@ -33,8 +33,11 @@ void register_plot(CLI::App& app, int& exit_code) {
   cmd->add_option("--width", opts->width, "width of a one-panel figure [px]")->capture_default_str();
   cmd->add_option("--height", opts->height, "height of a one-panel figure [px]")->capture_default_str();
   cmd->add_flag("-q,--quiet", opts->quiet, "do not list the files written");
+  cmd->add_flag("--force-large", opts->force_large, "draw runs whose states would take more than 256 MB of memory");
   cmd->callback([opts, cmd, &exit_code] {
+    check_leftovers(*cmd);
     const LoadedInput in = load_input(opts->input);
+    check_size(in.scenario, kStateBytes, "plot", opts->force_large, "hold in memory");
     viz::FigureOptions fig;
     if (!viz::parse_formats(opts->formats, fig.formats)) {
       throw InputError(fmt::format("--format: must list png, svg or pdf separated by commas, got '{}'",
@@ -49,6 +52,7 @@ void register_plot(CLI::App& app, int& exit_code) {
     fig.width = opts->width;
     fig.height = opts->height;
     fig.title = in.source;
+    prepare_picture_dir(opts->out, "--out");
     std::vector<std::string> written;
     if (opts->compare.empty()) {
       if (cmd->count("--integrator") || cmd->count("--step")) {

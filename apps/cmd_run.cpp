@@ -1,7 +1,6 @@
 // `whatnext run`: one machine, its timeline on stdout and the requested files.
 #include <cstdio>
 #include <memory>
-#include <optional>
 
 #include <fmt/format.h>
 
@@ -17,61 +16,84 @@ struct RunOptions {
   InputOptions input;
   std::string events, csv, dat;
   std::string plots, animate;  // pictures (whatnext plot / animate with their defaults)
-  bool quiet = false;
+  bool quiet = false, force_large = false;
 };
+
+// Upper bounds of what one output row takes, for the size check: a CSV row of 32 numbers and a
+// .dat row (9F8.3 and a newline).
+constexpr double kCsvRowBytes = 400.0, kDatRowBytes = 73.0;
 }  // namespace
 
 void register_run(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "simulate one machine and print its timeline");
   add_input_options(*cmd, opts->input);
-  cmd->add_option("--events", opts->events, "write the events as JSON to this file");
-  cmd->add_option("--csv", opts->csv, "write the sampled state as CSV to this file");
-  cmd->add_option("--dat", opts->dat, "write the paper's whatnext.dat layout to this file");
+  cmd->add_option("--events", opts->events, "write the events as JSON to this file ('-': standard output)");
+  cmd->add_option("--csv", opts->csv, "write the sampled state as CSV to this file ('-': standard output)");
+  cmd->add_option("--dat", opts->dat, "write the paper's whatnext.dat layout to this file ('-': standard output)");
   cmd->add_option("--plots", opts->plots, "also draw the paper's figures into this directory");
   cmd->add_option("--animate", opts->animate, "also write an animation to this .gif (or .mp4)");
   cmd->add_flag("-q,--quiet", opts->quiet, "print only the outcome line");
-  cmd->callback([opts, &exit_code] {
+  cmd->add_flag("--force-large", opts->force_large,
+                "write outputs even when they would be larger than 256 MB");
+  cmd->callback([opts, cmd, &exit_code] {
+    check_leftovers(*cmd);
     const LoadedInput in = load_input(opts->input);
-    if (!opts->plots.empty()) viz::prepare_output_dir(opts->plots, "--plots");
-    if (!opts->animate.empty()) viz::check_animation_target(opts->animate, "--animate");
-    // Open every output first so that a bad path fails before any work; files appear only when done.
-    std::optional<AtomicFile> csv_file, dat_file, events_file;
+    // Every output is checked (and its temporary opened) before any work; files appear only when
+    // all of them are complete.
+    if (given(*cmd, "--csv")) check_size(in.scenario, kCsvRowBytes, "--csv", opts->force_large);
+    if (given(*cmd, "--dat")) check_size(in.scenario, kDatRowBytes, "--dat", opts->force_large);
+    if (given(*cmd, "--plots") || given(*cmd, "--animate")) {
+      check_size(in.scenario, kStateBytes, given(*cmd, "--plots") ? "--plots" : "--animate", opts->force_large,
+                 "hold in memory");
+    }
+    Outputs outputs;
+    AtomicFile* csv_file = outputs.add(*cmd, "--csv", opts->csv);
+    AtomicFile* dat_file = outputs.add(*cmd, "--dat", opts->dat);
+    AtomicFile* events_file = outputs.add(*cmd, "--events", opts->events);
+    outputs.check_distinct();
+    // The pictures last: a directory made for --plots is removed again if anything else fails.
+    if (given(*cmd, "--plots")) prepare_picture_dir(opts->plots, "--plots");
+    std::string animation;
+    if (given(*cmd, "--animate")) {
+      animation = regular_output_target(opts->animate, "--animate");
+      viz::check_animation_target(animation, "--animate");
+    }
+    // With an output on standard output, the timeline goes to standard error.
+    std::FILE* text = outputs.any_to_stdout() ? stderr : stdout;
+
     Fanout fan;
     std::unique_ptr<CsvWriter> csv;
     std::unique_ptr<DatWriter> dat;
-    if (!opts->csv.empty()) {
-      csv_file.emplace(opts->csv);
+    if (csv_file) {
       csv = std::make_unique<CsvWriter>(csv_file->stream());
       fan.add(csv.get());
     }
-    if (!opts->dat.empty()) {
-      dat_file.emplace(opts->dat);
+    if (dat_file) {
       dat = std::make_unique<DatWriter>(dat_file->stream());
       fan.add(dat.get());
     }
-    if (!opts->events.empty()) events_file.emplace(opts->events);
     const Result result = simulate(in.scenario, fan.empty() ? nullptr : &fan);
     if (events_file) events_file->stream() << events_json(result, in.scenario, in.source);
-    for (auto* f : {&csv_file, &dat_file, &events_file}) {
-      if (*f) (*f)->commit();
-    }
+    outputs.commit_all();
     if (opts->quiet) {
-      fmt::print("{}\n", outcome_sentence(result));
+      fmt::print(text, "{}\n", outcome_sentence(result));
     } else {
-      fmt::print("{}", timeline_text(result, in.scenario, in.source));
+      fmt::print(text, "{}", timeline_text(result, in.scenario, in.source));
     }
-    if (!opts->plots.empty() || !opts->animate.empty()) {
+    if (given(*cmd, "--plots") || given(*cmd, "--animate")) {
       const viz::Recording rec = viz::record(in.scenario);
-      if (!opts->plots.empty()) {
+      if (given(*cmd, "--plots")) {
         viz::FigureOptions fig;
         fig.title = in.source;
         const auto files = viz::write_run_figures(rec, opts->plots, fig);
-        if (!opts->quiet) fmt::print("Plots: {} files in {}\n", files.size(), opts->plots);
+        if (!opts->quiet) fmt::print(text, "Plots: {} files in {}\n", files.size(), printable(opts->plots, 96));
       }
-      if (!opts->animate.empty()) {
-        const int frames = viz::write_animation(rec, opts->animate, viz::AnimationOptions{}, "", "--animate");
-        if (!opts->quiet) fmt::print("Animation: {} ({} frames)\n", opts->animate, frames);
+      if (given(*cmd, "--animate")) {
+        remove_on_interrupt(animation + ".part");
+        const int frames = viz::write_animation(rec, animation, viz::AnimationOptions{}, "", "--animate");
+        forget_on_interrupt(animation + ".part");
+        if (!opts->quiet) fmt::print(text, "Animation: {} ({} frames)\n", printable(opts->animate, 96), frames);
       }
     }
     exit_code = 0;

@@ -5,7 +5,6 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <thread>
 
@@ -27,20 +26,24 @@ struct SweepOptions {
   std::uint64_t seed = 1;
   int threads = 0;
   std::string out, heatmap, heatmap_value = "lid_open";
+  bool force_large = false;
 };
 
-// Set by SIGINT; the workers stop taking machines and the rows done so far are written.
-std::atomic<bool> g_interrupted{false};
-extern "C" void on_sigint(int) { g_interrupted.store(true); }
+// Sweeps bigger than this need --force-large: every row is kept in memory until the CSV is
+// written (a few hundred bytes each), and the CSV takes about as much again.
+constexpr std::int64_t kLargeSweep = 1'000'000;
+constexpr double kSweepRowBytes = 600.0;
 
-// Fails early (before any work) when a file cannot be written; nothing is left behind.
-void check_writable(const std::string& path) {
-  const std::string probe = path + ".part";
-  {
-    std::ofstream f(probe, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error(fmt::format("{}: cannot write this file", path));
-  }
-  std::remove(probe.c_str());
+// Interrupts stop the sweep instead of ending the process while this lives.
+struct InterruptStops {
+  explicit InterruptStops(std::function<void(int)> stop) { set_interrupt_handler(std::move(stop)); }
+  ~InterruptStops() { set_interrupt_handler({}); }
+  InterruptStops(const InterruptStops&) = delete;
+  InterruptStops& operator=(const InterruptStops&) = delete;
+};
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
 // "[#######.......]  45%  4500/10000 machines, 2 s left" on one terminal line.
@@ -86,56 +89,96 @@ void register_sweep(CLI::App& app, int& exit_code) {
   cmd->add_option("--seed", opts->seed, "seed of the Latin hypercube (same seed, same machines)");
   cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
-  cmd->add_option("--out", opts->out, "CSV file to write, one row per machine")->required();
+  cmd->add_option("--out", opts->out, "CSV file to write, one row per machine ('-': standard output)")->required();
   cmd->add_option("--heatmap", opts->heatmap, "also draw a PNG heat map (needs exactly two --vary keys)");
   cmd->add_option("--heatmap-value", opts->heatmap_value,
                   "value drawn: an event name (its first time, e.g. lid_open), outcome_t, final_r or "
                   "final_phi_l_deg");
-  cmd->callback([opts, &exit_code] {
+  cmd->add_flag("--force-large", opts->force_large,
+                fmt::format("run sweeps of more than {} machines", kLargeSweep));
+  cmd->callback([opts, cmd, &exit_code] {
+    check_leftovers(*cmd);
     // Everything about the input is checked before any machine runs or any file appears.
     explore::Plan plan;
     plan.samples = opts->samples;
     plan.seed = opts->seed;
     for (const std::string& v : opts->vary) {
       plan.ranges.push_back(explore::parse_range(v, "--vary", plan.samples == 0));
+      if (plan.samples > 0 && plan.ranges.back().n != 0) {
+        throw InputError(fmt::format("--vary {}: with --samples the values come from a Latin hypercube; write "
+                                     "KEY=A:B without a count", printable(v)));
+      }
     }
+    // A Latin hypercube's points are made up front: its size is checked before.
+    const auto check_large = [&](std::int64_t n) {
+      if (n > kLargeSweep && !opts->force_large) {
+        throw InputError(fmt::format("sweep: {} machines would hold about {:.1f} GB in memory and write as much; "
+                                     "use fewer, or give --force-large", n,
+                                     static_cast<double>(n) * kSweepRowBytes / 1e9));
+      }
+    };
+    check_large(plan.samples);
     const explore::Machines machines(plan);
-    if (!opts->heatmap.empty()) {
-      explore::check_heatmap_plan(plan, "--heatmap");
-      explore::check_value_name(opts->heatmap_value, "--heatmap-value");
-    }
+    check_large(machines.size());
     const LoadedInput in = load_input(opts->input);
-    AtomicFile csv(opts->out);
-    if (!opts->heatmap.empty()) check_writable(opts->heatmap);
+    if (given(*cmd, "--heatmap")) {
+      explore::check_heatmap_plan(plan, "--heatmap");
+      if (!ends_with(opts->heatmap, ".png") && !ends_with(opts->heatmap, ".PNG")) {
+        throw InputError(fmt::format("--heatmap {}: the heat map is a PNG; give a name ending in .png",
+                                     printable(opts->heatmap, 96)));
+      }
+    }
+    if (given(*cmd, "--heatmap") || given(*cmd, "--heatmap-value")) {
+      explore::check_value_name(opts->heatmap_value, "--heatmap-value");
+      bool radio_varied = false;
+      for (const explore::Range& r : plan.ranges) radio_varied = radio_varied || r.key.rfind("radio.", 0) == 0;
+      if (opts->heatmap_value == "radio_on" && !in.scenario.machine.radio && !radio_varied) {
+        throw InputError("--heatmap-value radio_on: the radio is off in this machine, so the map would be all "
+                         "grey (add --set radio.enabled=true)");
+      }
+    }
+    Outputs outputs;
+    AtomicFile* csv = outputs.add(*cmd, "--out", opts->out);
+    AtomicFile* heat = outputs.add(*cmd, "--heatmap", opts->heatmap);
+    outputs.check_distinct();
+    if (heat && heat->temp_path().empty()) {
+      throw InputError(fmt::format("--heatmap {}: must be a regular file", printable(opts->heatmap, 96)));
+    }
+    std::FILE* text = outputs.any_to_stdout() ? stderr : stdout;
 
     explore::RunOptions ro;
     ro.threads = opts->threads > 0 ? opts->threads
                                    : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    ro.stop = &g_interrupted;
+    std::atomic<bool> stop{false};
+    std::atomic<int> signal{0};
+    ro.stop = &stop;
     ProgressBar bar(isatty(STDERR_FILENO) != 0);
     ro.progress = [&bar](std::int64_t done, std::int64_t total) { bar.update(done, total); };
-    g_interrupted.store(false);
-    const auto old_handler = std::signal(SIGINT, on_sigint);
+    // An interrupt (Ctrl-C, SIGTERM, SIGHUP) stops the workers; the rows done so far are written.
+    // It stays caught until the files are in place: a second one must not leave a .part file.
+    const InterruptStops guard([&stop, &signal](int sig) {
+      signal.store(sig);
+      stop.store(true);
+    });
     const explore::SweepResult result = explore::run(in.config, machines, ro);
     bar.finish();
-
-    // The handler stays until the files are in place: a second Ctrl-C must not leave a .part file.
-    explore::write_csv(csv.stream(), machines, result);
-    csv.commit();
-    if (!opts->heatmap.empty()) explore::draw_heatmap(opts->heatmap, machines, result, opts->heatmap_value);
-    std::signal(SIGINT, old_handler);
-    std::int64_t invalid = 0;
+    explore::write_csv(csv->stream(), machines, result);
+    if (heat) explore::draw_heatmap(heat->temp_path(), machines, result, opts->heatmap_value);
+    outputs.commit_all();
+    std::int64_t invalid = 0, failed = 0;
     for (std::int64_t i = 0; i < machines.size(); ++i) {
-      if (result.done[static_cast<std::size_t>(i)] && !result.rows[static_cast<std::size_t>(i)].valid) ++invalid;
+      const explore::Outcome& o = result.rows[static_cast<std::size_t>(i)];
+      if (result.done[static_cast<std::size_t>(i)] && !o.valid) ++(o.failed ? failed : invalid);
     }
     if (result.interrupted) {
       fmt::print(stderr, "whatnext: sweep interrupted: {} of {} machines written to {}\n", result.completed,
-                 machines.size(), opts->out);
-      exit_code = 130;
+                 machines.size(), printable(opts->out, 96));
+      exit_code = 128 + (signal.load() > 0 ? signal.load() : SIGINT);
       return;
     }
-    fmt::print("sweep: {} machines ({} with invalid inputs) written to {}{}\n", machines.size(), invalid,
-               opts->out, opts->heatmap.empty() ? "" : fmt::format(", heat map {}", opts->heatmap));
+    fmt::print(text, "sweep: {} machines ({} with invalid inputs, {} failed runs) written to {}{}\n",
+               machines.size(), invalid, failed, printable(opts->out, 96),
+               heat ? fmt::format(", heat map {}", printable(opts->heatmap, 96)) : "");
     exit_code = 0;
   });
 }

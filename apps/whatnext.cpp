@@ -1,40 +1,188 @@
-// The whatnext command: a thin layer over the library. Bad input: one line on stderr, exit code 2.
+// The whatnext command: a thin layer over the library. Exit codes (docs/inputs.md): 0 done, 1 an
+// output could not be written or nothing was found, 2 bad input (one line on stderr, no file
+// written), 3 a run failed (no file written); an interrupted command ends by its signal, an
+// interrupted sweep with 128 + the signal's number.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#include "whatnext/simulate.hpp"
+
+namespace {
+
+using namespace whatnext;
+
+void print_error(const std::string& message) {
+  fmt::print(stderr, "whatnext: error: {}\n", printable(message, 400));
+}
+
+// `whatnext examples [N]`: the shipped examples, or one of them as TOML to copy.
+void register_examples(CLI::App& app) {
+  auto n = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("examples", "list the paper's examples, or print example N as TOML");
+  cmd->add_option("N", *n, "print this example's TOML (to copy and change)");
+  cmd->callback([n, cmd] {
+    cli::check_leftovers(*cmd);
+    if (!n->empty()) {
+      if (n->size() != 1 || (*n)[0] < '1' || (*n)[0] > '4') {
+        throw InputError(fmt::format("examples: the paper has examples 1 to 4 (given '{}')", printable(*n)));
+      }
+      fmt::print("{}", example_toml((*n)[0] - '0'));
+      return;
+    }
+    for (int i = 1; i <= 4; ++i) {
+      // The first sentence of each example's opening comment says what it is.
+      std::istringstream toml{std::string(example_toml(i))};
+      std::string line, text;
+      while (std::getline(toml, line) && line.rfind("# ", 0) == 0) {
+        if (!text.empty()) text += ' ';
+        text += line.substr(2);
+      }
+      std::size_t end = text.find(". ");
+      while (end != std::string::npos && end >= 3 && text.compare(end - 3, 3, "Fig") == 0) end = text.find(". ", end + 1);
+      text = text.substr(0, end);
+      if (text.size() > 100 && text.find("; ") != std::string::npos) text = text.substr(0, text.find("; "));
+      fmt::print("{}  {}\n", i, text);
+    }
+    fmt::print("Run one with `whatnext run --example N`; `whatnext examples N` prints it as TOML.\n");
+  });
+}
+
+// `whatnext keys`: every input key with its unit, default and meaning.
+void register_keys(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("keys", "list every input key with its unit, default and meaning");
+  cmd->callback([cmd] {
+    cli::check_leftovers(*cmd);
+    std::size_t wk = 3, wu = 4, wd = 7;
+    for (const KeySpec& k : known_keys()) {
+      wk = std::max(wk, k.key.size());
+      wu = std::max(wu, k.unit.size());
+      wd = std::max(wd, k.default_text.size());
+    }
+    fmt::print("{:<{}}  {:<{}}  {:<{}}  {}\n", "key", wk, "unit", wu, "default", wd, "meaning");
+    for (const KeySpec& k : known_keys()) {
+      fmt::print("{:<{}}  {:<{}}  {:<{}}  {}\n", k.key, wk, k.unit, wu, k.default_text, wd, k.help);
+    }
+    fmt::print("Set them in a TOML file ([section] then name = value) or with --set section.name=value; "
+               "docs/inputs.md has the rules and limits.\n");
+  });
+}
+
+std::vector<std::string> command_names(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    names.push_back(sub->get_name());
+  }
+  return names;
+}
+
+std::string joined(const std::vector<std::string>& words) {
+  std::string out;
+  for (const std::string& w : words) {
+    if (!out.empty()) out += ", ";
+    out += w;
+  }
+  return out;
+}
+
+// `whatnext help [COMMAND]`.
+void register_help(CLI::App& app) {
+  auto topic = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("help", "show the commands, or one command's options");
+  cmd->add_option("COMMAND", *topic, "the command to explain");
+  cmd->callback([topic, cmd, &app] {
+    cli::check_leftovers(*cmd);
+    // Straight to the formatter: App::help() would describe the command being run, `help` itself.
+    if (topic->empty()) {
+      fmt::print("{}", app.get_formatter()->make_help(&app, app.get_name(), CLI::AppFormatMode::Normal));
+      return;
+    }
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+      if (sub->get_name() == *topic) {
+        fmt::print("{}", sub->get_formatter()->make_help(sub, app.get_name() + " " + sub->get_name(),
+                                                         CLI::AppFormatMode::Normal));
+        return;
+      }
+    }
+    const std::string near = nearest_word(*topic, command_names(app));
+    throw InputError(fmt::format("help: unknown command '{}'{}; the commands are {}", printable(*topic),
+                                 near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                                 joined(command_names(app))));
+  });
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"whatnext: Kermit's What-Happens-Next machine, simulated event by event"};
+  CLI::App app{"whatnext: Kermit's What-Happens-Next machine, simulated event by event", "whatnext"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("whatnext ") + WHATNEXT_VERSION);
   int exit_code = 0;
   whatnext::cli::register_run(app, exit_code);
   whatnext::cli::register_plot(app, exit_code);
   whatnext::cli::register_animate(app, exit_code);
   whatnext::cli::register_sweep(app, exit_code);
   whatnext::cli::register_optimize(app, exit_code);
+  register_examples(app);
+  register_keys(app);
+  register_help(app);
+  const std::vector<std::string> commands = command_names(app);
+  if (argc == 1) {
+    print_error(fmt::format("say what to do: {} (see whatnext help)", joined(commands)));
+    return 2;
+  }
+  const std::string first = argv[1];
+  if (first[0] != '-' && std::find(commands.begin(), commands.end(), first) == commands.end()) {
+    const std::string near = nearest_word(first, commands);
+    print_error(fmt::format("unknown command '{}'{}; the commands are {}", printable(first),
+                            near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), joined(commands)));
+    return 2;
+  }
+  whatnext::install_interrupt_cleanup();
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    if (argc == 1) {
-      fmt::print(stderr, "whatnext: error: say what to do: run, plot, animate, sweep or optimize (see whatnext --help)\n");
-    } else {
-      fmt::print(stderr, "whatnext: error: {}\n", e.what());
+    std::string message = e.what();
+    // A missing required option is often a mistyped one: say that instead, with a suggestion.
+    for (const CLI::App* sub : app.get_subcommands()) {
+      try {
+        whatnext::cli::check_leftovers(*sub);
+      } catch (const whatnext::InputError& leftover) {
+        message = leftover.what();
+      }
     }
+    if (first[0] == '-' && first != "--help" && first != "-h" && first != "--version") {
+      const std::string near = nearest_word(first.substr(0, first.find('=')), {"--help", "--version"});
+      message = fmt::format("unknown option '{}' before the command{}; say what to do: {}", first,
+                            near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), joined(commands));
+    }
+    print_error(message);
     return 2;
   } catch (const whatnext::InputError& e) {
-    fmt::print(stderr, "whatnext: error: {}\n", e.what());
+    whatnext::cli::remove_empty_picture_dirs();
+    print_error(e.what());
     return 2;
+  } catch (const whatnext::SimulationError& e) {
+    whatnext::cli::remove_empty_picture_dirs();
+    print_error(fmt::format("the run failed: {}; no file written", e.what()));
+    return 3;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "whatnext: error: {}\n", e.what());
-    return 2;
+    whatnext::cli::remove_empty_picture_dirs();
+    print_error(e.what());
+    return 1;
   }
   return exit_code;
 }

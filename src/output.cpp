@@ -1,49 +1,397 @@
 #include "whatnext/output.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <iterator>
+#include <mutex>
+#include <set>
 #include <stdexcept>
+#include <thread>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "whatnext/config.hpp"
+
 namespace whatnext {
+
+namespace fs = std::filesystem;
 
 namespace {
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
-// Never let -0.000 or a NaN reach a file.
+// Never let -0.000 reach a file.
 double clean(double v) { return (std::isfinite(v) && v != 0.0) ? v : 0.0; }
+
+// Nor a NaN or an infinity: a state that is not finite ends the run as failed (the writers are
+// called from inside simulate(), so the run stops there and no file is committed).
+void require_finite(const Snapshot& s) {
+  const double values[] = {s.t,         s.x,         s.h,       s.r,        s.dr,
+                           s.phi_s,     s.dphi_s,    s.phi_l,   s.dphi_l,   s.balloon_h,
+                           s.balloon_v, s.tension,   s.energy(), s.total_energy(), s.ledger_residual()};
+  for (const double v : values) {
+    if (!std::isfinite(v)) {
+      throw SimulationError(fmt::format("the state is not finite at t = {} s in mode {}", s.t, to_string(s.mode)));
+    }
+  }
+}
+
 }  // namespace
+
+void require_finite(const Result& result) {
+  for (const Event& e : result.events) require_finite(e.after);
+}
+
+// --- interrupts ------------------------------------------------------------------------------
+
+namespace {
+
+// The signal handler only writes the signal's number into a pipe; a watcher thread does the
+// cleaning, where anything may be called. It holds the registry's lock from the first interrupt
+// on, so no new temporary can appear behind its back before the process ends.
+struct Interrupts {
+  std::mutex lock;
+  std::vector<std::string> paths;  // removed in reverse order (files before their directory)
+  std::vector<std::pair<std::string, std::set<std::string>>> dirs;  // dir, .part files already there
+  std::function<void(int)> stop;
+  bool stopped = false;
+  int pipe_write = -1;
+};
+Interrupts& interrupts() {
+  static Interrupts* it = new Interrupts;  // never destroyed: the watcher may use it until the end
+  return *it;
+}
+
+extern "C" void on_interrupt(int sig) {
+  const int saved = errno;
+  const unsigned char byte = static_cast<unsigned char>(sig);
+  [[maybe_unused]] const ssize_t n = ::write(interrupts().pipe_write, &byte, 1);
+  errno = saved;
+}
+
+std::set<std::string> part_files(const std::string& dir) {
+  std::set<std::string> out;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() > 5 && name.compare(name.size() - 5, 5, ".part") == 0) out.insert(it->path().string());
+  }
+  return out;
+}
+
+void watch(int pipe_read) {
+  for (;;) {
+    unsigned char sig = 0;
+    const ssize_t n = ::read(pipe_read, &sig, 1);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;
+    Interrupts& in = interrupts();
+    std::unique_lock<std::mutex> hold(in.lock);
+    if (in.stop) {
+      if (!in.stopped) in.stop(sig);
+      in.stopped = true;
+      continue;  // the owner stops and cleans up; a second interrupt changes nothing
+    }
+    for (const auto& [dir, before] : in.dirs) {
+      for (const std::string& f : part_files(dir)) {
+        if (!before.count(f)) ::unlink(f.c_str());
+      }
+    }
+    for (auto it = in.paths.rbegin(); it != in.paths.rend(); ++it) {
+      if (::unlink(it->c_str()) != 0 && (errno == EISDIR || errno == EPERM)) ::rmdir(it->c_str());
+    }
+    std::signal(sig, SIG_DFL);
+    ::kill(::getpid(), sig);
+    for (;;) ::pause();  // keeps the lock until the signal ends the process
+  }
+}
+
+void add_path(const std::string& path) {
+  std::lock_guard<std::mutex> hold(interrupts().lock);
+  interrupts().paths.push_back(path);
+}
+void drop_path(const std::string& path) {
+  Interrupts& in = interrupts();
+  std::lock_guard<std::mutex> hold(in.lock);
+  const auto it = std::find(in.paths.rbegin(), in.paths.rend(), path);
+  if (it != in.paths.rend()) in.paths.erase(std::next(it).base());
+}
+
+}  // namespace
+
+void install_interrupt_cleanup() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) return;  // without it, interrupts behave as by default
+    interrupts().pipe_write = fds[1];
+    std::thread(watch, fds[0]).detach();
+    struct sigaction sa {};
+    sa.sa_handler = on_interrupt;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(sig, &sa, nullptr);
+  });
+}
+
+void remove_on_interrupt(const std::string& path) { add_path(path); }
+void forget_on_interrupt(const std::string& path) { drop_path(path); }
+
+void remove_new_parts_on_interrupt(const std::string& dir) {
+  std::set<std::string> before = part_files(dir);
+  std::lock_guard<std::mutex> hold(interrupts().lock);
+  interrupts().dirs.emplace_back(dir, std::move(before));
+}
+
+void set_interrupt_handler(std::function<void(int)> stop) {
+  std::lock_guard<std::mutex> hold(interrupts().lock);
+  interrupts().stop = std::move(stop);
+  interrupts().stopped = false;
+}
 
 // --- AtomicFile --------------------------------------------------------------------------------
 
-AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), tmp_(path_ + ".part") {
-  out_.open(tmp_, std::ios::binary | std::ios::trunc);
-  if (!out_) throw std::runtime_error(fmt::format("{}: cannot write this file", path_));
+AtomicFile::FdBuf::FdBuf() { setp(buffer_, buffer_ + sizeof buffer_); }
+
+bool AtomicFile::FdBuf::drain() {
+  const char* p = pbase();
+  std::size_t left = static_cast<std::size_t>(pptr() - pbase());
+  while (left > 0 && error == 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      error = n < 0 ? errno : EIO;
+      break;
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  setp(buffer_, buffer_ + sizeof buffer_);
+  return error == 0;
+}
+
+AtomicFile::FdBuf::int_type AtomicFile::FdBuf::overflow(int_type ch) {
+  if (!drain()) return traits_type::eof();
+  if (!traits_type::eq_int_type(ch, traits_type::eof())) {
+    *pptr() = traits_type::to_char_type(ch);
+    pbump(1);
+  }
+  return traits_type::not_eof(ch);
+}
+
+int AtomicFile::FdBuf::sync() { return drain() ? 0 : -1; }
+
+std::streamsize AtomicFile::FdBuf::xsputn(const char* s, std::streamsize n) {
+  std::streamsize done = 0;
+  while (done < n) {
+    if (pptr() == epptr() && !drain()) return done;
+    const std::streamsize room = std::min<std::streamsize>(epptr() - pptr(), n - done);
+    std::memcpy(pptr(), s + done, static_cast<std::size_t>(room));
+    pbump(static_cast<int>(room));
+    done += room;
+  }
+  return done;
+}
+
+namespace {
+
+// "/dev/stdout", "/dev/fd/3", "/proc/self/fd/3": an open descriptor of this process, or -1.
+int descriptor_path(const std::string& p) {
+  if (p == "/dev/stdout") return 1;
+  if (p == "/dev/stderr") return 2;
+  for (const std::string& prefix : {std::string("/dev/fd/"), std::string("/proc/self/fd/"),
+                                   fmt::format("/proc/{}/fd/", ::getpid())}) {
+    if (p.size() > prefix.size() && p.compare(0, prefix.size(), prefix) == 0) {
+      const std::string num = p.substr(prefix.size());
+      if (num.size() < 6 && std::all_of(num.begin(), num.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+        return std::stoi(num);
+      }
+    }
+  }
+  return -1;
+}
+
+struct stat null_device_stat() {
+  struct stat st {};
+  if (::stat("/dev/null", &st) != 0) st.st_rdev = static_cast<dev_t>(-1);
+  return st;
+}
+
+// What an output path names, symlinks followed.
+struct Target {
+  std::string path;     // the last name reached (the file to replace, or the device)
+  int fd = -1;          // an open descriptor of this process (/dev/stdout, /dev/fd/N, "-")
+  bool exists = false;  // path exists (st is valid)
+  struct stat st {};
+};
+
+Target resolve(const std::string& given, const std::function<void(const std::string&)>& fail) {
+  if (given.empty()) fail("give a file name");
+  Target t;
+  t.path = given == "-" ? "/dev/stdout" : given;
+  for (int hops = 0;; ++hops) {
+    if (hops > 40) fail("too many symbolic links");
+    t.fd = descriptor_path(t.path);
+    if (t.fd >= 0) return t;
+    if (::lstat(t.path.c_str(), &t.st) != 0) {
+      if (errno != ENOENT) fail(std::strerror(errno));
+      break;
+    }
+    if (!S_ISLNK(t.st.st_mode)) {
+      t.exists = true;
+      break;
+    }
+    std::string link(4096, '\0');
+    const ssize_t n = ::readlink(t.path.c_str(), link.data(), link.size());
+    if (n <= 0 || static_cast<std::size_t>(n) >= link.size()) fail("cannot follow this symbolic link");
+    link.resize(static_cast<std::size_t>(n));
+    t.path = link[0] == '/' ? link : (fs::path(t.path).parent_path() / link).string();
+  }
+  if (t.exists && S_ISDIR(t.st.st_mode)) fail("is a directory");
+  if (!t.exists && t.path.back() == '/') fail("names a directory");
+  if (t.exists && S_ISREG(t.st.st_mode) &&
+      (::access(t.path.c_str(), W_OK) != 0 || (t.st.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0)) {
+    fail("is read-only; whatnext does not replace it");
+  }
+  return t;
+}
+
+}  // namespace
+
+std::string regular_output_target(const std::string& path, const std::string& option) {
+  const auto fail = [&](const std::string& why) {
+    throw InputError(fmt::format("{} {}: {}", option, path.empty() ? "''" : printable(path, 96), why));
+  };
+  const Target t = resolve(path, fail);
+  if (t.fd >= 0 || (t.exists && !S_ISREG(t.st.st_mode))) fail("must be a regular file");
+  return t.path;
+}
+
+void AtomicFile::fail(const std::string& why) const {
+  throw InputError(fmt::format("{} {}: {}", option_, path_.empty() ? "''" : printable(path_, 96), why));
+}
+
+AtomicFile::AtomicFile(std::string path, std::string option) : option_(std::move(option)), path_(std::move(path)) {
+  const Target t = resolve(path_, [this](const std::string& why) { fail(why); });
+  const struct stat& st = t.st;
+  if (t.fd >= 0) {
+    // An open descriptor: written through, if it is open for writing.
+    const int flags = ::fcntl(t.fd, F_GETFL);
+    if (flags < 0) fail(fmt::format("descriptor {} is not open", t.fd));
+    if ((flags & O_ACCMODE) == O_RDONLY) fail(fmt::format("descriptor {} is not open for writing", t.fd));
+    struct stat fst {};
+    if (::fstat(t.fd, &fst) == 0) dev_ = fst.st_dev, ino_ = fst.st_ino;
+    if (t.fd == 1) std::fflush(stdout);
+    through_ = true;
+    buf_.fd = t.fd;
+    return;
+  }
+  if (t.exists && !S_ISREG(st.st_mode)) {
+    // A device, pipe or socket: written through in place, never replaced.
+    const int fd = ::open(t.path.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY);
+    if (fd < 0) fail(fmt::format("cannot write: {}", std::strerror(errno)));
+    const struct stat null = null_device_stat();
+    null_device_ = S_ISCHR(st.st_mode) && st.st_rdev == null.st_rdev;
+    dev_ = st.st_dev, ino_ = st.st_ino;
+    through_ = owns_fd_ = true;
+    buf_.fd = fd;
+    return;
+  }
+  if (t.exists) dev_ = st.st_dev, ino_ = st.st_ino;
+  target_ = t.path;
+  tmp_ = t.path + ".part";
+  int fd = -1;
+  {
+    std::lock_guard<std::mutex> hold(interrupts().lock);
+    fd = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno == EEXIST) {  // left by a killed run: ours to replace
+      ::unlink(tmp_.c_str());
+      fd = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    }
+    if (fd < 0) {
+      const std::string why = std::strerror(errno);
+      tmp_.clear();
+      fail(fmt::format("cannot write here: {}", why));
+    }
+    interrupts().paths.push_back(tmp_);
+  }
+  if (t.exists) (void)::fchmod(fd, st.st_mode & 07777);
+  owns_fd_ = true;
+  buf_.fd = fd;
 }
 
 AtomicFile::~AtomicFile() {
-  if (!committed_) {
-    out_.close();
-    std::remove(tmp_.c_str());
+  if (owns_fd_) ::close(buf_.fd);
+  if (!committed_ && !tmp_.empty()) {
+    std::lock_guard<std::mutex> hold(interrupts().lock);
+    ::unlink(tmp_.c_str());
+    auto& paths = interrupts().paths;
+    const auto it = std::find(paths.rbegin(), paths.rend(), tmp_);
+    if (it != paths.rend()) paths.erase(std::next(it).base());
+  }
+}
+
+bool AtomicFile::to_stdout() const { return through_ && buf_.fd == 1; }
+
+void AtomicFile::flush() {
+  out_.flush();
+  if (buf_.error != 0 || !out_) {
+    throw OutputError(fmt::format("{} {}: writing failed: {}", option_, printable(path_, 96),
+                                  std::strerror(buf_.error != 0 ? buf_.error : EIO)));
   }
 }
 
 void AtomicFile::commit() {
-  out_.flush();
-  const bool ok = static_cast<bool>(out_);
-  out_.close();
-  if (!ok || std::rename(tmp_.c_str(), path_.c_str()) != 0) {
-    std::remove(tmp_.c_str());
-    throw std::runtime_error(fmt::format("{}: writing failed", path_));
+  flush();
+  if (through_) {
+    committed_ = true;
+    return;
+  }
+  const int fd = buf_.fd;
+  owns_fd_ = false;
+  buf_.fd = -1;
+  if (::close(fd) != 0) {
+    throw OutputError(fmt::format("{} {}: writing failed: {}", option_, printable(path_, 96), std::strerror(errno)));
+  }
+  std::lock_guard<std::mutex> hold(interrupts().lock);
+  if (::rename(tmp_.c_str(), target_.c_str()) != 0) {
+    throw OutputError(fmt::format("{} {}: writing failed: {}", option_, printable(path_, 96), std::strerror(errno)));
   }
   committed_ = true;
+  auto& paths = interrupts().paths;
+  const auto it = std::find(paths.rbegin(), paths.rend(), tmp_);
+  if (it != paths.rend()) paths.erase(std::next(it).base());
+}
+
+void AtomicFile::check_distinct(const std::vector<const AtomicFile*>& files) {
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      const AtomicFile& a = *files[i];
+      const AtomicFile& b = *files[j];
+      if (a.null_device_ && b.null_device_) continue;
+      const bool same_existing = a.ino_ != 0 && a.dev_ == b.dev_ && a.ino_ == b.ino_;
+      const bool same_new = a.ino_ == 0 && b.ino_ == 0 && !a.target_.empty() &&
+                            fs::absolute(a.target_).lexically_normal() == fs::absolute(b.target_).lexically_normal();
+      if (same_existing || same_new) a.fail(fmt::format("is the same file as {}; give each output its own", b.option_));
+    }
+  }
 }
 
 // --- text --------------------------------------------------------------------------------------
 
 std::string outcome_sentence(const Result& result) {
+  require_finite(result);
   const Event& e = result.outcome();
   const Snapshot& s = e.after;
   switch (e.type) {
@@ -71,21 +419,31 @@ std::string outcome_sentence(const Result& result) {
 }
 
 std::string timeline_text(const Result& result, const Scenario& sc, const std::string& source) {
-  std::string out = fmt::format("whatnext: {} (impact law {}, integrator {})\n", source,
-                                to_string(sc.run.impact_law), to_string(sc.run.integrator));
-  out += fmt::format("{:>12}  {:<16} {:<7} {:>9} {:>9} {:>9}  {}\n", "t [s]", "event", "mode",
-                     "phiS[deg]", "phiL[deg]", "r [m]", "");
+  // Every cell is formatted first and the columns are as wide as their widest cell, so long event
+  // names (sandbag_falls_off) and large values (r = 1929.5922 m) never shift a column.
+  std::vector<std::array<std::string, 7>> rows;
+  rows.push_back({"t [s]", "event", "mode", "phiS[deg]", "phiL[deg]", "r [m]", ""});
   for (const Event& e : result.events) {
     const Snapshot& s = e.after;
-    std::string note;
-    if (e.impact) {
-      note = fmt::format("energy {:.4f} J -> {:.4f} J", e.energy_before, e.energy_after);
-    }
-    const std::string modes = e.mode_before == e.mode_after
-                                  ? std::string(to_string(e.mode_after))
-                                  : fmt::format("{}>{}", to_string(e.mode_before), to_string(e.mode_after));
-    out += fmt::format("{:>12.6f}  {:<16} {:<7} {:>9.3f} {:>9.3f} {:>9.4f}  {}\n", e.t,
-                       to_string(e.type), modes, s.phi_s * kRadToDeg, s.phi_l * kRadToDeg, s.r, note);
+    rows.push_back({fmt::format("{:.6f}", e.t), std::string(to_string(e.type)),
+                    e.mode_before == e.mode_after
+                        ? std::string(to_string(e.mode_after))
+                        : fmt::format("{}>{}", to_string(e.mode_before), to_string(e.mode_after)),
+                    fmt::format("{:.3f}", s.phi_s * kRadToDeg), fmt::format("{:.3f}", s.phi_l * kRadToDeg),
+                    fmt::format("{:.4f}", s.r),
+                    e.impact ? fmt::format("energy {:.4f} J -> {:.4f} J", e.energy_before, e.energy_after) : ""});
+  }
+  std::array<std::size_t, 7> width{12, 16, 7, 9, 9, 9, 0};
+  for (const auto& row : rows) {
+    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
+  }
+  std::string out = fmt::format("whatnext: {} (impact law {}, integrator {})\n", source,
+                                to_string(sc.run.impact_law), to_string(sc.run.integrator));
+  for (const auto& row : rows) {
+    std::string line = fmt::format("{:>{}}  {:<{}} {:<{}} {:>{}} {:>{}} {:>{}}", row[0], width[0], row[1], width[1],
+                                   row[2], width[2], row[3], width[3], row[4], width[4], row[5], width[5]);
+    if (!row[6].empty()) line += "  " + row[6];
+    out += line + "\n";
   }
   out += fmt::format("Outcome: {}.\n", outcome_sentence(result));
   return out;
@@ -114,6 +472,7 @@ nlohmann::json ledger(const Snapshot& s) {
 }  // namespace
 
 std::string events_json(const Result& result, const Scenario& sc, const std::string& source) {
+  require_finite(result);
   using nlohmann::json;
   auto state = [](const Snapshot& s) {
     return json{{"x", clean(s.x)},
@@ -166,6 +525,7 @@ const char* CsvWriter::header() {
 }
 
 void CsvWriter::row(const Snapshot& s, const char* event) {
+  require_finite(s);
   fmt::memory_buffer b;
   fmt::format_to(std::back_inserter(b), "{:.9g},{},{},{:d}", s.t, event, to_string(s.mode),
                  s.rope_taut);
@@ -194,6 +554,7 @@ std::string fortran_f(double value, int width, int decimals) {
 }
 
 void DatWriter::on_sample(const Snapshot& s) {
+  require_finite(s);
   std::string line;
   for (double v : {s.t, s.x, s.h, s.phi_s, s.phi_l, s.balloon_limit, s.balloon_h,
                    slack_since_last_row_ ? 1.0 : 0.0, s.rope_taut ? 1.0 : 0.0}) {

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <vector>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +12,8 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
+
+#include "whatnext/config.hpp"
 
 #include "cli_runner.hpp"
 
@@ -162,6 +166,195 @@ TEST_F(Cli, UnknownIntegratorAndImpactLaw) {
 TEST_F(Cli, NoSuchExampleOrFile) {
   expect_rejected("run --example 7", "1 to 4");
   expect_rejected("run " + (dir_ / "missing.toml").string(), "cannot read");
+}
+
+// --- finding one's way (issue 13) -------------------------------------------------------------------
+
+bool one_line(const std::string& s) { return std::count(s.begin(), s.end(), '\n') == 1 && s.back() == '\n'; }
+
+TEST_F(Cli, AMistypedCommandGetsASuggestionAndTheList) {
+  const CliResult r = whatnext("rn --example 1");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+  EXPECT_NE(r.err.find("did you mean 'run'?"), std::string::npos) << r.err;
+  for (const char* c : {"run", "plot", "animate", "sweep", "optimize", "examples", "keys", "help"}) {
+    EXPECT_NE(r.err.find(c), std::string::npos) << c;
+  }
+  const CliResult none = whatnext("");
+  EXPECT_EQ(none.code, 2);
+  EXPECT_NE(none.err.find("sweep"), std::string::npos) << none.err;
+}
+
+TEST_F(Cli, MistypedOptionsGetASuggestion) {
+  const CliResult r = whatnext("plot --example 1 --out " + dir_.string() + " --formt png");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(one_line(r.err)) << r.err;
+  EXPECT_NE(r.err.find("did you mean '--format'?"), std::string::npos) << r.err;
+  // Also when the mistyped option was a required one.
+  const CliResult req = whatnext("sweep --example 1 --vary masses.lid=1:2:2 --ot x.csv");
+  EXPECT_EQ(req.code, 2);
+  EXPECT_NE(req.err.find("did you mean '--out'?"), std::string::npos) << req.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x.csv"));
+}
+
+TEST_F(Cli, HelpForTheProgramAndEachCommand) {
+  const CliResult all = whatnext("help");
+  EXPECT_EQ(all.code, 0);
+  EXPECT_NE(all.out.find("optimize"), std::string::npos) << all.out;
+  const CliResult run = whatnext("help run");
+  EXPECT_EQ(run.code, 0);
+  EXPECT_NE(run.out.find("--events"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("--force-large"), std::string::npos) << run.out;
+  const CliResult bad = whatnext("help swep");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("did you mean 'sweep'?"), std::string::npos) << bad.err;
+}
+
+TEST_F(Cli, VersionIsTheProjectVersion) {
+  // The version CMakeLists.txt declares, read from the file itself.
+  const std::string cmake = slurp(fs::path(WHATNEXT_SOURCE_DIR) / "CMakeLists.txt");
+  const auto at = cmake.find("VERSION ", cmake.find("project(whatnext"));
+  ASSERT_NE(at, std::string::npos);
+  const std::string version = cmake.substr(at + 8, cmake.find_first_of(" )", at + 8) - at - 8);
+  const CliResult r = whatnext("--version");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out, "whatnext " + version + "\n");
+}
+
+TEST_F(Cli, ExamplesAreListedAndPrintedAsTheirFiles) {
+  const CliResult list = whatnext("examples");
+  EXPECT_EQ(list.code, 0);
+  for (int n = 1; n <= 4; ++n) {
+    EXPECT_NE(list.out.find(std::to_string(n) + "  The paper's"), std::string::npos) << list.out;
+    const CliResult one = whatnext("examples " + std::to_string(n));
+    EXPECT_EQ(one.code, 0);
+    EXPECT_EQ(one.out, slurp(fs::path(WHATNEXT_SOURCE_DIR) / "examples" / ("example" + std::to_string(n) + ".toml")));
+  }
+  EXPECT_EQ(whatnext("examples 5").code, 2);
+}
+
+TEST_F(Cli, KeysListsEveryInputKey) {
+  const CliResult r = whatnext("keys");
+  EXPECT_EQ(r.code, 0);
+  for (const whatnext::KeySpec& k : whatnext::known_keys()) {
+    EXPECT_NE(r.out.find(std::string(k.key) + " "), std::string::npos) << k.key;
+  }
+}
+
+// --- outputs on standard output --------------------------------------------------------------------------
+
+TEST_F(Cli, DashWritesToStandardOutputAndTheTimelineMovesToStandardError) {
+  const CliResult r = whatnext("run --example 2 --events -");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["outcome"]["type"], "lid_open");
+  EXPECT_NE(r.err.find("Outcome: lid open"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "-"));
+  const CliResult sweep = whatnext("sweep --example 2 --vary masses.lid=0.4:0.6:3 --out -");
+  ASSERT_EQ(sweep.code, 0) << sweep.err;
+  EXPECT_EQ(sweep.out.rfind("index,masses.lid,outcome,", 0), 0u) << sweep.out;
+  EXPECT_EQ(std::count(sweep.out.begin(), sweep.out.end(), '\n'), 4);
+}
+
+// --- numbers and titles ------------------------------------------------------------------------------------
+
+TEST_F(Cli, SweepGridValuesAreTheDecimalsOfTheGrid) {
+  // 0.62:0.9:29 steps by 0.01: every value is 0.62 + 0.01 j to the digit, printed as such.
+  const fs::path csv = dir_ / "s.csv";
+  ASSERT_EQ(whatnext("sweep --example 2 --vary geometry.rope_length=0.62:0.9:29 --out " + csv.string()).code, 0);
+  std::istringstream in(slurp(csv));
+  std::string line;
+  std::getline(in, line);
+  for (int j = 0; std::getline(in, line); ++j) {
+    const std::string value = line.substr(line.find(',') + 1, line.find(',', line.find(',') + 1) - line.find(',') - 1);
+    char expected[16];
+    std::snprintf(expected, sizeof expected, "%.2f", 0.62 + 0.01 * j);
+    std::string want = expected;
+    while (want.back() == '0') want.pop_back();
+    EXPECT_EQ(value, want) << line;
+  }
+}
+
+TEST_F(Cli, OptimizedTomlHasShortNumbers) {
+  const fs::path best = dir_ / "best.toml";
+  ASSERT_EQ(whatnext("optimize --example 2 --vary start.sandbag_x=-0.6:-0.1 --minimize final_r --out " +
+                     best.string()).code, 0);
+  const std::string text = slurp(best);
+  EXPECT_NE(text.find("\nsandbag = 0.6\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nlid_angle = 5\n"), std::string::npos) << text;
+  EXPECT_EQ(text.find("99999999"), std::string::npos) << text;
+  EXPECT_EQ(text.find("00000000"), std::string::npos) << text;
+}
+
+TEST_F(Cli, TitlesNameTheOverrides) {
+  const CliResult r = whatnext("run --example 4 --set masses.lid=0.7 --set 'geometry.hinge_offset=[0.64, 0.3]'");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("whatnext: example 4 with --set masses.lid=0.7, geometry.hinge_offset=[0.64, 0.3] (", 0), 0u)
+      << r.out;
+  const fs::path json = dir_ / "e.json";
+  ASSERT_EQ(whatnext("run -q --example 4 --set masses.lid=0.7 --events " + json.string()).code, 0);
+  EXPECT_EQ(nlohmann::json::parse(slurp(json))["input"], "example 4 with --set masses.lid=0.7");
+}
+
+// The timeline's columns line up whatever the names and values: each column starts (names) or
+// ends (numbers) at the same place in every row.
+void expect_aligned_timeline(const std::string& out) {
+  std::istringstream in(out);
+  std::string line;
+  std::getline(in, line);  // the title
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> rows;  // [begin, end) of each field
+  while (std::getline(in, line) && line.rfind("Outcome:", 0) != 0) {
+    std::vector<std::pair<std::size_t, std::size_t>> fields;
+    for (std::size_t i = 0; i < line.size();) {
+      if (line[i] == ' ') {
+        ++i;
+        continue;
+      }
+      const std::size_t end = std::min(line.find(' ', i), line.size());
+      fields.emplace_back(i, end);
+      i = end;
+    }
+    rows.push_back(fields);
+  }
+  ASSERT_GT(rows.size(), 2u);
+  // Header: "t [s]" and "r [m]" hold blanks; compare the event rows with each other and the
+  // header's name columns (event, mode) with them.
+  const auto& first = rows[1];
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    ASSERT_GE(rows[r].size(), 6u) << out;
+    EXPECT_EQ(rows[r][0].second, first[0].second) << out;  // t, right-aligned
+    EXPECT_EQ(rows[r][1].first, first[1].first) << out;    // event, left-aligned
+    EXPECT_EQ(rows[r][2].first, first[2].first) << out;    // mode
+    for (std::size_t c = 3; c < 6; ++c) EXPECT_EQ(rows[r][c].second, first[c].second) << out;  // numbers
+    EXPECT_LT(rows[r][1].second, rows[r][2].first) << out;  // a blank between name and mode
+  }
+  EXPECT_EQ(rows[0][2].first, first[1].first) << out;  // "event" heads its column
+}
+
+TEST_F(Cli, TimelineColumnsHoldLongNamesAndValues) {
+  const CliResult three = whatnext("run --example 3");  // r = 1929.5922 m at the end
+  ASSERT_EQ(three.code, 0) << three.err;
+  EXPECT_NE(three.out.find("1929.59"), std::string::npos);
+  expect_aligned_timeline(three.out);
+  const CliResult off = whatnext("run --example 3 --set seesaw.left_arm=1.5");
+  ASSERT_EQ(off.code, 0) << off.err;
+  EXPECT_NE(off.out.find("sandbag_falls_off"), std::string::npos) << off.out;
+  expect_aligned_timeline(off.out);
+}
+
+TEST_F(Cli, TheOutputsKeysAreDocumented) {
+  const std::string doc = slurp(fs::path(WHATNEXT_SOURCE_DIR) / "docs" / "inputs.md");
+  const fs::path json = dir_ / "e.json";
+  ASSERT_EQ(whatnext("run -q --example 1 --events " + json.string()).code, 0);
+  const auto events = nlohmann::json::parse(slurp(json));
+  for (const auto& [key, value] : events.items()) EXPECT_NE(doc.find("\"" + key + "\""), std::string::npos) << key;
+  for (const auto& [key, value] : events["events"][1].items()) {
+    EXPECT_NE(doc.find("\"" + key + "\""), std::string::npos) << key;
+  }
+  for (const char* word : {"`invalid`", "`failed`", "`event_limit`", "`outcome_t`", "`final_r`", "`error`",
+                           "[1e-15, 1e-3]", "`--force-large`", "**3**"}) {
+    EXPECT_NE(doc.find(word), std::string::npos) << word;
+  }
 }
 
 }  // namespace

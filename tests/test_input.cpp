@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 
@@ -183,7 +184,28 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"masses.sandbag=\"heavy\"", "masses.sandbag", "number"},
         BadCase{"masses.sandbag=heavy", "masses.sandbag", "heavy"},
         BadCase{"air.helium_density=2", "air.helium_density", "below air.density"},
-        BadCase{"geometry.rope_lenght=1", "unknown key", "geometry.rope_length"}),
+        BadCase{"geometry.rope_lenght=1", "unknown key", "geometry.rope_length"},
+        // The plausibility limits (docs/inputs.md "Limits").
+        BadCase{"geometry.lid_half_length=3e-4", "lid_half_length", "[0.001, 1000] m"},
+        BadCase{"geometry.rope_length=2000", "rope_length", "range the model is made for"},
+        BadCase{"masses.sandbag=1e308", "masses.sandbag", "[0.001, 1000] kg"},
+        BadCase{"masses.lid=1e-9", "masses.lid", "1e-09"},
+        BadCase{"air.density=1e5", "air.density", "range"},
+        BadCase{"run.gravity=1e6", "run.gravity", "range"},
+        BadCase{"run.t_max=1e5", "run.t_max", "[0, 10000] s"},
+        BadCase{"run.tolerance=1e-24", "run.tolerance", "[1e-15, 0.001]"},
+        BadCase{"run.tolerance=0.01", "run.tolerance", "0.01"},
+        BadCase{"start.sandbag_x=-1e-6", "start.sandbag_x", "-1e-06"},
+        BadCase{"start.sandbag_height=1e5", "start.sandbag_height", "range"},
+        BadCase{"balloon.drag_coefficient=100", "balloon.drag_coefficient", "range"},
+        BadCase{"damping.pivot=1e6", "damping.pivot", "1000000"},
+        BadCase{"radio.switch_offset=[1e4, 0]", "radio.switch_offset", "range"},
+        BadCase{"geometry.hinge_offset=[1e-4, 0]", "hinge_offset", "at least 0.001 m"},
+        // Kinds: flags and pairs say what they want; integers too large for a double are rounded.
+        BadCase{"radio.enabled=yes", "radio.enabled", "true or false (given 'yes')"},
+        BadCase{"balloon.drag=1", "balloon.drag", "true or false (given 1)"},
+        BadCase{"geometry.hinge_offset=0.7", "hinge_offset", "pair of numbers"},
+        BadCase{"masses.sandbag=9007199254740993", "masses.sandbag", "9007199254740992"}),
     [](const ::testing::TestParamInfo<BadCase>& info) {
       std::string name;
       for (const char* p = info.param.set; *p; ++p) name += std::isalnum(static_cast<unsigned char>(*p)) ? *p : '_';
@@ -240,6 +262,136 @@ TEST(Examples, ExampleTwoWithTheTextsRoundedOffsetsIsImpossible) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find("0.62 m < 0.63"), std::string::npos) << msg;
   }
+}
+
+// --- messages: one printable line ----------------------------------------------------------------
+
+TEST(Printable, EscapesControlBytesAndBrokenUtf8ButKeepsText) {
+  EXPECT_EQ(wn::printable("rk4"), "rk4");
+  EXPECT_EQ(wn::printable("a\nb\tc\r"), "a\\nb\\tc\\r");
+  EXPECT_EQ(wn::printable(std::string("\x1b[31m\0\x7f", 7)), "\\x1b[31m\\x00\\x7f");
+  EXPECT_EQ(wn::printable("\xcf\x86 = 5\xc2\xb0"), "\xcf\x86 = 5\xc2\xb0");  // phi = 5 degrees, valid UTF-8
+  EXPECT_EQ(wn::printable("\xff\xcf"), "\\xff\\xcf");                        // not UTF-8
+  EXPECT_EQ(wn::printable("\xc2\x85"), "\\xc2\\x85");                        // C1 control (NEL)
+}
+
+TEST(Printable, CutsLongTextInTheMiddleToTheGivenLength) {
+  const std::string long_text = "start-" + std::string(500, 'x') + "-end";
+  const std::string shown = wn::printable(long_text, 40);
+  EXPECT_EQ(shown.size(), 40u);
+  EXPECT_EQ(shown.rfind("start-", 0), 0u) << shown;
+  EXPECT_EQ(shown.substr(shown.size() - 4), "-end") << shown;
+  EXPECT_NE(shown.find("..."), std::string::npos);
+}
+
+// Every message about `text` must be one line, whatever the text holds.
+void expect_one_line(const std::function<void()>& f, const std::string& must_mention) {
+  try {
+    f();
+    FAIL() << "accepted";
+  } catch (const wn::InputError& e) {
+    const std::string msg = e.what();
+    for (const char c : msg) EXPECT_FALSE(static_cast<unsigned char>(c) < 0x20) << msg;
+    EXPECT_NE(msg.find(must_mention), std::string::npos) << msg;
+  }
+}
+
+TEST(Messages, ValuesWithControlBytesStayOnOneLine) {
+  expect_one_line([] { wn::build_scenario(wn::parse_toml("[run]\nintegrator = \"a\\nb\"\n", "t.toml")); },
+                  "given 'a\\nb'");
+  expect_one_line([] { wn::build_scenario(wn::parse_toml("[geometry]\nhinge_offset = [nan, 1]\n", "t.toml")); },
+                  "[nan, 1]");
+  expect_one_line([] { wn::parse_toml("[\"a\\u001bb\"]\nx = 1\n", "t.toml"); }, "a\\x1bb");
+  expect_one_line([] { wn::parse_toml("x = \"\x01\"\n", "t\nname.toml"); }, "t\\nname.toml");
+  wn::Config cfg = wn::example_config(1);
+  expect_one_line([&] { wn::apply_set(cfg, "masses.sandbag=1\nrun.t_max=nan"); }, "control characters");
+  EXPECT_FALSE(cfg.has("run.t_max") && std::isnan(cfg.values.at("run.t_max").number));
+}
+
+TEST(Toml, LargeIntegersAreReadAsTheNearestDouble) {
+  const wn::Config cfg = wn::parse_toml("[run]\nt_max = 9007199254740993\n[masses]\nlid = 1\n", "i.toml");
+  EXPECT_EQ(cfg.values.at("run.t_max").number, 9007199254740992.0);
+  EXPECT_EQ(cfg.values.at("masses.lid").number, 1.0);
+}
+
+TEST(Set, ValuesMustBeOneAssignmentOfTheRightKind) {
+  wn::Config cfg = wn::example_config(1);
+  expect_one_line([&] { wn::apply_set(cfg, "radio.enabled=yes"); }, "true or false");
+  expect_one_line([&] { wn::apply_set(cfg, "masses.sandbag="); }, "give a value");
+  expect_one_line([&] { wn::apply_set(cfg, "=1"); }, "KEY=VALUE");
+  expect_one_line([&] { wn::apply_set(cfg, "masses.sandbag=1 masses.lid=2"); }, "must be a number");
+  wn::apply_set(cfg, "radio.enabled = true");
+  EXPECT_TRUE(wn::build_scenario(cfg).machine.radio);
+}
+
+// --- the .inp, strictly --------------------------------------------------------------------------
+
+TEST(Inp, NothingMayFollowTheFifteenNumbers) {
+  EXPECT_NO_THROW(wn::parse_inp(std::string(kTemplateInp) + "\n  \n", "ok.inp"));
+  expect_one_line([] { wn::parse_inp(std::string(kTemplateInp) + "2.0\n", "x.inp"); }, "line 16");
+  expect_one_line([] { wn::parse_inp(std::string(kTemplateInp) + "end\n", "x.inp"); }, "one too many");
+}
+
+TEST(Inp, ANumberIsAWholeFortranRealFollowedByACommentOrNothing) {
+  auto with_first = [](const std::string& first) {
+    std::string text = kTemplateInp;
+    text.replace(0, text.find(' '), first);
+    return text;
+  };
+  for (const char* ok : {"1.0", "1.", ".5", "+1.5e0", "15d-1", "1.5D0"}) {
+    const wn::Config c = wn::parse_inp(with_first(ok), "x.inp");
+    EXPECT_GT(c.values.at("start.sandbag_height").number, 0.4) << ok;
+  }
+  EXPECT_DOUBLE_EQ(wn::parse_inp(with_first("15d-1"), "x.inp").values.at("start.sandbag_height").number, 1.5);
+  expect_one_line([&] { wn::parse_inp(with_first("1,5"), "x.inp"); }, "decimal comma");
+  for (const char* bad : {"1.0abc", "0x10", "nan", "inf", "1e", "--1", "."}) {
+    expect_one_line([&] { wn::parse_inp(with_first(bad), "x.inp"); }, "expected a number for hs");
+  }
+  // "1e" is a number followed by a comment only when a blank separates them.
+  EXPECT_NO_THROW(wn::parse_inp(with_first("1 e"), "x.inp"));
+}
+
+// --- input files that are not input files ----------------------------------------------------------
+
+TEST(InputFile, DirectoriesDevicesAndHugeFilesAreRefused) {
+  expect_one_line([] { wn::load_config_file("/"); }, "is a directory");
+  expect_one_line([] { wn::load_config_file("/dev/zero"); }, "at most");
+  expect_one_line([] { wn::load_config_file("/nonexistent/m.toml"); }, "cannot read");
+}
+
+// --- numbers written back ----------------------------------------------------------------------------
+
+TEST(Toml, ToTomlWritesTheShortestNumbersThatReadBack) {
+  wn::Config cfg = wn::example_config(2);
+  wn::set_number(cfg, "geometry.rope_length", 0.1 * 6.2);  // 0.6200000000000001, not 0.62
+  const std::string text = wn::to_toml(wn::build_scenario(cfg));
+  EXPECT_NE(text.find("sandbag = 0.6\n"), std::string::npos) << text;  // not 0.59999999999999998
+  EXPECT_EQ(text.find("99999"), std::string::npos) << text;
+  EXPECT_NE(text.find("rope_length = 0.6200000000000001\n"), std::string::npos) << text;
+  EXPECT_EQ(wn::shortest(0.1), "0.1");
+  EXPECT_EQ(std::stod(wn::shortest(0.1 + 0.2)), 0.1 + 0.2);
+}
+
+TEST(Limits, AFixedStepMustBeShorterThanADampersDecayTime) {
+  // The lid's inertia m_L (2 r_L)^2 / 3 = 0.5 * 0.16 / 3 kg m^2 decays under 1000 N m s/rad in
+  // 2.7e-5 s: a 1 ms Euler step is unstable, the adaptive integrator and a 10 us step are not.
+  wn::Config cfg = wn::example_config(1);
+  wn::apply_set(cfg, "damping.lid_hinge=1000");
+  EXPECT_NO_THROW(wn::build_scenario(cfg));
+  wn::apply_set(cfg, "run.integrator=euler");
+  expect_one_line([&] { wn::build_scenario(cfg); }, "2.67e-05 s");
+  wn::apply_set(cfg, "run.step=1e-5");
+  EXPECT_NO_THROW(wn::build_scenario(cfg));
+}
+
+TEST(Keys, EveryKeyHasAUnitKindAndADefaultToShow) {
+  for (const wn::KeySpec& k : wn::known_keys()) {
+    EXPECT_FALSE(k.default_text.empty()) << k.key;
+    EXPECT_FALSE(k.help.empty()) << k.key;
+  }
+  EXPECT_EQ(wn::nearest_word("--event", {"--events", "--csv", "--dat"}), "--events");
+  EXPECT_EQ(wn::nearest_word("rn", {"run", "plot", "sweep"}), "run");
+  EXPECT_EQ(wn::nearest_word("xyzzy", {"run", "plot", "sweep"}), "");
 }
 
 }  // namespace

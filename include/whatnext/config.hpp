@@ -2,6 +2,7 @@
 // all turned into a validated Scenario. Degrees live here and nowhere deeper.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -25,6 +26,7 @@ struct KeySpec {
   KeyKind kind;
   std::string_view unit;  // as written in inputs
   std::string_view help;
+  std::string_view default_text;  // the default as documented ("0.6", "r_L", "off")
 };
 // Every key an input may set, in documentation order.
 const std::vector<KeySpec>& known_keys();
@@ -47,8 +49,9 @@ class Config {
 };
 
 // Reads a TOML file or the paper's 15-line .inp file (chosen by content: an .inp starts with a
-// number). Throws InputError.
+// number). Only regular files (or pipes) of at most kMaxInputBytes are read. Throws InputError.
 Config load_config_file(const std::string& path);
+constexpr std::size_t kMaxInputBytes = 1 << 20;
 Config parse_toml(std::string_view text, const std::string& source);
 Config parse_inp(std::string_view text, const std::string& source);
 // The paper's example n (1..4), as shipped in examples/exampleN.toml.
@@ -66,5 +69,14 @@ std::string to_toml(const Scenario& scenario);
 
 // Closest known key to a misspelt one ("" if nothing is close).
 std::string nearest_key(std::string_view key);
+// Closest of `choices` to a misspelt word ("" if nothing is close).
+std::string nearest_word(std::string_view word, const std::vector<std::string>& choices);
+
+// Text from the user as it may appear in a one-line message: control bytes and invalid UTF-8
+// escaped (\n, \t, \x1b), and cut in the middle ("abc...xyz") beyond max_chars characters.
+std::string printable(std::string_view text, std::size_t max_chars = 64);
+
+// The shortest decimal text that reads back as the same double ("0.6", not 0.59999999999999998).
+std::string shortest(double value);
 
 }  // namespace whatnext

@@ -2,8 +2,10 @@
 // Files are written beside their target and renamed into place only when complete.
 #pragma once
 
-#include <fstream>
-#include <memory>
+#include <functional>
+#include <ostream>
+#include <stdexcept>
+#include <streambuf>
 #include <string>
 #include <vector>
 
@@ -11,22 +13,93 @@
 
 namespace whatnext {
 
-// A file that appears under its name only after commit(); otherwise nothing is left behind.
+// An output that could not be written once the work was done (disk full, /dev/full, a failing
+// pipe). Bad output paths are found before any work and are InputErrors.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// An output file, checked when constructed (before any work; InputError naming `option` and the
+// path otherwise) and complete only after commit():
+//  * "-" is standard output; /dev/stdout, /dev/stderr and /dev/fd/N are those open descriptors;
+//    an existing character device, pipe or socket (/dev/null, a FIFO) is written through in place.
+//    These are never replaced, and what was written before a failure stays written.
+//  * anything else is a regular file: symlinks are followed to their target, which is written as
+//    TARGET.part beside it and renamed over it by commit(), keeping an existing file's permissions.
+//    Nothing is left behind without commit(), nor when the process is interrupted (see
+//    install_interrupt_cleanup). A directory, or an existing file without write permission (even
+//    for root), is refused.
 class AtomicFile {
  public:
-  explicit AtomicFile(std::string path);
+  explicit AtomicFile(std::string path, std::string option = "output");
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
-  std::ofstream& stream() { return out_; }
+  std::ostream& stream() { return out_; }
   const std::string& path() const { return path_; }
+  // Where a writer that needs a file name (PLplot) writes instead of stream(); empty for outputs
+  // that are written through in place.
+  const std::string& temp_path() const { return tmp_; }
+  bool to_stdout() const;
+  // Sends everything written so far on its way; OutputError when that failed.
+  void flush();
+  // flush(), then the file appears under its name.
   void commit();
+  // Throws InputError when two of the files are the same (as given, through a symlink or a
+  // descriptor); several outputs may go to /dev/null.
+  static void check_distinct(const std::vector<const AtomicFile*>& files);
 
  private:
-  std::string path_, tmp_;
-  std::ofstream out_;
+  class FdBuf : public std::streambuf {
+   public:
+    FdBuf();
+    int fd = -1;
+    int error = 0;  // errno of the first failed write
+   protected:
+    int_type overflow(int_type ch) override;
+    int sync() override;
+    std::streamsize xsputn(const char* s, std::streamsize n) override;
+   private:
+    bool drain();
+    char buffer_[1 << 16];
+  };
+  std::string option_, path_, target_, tmp_;
+  bool through_ = false;  // written in place (no temporary)
+  bool owns_fd_ = false;
   bool committed_ = false;
+  unsigned long long dev_ = 0, ino_ = 0;  // identity, for check_distinct (0: a new file)
+  bool null_device_ = false;
+  FdBuf buf_;
+  std::ostream out_{&buf_};
+  [[noreturn]] void fail(const std::string& why) const;
 };
+
+// The regular file an output path names, symlinks followed, for writers that make and rename
+// their own temporary (the animation). InputError naming option when it is a directory, a device,
+// a pipe or read-only.
+std::string regular_output_target(const std::string& path, const std::string& option);
+
+// Interrupts (SIGINT, SIGTERM, SIGHUP) of a command that writes files. After this call an
+// interrupt removes every AtomicFile temporary in progress and every path handed to
+// remove_on_interrupt(), then ends the process by that signal, as it would have ended without.
+void install_interrupt_cleanup();
+// Files (or empty directories) other writers make, removed on an interrupt until forgotten.
+void remove_on_interrupt(const std::string& path);
+void forget_on_interrupt(const std::string& path);
+// Every NAME.part that appears in dir after this call is removed on an interrupt (for writers
+// that name their own temporaries, like the plots).
+void remove_new_parts_on_interrupt(const std::string& dir);
+// While set, an interrupt only calls stop(signal) on a watcher thread (the sweep stops and writes
+// what it has), once; temporaries are then cleaned up by their owners. An empty function:
+// interrupts end the process again.
+void set_interrupt_handler(std::function<void(int)> stop);
+
+// The writers below refuse states that are not finite: they throw SimulationError (from inside
+// simulate() for the observers), so a run that turned NaN is reported as failed, never written.
+// This is their check, for callers that keep a Result: SimulationError if an event's state is not
+// finite.
+void require_finite(const Result& result);
 
 // "lid open at 0.820 s" and its relatives.
 std::string outcome_sentence(const Result& result);

@@ -57,10 +57,9 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
   check_heatmap_plan(plan, "--heatmap");
   const Range& rx = plan.ranges[0];
   const Range& ry = plan.ranges[1];
-  const std::string tmp = path + ".part";
   {
     // PLplot ends the process when it cannot open its file, so find that out first.
-    std::ofstream probe(tmp, std::ios::binary | std::ios::trunc);
+    std::ofstream probe(path, std::ios::binary | std::ios::trunc);
     if (!probe) throw std::runtime_error(fmt::format("{}: cannot write this file", path));
   }
 
@@ -88,7 +87,7 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
   }
 
   plsdev("pngcairo");
-  plsfnam(tmp.c_str());
+  plsfnam(path.c_str());
   plspage(0.0, 0.0, 960, 720, 0, 0);
   plscolbg(255, 255, 255);
   plscol0(kInk, 0, 0, 0);
@@ -146,7 +145,7 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
   std::string legend;
   if (any_never) legend += fmt::format("grey: no {}", value);
   if (any_closed) legend += fmt::format("{}hatched: the lid never opens", legend.empty() ? "" : "   ");
-  if (any_invalid) legend += fmt::format("{}black: invalid inputs", legend.empty() ? "" : "   ");
+  if (any_invalid) legend += fmt::format("{}black: invalid inputs or failed runs", legend.empty() ? "" : "   ");
   if (!legend.empty()) plmtex("b", 5.2, 0.0, 0.0, legend.c_str());
 
   // Colour bar: a column of thin slices over the value's range.
@@ -161,11 +160,6 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
   plbox("bc", 0.0, 0, "bcmstv", 0.0, 0);
   plmtex("t", 1.0, 0.5, 0.5, with_unit(value).c_str());
   plend();
-
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(fmt::format("{}: writing failed", path));
-  }
 }
 
 }  // namespace whatnext::explore

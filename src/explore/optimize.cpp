@@ -133,6 +133,11 @@ OptimizeResult optimize(const Config& base, const OptimizeOptions& opt) {
       // Round-off limits and the like end this search; the best machine so far is kept.
     }
   }
+  if (opt.value != "final_r" && opt.value != "final_phi_l_deg") {
+    Config best = base;
+    for (std::size_t d = 0; d < dims; ++d) set_number(best, plan.ranges[d].key, res.best[d]);
+    res.at_time_limit = res.value >= build_scenario(best).run.t_max * (1.0 - 1e-3);
+  }
   return res;
 }
 

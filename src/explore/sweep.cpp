@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <iterator>
 
+#include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
 
 namespace whatnext::explore {
@@ -38,6 +39,15 @@ bool parse_double(std::string_view text, double& out) {
 }
 
 std::string num(double v) { return fmt::format("{}", v); }
+
+// lo + (hi - lo) f without overflow when hi - lo is beyond the largest double.
+double between(double lo, double hi, double f) {
+  const double span = hi - lo;
+  return std::isfinite(span) ? lo + span * f : lo * (1.0 - f) + hi * f;
+}
+
+// The value rounded to 15 significant digits: what a user would have typed for it.
+double tidy(double v) { return std::strtod(fmt::format("{:.15g}", v).c_str(), nullptr); }
 
 std::string csv_quote(std::string_view s) {
   if (s.find_first_of(",\"\n\r") == std::string_view::npos) return std::string(s);
@@ -65,6 +75,7 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
     set_values(work, keys, values);
     const Scenario sc = build_scenario(work);
     const Result res = simulate(sc);
+    require_finite(res);  // a NaN state is a failed run, not a row of nan
     for (const Event& e : res.events) {
       const auto idx = static_cast<std::size_t>(e.type);
       if (idx < o.first.size() && std::isnan(o.first[idx])) o.first[idx] = e.t;
@@ -77,6 +88,9 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
     o.valid = true;
   } catch (const InputError& e) {
     o.error = e.what();
+  } catch (const SimulationError& e) {
+    o.failed = true;
+    o.error = e.what();
   } catch (const std::exception& e) {  // a bug, but one machine must not sink the whole sweep
     o.error = fmt::format("internal error: {}", e.what());
   }
@@ -86,7 +100,7 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
 }  // namespace
 
 Range parse_range(std::string_view spec, std::string_view option, bool need_count) {
-  const std::string where = fmt::format("{} {}", option, spec);
+  const std::string where = fmt::format("{} {}", option, printable(spec));
   const std::string_view form = need_count ? "KEY=A:B:N" : "KEY=A:B";
   const auto eq = spec.find('=');
   if (eq == std::string_view::npos) {
@@ -97,8 +111,8 @@ Range parse_range(std::string_view spec, std::string_view option, bool need_coun
   if (!find_key(r.key)) {
     const std::string near = nearest_key(r.key);
     throw InputError(near.empty()
-                         ? fmt::format("{}: unknown key '{}'", where, r.key)
-                         : fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, r.key, near));
+                         ? fmt::format("{}: unknown key '{}'", where, printable(r.key))
+                         : fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, printable(r.key), near));
   }
   try {  // set_number knows which kinds of key hold one number (text, pairs and flags do not)
     Config probe;
@@ -122,10 +136,10 @@ Range parse_range(std::string_view spec, std::string_view option, bool need_coun
     throw InputError(fmt::format("{}: expected {}: a grid needs the number of values N", where, form));
   }
   if (!parse_double(parts[0], r.lo)) {
-    throw InputError(fmt::format("{}: A must be a finite number (given '{}')", where, trim(parts[0])));
+    throw InputError(fmt::format("{}: A must be a finite number (given '{}')", where, printable(trim(parts[0]))));
   }
   if (!parse_double(parts[1], r.hi)) {
-    throw InputError(fmt::format("{}: B must be a finite number (given '{}')", where, trim(parts[1])));
+    throw InputError(fmt::format("{}: B must be a finite number (given '{}')", where, printable(trim(parts[1]))));
   }
   if (r.lo > r.hi) {
     throw InputError(fmt::format("{}: needs A <= B (given A = {}, B = {})", where, num(r.lo), num(r.hi)));
@@ -133,7 +147,7 @@ Range parse_range(std::string_view spec, std::string_view option, bool need_coun
   if (count_given) {
     double n = 0.0;
     if (!parse_double(parts[2], n) || n != std::floor(n) || n < 1.0 || n > 1e9) {
-      throw InputError(fmt::format("{}: N must be a whole number >= 1 (given '{}')", where, trim(parts[2])));
+      throw InputError(fmt::format("{}: N must be a whole number >= 1 (given '{}')", where, printable(trim(parts[2]))));
     }
     r.n = static_cast<int>(n);
   }
@@ -176,7 +190,7 @@ Machines::Machines(const Plan& plan) : plan_(plan) {
       for (std::int64_t i = 0; i < size_; ++i) {
         const double u = (static_cast<double>(perm[static_cast<std::size_t>(i)]) + unit(rng)) /
                          static_cast<double>(size_);
-        lhs_[static_cast<std::size_t>(i) * dims + d] = r.lo + (r.hi - r.lo) * u;
+        lhs_[static_cast<std::size_t>(i) * dims + d] = between(r.lo, r.hi, u);
       }
     }
     return;
@@ -204,10 +218,11 @@ void Machines::point(std::int64_t i, double* out) const {
     const Range& r = plan_.ranges[d];
     const std::int64_t j = i % r.n;
     i /= r.n;
-    // The ends are exactly A and B; a single value is A.
+    // The ends are exactly A and B; a single value is A. Inner values are rounded to 15 digits,
+    // so 0.62:0.9:29 gives 0.82 rather than the 0.8200000000000001 that the arithmetic makes.
     out[d] = r.n == 1 ? r.lo
              : j == r.n - 1 ? r.hi
-                            : r.lo + (r.hi - r.lo) * static_cast<double>(j) / static_cast<double>(r.n - 1);
+                            : tidy(between(r.lo, r.hi, static_cast<double>(j) / static_cast<double>(r.n - 1)));
   }
 }
 
@@ -241,8 +256,10 @@ void check_value_name(std::string_view name, std::string_view option) {
   for (const std::string& v : value_names()) {
     if (v == name) return;
   }
-  throw InputError(fmt::format("{} {}: unknown value (use outcome_t, final_r, final_phi_l_deg or an "
-                               "event name such as lid_open)", option, name));
+  const std::string near = nearest_word(name, value_names());
+  throw InputError(fmt::format("{} {}: unknown value{} (use outcome_t, final_r, final_phi_l_deg or an event name "
+                               "such as lid_open)", option, printable(name),
+                               near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near)));
 }
 
 double value_of(const Outcome& o, std::string_view name) {
@@ -343,7 +360,7 @@ void write_csv(std::ostream& out, const Machines& machines, const SweepResult& r
       }
       put(",\n");
     } else {
-      put(",invalid,,,");
+      put(o.failed ? ",failed,,," : ",invalid,,,");
       for (std::size_t k = 0; k < o.first.size(); ++k) put(",");
       put(",");
       put(csv_quote(o.error));

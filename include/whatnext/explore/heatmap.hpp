@@ -13,8 +13,9 @@ void check_heatmap_plan(const Plan& plan, std::string_view option);
 
 // Draws `value` (see value_names()) over the plan's two keys: one cell per machine, coloured by
 // the value; machines where it never happened in grey, machines that never open the lid hatched
-// (when the value is not lid_open itself), invalid machines in black, machines not run (an
-// interrupted sweep) left white. The file appears only when complete.
+// (when the value is not lid_open itself), invalid machines and failed runs in black, machines not
+// run (an interrupted sweep) left white. Writes path as it draws: give it an AtomicFile's
+// temp_path() for a file that appears only when complete.
 void draw_heatmap(const std::string& path, const Machines& machines, const SweepResult& result,
                   std::string_view value);
 

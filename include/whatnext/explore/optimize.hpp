@@ -27,6 +27,9 @@ struct OptimizeResult {
   Outcome outcome;             // of the best machine
   double value = 0.0;          // its value
   std::int64_t evaluations = 0;
+  // A time pushed to within 0.1 % of the best machine's run.t_max: the run's end cuts the value
+  // off, so this is no optimum (maximising lid_open finds "as late as the run allows").
+  bool at_time_limit = false;
 };
 
 // Machines where the value did not happen (or whose inputs are invalid) get a penalty worse than

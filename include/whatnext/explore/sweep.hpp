@@ -63,7 +63,8 @@ const std::vector<EventType>& event_types();
 // What became of one machine.
 struct Outcome {
   bool valid = false;
-  std::string error;  // the InputError message when the inputs were invalid
+  bool failed = false;  // valid inputs, but the run stopped with a SimulationError
+  std::string error;    // the InputError or SimulationError message when not valid
   EventType outcome = EventType::timeout;
   double outcome_t = 0.0;
   double final_r = 0.0;          // sandbag's distance from the pivot when the run ended [m]
@@ -71,8 +72,8 @@ struct Outcome {
   std::vector<double> first;     // per event_types() entry: first occurrence [s], NaN if none
 };
 
-// Builds the machine (base with the given values set) and runs it. Invalid inputs give an
-// Outcome with valid == false and the reason, never an exception.
+// Builds the machine (base with the given values set) and runs it. Invalid inputs and failed runs
+// give an Outcome with valid == false and the reason, never an exception.
 Outcome evaluate(const Config& base, const std::vector<std::string>& keys, const double* values);
 
 // Names usable as a value of an outcome: "outcome_t", "final_r", "final_phi_l_deg" and every
@@ -101,8 +102,9 @@ struct SweepResult {
 SweepResult run(const Config& base, const Machines& machines, const RunOptions& options);
 
 // CSV with a header and one row per finished machine in index order: index, the varied values,
-// outcome, outcome_t, final_r, final_phi_l_deg, one column per event type (first time, empty if
-// none), error.
+// outcome (an event name, "invalid" or "failed"), outcome_t, final_r, final_phi_l_deg, one column
+// per event type (first time, empty if none), error. Numbers in the shortest form that reads back
+// as the same double.
 void write_csv(std::ostream& out, const Machines& machines, const SweepResult& result);
 
 }  // namespace whatnext::explore

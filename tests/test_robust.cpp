@@ -1,0 +1,351 @@
+// The promise under abuse (issue 12): bad input gives one printable line, exit code 2 and no file;
+// outputs are checked before any work, special files are written through and never replaced,
+// symlinks are followed, and an interrupt leaves no temporary behind.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "cli_runner.hpp"
+#include "whatnext/config.hpp"
+#include "whatnext/output.hpp"
+
+namespace fs = std::filesystem;
+using whatnext::test_support::CliResult;
+using whatnext::test_support::interrupt_when;
+using whatnext::test_support::slurp;
+using whatnext::test_support::spawn_whatnext;
+
+namespace {
+
+bool one_printable_line(const std::string& s) {
+  if (s.empty() || s.back() != '\n') return false;
+  for (std::size_t i = 0; i + 1 < s.size(); ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c < 0x20 || c == 0x7f) return false;
+  }
+  return true;
+}
+
+class Abuse : public whatnext::test_support::CliTest {
+ protected:
+  // Exit 2, one printable line that mentions `must_mention`, nothing on stdout, and none of the
+  // files in `must_not_exist` (nor their temporaries).
+  void expect_rejected(const std::string& args, const std::string& must_mention,
+                       const std::vector<fs::path>& must_not_exist = {}) {
+    const CliResult r = whatnext(args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_TRUE(one_printable_line(r.err)) << r.err;
+    EXPECT_NE(r.err.find(must_mention), std::string::npos) << r.err;
+    EXPECT_LE(r.err.size(), 520u) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    for (const fs::path& p : must_not_exist) {
+      EXPECT_FALSE(fs::exists(fs::symlink_status(p))) << p;
+      EXPECT_FALSE(fs::exists(p.string() + ".part")) << p;
+    }
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+};
+
+// --- messages --------------------------------------------------------------------------------
+
+TEST_F(Abuse, ControlBytesInValuesAreEscapedOnOneLine) {
+  const std::string csv = path("r.csv");
+  expect_rejected("run " + write("a.toml", "[run]\nintegrator = \"a\\nb\\u001b[31m\"\n").string() + " --csv " + csv,
+                  "a\\nb\\x1b[31m", {csv});
+  expect_rejected("run " + write("b.toml", "[geometry]\nhinge_offset = [nan, 1]\n").string(), "hinge_offset");
+  std::string inp = "1.0\n-0.3\n\x1b[2J-25\n";
+  expect_rejected("run " + write("c.inp", inp).string(), "\\x1b[2J-25");
+  // A --set with a newline must not smuggle in a second assignment.
+  for (const char* set : {"masses.sandbag=1\nrun.t_max=nan", "run.integrator=rk4\x01"}) {
+    const CliResult r = whatnext_argv({"run", "--example", "1", "--set", set, "--csv", csv});
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_TRUE(one_printable_line(r.err)) << r.err;
+    EXPECT_NE(r.err.find("one line without control characters"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(csv));
+  }
+}
+
+TEST_F(Abuse, LongValuesAreCut) {
+  const std::string word(5000, 'x');
+  const CliResult r = whatnext("run --example 1 --set run.integrator=" + word);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(one_printable_line(r.err)) << r.err;
+  EXPECT_LT(r.err.size(), 520u);
+  EXPECT_NE(r.err.find("..."), std::string::npos) << r.err;
+}
+
+TEST_F(Abuse, HugeIntegersAndWrongKindsNameTheRule) {
+  expect_rejected("run --example 1 --set masses.sandbag=9007199254740993", "masses.sandbag must be within");
+  expect_rejected("run --example 1 --set 'geometry.hinge_offset=[9007199254740993,1]'", "hinge_offset");
+  expect_rejected("run --example 1 --set radio.enabled=yes", "radio.enabled must be true or false (given 'yes')");
+  expect_rejected("run --example 1 --set geometry.hinge_offset=left", "must be a pair of numbers");
+  expect_rejected("run --example 1 --set masses.sandbag=", "give a value");
+  expect_rejected("run --example 1 --set =3", "expected KEY=VALUE");
+}
+
+TEST_F(Abuse, MisplacedArgumentsAreNamed) {
+  expect_rejected("run --example 0", "examples 1 to 4 (given '0')");
+  expect_rejected("run --example x", "(given 'x')");
+  expect_rejected("run --example 1 --set masses.lid=1 masses.sandbag=2", "write --set before each");
+  const std::string ev = path("ev.json");
+  expect_rejected("run --example 1 --event " + ev, "did you mean '--events'?", {ev});
+  expect_rejected("sweep --example 1 --vary masses.lid=1:2:2 --outt " + path("s.csv"), "did you mean '--out'?");
+}
+
+// --- inputs that are not input files -----------------------------------------------------------
+
+TEST_F(Abuse, InputsThatAreNotFilesAreRefusedAtOnce) {
+  expect_rejected("run " + dir_.string(), "is a directory");
+  // /dev/zero never ends: it must be refused after at most the size cap, not read to exhaustion.
+  expect_rejected("run /dev/zero", "at most");
+  const fs::path big = dir_ / "big.toml";
+  {
+    std::ofstream out(big);
+    out << "# " << std::string(whatnext::kMaxInputBytes, 'x') << "\n";
+  }
+  expect_rejected("run " + big.string(), "at most");
+}
+
+TEST_F(Abuse, InpFilesAreReadStrictly) {
+  const std::string base = "1.0\n-0.3\n-25.0\n5.0\n0.8\n1.0\n27.0\n0.2\n0.6\n0.6\n0.5\n1.29\n0.18\n1.0\n0.001\n";
+  ASSERT_EQ(whatnext("run -q " + write("ok.inp", base + "\n\n").string()).code, 0);
+  expect_rejected("run " + write("extra.inp", base + "7\n").string(), "line 16");
+  std::string comma = base;
+  comma.replace(0, 3, "1,5");
+  expect_rejected("run " + write("comma.inp", comma).string(), "decimal comma");
+  std::string garbage = base;
+  garbage.replace(0, 3, "1.0x");
+  expect_rejected("run " + write("garbage.inp", garbage).string(), "'1.0x'");
+}
+
+// --- plausibility limits ------------------------------------------------------------------------
+
+TEST_F(Abuse, InputsWhereTheModelBreaksAreRefused) {
+  const std::string csv = path("r.csv");
+  expect_rejected("run --example 1 --set masses.sandbag=1e308 --csv " + csv, "masses.sandbag", {csv});
+  expect_rejected("run --example 1 --set geometry.lid_half_length=3e-4 --csv " + csv, "lid_half_length", {csv});
+  expect_rejected("run --example 1 --set run.tolerance=1e-24", "run.tolerance must be in [1e-15, 0.001]");
+  expect_rejected("run --example 1 --set run.tolerance=0.01", "run.tolerance");
+  expect_rejected("run --example 1 --set run.t_max=1e9", "run.t_max");
+}
+
+TEST_F(Abuse, SweepValuesStayFiniteOverTheWholeRangeOfDoubles) {
+  // Each machine is invalid (and says why in its row), but no varied value may overflow.
+  const fs::path csv = dir_ / "s.csv";
+  const CliResult r = whatnext("sweep --example 1 --vary masses.sandbag=-1.7e308:1.7e308:3 --out " + csv.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string text = slurp(csv);
+  EXPECT_EQ(text.find("inf"), std::string::npos) << text;
+  EXPECT_EQ(text.find("nan"), std::string::npos) << text;
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 4) << text;
+  EXPECT_NE(text.find("\n1,0,invalid,"), std::string::npos) << text;
+}
+
+// --- outputs -----------------------------------------------------------------------------------
+
+TEST_F(Abuse, BadOutputsAreFoundBeforeAnyWork) {
+  const std::string good = path("good.csv"), json = path("e.json");
+  fs::create_directories(dir_ / "existing");
+  expect_rejected("run --example 1 --csv " + good + " --events " + path("existing"), "is a directory", {good});
+  expect_rejected("run --example 1 --csv " + good + " --events " + good, "the same file", {good});
+  expect_rejected("run --example 1 --csv " + good + " --dat " + dir_.string() + "/./good.csv", "the same file",
+                  {good});
+  expect_rejected("run --example 1 --csv " + good + " --events ''", "give a file name", {good});
+  expect_rejected("run --example 1 --csv /nonexistent-dir/x.csv --events " + json, "cannot write here", {json});
+  // A directory for --plots is not made when another output is bad, and made ones go again.
+  expect_rejected("run --example 1 --plots " + path("newdir") + " --csv /nonexistent-dir/x.csv", "x.csv",
+                  {dir_ / "newdir"});
+  expect_rejected("run --example 1 --plots " + path("made/deeper") + " --animate /nonexistent-dir/x.gif", "x.gif",
+                  {dir_ / "made"});
+  const std::string out = path("s.csv");
+  expect_rejected("sweep --example 1 --vary masses.lid=0.2:1:3 --out " + path("existing"), "is a directory");
+  expect_rejected("sweep --example 1 --vary masses.lid=0.2:1:3 --out ''", "give a file name");
+  const std::string png = path("h.png");
+  expect_rejected("sweep --example 1 --vary masses.lid=0.2:1:3 --vary masses.sandbag=1:2:2 --out " + png +
+                      " --heatmap " + png, "the same file", {png});
+  expect_rejected("sweep --example 1 --vary masses.lid=0.2:1:3 --vary masses.sandbag=1:2:2 --out " + out +
+                      " --heatmap " + path("h.jpg"), "PNG", {out, dir_ / "h.jpg"});
+  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --out " + path("existing"),
+                  "is a directory");
+}
+
+TEST_F(Abuse, ReadOnlyFilesAreNotReplaced) {
+  const fs::path ro = write("ro.csv", "keep me\n");
+  fs::permissions(ro, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  expect_rejected("run --example 1 --csv " + ro.string(), "read-only");
+  EXPECT_EQ(slurp(ro), "keep me\n");
+}
+
+TEST_F(Abuse, SymlinksAreFollowedAndStayLinks) {
+  const fs::path real = dir_ / "real.csv", link = dir_ / "link.csv", json = dir_ / "e.json";
+  fs::create_symlink("real.csv", link);
+  ASSERT_EQ(whatnext("run -q --example 1 --csv " + link.string() + " --events " + json.string()).code, 0);
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(slurp(real).rfind("t_s,event,", 0), 0u);
+  // Through a link, the same file is still the same file.
+  expect_rejected("run --example 1 --csv " + link.string() + " --dat " + real.string(), "the same file");
+}
+
+TEST_F(Abuse, StdoutAndPipesAreWrittenThroughNotReplaced) {
+  // `-` and /dev/stdout are standard output: here a file the shell opened, which must stay the
+  // same file (a rename would swap it for another) and receive the JSON; the timeline goes to
+  // standard error.
+  const fs::path out = dir_ / "stdout.txt";
+  const CliResult r = whatnext("run --example 1 --events /dev/stdout");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("{", 0), 0u) << r.out;
+  EXPECT_NE(r.err.find("Outcome: lid open"), std::string::npos) << r.err;
+  const CliResult dash = whatnext("run --example 1 --csv -");
+  ASSERT_EQ(dash.code, 0) << dash.err;
+  const fs::path file = dir_ / "file.csv";
+  ASSERT_EQ(whatnext("run -q --example 1 --csv " + file.string()).code, 0);
+  EXPECT_EQ(dash.out, slurp(file));
+  // A FIFO stays a FIFO and its reader gets every byte.
+  const fs::path fifo = dir_ / "fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const fs::path got = dir_ / "got.csv";
+  const int rc = std::system(("cat " + fifo.string() + " > " + got.string() + " & " + WHATNEXT_CLI +
+                              " run -q --example 1 --csv " + fifo.string() + " > /dev/null; wait")
+                                 .c_str());
+  EXPECT_EQ(rc, 0);
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_EQ(slurp(got), slurp(file));
+}
+
+TEST(AtomicFile, AFailedWriteIsAnOutputErrorAndNothingIsCommitted) {
+  // A pipe whose reader is gone: every write fails (EPIPE, with SIGPIPE ignored here).
+  int fds[2];
+  ASSERT_EQ(pipe(fds), 0);
+  close(fds[0]);
+  const auto old = signal(SIGPIPE, SIG_IGN);
+  {
+    whatnext::AtomicFile f("/dev/fd/" + std::to_string(fds[1]), "--csv");
+    f.stream() << std::string(1 << 20, 'x');
+    EXPECT_THROW(f.commit(), whatnext::OutputError);
+  }
+  signal(SIGPIPE, old);
+  close(fds[1]);
+}
+
+TEST(Writers, ANonFiniteStateIsAFailedRunNotAFile) {
+  // The CSV and .dat writers and the JSON refuse NaN instead of writing 0 or null; the run then
+  // ends with SimulationError, which the command reports with exit code 3 and no file.
+  whatnext::Snapshot s;
+  s.phi_l = std::nan("");
+  std::ostringstream out;
+  whatnext::CsvWriter csv(out);
+  EXPECT_THROW(csv.on_sample(s), whatnext::SimulationError);
+  whatnext::DatWriter dat(out);
+  EXPECT_THROW(dat.on_sample(s), whatnext::SimulationError);
+  whatnext::Result r;
+  whatnext::Event e;
+  e.type = whatnext::EventType::timeout;
+  e.after = s;
+  r.events.push_back(e);
+  EXPECT_THROW(whatnext::outcome_sentence(r), whatnext::SimulationError);
+  r.events.back().after.phi_l = 0.1;
+  r.events.back().after.tension = INFINITY;
+  EXPECT_THROW(whatnext::events_json(r, whatnext::Scenario{}, "x"), whatnext::SimulationError);
+}
+
+// --- big jobs ------------------------------------------------------------------------------------
+
+TEST_F(Abuse, HugeOutputsNeedToBeAskedFor) {
+  const std::string csv = path("r.csv");
+  expect_rejected("run --example 1 --set masses.sandbag=0.001 --set run.t_max=9999 --csv " + csv, "--force-large",
+                  {csv});
+  expect_rejected("sweep --example 1 --samples 20000000 --vary masses.lid=0.2:1 --vary masses.sandbag=0.2:1 "
+                  "--vary start.sandbag_x=-1:-0.1 --vary start.sandbag_height=0.5:2 --out " + csv,
+                  "--force-large", {csv});
+  expect_rejected("plot --example 1 --set run.t_max=9999 --out " + path("p"), "--force-large", {dir_ / "p"});
+}
+
+// --- minor items -----------------------------------------------------------------------------------
+
+TEST_F(Abuse, OptionsThatWouldBeIgnoredOrMeaninglessAreRefused) {
+  const std::string csv = path("s.csv"), toml = path("b.toml");
+  expect_rejected("sweep --example 1 --samples 10 --vary masses.lid=0.2:1:5 --out " + csv, "without a count", {csv});
+  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1:5 --minimize lid_open --out " + toml,
+                  "without a count", {toml});
+  expect_rejected("sweep --example 1 --vary masses.lid=0.2:1:3 --vary masses.sandbag=1:2:2 --heatmap " +
+                      path("h.png") + " --heatmap-value radio_on --out " + csv,
+                  "radio is off", {csv, dir_ / "h.png"});
+  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize radio_on --out " + toml, "radio is off",
+                  {toml});
+}
+
+TEST_F(Abuse, MaximisingATimeThatOnlyTheRunsEndLimitsFindsNoOptimum) {
+  // Example 2 with longer ropes opens the lid ever later, up to ropes that never open it: the
+  // "latest lid_open" is wherever the run's end cuts it off.
+  const fs::path toml = dir_ / "best.toml";
+  const CliResult r =
+      whatnext("optimize --example 2 --vary geometry.rope_length=0.62:1.0 --maximize lid_open --out " + toml.string());
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("run.t_max"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(toml));
+  EXPECT_FALSE(fs::exists(toml.string() + ".part"));
+}
+
+// --- interrupts ----------------------------------------------------------------------------------
+
+TEST_F(Abuse, InterruptedRunsLeaveNoTemporary) {
+  // The events go to a FIFO nobody reads, so `run` waits in its checks with the CSV's temporary
+  // already open: a signal then must remove it and end the process by that signal.
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    const fs::path csv = dir_ / "r.csv", fifo = dir_ / "fifo";
+    fs::remove(fifo);
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    const pid_t pid = spawn_whatnext({"run", "--example", "1", "--csv", csv.string(), "--events", fifo.string()});
+    const int status = interrupt_when(pid, csv.string() + ".part", sig);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << sig << " " << status;
+    EXPECT_FALSE(fs::exists(csv.string() + ".part")) << sig;
+    EXPECT_FALSE(fs::exists(csv)) << sig;
+  }
+}
+
+TEST_F(Abuse, InterruptedAnimationLeavesNoTemporary) {
+  const fs::path gif = dir_ / "a.gif";
+  const pid_t pid = spawn_whatnext({"animate", "--example", "4", "--out", gif.string()});
+  const int status = interrupt_when(pid, gif.string() + ".part", SIGTERM);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+  EXPECT_FALSE(fs::exists(gif.string() + ".part"));
+  EXPECT_FALSE(fs::exists(gif));
+}
+
+TEST_F(Abuse, InterruptedOptimisationLeavesNoTemporary) {
+  const fs::path toml = dir_ / "best.toml";
+  const pid_t pid = spawn_whatnext({"optimize", "--example", "3", "--vary", "geometry.rope_length=0.9:1.1",
+                                    "--vary", "masses.lid=0.3:0.7", "--grid", "300", "--threads", "1",
+                                    "--minimize", "outcome_t", "--out", toml.string()});
+  const int status = interrupt_when(pid, toml.string() + ".part", SIGINT);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << status;
+  EXPECT_FALSE(fs::exists(toml.string() + ".part"));
+  EXPECT_FALSE(fs::exists(toml));
+}
+
+TEST_F(Abuse, TerminatedOrHungUpSweepsKeepAValidPartialCsv) {
+  for (const int sig : {SIGTERM, SIGHUP}) {
+    const fs::path csv = dir_ / ("s" + std::to_string(sig) + ".csv");
+    const pid_t pid = spawn_whatnext({"sweep", "--example", "3", "--vary", "geometry.rope_length=0.9:1.1:200",
+                                      "--vary", "masses.lid=0.3:0.7:200", "--threads", "1", "--out", csv.string()});
+    const int status = interrupt_when(pid, csv.string() + ".part", sig);
+    ASSERT_TRUE(WIFEXITED(status)) << status;
+    EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
+    EXPECT_FALSE(fs::exists(csv.string() + ".part"));
+    const std::string text = slurp(csv);
+    ASSERT_FALSE(text.empty());
+    EXPECT_EQ(text.back(), '\n');
+    const auto rows = std::count(text.begin(), text.end(), '\n') - 1;
+    EXPECT_GT(rows, 0);
+    EXPECT_LT(rows, 40000);
+  }
+}
+
+}  // namespace
