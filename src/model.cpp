@@ -633,6 +633,43 @@ bool Model::law_velocity(const Kinematics& k, bool bag, contact::Coords& u) cons
   return true;
 }
 
+Kinematics Model::touch_exactly(const Discrete& d, contact::Set touch, Kinematics k) const {
+  using contact::has;
+  const bool resting = has(touch, kLid);
+  if (resting && k.phi_l < phi_l0_) k.phi_l = phi_l0_;
+  k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
+  if (has(touch, kRope) && std::fabs(rope_.span(k.phi_s, k.phi_l) - rope_.rope_length()) > 0.0) {
+    double phi = 0.0;
+    if (!resting) {  // the lid moves onto the straight rope
+      if (rope_.lid_angle_for(k.phi_s, phi) && rope_.lid_below_rope(k.phi_s, phi) &&
+          std::fabs(phi - k.phi_l) < 1e-3) {
+        k.phi_l = phi;
+        k.cos_l = std::cos(phi), k.sin_l = std::sin(phi);
+      }
+    } else if (rope_.seesaw_angle_for(k.phi_l, RopeGeometry::side_of(rope_.lid_edge(k.phi_l),
+                                                                       rope_.seesaw_end(k.phi_s)), phi) &&
+               std::fabs(phi - k.phi_s) < 1e-3) {
+      // The lid rests: the seesaw turns onto the straight rope, a massless one with the sandbag
+      // it carries (turned about the pivot with it).
+      if (!d.heavy && d.on_seesaw) {
+        const double c = std::cos(phi - k.phi_s), s = std::sin(phi - k.phi_s);
+        const double x = k.x * c - k.h * s, h = k.x * s + k.h * c;
+        const double vx = k.vx * c - k.vh * s, vh = k.vx * s + k.vh * c;
+        k.x = x, k.h = h, k.vx = vx, k.vh = vh;
+      }
+      k.phi_s = phi;
+    }
+  }
+  k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s);
+  if (has(touch, kBag)) {
+    // The sandbag onto the arm's line, along its normal.
+    const double above = height_above_arm(k);
+    if (std::fabs(above) < 1e-3) k.x += above * k.sin_s, k.h -= above * k.cos_s;
+  }
+  k.r = along_arm(k);
+  return k;
+}
+
 void Model::set_contacts(Discrete& d, Set s, const Kinematics& k) const {
   d.on_seesaw = contact::has(s, kBag);
   d.taut = contact::has(s, kRope);
@@ -644,14 +681,20 @@ void Model::set_contacts(Discrete& d, Set s, const Kinematics& k) const {
   d.lid_chart = on_closure(d) && std::fabs(rope_.transfer(k.phi_s, k.phi_l).k) > 1.0;
 }
 
-void Model::resolve(HybridState& hs, const Kinematics& k0, int trigger, Trend trend,
+void Model::resolve(HybridState& hs, const Kinematics& k_event, int trigger, Trend trend,
                     std::vector<Event>& out) const {
   using contact::has;
   Discrete& d = hs.d;
   const Set s0 = active_set(d);
-  Set touch = s0 | touching(d, k0);
+  Set touch = s0 | touching(d, k_event);
   if (trend == Trend::closing) touch |= bit(trigger);
   if (trend == Trend::forced_off) touch &= ~bit(trigger);
+
+  // The touching contacts are at zero gap by definition: take back the event's overshoot (the
+  // event-time tolerance times the closing speed, or a fixed step's interpolation error) before
+  // anything is decided, so that the impact happens where the contacts touch and a contact that
+  // lets go again starts from exactly zero.
+  const Kinematics k0 = touch_exactly(d, touch, k_event);
 
   auto fail = [&](const char* what) {
     char msg[200];
@@ -720,19 +763,6 @@ void Model::resolve(HybridState& hs, const Kinematics& k0, int trigger, Trend tr
 
   // A touch that changes nothing (no impulse, the same contacts) leaves the state as it was.
   if (s2 == s0 && !impacted) k2 = k0;
-  // The contact that closed here is at zero gap by definition: take back the overshoot of the
-  // event's location (the event-time tolerance times the closing speed), so that if it lets go
-  // again at once it starts from exactly zero and is not seen to close again at once.
-  if (trend == Trend::closing && trigger == kRope && !has(s2, kLid)) {
-    double projected = 0.0;
-    if (rope_.lid_angle_for(k2.phi_s, projected) && rope_.lid_below_rope(k2.phi_s, projected) &&
-        std::fabs(projected - k2.phi_l) < 1e-9) {
-      k2.phi_l = projected;
-    }
-  }
-  if (trend == Trend::closing && trigger == kLid && k2.phi_l < phi_l0_ && k2.phi_l > phi_l0_ - 1e-9) {
-    k2.phi_l = phi_l0_;
-  }
 
   const Mode before = d.mode();
   set_contacts(d, s2, k2);

@@ -342,15 +342,9 @@ TEST_F(Cli, TimelineColumnsHoldLongNamesAndValues) {
   expect_aligned_timeline(off.out);
 }
 
-TEST_F(Cli, TheOutputsKeysAreDocumented) {
+TEST_F(Cli, TheOutputRulesAreDocumented) {
+  // Every JSON key and output column is checked by test_docs; here the rules of this issue's.
   const std::string doc = slurp(fs::path(WHATNEXT_SOURCE_DIR) / "docs" / "inputs.md");
-  const fs::path json = dir_ / "e.json";
-  ASSERT_EQ(whatnext("run -q --example 1 --events " + json.string()).code, 0);
-  const auto events = nlohmann::json::parse(slurp(json));
-  for (const auto& [key, value] : events.items()) EXPECT_NE(doc.find("\"" + key + "\""), std::string::npos) << key;
-  for (const auto& [key, value] : events["events"][1].items()) {
-    EXPECT_NE(doc.find("\"" + key + "\""), std::string::npos) << key;
-  }
   for (const char* word : {"`invalid`", "`failed`", "`event_limit`", "`outcome_t`", "`final_r`", "`error`",
                            "[1e-15, 1e-3]", "`--force-large`", "**3**"}) {
     EXPECT_NE(doc.find(word), std::string::npos) << word;

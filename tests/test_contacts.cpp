@@ -134,11 +134,17 @@ void check_invariants(const Machine& m, const wn::Scenario& sc, const wn::Record
   const double l = sc.machine.rope_length, phi_l0 = sc.start.lid_angle;
   const double weights = (sc.machine.sandbag_mass + sc.machine.lid_mass + sc.machine.seesaw_mass) * sc.machine.gravity;
   const double tol_f = 1e-7 * weights;
-  // The ledger balances to 1e-9 of the energies in play (the laws other than rope and
+  // The ledger balances to 1e-9 of the energies in play (kinetic and potential energies of every
+  // part: a sandbag that falls far carries a lot of both, and the laws other than rope and
   // kinetic-energy can multiply them).
   double energy_scale = 1.0;
-  for (const wn::Event& e : rec.events) energy_scale = std::fmax(energy_scale, std::fabs(e.energy_after));
-  for (const wn::Snapshot& s : rec.samples) energy_scale = std::fmax(energy_scale, std::fabs(s.initial_total));
+  auto parts = [](const wn::Snapshot& s) {
+    return std::fabs(s.sandbag_kinetic) + std::fabs(s.sandbag_potential) + std::fabs(s.lid_kinetic) +
+           std::fabs(s.lid_potential) + std::fabs(s.seesaw_kinetic) + std::fabs(s.seesaw_potential) +
+           std::fabs(s.balloon_kinetic) + std::fabs(s.balloon_potential);
+  };
+  for (const wn::Event& e : rec.events) energy_scale = std::fmax(energy_scale, parts(e.after));
+  for (const wn::Snapshot& s : rec.samples) energy_scale = std::fmax(energy_scale, parts(s));
   auto check = [&](const wn::Snapshot& s, const char* where) {
     std::ostringstream o;
     o.precision(10);

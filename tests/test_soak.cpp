@@ -106,11 +106,15 @@ RandomMachine random_machine(Draw& d, int index) {
   }
   if (d.chance(0.3)) set("balloon.drag_coefficient", d.uniform(0.2, 1.0));
   if (d.chance(0.3)) set("balloon.rubber_mass", d.uniform(0.0, 0.004));
-  if (d.chance(0.3)) set("damping.pivot", d.uniform(0.0, 0.05));
+  const bool pivot_damper = d.chance(0.3);
   if (d.chance(0.3)) set("damping.lid_hinge", d.uniform(0.0, 0.05));
   if (d.chance(0.3)) {
     set("seesaw.left_arm", std::fabs(base.start.sandbag_x) * d.uniform(1.0, 6.0) + 0.05);
-    if (d.chance(0.5)) set("seesaw.mass", d.uniform(0.05, 1.0));
+    if (d.chance(0.5)) {
+      set("seesaw.mass", d.uniform(0.05, 1.0));
+      // The pivot's damper needs a seesaw with inertia (an input rule).
+      if (pivot_damper) set("damping.pivot", d.uniform(0.0, 0.05));
+    }
   }
   static const char* const kLaws[] = {"rope", "angular-momentum-sum", "kinetic-energy", "linear-momentum"};
   m.sets.push_back(fmt::format("run.impact_law={}", kLaws[d.pick(4)]));
@@ -177,13 +181,25 @@ class Checker : public Observer {
         return;
       }
     }
-    if (s.phi_l < sc_.start.lid_angle - 1e-9 || s.phi_l > kPi / 2 + 1e-9) {
+    // A fixed step places an event by linear interpolation within the step, exact only to the
+    // step's second order: there the lid may be a hair (1e-6 rad) past its limits.
+    const double slack = sc_.run.integrator == IntegratorKind::adaptive ? 1e-9 : 1e-6;
+    if (s.phi_l < sc_.start.lid_angle - slack || s.phi_l > kPi / 2 + slack) {
       f_.add("the lid leaves [phiL0, 90 deg]", m_, fmt::format("{} at t = {}: phiL = {} deg", where, s.t, s.phi_l / kDeg));
     }
-    if (std::fabs(s.phi_s) > kPi / 2 + 1e-9) {
+    // With the sandbag on it the run stops where the seesaw turns vertical; an unloaded seesaw
+    // with mass may swing on past it (nothing models the ground; docs/extensions.md).
+    if (s.on_seesaw && std::fabs(s.phi_s) > kPi / 2 + 1e-9) {
       f_.add("the seesaw leaves [-90, 90] deg", m_, fmt::format("{} at t = {}: phiS = {} deg", where, s.t, s.phi_s / kDeg));
     }
-    if (sc_.run.integrator == IntegratorKind::adaptive && std::fabs(s.ledger_residual()) > 1e-9) {
+    // The ledger closes to 1e-9 of the energies in play: J for the paper's machines, but a sandbag
+    // that falls for a minute carries tens of kJ in kinetic and potential energy, and the laws
+    // other than rope and kinetic-energy can multiply the energy many times over.
+    const double parts = std::fabs(s.sandbag_kinetic) + std::fabs(s.sandbag_potential) + std::fabs(s.lid_kinetic) +
+                         std::fabs(s.lid_potential) + std::fabs(s.seesaw_kinetic) + std::fabs(s.seesaw_potential) +
+                         std::fabs(s.balloon_kinetic) + std::fabs(s.balloon_potential);
+    scale_ = std::fmax(scale_, std::fmax(std::fabs(s.initial_total), parts));
+    if (sc_.run.integrator == IntegratorKind::adaptive && std::fabs(s.ledger_residual()) > 1e-9 * scale_) {
       f_.add("the ledger does not close to 1e-9 J", m_,
              fmt::format("{} at t = {}: residual {} J", where, s.t, s.ledger_residual()));
     }
@@ -191,6 +207,7 @@ class Checker : public Observer {
   const Scenario& sc_;
   const RandomMachine& m_;
   Failures& f_;
+  double scale_ = 1.0;
 };
 
 // Runs one machine in a child process, so that a machine that hangs or crashes is reported (and

@@ -245,9 +245,11 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
   }
 }
 
-// Fixed-step explicit Euler (the paper's method) or classical RK4. An event is taken at the end of
-// the step in which its guard is first seen to have fired; of several, the one whose linear
-// estimate of the crossing is earliest. Samples are the step-end states at or after each grid time.
+// Fixed-step explicit Euler (the paper's method) or classical RK4. An event is found in the step
+// in which its guard is first seen to have fired (of several, the one whose crossing comes first)
+// and placed where the guard, interpolated linearly over the step, crosses zero: the state there is
+// the step's linear interpolation, so a contact is not entered by a whole step's overshoot.
+// Samples are the step-end states at or after each grid time.
 template <class Stepper, class System, class Sample>
 Crossing integrate_fixed(const System& sys, typename System::state_type& y, double& t,
                          double t_end, double dt, OutputGrid& grid, Sample&& sample,
@@ -258,16 +260,20 @@ Crossing integrate_fixed(const System& sys, typename System::state_type& y, doub
   sys.guards(y, g0, nullptr);
   constexpr std::size_t kGuards = std::tuple_size<guard_type>::value;
   std::array<double, kGuards> floor{};
+  std::array<int, kGuards> order{};
   std::array<bool, kGuards> armed{};
   for (std::size_t i = 0; i < g0.size(); ++i) {
     const auto s = sys.guard_start(static_cast<int>(i));
     armed[i] = s.order > 0;
+    order[i] = s.order;
     floor[i] = s.floor;
     if (s.order > 0) g0[i] = s.lead;  // zero now, negative just after: see above
   }
-  for (;;) {
+  const double t0 = t;
+  for (bool first = true;; first = false) {
     const double h = std::fmin(dt, t_end - t);
     const double t_before = t;
+    const typename System::state_type y_before = y;
     stepper.do_step(std::cref(sys), y, t, h);
     t = (t_end - t <= dt) ? t_end : t + h;
     ++stats.steps;
@@ -285,8 +291,17 @@ Crossing integrate_fixed(const System& sys, typename System::state_type& y, doub
     double best = 2.0;
     for (std::size_t i = 0; i < g0.size(); ++i) {
       if (!(g0[i] < 0.0 && g1[i] >= 0.0)) continue;
-      const double frac = g0[i] / (g0[i] - g1[i]);
+      // A guard that started at zero compares its lead with g / (t - t0)^order.
+      const double g_end = first && order[i] > 0 ? g1[i] / std::pow(t - t0, order[i]) : g1[i];
+      const double frac = g0[i] / (g0[i] - g_end);
       if (frac < best) best = frac, hit = static_cast<int>(i);
+    }
+    if (hit >= 0) {
+      // The event's state: the step's linear interpolation where the guard crosses. The samples
+      // of this step wait for the next piece, which starts from the event.
+      for (std::size_t j = 0; j < y.size(); ++j) y[j] = y_before[j] + best * (y[j] - y_before[j]);
+      t = t_before + best * h;
+      return {Crossing::event, hit, t};
     }
     if (grid.step > 0.0) {
       while (grid.time() <= t) {
@@ -294,7 +309,6 @@ Crossing integrate_fixed(const System& sys, typename System::state_type& y, doub
         ++grid.next;
       }
     }
-    if (hit >= 0) return {Crossing::event, hit, t};
     if (t >= t_end) return {Crossing::end, -1, t_end};
     g0 = g1;
   }

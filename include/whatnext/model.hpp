@@ -128,9 +128,11 @@ class Model {
   enum class Trend { closing, releasing, forced_off };
   // Decides the contacts after an event: an impact on velocities if some touching contact is
   // closing, then the contacts that carry the motion on; updates hs and reports the changes.
-  void resolve(HybridState& hs, const Kinematics& k0, int trigger, Trend trend,
+  void resolve(HybridState& hs, const Kinematics& k_event, int trigger, Trend trend,
                std::vector<Event>& out) const;
   contact::Set touching(const Discrete& d, const Kinematics& k) const;
+  // The positions moved onto the touching contacts (their gaps exactly zero), velocities kept.
+  Kinematics touch_exactly(const Discrete& d, contact::Set touch, Kinematics k) const;
   contact::Choice choice(const Discrete& d, const contact::System& sys, const Kinematics& k,
                          int trigger, Trend trend) const;
   // The chosen impact law's velocities for a rope impulse (MODEL.md's laws); false where they are
