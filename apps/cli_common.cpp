@@ -49,14 +49,7 @@ LoadedInput load_input(const InputOptions& opts) {
     throw InputError("input: give a machine FILE or --example N (1-4)");
   }
   for (const std::string& s : opts.sets) apply_set(in.config, s);
-  if (!opts.sets.empty()) {
-    std::string sets;
-    for (const std::string& s : opts.sets) {
-      if (!sets.empty()) sets += ", ";
-      sets += s;
-    }
-    in.source += " with --set " + printable(sets, 120);
-  }
+  in.source = input_label(in.source, opts.sets);
   in.scenario = build_scenario(in.config);
   return in;
 }

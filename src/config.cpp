@@ -477,9 +477,19 @@ Config load_config_file(const std::string& path) {
   return looks_inp ? parse_inp(text, path) : parse_toml(text, path);
 }
 
+std::string input_label(std::string machine, const std::vector<std::string>& sets) {
+  if (sets.empty()) return machine;
+  std::string joined;
+  for (const std::string& s : sets) {
+    if (!joined.empty()) joined += ", ";
+    joined += s;
+  }
+  return machine + " with --set " + printable(joined, 120);
+}
+
 Config example_config(int n) {
   if (n < 1 || n > 4) {
-    throw InputError(fmt::format("--example: the paper has examples 1 to 4 (given {})", n));
+    throw InputError(fmt::format("--example: the paper has examples 1 to 4 (given '{}')", n));
   }
   return parse_toml(example_toml(n), fmt::format("example{}.toml", n));
 }

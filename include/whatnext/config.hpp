@@ -75,6 +75,9 @@ std::string nearest_word(std::string_view word, const std::vector<std::string>& 
 // Text from the user as it may appear in a one-line message: control bytes and invalid UTF-8
 // escaped (\n, \t, \x1b), and cut in the middle ("abc...xyz") beyond max_chars characters.
 std::string printable(std::string_view text, std::size_t max_chars = 64);
+// How a run is named in titles, the timeline and the events JSON: the machine ("example 4", a
+// file), then " with --set K=V, K=V" for the overrides given (printable, cut when long).
+std::string input_label(std::string machine, const std::vector<std::string>& sets);
 
 // The shortest decimal text that reads back as the same double ("0.6", not 0.59999999999999998).
 std::string shortest(double value);

@@ -43,8 +43,8 @@ Input load(const val& in) {
   const std::vector<std::string> sets = emscripten::vecFromJSArray<std::string>(in["sets"]);
   for (const std::string& s : sets) apply_set(out.config, s);
   out.scenario = build_scenario(out.config);
-  // As the CLI labels its runs (apps/cli_common.cpp), so that timeline and JSON read the same.
-  out.label = in["label"].as<std::string>() + (sets.empty() ? "" : " with --set");
+  // As the CLI labels its runs, so that timeline and JSON read the same.
+  out.label = input_label(in["label"].as<std::string>(), sets);
   return out;
 }
 
