@@ -113,11 +113,24 @@ int cost(Set s, Set among, const Choice& choice, int contacts) {
   return c;
 }
 
-// Subsets of `among`, each tried once, in increasing bit order.
+// Subsets of `among` in order of preference (cost, then bit pattern): the first valid one is the
+// choice, so most decisions take one or two solves instead of eight. f returns true when valid.
 template <class F>
-void for_each_subset(Set among, F&& f) {
-  for (Set s = 0; s <= among; ++s)
-    if ((s & ~among) == 0) f(s);
+void in_order_of_preference(Set among, const Choice& choice, int contacts, F&& f) {
+  Set sets[1u << kMaxContacts];
+  int costs[1u << kMaxContacts];
+  int n = 0;
+  for (Set s = 0; s <= among; ++s) {
+    if ((s & ~among) != 0) continue;
+    const int c = cost(s, among, choice, contacts);
+    int i = n++;
+    for (; i > 0 && (costs[i - 1] > c || (costs[i - 1] == c && sets[i - 1] > s)); --i) {
+      sets[i] = sets[i - 1], costs[i] = costs[i - 1];
+    }
+    sets[i] = s, costs[i] = c;
+  }
+  for (int i = 0; i < n; ++i)
+    if (f(sets[i])) return;
 }
 
 }  // namespace
@@ -130,48 +143,40 @@ double System::rate(int i, const Coords& v) const {
 
 Impact solve_impact(const System& sys, Set touching, const Choice& choice) {
   Impact best;
-  int best_cost = std::numeric_limits<int>::max();
-  for_each_subset(touching, [&](Set s) {
+  in_order_of_preference(touching, choice, sys.contacts, [&](Set s) {
     Impact cand;
-    if (!solve_set(sys, s, true, cand.impulse, cand.velocity)) return;
+    if (!solve_set(sys, s, true, cand.impulse, cand.velocity)) return false;
     for (int i = 0; i < sys.contacts; ++i) {
       if (!has(touching, i)) continue;
       cand.rate[i] = has(s, i) ? 0.0 : sys.rate(i, cand.velocity);
-      if (has(s, i) ? cand.impulse[i] < -choice.impulse_tol : cand.rate[i] < -choice.closing_tol) return;
+      if (has(s, i) ? cand.impulse[i] < -choice.impulse_tol : cand.rate[i] < -choice.closing_tol) return false;
     }
-    const int c = cost(s, touching, choice, sys.contacts);
-    if (c < best_cost) {
-      best_cost = c;
-      cand.ok = true;
-      cand.impulsive = s;
-      best = cand;
-    }
+    cand.ok = true;
+    cand.impulsive = s;
+    best = cand;
+    return true;
   });
   return best;
 }
 
 Motion solve_motion(const System& sys, Set candidates, const Choice& choice) {
   Motion best;
-  int best_cost = std::numeric_limits<int>::max();
-  for_each_subset(candidates, [&](Set s) {
+  in_order_of_preference(candidates, choice, sys.contacts, [&](Set s) {
     Motion cand;
-    if (!solve_set(sys, s, false, cand.force, cand.acceleration)) return;
+    if (!solve_set(sys, s, false, cand.force, cand.acceleration)) return false;
     for (int i = 0; i < sys.contacts; ++i) {
       if (!has(candidates, i)) continue;
       if (has(s, i)) {
-        if (cand.force[i] < -choice.force_tol) return;
+        if (cand.force[i] < -choice.force_tol) return false;
         continue;
       }
       cand.gap_acceleration[i] = sys.rate(i, cand.acceleration) + sys.curvature[i];
-      if (cand.gap_acceleration[i] < -choice.accel_tol) return;
+      if (cand.gap_acceleration[i] < -choice.accel_tol) return false;
     }
-    const int c = cost(s, candidates, choice, sys.contacts);
-    if (c < best_cost) {
-      best_cost = c;
-      cand.ok = true;
-      cand.active = s;
-      best = cand;
-    }
+    cand.ok = true;
+    cand.active = s;
+    best = cand;
+    return true;
   });
   return best;
 }

@@ -86,15 +86,17 @@ RopeGeometry::Linkage RopeGeometry::from_lid(double cos_l, double sin_l, int sid
 RopeGeometry::Linkage RopeGeometry::linkage_at(Vec2 r, Vec2 el) const {
   const Partials c = partials_at(r, el);
   Linkage g;
-  g.cos_s = r.x / r_h_;
-  g.sin_s = r.h / r_h_;
-  g.cos_l = el.x / (2.0 * r_l_);
-  g.sin_l = el.h / (2.0 * r_l_);
-  g.transfer.k = -c.c_s / c.c_l;
-  g.transfer.dk = -(c.c_ss + 2.0 * c.c_sl * g.transfer.k + c.c_ll * g.transfer.k * g.transfer.k) / c.c_l;
+  const double inv_rh = 1.0 / r_h_, inv_lid = 0.5 / r_l_;
+  g.cos_s = r.x * inv_rh;
+  g.sin_s = r.h * inv_rh;
+  g.cos_l = el.x * inv_lid;
+  g.sin_l = el.h * inv_lid;
+  const double inv_cl = 1.0 / c.c_l, inv_cs = 1.0 / c.c_s;
+  g.transfer.k = -c.c_s * inv_cl;
+  g.transfer.dk = -(c.c_ss + 2.0 * c.c_sl * g.transfer.k + c.c_ll * g.transfer.k * g.transfer.k) * inv_cl;
   // The same implicit differentiation with the roles of the angles swapped.
-  g.ds = -c.c_l / c.c_s;
-  g.dds = -(c.c_ll + 2.0 * c.c_sl * g.ds + c.c_ss * g.ds * g.ds) / c.c_s;
+  g.ds = -c.c_l * inv_cs;
+  g.dds = -(c.c_ll + 2.0 * c.c_sl * g.ds + c.c_ss * g.ds * g.ds) * inv_cs;
   return g;
 }
 
