@@ -21,7 +21,6 @@ struct MachineSystem {
   GuardStart guard_start(int i) const { return d.armed[i]; }
 };
 
-constexpr double kEventTimeTolerance = 1e-12;  // [s]
 constexpr double kMaxAdaptiveStep = 0.05;     // [s]; keeps brief guard excursions visible
 // No accepted input may run for minutes without a word: a few seconds of steps at most.
 constexpr std::int64_t kMaxAdaptiveSteps = 5'000'000;
@@ -91,7 +90,7 @@ Result simulate(const Scenario& sc, Observer* observer) {
     switch (sc.run.integrator) {
       case IntegratorKind::adaptive:
         c = integrate_adaptive(sys, hs.y, t, t_end, sc.run.tolerance, kMaxAdaptiveStep,
-                               kEventTimeTolerance, kMaxAdaptiveSteps - res.stats.steps, grid, sample,
+                               sc.run.event_time_tolerance, kMaxAdaptiveSteps - res.stats.steps, grid, sample,
                                res.stats);
         break;
       case IntegratorKind::euler:
@@ -120,6 +119,10 @@ Result simulate(const Scenario& sc, Observer* observer) {
         const std::size_t n = fresh.size();
         stop = start_piece(fresh);
         if (fresh.size() == n) break;
+      }
+      // The chart's switch is no event; what it leads to at once is found on no crossing.
+      if (c.guard != kGuardChart) {
+        for (Event& e : fresh) e.time_uncertainty = c.uncertainty;
       }
     }
     for (double v : hs.y)

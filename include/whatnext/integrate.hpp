@@ -40,9 +40,23 @@ struct Crossing {
   Kind kind = end;
   int guard = -1;  // the guard that fired (kind == event)
   double t = 0.0;  // where the piece ended (for non_finite and step_limit: the last good time)
+  // How fast the guard passed zero (its secant over the step, per second; infinite where not
+  // known). An event's time is as uncertain as the guard's value divided by this.
+  double rate = std::numeric_limits<double>::infinity();
+  // How far the event's time may be off for the integrator's error alone [s]: the change of the
+  // guard when every state component moves by the error the tolerance allows per step, over the
+  // rate (0 where the rate is not known). A slow crossing is an uncertain one.
+  double uncertainty = 0.0;
 };
 
 namespace detail {
+// x^n for the small orders of a guard's start (pow is far slower).
+inline double power(double x, int n) {
+  double r = 1.0;
+  for (int i = 0; i < n; ++i) r *= x;
+  return r;
+}
+
 template <class State>
 bool finite(const State& y) {
   for (double v : y)
@@ -75,6 +89,46 @@ void sample_until(OutputGrid& grid, double t_hi, Eval&& eval, Sample&& sample) {
     ++grid.next;
   }
 }
+// See Crossing::uncertainty. Two directions of the allowed error (all components one way; every
+// other one the other way) so that no guard's dependence cancels in both.
+template <class System>
+double time_uncertainty(const System& sys, const typename System::state_type& y, int guard, double tolerance,
+                        double rate) {
+  if (!(std::fabs(rate) < std::numeric_limits<double>::infinity()) || rate == 0.0) return 0.0;
+  typename System::guard_type g, gp;
+  sys.guards(y, g, nullptr);
+  double change = 0.0;
+  for (int pattern = 0; pattern < 2; ++pattern) {
+    typename System::state_type yp = y;
+    for (std::size_t i = 0; i < yp.size(); ++i) {
+      const double sign = pattern == 1 && (i % 2) ? -1.0 : 1.0;
+      yp[i] += sign * tolerance * (1.0 + std::fabs(y[i]));
+    }
+    sys.guards(yp, gp, nullptr);
+    change = std::fmax(change, std::fabs(gp[guard] - g[guard]));
+  }
+  return change / std::fabs(rate);
+}
+
+// Boost.Odeint's step control, but a step may grow tenfold after an easy one (Hairer and
+// Wanner's DOPRI5 default) instead of fivefold: after every event the motion restarts with a
+// short step, and climbing back to the motion's own step size is a large share of a short run.
+class StepGrowth : public boost::numeric::odeint::default_step_adjuster<double, double> {
+ public:
+  explicit StepGrowth(double max_dt = 0.0)
+      : boost::numeric::odeint::default_step_adjuster<double, double>(max_dt), max_dt_(max_dt) {}
+  double increase_step(double dt, double error, int order) const {
+    if (error < 0.5) {
+      error = std::fmax(std::pow(10.0 / 0.9, -order), error);  // the factor below stays <= 10
+      dt *= 0.9 * std::pow(error, -1.0 / order);
+      if (max_dt_ > 0.0) dt = std::fmin(dt, max_dt_);
+    }
+    return dt;
+  }
+
+ private:
+  double max_dt_;
+};
 }  // namespace detail
 
 // Embedded Dormand-Prince 5(4) with error control and dense output (Boost.Odeint). Guards are
@@ -88,8 +142,14 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
   namespace odeint = boost::numeric::odeint;
   using state_type = typename System::state_type;
   using guard_type = typename System::guard_type;
-  auto stepper = odeint::make_dense_output(tolerance, tolerance, max_dt,
-                                           odeint::runge_kutta_dopri5<state_type>());
+  using error_stepper = odeint::runge_kutta_dopri5<state_type>;
+  using controlled =
+      odeint::controlled_runge_kutta<error_stepper, odeint::default_error_checker<double, odeint::array_algebra,
+                                                                                   odeint::default_operations>,
+                                     detail::StepGrowth, odeint::initially_resizer,
+                                     odeint::explicit_error_stepper_fsal_tag>;
+  odeint::dense_output_runge_kutta<controlled> stepper(
+      controlled(typename controlled::error_checker_type(tolerance, tolerance), detail::StepGrowth(max_dt)));
   double dt0 = std::fmin(max_dt, std::fmax(1e-6, 0.05 * std::pow(tolerance, 0.2)));
   const double t0 = t;
   auto eval = [&](double tt, state_type& out) { stepper.calc_state(tt, out); };
@@ -144,7 +204,7 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
     }
     sys.guards(y1, g1, &d1);
     int hit = -1;
-    double t_hit = tb;
+    double t_hit = tb, rate_hit = std::numeric_limits<double>::infinity();
     auto guard_at = [&](std::size_t i, double tt) {
       state_type yy;
       guard_type gg;
@@ -202,7 +262,7 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
           auto f = [&](double t2) { return guard_at(i, t2); };
           const auto bracket = boost::math::tools::toms748_solve(f, ta, tt, g0[i], gv, stop, iterations);
           const double root = f(bracket.first) >= 0.0 ? bracket.first : bracket.second;
-          if (hit < 0 || root < t_hit) hit = static_cast<int>(i), t_hit = root;
+          if (hit < 0 || root < t_hit) hit = static_cast<int>(i), t_hit = root, rate_hit = (gv - g0[i]) / (tt - ta);
           break;
         }
       }
@@ -210,7 +270,7 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
     for (std::size_t i = 0; i < g0.size() && tb > ta; ++i) {
       if (!(g0[i] < 0.0 && g1[i] >= 0.0)) continue;
       const int p = in_first ? order[i] : 0;
-      const double scale_b = p > 0 ? std::pow(tb - t0, p) : 1.0;
+      const double scale_b = p > 0 ? detail::power(tb - t0, p) : 1.0;
       auto f = [&](double tt) {
         if (p > 0 && tt - t0 < noise_time[i]) return g0[i];
         state_type yy;
@@ -218,7 +278,7 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
         stepper.calc_state(tt, yy);
         sys.guards(yy, gg, nullptr);
         ++stats.root_evaluations;
-        return p > 0 ? gg[i] / std::pow(tt - t0, p) : gg[i];
+        return p > 0 ? gg[i] / detail::power(tt - t0, p) : gg[i];
       };
       std::uintmax_t iterations = 200;
       auto stop = [&](double a, double b) { return std::fabs(b - a) <= time_tolerance; };
@@ -226,13 +286,16 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
           boost::math::tools::toms748_solve(f, ta, tb, g0[i], g1[i] / scale_b, stop, iterations);
       // The end of the bracket where the guard has fired (f >= 0).
       const double root = f(bracket.first) >= 0.0 ? bracket.first : bracket.second;
-      if (hit < 0 || root < t_hit) hit = static_cast<int>(i), t_hit = root;
+      if (hit < 0 || root < t_hit) {
+        hit = static_cast<int>(i), t_hit = root;
+        rate_hit = p > 0 ? std::numeric_limits<double>::infinity() : (g1[i] - g0[i]) / (tb - ta);
+      }
     }
     if (hit >= 0) {
       detail::sample_until<System>(grid, t_hit, eval, sample);
       stepper.calc_state(t_hit, y);
       t = t_hit;
-      return {Crossing::event, hit, t_hit};
+      return {Crossing::event, hit, t_hit, rate_hit, detail::time_uncertainty(sys, y, hit, tolerance, rate_hit)};
     }
     detail::sample_until<System>(grid, tb, eval, sample);
     g0 = g1;
@@ -292,7 +355,7 @@ Crossing integrate_fixed(const System& sys, typename System::state_type& y, doub
     for (std::size_t i = 0; i < g0.size(); ++i) {
       if (!(g0[i] < 0.0 && g1[i] >= 0.0)) continue;
       // A guard that started at zero compares its lead with g / (t - t0)^order.
-      const double g_end = first && order[i] > 0 ? g1[i] / std::pow(t - t0, order[i]) : g1[i];
+      const double g_end = first && order[i] > 0 ? g1[i] / detail::power(t - t0, order[i]) : g1[i];
       const double frac = g0[i] / (g0[i] - g_end);
       if (frac < best) best = frac, hit = static_cast<int>(i);
     }

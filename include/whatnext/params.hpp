@@ -77,6 +77,7 @@ struct RunSettings {
   IntegratorKind integrator = IntegratorKind::adaptive;
   double step = 1e-3;           // fixed step for euler/rk4 [s]
   double tolerance = 1e-12;     // adaptive: absolute and relative error per step
+  double event_time_tolerance = 1e-12;  // adaptive: events are located to this [s] (not an input key)
   double t_max = 5.0;           // [s]
   double output_step = 1e-3;    // sampling of CSV/.dat rows [s]
   ImpactLaw impact_law = ImpactLaw::rope;
