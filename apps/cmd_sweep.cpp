@@ -25,6 +25,7 @@ struct SweepOptions {
   std::int64_t samples = 0;
   std::uint64_t seed = 1;
   int threads = 0;
+  double accuracy = explore::kDefaultAccuracy;
   std::string out, heatmap, heatmap_value = "lid_open";
   bool force_large = false;
 };
@@ -33,6 +34,8 @@ struct SweepOptions {
 // written (a few hundred bytes each), and the CSV takes about as much again.
 constexpr std::int64_t kLargeSweep = 1'000'000;
 constexpr double kSweepRowBytes = 600.0;
+// The accuracy sets the tolerance to a tenth of it, which must stay in run.tolerance's range.
+constexpr double kMinAccuracy = 1e-14, kMaxAccuracy = 1e-2;
 
 // Interrupts stop the sweep instead of ending the process while this lives.
 struct InterruptStops {
@@ -89,6 +92,10 @@ void register_sweep(CLI::App& app, int& exit_code) {
   cmd->add_option("--seed", opts->seed, "seed of the Latin hypercube (same seed, same machines)");
   cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
+  cmd->add_option("--accuracy", opts->accuracy,
+                  fmt::format("event times to this many seconds (default {:g}); sets the integrator's "
+                              "tolerance unless run.tolerance is given",
+                              explore::kDefaultAccuracy));
   cmd->add_option("--out", opts->out, "CSV file to write, one row per machine ('-': standard output)")->required();
   cmd->add_option("--heatmap", opts->heatmap, "also draw a PNG heat map (needs exactly two --vary keys)");
   cmd->add_option("--heatmap-value", opts->heatmap_value,
@@ -98,6 +105,10 @@ void register_sweep(CLI::App& app, int& exit_code) {
                 fmt::format("run sweeps of more than {} machines", kLargeSweep));
   cmd->callback([opts, cmd, &exit_code] {
     check_leftovers(*cmd);
+    if (!(opts->accuracy >= kMinAccuracy && opts->accuracy <= kMaxAccuracy)) {
+      throw InputError(fmt::format("--accuracy: must be in [{:g}, {:g}] s (given {})", kMinAccuracy,
+                                   kMaxAccuracy, opts->accuracy));
+    }
     // Everything about the input is checked before any machine runs or any file appears.
     explore::Plan plan;
     plan.samples = opts->samples;
@@ -152,6 +163,7 @@ void register_sweep(CLI::App& app, int& exit_code) {
     std::atomic<bool> stop{false};
     std::atomic<int> signal{0};
     ro.stop = &stop;
+    ro.accuracy = opts->accuracy;
     ProgressBar bar(isatty(STDERR_FILENO) != 0);
     ro.progress = [&bar](std::int64_t done, std::int64_t total) { bar.update(done, total); };
     // An interrupt (Ctrl-C, SIGTERM, SIGHUP) stops the workers; the rows done so far are written.

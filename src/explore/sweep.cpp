@@ -67,15 +67,52 @@ void set_values(Config& cfg, const std::vector<std::string>& keys, const double*
   for (std::size_t k = 0; k < keys.size(); ++k) set_number(cfg, keys[k], values[k]);
 }
 
+// Measured, events lie within max(4 tolerances, 1.4 times their estimated uncertainty) of a
+// 1e-14 run (docs/performance.md). A machine whose uncertainty takes more than half the accuracy
+// is run again with the tolerance that brings it to a fifth.
+constexpr double kUncertaintyTrigger = 0.5;
+constexpr double kUncertaintyTarget = 0.2;
+constexpr double kTightestTolerance = 1e-14;
+
+// The largest time uncertainty among what a sweep reports: each event type's first occurrence
+// and the stop. An event limit is a chatter's count, not a time to get right.
+double reported_uncertainty(const Result& res) {
+  std::vector<char> seen(event_types().size(), 0);
+  double u = 0.0;
+  for (const Event& e : res.events) {
+    const auto idx = static_cast<std::size_t>(e.type);
+    if (e.type == EventType::event_limit || idx >= seen.size() || seen[idx]) continue;
+    seen[idx] = 1;
+    u = std::fmax(u, e.time_uncertainty);
+  }
+  return u;
+}
+
 // Runs one machine in a scratch config that already holds the base values.
-Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const double* values) {
+Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const double* values, double accuracy) {
   Outcome o;
   o.first.assign(event_types().size(), kNaN);
   try {
     set_values(work, keys, values);
-    const Scenario sc = build_scenario(work);
-    const Result res = simulate(sc);
+    Scenario sc = build_scenario(work);
+    const bool tolerance_given = work.has("run.tolerance");
+    if (accuracy > 0.0) apply_accuracy(sc, accuracy, tolerance_given);
+    Result res = simulate(sc);
     require_finite(res);  // a NaN state is a failed run, not a row of nan
+    if (accuracy > 0.0 && !tolerance_given && sc.run.integrator == IntegratorKind::adaptive) {
+      // A slow crossing (a seesaw creeping up to vertical, a rope that barely tightens) makes
+      // its time uncertain beyond what the tolerance promises: that machine is run again,
+      // tightly enough for its own uncertainty.
+      for (int again = 0; again < 3; ++again) {
+        const double u = reported_uncertainty(res);
+        if (!(u > kUncertaintyTrigger * accuracy) || sc.run.tolerance <= kTightestTolerance) break;
+        sc.run.tolerance = std::fmax(kTightestTolerance, sc.run.tolerance * kUncertaintyTarget * accuracy / u);
+        // An earlier event placed less exactly than that would move this one by as much again.
+        sc.run.event_time_tolerance = std::fmin(sc.run.event_time_tolerance, sc.run.tolerance / 10.0);
+        res = simulate(sc);
+        require_finite(res);
+      }
+    }
     for (const Event& e : res.events) {
       const auto idx = static_cast<std::size_t>(e.type);
       if (idx < o.first.size() && std::isnan(o.first[idx])) o.first[idx] = e.t;
@@ -241,9 +278,14 @@ const std::vector<EventType>& event_types() {
   return types;
 }
 
-Outcome evaluate(const Config& base, const std::vector<std::string>& keys, const double* values) {
+void apply_accuracy(Scenario& scenario, double accuracy, bool tolerance_given) {
+  if (!tolerance_given) scenario.run.tolerance = accuracy / 10.0;
+  scenario.run.event_time_tolerance = accuracy / 100.0;
+}
+
+Outcome evaluate(const Config& base, const std::vector<std::string>& keys, const double* values, double accuracy) {
   Config work = base;
-  return evaluate_in(work, keys, values);
+  return evaluate_in(work, keys, values, accuracy);
 }
 
 std::vector<std::string> value_names() {
@@ -289,6 +331,7 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   std::mutex m;
   std::condition_variable cv;
   auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
+  res.lines.resize(static_cast<std::size_t>(total));
   auto worker = [&] {
     Config work = base;
     std::vector<double> values(keys.size());
@@ -299,8 +342,10 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
       for (std::int64_t i = start; i < end; ++i) {
         if (stopped()) break;
         machines.point(i, values.data());
-        res.rows[static_cast<std::size_t>(i)] = evaluate_in(work, keys, values.data());
-        res.done[static_cast<std::size_t>(i)] = 1;
+        const auto slot = static_cast<std::size_t>(i);
+        res.rows[slot] = evaluate_in(work, keys, values.data(), options.accuracy);
+        res.lines[slot] = csv_row(i, values, res.rows[slot]);  // formatted here, on all cores
+        res.done[slot] = 1;
         completed.fetch_add(1, std::memory_order_relaxed);
       }
       if (stopped()) break;
@@ -344,30 +389,41 @@ void write_csv(std::ostream& out, const Machines& machines, const SweepResult& r
   out.write(line.data(), static_cast<std::streamsize>(line.size()));
   std::vector<double> values(plan.ranges.size());
   for (std::int64_t i = 0; i < machines.size(); ++i) {
-    if (!result.done[static_cast<std::size_t>(i)]) continue;
-    const Outcome& o = result.rows[static_cast<std::size_t>(i)];
-    machines.point(i, values.data());
-    line.clear();
-    fmt::format_to(std::back_inserter(line), "{}", i);
-    // "{}" prints the shortest text that reads back to the same double: lossless and deterministic.
-    for (double v : values) fmt::format_to(std::back_inserter(line), ",{}", v);
-    if (o.valid) {
-      fmt::format_to(std::back_inserter(line), ",{},{},{},{}", to_string(o.outcome), o.outcome_t, o.final_r,
-                     o.final_phi_l_deg);
-      for (double t : o.first) {
-        put(",");
-        if (!std::isnan(t)) fmt::format_to(std::back_inserter(line), "{}", t);
-      }
-      put(",\n");
-    } else {
-      put(o.failed ? ",failed,,," : ",invalid,,,");
-      for (std::size_t k = 0; k < o.first.size(); ++k) put(",");
-      put(",");
-      put(csv_quote(o.error));
-      put("\n");
+    const auto slot = static_cast<std::size_t>(i);
+    if (!result.done[slot]) continue;
+    if (slot < result.lines.size() && !result.lines[slot].empty()) {
+      out.write(result.lines[slot].data(), static_cast<std::streamsize>(result.lines[slot].size()));
+      continue;
     }
-    out.write(line.data(), static_cast<std::streamsize>(line.size()));
+    machines.point(i, values.data());
+    const std::string row = csv_row(i, values, result.rows[slot]);
+    out.write(row.data(), static_cast<std::streamsize>(row.size()));
   }
 }
+
+std::string csv_row(std::int64_t index, const std::vector<double>& values, const Outcome& o) {
+  fmt::memory_buffer line;
+  auto put = [&line](std::string_view text) { line.append(text.data(), text.data() + text.size()); };
+  fmt::format_to(std::back_inserter(line), "{}", index);
+  // "{}" prints the shortest text that reads back to the same double: lossless and deterministic.
+  for (double v : values) fmt::format_to(std::back_inserter(line), ",{}", v);
+  if (o.valid) {
+    fmt::format_to(std::back_inserter(line), ",{},{},{},{}", to_string(o.outcome), o.outcome_t, o.final_r,
+                   o.final_phi_l_deg);
+    for (double t : o.first) {
+      put(",");
+      if (!std::isnan(t)) fmt::format_to(std::back_inserter(line), "{}", t);
+    }
+    put(",\n");
+  } else {
+    put(o.failed ? ",failed,,," : ",invalid,,,");
+    for (std::size_t k = 0; k < o.first.size(); ++k) put(",");
+    put(",");
+    put(csv_quote(o.error));
+    put("\n");
+  }
+  return std::string(line.data(), line.size());
+}
+
 
 }  // namespace whatnext::explore

@@ -72,9 +72,21 @@ struct Outcome {
   std::vector<double> first;     // per event_types() entry: first occurrence [s], NaN if none
 };
 
-// Builds the machine (base with the given values set) and runs it. Invalid inputs and failed runs
-// give an Outcome with valid == false and the reason, never an exception.
-Outcome evaluate(const Config& base, const std::vector<std::string>& keys, const double* values);
+// The event-time accuracy a sweep asks for unless told otherwise [s].
+constexpr double kDefaultAccuracy = 1e-8;
+// Sets the run to locate every event within `accuracy` seconds of the exact time, as cheaply as
+// that allows: the integrator's tolerance accuracy / 10 (measured on example 2's 10^4-machine
+// grid: every event within 0.36 accuracy of a 1e-14 run; docs/performance.md), unless the machine
+// gives run.tolerance itself, and the events located to accuracy / 100.
+void apply_accuracy(Scenario& scenario, double accuracy, bool tolerance_given);
+
+// Builds the machine (base with the given values set) and runs it, to the event-time accuracy
+// given (0: the machine's own settings). Invalid inputs and failed runs give an Outcome with
+// valid == false and the reason, never an exception.
+Outcome evaluate(const Config& base, const std::vector<std::string>& keys, const double* values,
+                 double accuracy = kDefaultAccuracy);
+// One CSV row of a sweep (write_csv's layout, with its newline).
+std::string csv_row(std::int64_t index, const std::vector<double>& values, const Outcome& o);
 
 // Names usable as a value of an outcome: "outcome_t", "final_r", "final_phi_l_deg" and every
 // event name (its first occurrence time).
@@ -86,6 +98,7 @@ double value_of(const Outcome& o, std::string_view name);
 
 struct RunOptions {
   int threads = 1;
+  double accuracy = kDefaultAccuracy;  // event times [s]; see apply_accuracy
   const std::atomic<bool>* stop = nullptr;  // set (e.g. by SIGINT) to stop early
   // Called on the calling thread about ten times a second with (done, total).
   std::function<void(std::int64_t, std::int64_t)> progress;
@@ -93,6 +106,7 @@ struct RunOptions {
 
 struct SweepResult {
   std::vector<Outcome> rows;  // by machine index
+  std::vector<std::string> lines;  // rows[i] as its CSV line, formatted by the workers
   std::vector<char> done;     // done[i]: rows[i] holds machine i's outcome
   std::int64_t completed = 0;
   bool interrupted = false;
