@@ -24,6 +24,11 @@
 namespace {
 std::atomic<long> g_allocations{0};
 }
+// GCC takes the free() in the replaced operator delete below for a mismatch with new; every new
+// here comes from malloc, so it is not one.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
 void* operator new(std::size_t n) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* p = std::malloc(n ? n : 1)) return p;

@@ -18,8 +18,9 @@ bool solve_dense(int n, std::array<std::array<double, kMaxUnknowns>, kMaxUnknown
     double m = 0.0;
     for (int j = 0; j < n; ++j) m = std::fmax(m, std::fabs(a[i][j]));
     if (!(m > 0.0) || !std::isfinite(m)) return false;
-    for (int j = 0; j < n; ++j) a[i][j] /= m;
-    b[i] /= m;
+    const double inv = 1.0 / m;
+    for (int j = 0; j < n; ++j) a[i][j] *= inv;
+    b[i] *= inv;
   }
   for (int c = 0; c < n; ++c) {
     int p = c;
@@ -67,6 +68,8 @@ bool solve_set(const System& sys, Set set, bool impact, PerContact& multiplier, 
       }
     }
   }
+  double inv_mass[kMaxCoords];
+  for (int j = 0; j < sys.coords; ++j) inv_mass[j] = sys.mass[j] > 0.0 ? 1.0 / sys.mass[j] : 0.0;
   std::array<std::array<double, kMaxUnknowns>, kMaxUnknowns> k{};
   std::array<double, kMaxUnknowns> rhs{};
   for (int a = 0; a < m; ++a) {
@@ -74,8 +77,9 @@ bool solve_set(const System& sys, Set set, bool impact, PerContact& multiplier, 
     double r = impact ? 0.0 : -sys.curvature[idx[a]];
     for (int j = 0; j < sys.coords; ++j) {
       if (!(sys.mass[j] > 0.0)) continue;
-      r -= impact ? wa[j] * sys.velocity[j] : wa[j] * sys.force[j] / sys.mass[j];
-      for (int b = 0; b < m; ++b) k[a][b] += wa[j] * sys.normal[idx[b]][j] / sys.mass[j];
+      const double wm = wa[j] * inv_mass[j];
+      r -= impact ? wa[j] * sys.velocity[j] : wm * sys.force[j];
+      for (int b = 0; b < m; ++b) k[a][b] += wm * sys.normal[idx[b]][j];
     }
     for (int c = 0; c < p; ++c) k[a][m + c] = wa[free_coord[c]];
     rhs[a] = r;
@@ -93,7 +97,7 @@ bool solve_set(const System& sys, Set set, bool impact, PerContact& multiplier, 
     if (!(sys.mass[j] > 0.0)) continue;  // massless: at rest unless solved for below
     double s = impact ? sys.velocity[j] * sys.mass[j] : sys.force[j];
     for (int a = 0; a < m; ++a) s += sys.normal[idx[a]][j] * rhs[a];
-    out[j] = s / sys.mass[j];
+    out[j] = s * inv_mass[j];
   }
   for (int c = 0; c < p; ++c) out[free_coord[c]] = rhs[m + c];
   for (double v : out)

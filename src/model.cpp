@@ -171,7 +171,7 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
   if (c_p_ > 0.0 || c_l_ > 0.0 || drag_ > 0.0) dissipation(d, kinematics(d, y), dy);
 }
 
-void Model::dissipation(const Discrete& d, const Kinematics& k, State& dy) const {
+void Model::dissipation(const Discrete& /*d*/, const Kinematics& k, State& dy) const {
   // Power turned into heat (the pivot's damper comes with a seesaw that has inertia).
   dy[slot::lost_pivot] = c_p_ * k.dphi_s * k.dphi_s;
   dy[slot::lost_hinge] = c_l_ * k.dphi_l * k.dphi_l;
@@ -436,7 +436,7 @@ Snapshot Model::snapshot(const HybridState& hs) const {
 
 // --- guards ------------------------------------------------------------------------------------
 
-void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates) const {
+void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates, int only) const {
   g.fill(kInactive);
   if (rates) rates->fill(std::numeric_limits<double>::quiet_NaN());
   const Kinematics k = kinematics(d, y);
@@ -461,7 +461,8 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   // arm's push is the tension times the coupling k (torque balance), so the sandbag's guard is
   // the sign of k and the rope's the tension.
   const bool loaded = heavy_ || (d.on_seesaw && d.taut);
-  const bool forces = loaded && (d.on_seesaw || d.taut);
+  const bool forces = loaded && (d.on_seesaw || d.taut) &&
+                      (only < 0 || only == kGuardBag || only == kGuardRope || only == kGuardLid);
   const bool open = !(d.on_seesaw && d.taut && d.lid_resting);
   contact::System sys;
   if (forces || (rates && open)) sys = contact_system(d, k);
@@ -487,7 +488,7 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   if (on_closure(d)) {
     // The lid's dead centre: it reaches the rope's line (the rope would touch the hinge and then
     // run through the box). Crossed at a finite rate in the lid chart, so found exactly.
-    g[kGuardRopeLocked] = rope_.lid_side_of_rope(k.phi_s, k.phi_l);
+    if (only < 0 || only == kGuardRopeLocked) g[kGuardRopeLocked] = rope_.lid_side_of_rope(k.phi_s, k.phi_l);
     // Integrate the angle that moves slower: switch charts at |k| = 2 (seesaw) or 1/2 (lid).
     g[kGuardChart] = d.lid_chart ? std::fabs(1.0 / k.transfer.k) - 2.0 : std::fabs(k.transfer.k) - 2.0;
   } else if (d.taut && !d.lid_resting && !d.latched) {

@@ -18,6 +18,11 @@ struct MachineSystem {
   void guards(const State& y, GuardValues& g, GuardValues* rates = nullptr) const {
     model->guards(d, y, g, rates);
   }
+  double guard(const State& y, int i) const {
+    GuardValues g;
+    model->guards(d, y, g, nullptr, i);
+    return g[i];
+  }
   GuardStart guard_start(int i) const { return d.armed[i]; }
 };
 

@@ -363,7 +363,9 @@ TEST(FastPaths, ClosureMatchesLidAngleAndTransfer) {
       const int side = RopeGeometry::side_of(g.lid_edge(phi_l), g.seesaw_end(phi_s));
       const RopeGeometry::Linkage b = g.from_lid(std::cos(phi_l), std::sin(phi_l), side);
       EXPECT_NEAR(b.phi_s(), phi_s, 1e-9) << deg;
-      if (std::fabs(t.k) > 1e-3) EXPECT_NEAR(b.ds, 1.0 / t.k, 1e-9 * (1.0 + std::fabs(1.0 / t.k))) << deg;
+      if (std::fabs(t.k) > 1e-3) {
+        EXPECT_NEAR(b.ds, 1.0 / t.k, 1e-9 * (1.0 + std::fabs(1.0 / t.k))) << deg;
+      }
     }
     EXPECT_GT(checked, 20) << rope;
   }

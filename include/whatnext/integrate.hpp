@@ -3,6 +3,8 @@
 //   void operator()(const state_type& y, state_type& dy, double t) const;   // the flow
 //   void guards(const state_type& y, guard_type& g, guard_type* dg) const;  // event functions,
 //                                       and their rates dg/dt if dg is given (NaN: not known)
+//   double guard(const state_type& y, int i) const;  // event function i alone (root finding:
+//                                       it may skip what only the others need)
 //   S guard_start(int i) const;  // S has .order, .lead and .floor, see below
 // A guard fires when its value goes from negative to >= 0. Each call integrates one smooth piece
 // from t up to the first firing guard or t_end and hands samples on an output grid to a callback.
@@ -95,8 +97,7 @@ template <class System>
 double time_uncertainty(const System& sys, const typename System::state_type& y, int guard, double tolerance,
                         double rate) {
   if (!(std::fabs(rate) < std::numeric_limits<double>::infinity()) || rate == 0.0) return 0.0;
-  typename System::guard_type g, gp;
-  sys.guards(y, g, nullptr);
+  const double g = sys.guard(y, guard);
   double change = 0.0;
   for (int pattern = 0; pattern < 2; ++pattern) {
     typename System::state_type yp = y;
@@ -104,8 +105,7 @@ double time_uncertainty(const System& sys, const typename System::state_type& y,
       const double sign = pattern == 1 && (i % 2) ? -1.0 : 1.0;
       yp[i] += sign * tolerance * (1.0 + std::fabs(y[i]));
     }
-    sys.guards(yp, gp, nullptr);
-    change = std::fmax(change, std::fabs(gp[guard] - g[guard]));
+    change = std::fmax(change, std::fabs(sys.guard(yp, guard) - g));
   }
   return change / std::fabs(rate);
 }
@@ -207,11 +207,9 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
     double t_hit = tb, rate_hit = std::numeric_limits<double>::infinity();
     auto guard_at = [&](std::size_t i, double tt) {
       state_type yy;
-      guard_type gg;
       stepper.calc_state(tt, yy);
-      sys.guards(yy, gg, nullptr);
       ++stats.root_evaluations;
-      return gg[i];
+      return sys.guard(yy, static_cast<int>(i));
     };
     for (std::size_t i = 0; i < g0.size(); ++i) {
       if (armed[i]) {
@@ -274,11 +272,10 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
       auto f = [&](double tt) {
         if (p > 0 && tt - t0 < noise_time[i]) return g0[i];
         state_type yy;
-        guard_type gg;
         stepper.calc_state(tt, yy);
-        sys.guards(yy, gg, nullptr);
         ++stats.root_evaluations;
-        return p > 0 ? gg[i] / detail::power(tt - t0, p) : gg[i];
+        const double gi = sys.guard(yy, static_cast<int>(i));
+        return p > 0 ? gi / detail::power(tt - t0, p) : gi;
       };
       std::uintmax_t iterations = 200;
       auto stop = [&](double a, double b) { return std::fabs(b - a) <= time_tolerance; };

@@ -71,8 +71,10 @@ class Model {
   // Flow: dy/dt in the discrete state d.
   void flow(const Discrete& d, const State& y, State& dy) const;
   // Guard values in the discrete state d, and, if asked, their rates where they are gaps of open
-  // contacts (NaN elsewhere: not known).
-  void guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates = nullptr) const;
+  // contacts (NaN elsewhere: not known). With only >= 0, g[only] is all the caller reads (root
+  // finding), and what no other guard needs is skipped.
+  void guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates = nullptr,
+              int only = -1) const;
   // Jump for the guard that fired at hs.t; every resulting event is appended to out in the order
   // it happens (all at hs.t). Returns true when the run ends.
   bool jump(Guard fired, HybridState& hs, std::vector<Event>& out) const;
