@@ -404,8 +404,10 @@ std::string outcome_sentence(const Result& result) {
       return fmt::format("sandbag reaches the pivot at {:.3f} s; the lid has not opened (it is at "
                          "{:.1f} deg)", e.t, s.phi_l * kRadToDeg);
     case EventType::rope_locked:
-      return fmt::format("rope and lid in line at {:.3f} s: the linkage locks with the lid at {:.1f} deg",
-                         e.t, s.phi_l * kRadToDeg);
+      // Either the lid or the seesaw's arm has come in line with the straight rope (docs/model.md):
+      // the linkage cannot move on; which of the two is not in the result, so the line names both.
+      return fmt::format("linkage locked at {:.3f} s: the straight rope is in line with the lid or the seesaw's "
+                         "arm; the lid is at {:.1f} deg", e.t, s.phi_l * kRadToDeg);
     case EventType::radio_on:
       return fmt::format("radio on at t = {:.3f} s", e.t);
     case EventType::timeout:
