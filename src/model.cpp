@@ -73,8 +73,34 @@ double Model::lid_free_acceleration(double phi_l, double dphi_l) const {
   return (-m_l_ * g_ * r_l_ * std::cos(phi_l) - c_l_ * dphi_l) / i_l_;
 }
 
-Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr,
-                          double dphi_s) const {
+namespace {
+template <class Memo>
+bool recall(const Memo& m, int flags, double a, double b, double c, double d) {
+  return m.valid && m.flags == flags && m.args[0] == a && m.args[1] == b && m.args[2] == c && m.args[3] == d;
+}
+template <class Memo, class Value>
+const Value& remember(Memo& m, int flags, double a, double b, double c, double d, const Value& v) {
+  m.valid = true, m.flags = flags;
+  m.args[0] = a, m.args[1] = b, m.args[2] = c, m.args[3] = d;
+  m.value = v;
+  return m.value;
+}
+}  // namespace
+
+Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const {
+  const int flags = (on ? 1 : 0) | (taut ? 2 : 0);
+  if (recall(swing_memo_, flags, r, phi_s, dr, dphi_s)) return swing_memo_.value;
+  return remember(swing_memo_, flags, r, phi_s, dr, dphi_s, compute_swing(on, taut, r, phi_s, dr, dphi_s));
+}
+
+Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side) const {
+  const int flags = (on ? 1 : 0) | (side > 0 ? 2 : 0);
+  if (recall(lid_swing_memo_, flags, r, phi_l, dr, dphi_l)) return lid_swing_memo_.value;
+  return remember(lid_swing_memo_, flags, r, phi_l, dr, dphi_l, compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side));
+}
+
+Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, double dr,
+                                  double dphi_s) const {
   // J phiS'' = Q with J = I_S + [on] m_S r^2 + [taut] I_L k^2. With I_S = 0, no seesaw weight and no
   // damping (MODEL.md) the extra terms are exact zeros and this is eqs. (3) and (4) of the paper.
   // This is the flow's hot path: one sincos of phiS serves the weights and the whole linkage.
@@ -102,8 +128,8 @@ Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr,
   return p;
 }
 
-Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l,
-                                    int side) const {
+Model::LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l,
+                                            int side) const {
   // Along the closure phiS = S(phiL): multiply the seesaw's equation by S' and add the lid's, and
   // the rope's force drops out (its gradient is normal to the closure). With phiS' = S' phiL' and
   // phiS'' = S' phiL'' + S'' phiL'^2:

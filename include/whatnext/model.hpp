@@ -113,6 +113,20 @@ class Model {
     RopeGeometry::Linkage lk;
   };
   LidSwing swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side) const;
+  Swing compute_swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const;
+  LidSwing compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side) const;
+  // The flow's last stage (FSAL) and the guards at the step's end ask for the swing of the same
+  // state: the last one computed is kept and handed out again for identical arguments. A Model
+  // belongs to one simulate() call, hence to one thread.
+  template <class Result>
+  struct Memo {
+    bool valid = false;
+    int flags = 0;
+    double args[4] = {0, 0, 0, 0};
+    Result value{};
+  };
+  mutable Memo<Swing> swing_memo_;
+  mutable Memo<LidSwing> lid_swing_memo_;
   static void lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l);
   // The lid swings on the straight rope, driven through it by something with inertia.
   static bool on_closure(const Discrete& d) {
