@@ -34,8 +34,6 @@ struct SweepOptions {
 // written (a few hundred bytes each), and the CSV takes about as much again.
 constexpr std::int64_t kLargeSweep = 1'000'000;
 constexpr double kSweepRowBytes = 600.0;
-// The accuracy sets the tolerance to a tenth of it, which must stay in run.tolerance's range.
-constexpr double kMinAccuracy = 1e-14, kMaxAccuracy = 1e-2;
 
 // Interrupts stop the sweep instead of ending the process while this lives.
 struct InterruptStops {
@@ -105,10 +103,7 @@ void register_sweep(CLI::App& app, int& exit_code) {
                 fmt::format("run sweeps of more than {} machines", kLargeSweep));
   cmd->callback([opts, cmd, &exit_code] {
     check_leftovers(*cmd);
-    if (!(opts->accuracy >= kMinAccuracy && opts->accuracy <= kMaxAccuracy)) {
-      throw InputError(fmt::format("--accuracy: must be in [{:g}, {:g}] s (given {})", kMinAccuracy,
-                                   kMaxAccuracy, opts->accuracy));
-    }
+    explore::check_accuracy(opts->accuracy, "--accuracy");
     // Everything about the input is checked before any machine runs or any file appears.
     explore::Plan plan;
     plan.samples = opts->samples;

@@ -15,6 +15,7 @@
 #include <iterator>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -291,10 +292,13 @@ void check_sweep_keys(const std::vector<std::string>& keys) {
 // Runs machines 0..n-1 on `threads` threads with explore::evaluate, the GIL released; Ctrl-C
 // (checked ten times a second on the calling thread) stops the workers and raises KeyboardInterrupt.
 // Rows land in their own slots, so they do not depend on the thread count.
-// Issue 9 adds an event-time accuracy to explore's sweeps: pass it through here (and to
-// evaluate) when the library offers it.
+// Each machine runs to the event-time accuracy given (explore::apply_accuracy; none: the machine's
+// own run settings).
 std::vector<explore::Outcome> run_points(const MachineHandle& m, const std::vector<std::string>& keys,
-                                         std::int64_t n, const PointFn& point, int threads) {
+                                         std::int64_t n, const PointFn& point, int threads,
+                                         std::optional<double> accuracy_given) {
+  if (accuracy_given) explore::check_accuracy(*accuracy_given, "sweep: accuracy");
+  const double accuracy = accuracy_given.value_or(0.0);
   std::vector<explore::Outcome> rows(static_cast<std::size_t>(n));
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>(threads, n)));
@@ -311,7 +315,7 @@ std::vector<explore::Outcome> run_points(const MachineHandle& m, const std::vect
       for (std::int64_t i = next.fetch_add(1); i < n && !stop.load(std::memory_order_relaxed);
            i = next.fetch_add(1)) {
         point(i, values.data());
-        rows[static_cast<std::size_t>(i)] = explore::evaluate(m.config, keys, values.data());
+        rows[static_cast<std::size_t>(i)] = explore::evaluate(m.config, keys, values.data(), accuracy);
       }
       std::lock_guard<std::mutex> lock(mu);
       --running;
@@ -383,7 +387,7 @@ using Axis = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // The full grid over explicit values per key; the last key varies fastest (as the CLI's grid).
 py::dict sweep_grid(const MachineHandle& m, const std::vector<std::string>& keys,
-                    const std::vector<Axis>& axes, int threads) {
+                    const std::vector<Axis>& axes, int threads, std::optional<double> accuracy) {
   check_sweep_keys(keys);
   if (axes.size() != keys.size()) throw std::invalid_argument("sweep: one array of values per key");
   std::vector<std::vector<double>> grid(keys.size());
@@ -406,13 +410,13 @@ py::dict sweep_grid(const MachineHandle& m, const std::vector<std::string>& keys
       i /= size;
     }
   };
-  const auto rows = run_points(m, keys, n, point, threads);
+  const auto rows = run_points(m, keys, n, point, threads, accuracy);
   return sweep_columns(keys, n, point, rows);
 }
 
 // A Latin hypercube of `samples` machines over "KEY=A:B" ranges (the CLI's --samples/--seed).
 py::dict sweep_lhs(const MachineHandle& m, const std::vector<std::string>& specs, std::int64_t samples,
-                   std::uint64_t seed, int threads) {
+                   std::uint64_t seed, int threads, std::optional<double> accuracy) {
   explore::Plan plan;
   plan.samples = samples;
   plan.seed = seed;
@@ -421,7 +425,7 @@ py::dict sweep_lhs(const MachineHandle& m, const std::vector<std::string>& specs
   const explore::Machines machines(plan);
   const PointFn point = [&machines](std::int64_t i, double* out) { machines.point(i, out); };
   const auto keys = plan.keys();
-  const auto rows = run_points(m, keys, machines.size(), point, threads);
+  const auto rows = run_points(m, keys, machines.size(), point, threads, accuracy);
   return sweep_columns(keys, machines.size(), point, rows);
 }
 
@@ -473,9 +477,11 @@ PYBIND11_MODULE(_core, mod) {
     return out;
   });
   mod.def("simulate", &run_machine, py::arg("machine"), py::arg("samples"));
-  mod.def("sweep_grid", &sweep_grid, py::arg("machine"), py::arg("keys"), py::arg("axes"), py::arg("threads"));
+  mod.def("sweep_grid", &sweep_grid, py::arg("machine"), py::arg("keys"), py::arg("axes"), py::arg("threads"),
+          py::arg("accuracy"));
   mod.def("sweep_lhs", &sweep_lhs, py::arg("machine"), py::arg("specs"), py::arg("samples"), py::arg("seed"),
-          py::arg("threads"));
+          py::arg("threads"), py::arg("accuracy"));
+  mod.attr("DEFAULT_ACCURACY") = explore::kDefaultAccuracy;
   mod.def("grid_values", &grid_values, py::arg("a"), py::arg("b"), py::arg("n"));
   mod.def("csv_columns", [] { return column_names(); });
 }

@@ -334,7 +334,7 @@ def grid(a: float, b: float, n: int) -> np.ndarray:
 
 
 def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int] = None, seed: int = 1,
-          threads: Optional[int] = None) -> Sweep:
+          threads: Optional[int] = None, accuracy: Optional[float] = _core.DEFAULT_ACCURACY) -> Sweep:
     """Run many variants of a machine on all cores; the Python form of ``whatnext sweep``.
 
     ``values`` maps input keys (any numeric key of docs/inputs.md, angles in degrees) to the
@@ -350,6 +350,12 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
     C++ on ``threads`` threads (default: all cores) with the GIL released; the results do not
     depend on the thread count. Ctrl-C stops the sweep (KeyboardInterrupt).
 
+    ``accuracy`` is the event-time accuracy in seconds (default 1e-8, as ``--accuracy`` of
+    ``whatnext sweep``): every event time is then within it of the exact time, and the machines run
+    with the loosest integrator tolerance that guarantees it (unless the machine sets
+    ``run.tolerance`` itself). ``accuracy=None`` runs each machine with its own run settings,
+    exactly as :func:`simulate` would.
+
     Returns a :class:`Sweep`: columns named like the sweep CSV (``outcome``, ``outcome_t``,
     ``lid_open``, ``rope_taut``, ..., ``error``), each a numpy array with a row per machine.
 
@@ -359,13 +365,12 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
                                                  "masses.sandbag": np.linspace(0.2, 2.0, 37)})
         s.grid("lid_open")        # 29 x 37, NaN where the lid never opens
     """
-    # Issue 9 adds an event-time accuracy to the library's sweeps (default 1e-8 s): it becomes a
-    # keyword `accuracy=` here, passed to _core.sweep_grid/sweep_lhs.
     if not isinstance(machine, Machine):
         raise TypeError("sweep(machine, values): make the machine with whatnext.example(), load() or machine()")
     if not values:
         raise InputError("sweep: give at least one key to vary")
     n_threads = 0 if threads is None else int(threads)
+    accuracy_s = None if accuracy is None else float(accuracy)
     if threads is not None and n_threads < 1:
         raise ValueError(f"sweep: threads must be >= 1 (given {threads})")
     keys = list(values)
@@ -375,9 +380,9 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
             if not (isinstance(v, Sequence) and len(v) == 2):
                 raise TypeError(f"sweep(samples=...): {k} needs a pair (a, b), not {v!r}")
             specs.append(f"{k}={_toml_value(k, v[0])}:{_toml_value(k, v[1])}")
-        return Sweep(keys, _core.sweep_lhs(machine._handle, specs, int(samples), int(seed), n_threads), None)
+        return Sweep(keys, _core.sweep_lhs(machine._handle, specs, int(samples), int(seed), n_threads, accuracy_s), None)
     axes = {k: np.ascontiguousarray(np.atleast_1d(np.asarray(v, dtype=np.float64))) for k, v in values.items()}
-    columns = _core.sweep_grid(machine._handle, keys, list(axes.values()), n_threads)
+    columns = _core.sweep_grid(machine._handle, keys, list(axes.values()), n_threads, accuracy_s)
     return Sweep(keys, columns, axes)
 
 

@@ -278,6 +278,13 @@ const std::vector<EventType>& event_types() {
   return types;
 }
 
+void check_accuracy(double accuracy, std::string_view option) {
+  if (!(accuracy >= kMinAccuracy && accuracy <= kMaxAccuracy)) {
+    throw InputError(fmt::format("{}: must be in [{:g}, {:g}] s (given {})", option, kMinAccuracy, kMaxAccuracy,
+                                 accuracy));
+  }
+}
+
 void apply_accuracy(Scenario& scenario, double accuracy, bool tolerance_given) {
   if (!tolerance_given) scenario.run.tolerance = accuracy / 10.0;
   scenario.run.event_time_tolerance = accuracy / 100.0;

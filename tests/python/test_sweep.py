@@ -48,10 +48,10 @@ def test_grid_equals_the_cli_csv(tmp_path):
 
 def test_latin_hypercube_equals_the_cli_csv(tmp_path):
     out = tmp_path / "lhs.csv"
-    run_cli(["sweep", "--example", 1, "--samples", 40, "--seed", 7, "--out", out,
+    run_cli(["sweep", "--example", 1, "--samples", 40, "--seed", 7, "--accuracy", "1e-6", "--out", out,
              "--vary", "start.sandbag_height=0.3:1.5", "--vary", "masses.lid=0.2:1"])
     result = whatnext.sweep(whatnext.example(1), {"start.sandbag_height": (0.3, 1.5), "masses.lid": (0.2, 1)},
-                            samples=40, seed=7)
+                            samples=40, seed=7, accuracy=1e-6)
     assert_columns_equal_csv(result, out)
     assert result.shape == (40,)
 
@@ -82,12 +82,19 @@ def test_columns_dtypes_and_grid_shape():
     # The last key varies fastest: grid(name)[i, j] belongs to value i of the first key, j of the second.
     assert np.array_equal(s.grid("geometry.rope_length"), np.repeat(axes["geometry.rope_length"], 4).reshape(6, 4))
     assert np.array_equal(s.grid("start.sandbag_height")[0], np.array(axes["start.sandbag_height"]))
-    # Each machine is the base machine with the values set: row 5 is one simulate() away.
+    # Each machine is the base machine with the values set: row 5 is one simulate() away, to the
+    # last bit when the sweep runs the machine's own settings (accuracy=None), and within the
+    # event-time accuracy asked for otherwise.
     i, j = 1, 1
     run = whatnext.simulate(whatnext.example(2).set({"geometry.rope_length": axes["geometry.rope_length"][i],
                                                     "start.sandbag_height": axes["start.sandbag_height"][j]}),
                             samples=False)
-    assert s.grid("outcome")[i, j] == run.outcome.type and s.grid("outcome_t")[i, j] == run.outcome.time
+    own = whatnext.sweep(whatnext.example(2), axes, threads=2, accuracy=None)
+    assert own.grid("outcome")[i, j] == run.outcome.type and own.grid("outcome_t")[i, j] == run.outcome.time
+    for accuracy in (1e-6, 1e-8):
+        loose = s if accuracy == 1e-8 else whatnext.sweep(whatnext.example(2), axes, threads=2, accuracy=accuracy)
+        assert loose.grid("outcome")[i, j] == run.outcome.type
+        assert abs(loose.grid("outcome_t")[i, j] - run.outcome.time) <= accuracy
 
 
 def test_rows_do_not_depend_on_the_thread_count():
@@ -101,6 +108,8 @@ def test_rows_do_not_depend_on_the_thread_count():
 
 def test_bad_keys_raise_input_error():
     m = whatnext.example(2)
+    with pytest.raises(whatnext.InputError, match=r"accuracy: must be in \[1e-14, 0.01\] s \(given 0\)"):
+        whatnext.sweep(m, {"geometry.rope_length": [0.7]}, accuracy=0)
     with pytest.raises(whatnext.InputError, match="did you mean 'geometry.rope_length'"):
         whatnext.sweep(m, {"geometry.rope_lenght": [0.7]})
     with pytest.raises(whatnext.InputError, match="run.impact_law"):
