@@ -395,6 +395,49 @@ const checks = {
     });
   },
 
+  // A change is shown at once without the browser laying out the page in between, and the link
+  // follows it without being rewritten at every step of a slider (browsers limit how often a page
+  // may rewrite its address; Safari throws after 100 times in 30 s); a link pasted into the tab
+  // opens its machine.
+  async changes() {
+    await withPage(async (page) => {
+      const cdp = await page.context().newCDPSession(page);
+      await cdp.send('Performance.enable');
+      const layouts = async () => (await cdp.send('Performance.getMetrics')).metrics.find((m) => m.name === 'LayoutCount').value;
+      await page.evaluate(() => {
+        const real = history.replaceState.bind(history);
+        window.linkWrites = 0;
+        history.replaceState = (...args) => { window.linkWrites += 1; return real(...args); };
+      });
+      const before = await runs(page), layoutsBefore = await layouts();
+      // A slider dragged over 60 positions in one go, as fast as the events come.
+      const [last, ms] = await page.evaluate(() => {
+        const slider = document.querySelector('[data-key="geometry.rope_length"] input.slider');
+        const t0 = performance.now();
+        for (let p = 400; p < 460; ++p) {
+          slider.value = String(p);
+          slider.dispatchEvent(new Event('input', { bubbles: true }));
+        }
+        return [document.getElementById('field-geometry-rope_length').value, performance.now() - t0];
+      });
+      assert.equal(await runs(page), before + 60, 'every position ran');
+      assert.ok((await layouts()) - layoutsBefore <= 5, `${(await layouts()) - layoutsBefore} layouts for 60 changes`);
+      const writes = await page.evaluate(() => window.linkWrites);
+      assert.ok(writes <= 1 + Math.ceil(ms / 250), `the link was written ${writes} times in ${ms} ms`);
+      await page.evaluate(() => {
+        document.querySelector('[data-key="geometry.rope_length"] input.slider').dispatchEvent(new Event('change', { bubbles: true }));
+      });
+      assert.equal(new URL(page.url()).hash, `#machine=example1&geometry.rope_length=${last}`);
+      assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(['--example', '1', '--set', `geometry.rope_length=${last}`])}.`);
+
+      // Another machine's link pasted into the address bar of this tab.
+      await page.evaluate(() => { location.hash = 'machine=example2&masses.sandbag=1.1'; });
+      await page.waitForFunction(() => document.body.dataset.ready && window.whatnext.run.label.startsWith('example 2'));
+      assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(['--example', '2', '--set', 'masses.sandbag=1.1'])}.`);
+      assert.equal(await page.inputValue(fieldId('masses.sandbag')), '1.1');
+    });
+  },
+
   // Phone and projector: nothing wider than the window, the machine and the outcome in view; the
   // screenshots for the README (build/web-test/).
   async layout() {
