@@ -227,7 +227,10 @@
     st.font = Math.min(Math.max(width / 42, 13), 24);
     st.lines = width < 600 ? 2 : 1;  // a narrow caption wraps the event's words
     st.band = (1.8 + 1.1 * st.lines) * st.font;
-    const height = Math.round(Math.min(Math.max(st.aspect * width + st.band, 240), 0.75 * window.innerHeight));
+    // At most three quarters of the window's height, but never less than the caption and a
+    // picture below it (a short window, or one not laid out yet, has almost no height).
+    const height = Math.round(Math.max(Math.min(Math.max(st.aspect * width + st.band, 240), 0.75 * window.innerHeight),
+                                       st.band + 150));
     st.dpr = window.devicePixelRatio || 1;
     canvas.style.height = `${height}px`;
     canvas.width = Math.round(width * st.dpr);

@@ -395,6 +395,55 @@ const checks = {
     });
   },
 
+  // The drawing as `whatnext animate` draws it: a slack rope never hangs through the closed lid
+  // into the box (it lies on the lid and hangs from the hinge); a sandbag far out is an arrow with
+  // its distance in the caption, not over the machine; a window too short for the picture still
+  // gets one (it used to stop the page with a negative radius).
+  async drawing() {
+    const kRope = [51, 42, 51], kBagText = [153, 85, 0];  // web/src/machine.js, as the animation
+    await withPage(async (page) => {
+      // Example 1 at the start: the rope is slack by 0.4 m, the lid closed at 5 degrees.
+      await scrubTo(page, 0);
+      const m = await page.evaluate(() => window.whatnext.run.machine);
+      assert.equal(await page.evaluate(() => window.whatnext.stateAt(0).rope_taut), 0);
+      const rl = m.lid_half_length, ground = m.hinge.h - 2 * rl;
+      // The box's inside, well clear of its walls and of the lid (which rises to the right).
+      const a = await page.evaluate(([x, h]) => window.whatnext.canvasPixel(x, h), [m.hinge.x + 0.03, m.hinge.h - 0.03]);
+      const b = await page.evaluate(([x, h]) => window.whatnext.canvasPixel(x, h), [m.hinge.x + 2 * rl - 0.03, ground + 0.03]);
+      const inside = await page.evaluate(([x0, y0, x1, y1]) => {
+        const c = document.getElementById('machine');
+        return [...c.getContext('2d').getImageData(x0, y0, x1 - x0, y1 - y0).data];
+      }, [a.x, a.y, b.x, b.y].map(Math.round));
+      let rope = 0;
+      for (let i = 0; i < inside.length; i += 4) if (near(inside.slice(i, i + 3), kRope, 30)) ++rope;
+      assert.ok(inside.length > 4000, 'the box is on the canvas');
+      assert.equal(rope, 0, 'rope-coloured pixels inside the closed box');
+
+      // Example 3 after 10 s: the sandbag is hundreds of metres out (the CLI's CSV says how far).
+      const captionHas = async (colour) => page.evaluate(([rgb]) => {
+        const c = document.getElementById('machine'), band = c.getContext('2d').getImageData(0, 0, c.width, 40).data;
+        for (let i = 0; i < band.length; i += 4) {
+          if (Math.abs(band[i] - rgb[0]) + Math.abs(band[i + 1] - rgb[1]) + Math.abs(band[i + 2] - rgb[2]) < 30) return true;
+        }
+        return false;
+      }, [colour]);
+      assert.equal(await captionHas(kBagText), false, 'no distance while the sandbag is in the picture');
+      const before = await runs(page);
+      await page.selectOption('#preset', 'example3');
+      await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, before);
+      await scrubTo(page, 10);
+      const far = await page.evaluate(() => { const s = window.whatnext.stateAt(10); return Math.hypot(s.x, s.h); });
+      assert.ok(far > 100, `the sandbag is ${far} m out`);
+      assert.ok(await captionHas(kBagText), 'the distance of a sandbag far out is in the caption');
+    }, { scale: 1 });
+    // A window a hundred pixels high.
+    await withPage(async (page) => {
+      const box = await page.locator('#machine').boundingBox();
+      assert.ok(box.height >= 180, `the drawing is ${box.height} px high`);
+      assert.match(await outcomeText(page), /^Outcome: lid open at 0\.820 s\.$/);
+    }, { viewport: { width: 800, height: 100 } });
+  },
+
   // A change is shown at once without the browser laying out the page in between, and the link
   // follows it without being rewritten at every step of a slider (browsers limit how often a page
   // may rewrite its address; Safari throws after 100 times in 30 s); a link pasted into the tab
