@@ -491,9 +491,17 @@ const checks = {
   // screenshots for the README (build/web-test/).
   async layout() {
     fs.mkdirSync(outDir, { recursive: true });
-    for (const [name, viewport, scale] of [['phone', { width: 390, height: 844 }, 3], ['projector', { width: 1280, height: 720 }, 1],
-                                           ['desktop', { width: 1600, height: 1000 }, 1]]) {
+    for (const [name, viewport, scale] of [['phone', { width: 390, height: 844 }, 3], ['projector', { width: 1920, height: 1080 }, 1],
+                                           ['small-projector', { width: 1280, height: 720 }, 1],
+                                           ['desktop', { width: 1400, height: 900 }, 1]]) {
       await withPage(async (page) => {
+        // The timeline's columns whole, even with example 3's sandbag 1929.5922 m out.
+        const before = await runs(page);
+        await page.selectOption('#preset', 'example3');
+        await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, before);
+        const table = await page.evaluate(() => { const b = document.querySelector('.table-box'); return [b.scrollWidth, b.clientWidth]; });
+        assert.ok(table[0] <= table[1], `${name}: the timeline is ${table[0]} px wide in ${table[1]} px`);
+        await page.selectOption('#preset', 'example1');
         const fits = await page.evaluate(() => document.documentElement.scrollWidth <= window.innerWidth);
         assert.ok(fits, `${name}: the page is wider than the window`);
         const box = await page.locator('#machine').boundingBox();
@@ -507,7 +515,7 @@ const checks = {
           await page.selectOption('#compare-law', 'kinetic-energy');
           await page.evaluate(() => window.whatnext.seek(0.6));
         }
-        await page.screenshot({ path: path.join(outDir, `web-${name}.png`), fullPage: name !== 'projector' });
+        await page.screenshot({ path: path.join(outDir, `web-${name}.png`), fullPage: name === 'phone' || name === 'desktop' });
       }, { viewport, scale });
     }
   },
