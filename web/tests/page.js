@@ -520,7 +520,9 @@ const checks = {
     }
   },
 
-  // Not a test: how long one run of example 2 takes in the page (printed for docs/web.md).
+  // Not a test: how long one run of example 2 takes in the page, and a whole change (a rope
+  // length typed: the run, the timeline, the plots, the panel and the drawing), printed for
+  // docs/web.md and docs/performance.md.
   async speed() {
     await withPage(async (page) => {
       const times = await page.evaluate(() => { window.whatnext.timeRun('example2', 50); return window.whatnext.timeRun('example2', 500); });
@@ -528,6 +530,20 @@ const checks = {
       const version = await page.evaluate(() => navigator.userAgent.match(/Chrome\/[\d.]+/)[0]);
       console.log(`example 2 in the page (${version}): median ${median.toFixed(3)} ms, fastest ${times[0].toFixed(3)} ms ` +
                   `over ${times.length} runs`);
+      await page.selectOption('#preset', 'example2');
+      const changes = await page.evaluate(() => {
+        const input = document.getElementById('field-geometry-rope_length');
+        const out = [];
+        for (let i = 0; i < 250; ++i) {
+          input.value = String(0.62 + 0.001 * (i % 50));
+          const t0 = performance.now();
+          input.dispatchEvent(new Event('input', { bubbles: true }));
+          if (i >= 50) out.push(performance.now() - t0);
+        }
+        return out.sort((a, b) => a - b);
+      });
+      console.log(`a change of example 2's rope length, run and shown: median ${changes[changes.length >> 1].toFixed(3)} ms, ` +
+                  `fastest ${changes[0].toFixed(3)} ms over ${changes.length} changes`);
     });
   },
 };
