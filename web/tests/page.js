@@ -372,6 +372,36 @@ const checks = {
     });
   },
 
+  // The extensions set in the panel as a user would (a number typed and the next control clicked
+  // at once, check boxes, a choice): a heavy seesaw with a finite arm, the radio, air drag and
+  // another impact law give the command line's run, and the page names that command.
+  async extensions() {
+    await withPage(async (page) => {
+      const before = await runs(page);
+      await page.selectOption('#preset', 'example2');
+      await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, before);
+      await page.click('details.group:last-of-type > summary');  // "Extensions beyond the paper"
+      // Clicks move the mouse from a field to one further down, over the first one's help.
+      await page.click(fieldId('balloon.drag'));
+      await page.click(fieldId('radio.enabled'));
+      await page.fill(fieldId('seesaw.left_arm'), '1.2');
+      await page.click(fieldId('seesaw.mass'));
+      await page.fill(fieldId('seesaw.mass'), '0.4');
+      await page.click(fieldId('seesaw.com_offset'));
+      await page.selectOption(fieldId('run.impact_law'), 'angular-momentum-sum');
+      const set = ['balloon.drag=true', 'radio.enabled=true', 'seesaw.left_arm=1.2', 'seesaw.mass=0.4',
+                   'run.impact_law=angular-momentum-sum'];
+      for (const key of ['radio.enabled', 'balloon.drag']) assert.ok(await page.isChecked(fieldId(key)), key);
+      const args = ['--example', '2', ...sets(set)];
+      const expected = cli('run', ...args);
+      assert.equal(expected.status, 0);
+      assert.deepEqual(await pageTimeline(page), cliTimeline(expected.stdout).rows);
+      assert.equal(await outcomeText(page), cliTimeline(expected.stdout).outcome);
+      assert.equal(await page.textContent('#cli-command'), `$ whatnext run ${args.join(' ')}`);
+      assert.equal(await page.textContent('#cli-text'), expected.stdout);
+    });
+  },
+
   // The second run: another impact law, the paper's Euler method at a chosen step, and the
   // parameters before the last change; each one's outcome is the command line's.
   async compare() {
