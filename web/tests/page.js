@@ -410,6 +410,13 @@ const checks = {
       await page.selectOption('#compare', 'law');
       await page.selectOption('#compare-law', 'kinetic-energy');
       assert.equal(await compared(), `Dashed, impact law kinetic-energy: ${cliOutcome(['--example', '1', '--set', 'run.impact_law=kinetic-energy'])}.`);
+      // The kinetic-energy law keeps the energy: after the pull the legend says nothing was lost
+      // (not the rounding noise of the sum, -1.8e-15 J).
+      await page.evaluate(() => window.whatnext.seek(0.7));
+      const legend = await page.$$eval('#plot-energy .u-legend .u-series', (rows) => Object.fromEntries(
+        rows.map((r) => [r.querySelector('.u-label').textContent, r.querySelector('.u-value').textContent])));
+      assert.equal(legend['lost (impacts, damping), dashed'], '0');
+      assert.notEqual(legend['lost (impacts, damping)'], '0');
       await page.selectOption('#compare', 'euler');
       await page.fill('#compare-step', '0.002');
       assert.equal(await compared(), `Dashed, Euler, step 0.002 s: ${cliOutcome(['--example', '1', ...sets(['run.integrator=euler', 'run.step=0.002'])])}.`);
