@@ -191,3 +191,35 @@ def test_exception_types():
     assert issubclass(whatnext.SimulationError, RuntimeError)
     with pytest.raises(TypeError):
         whatnext.example(1).set("geometry.rope_length", object())
+
+
+def test_the_stub_matches_the_compiled_module():
+    # _core.pyi (what editors and type checkers read) names every function, class and constant of
+    # the compiled module with the arguments pybind11 reports (the first line of each docstring).
+    import ast
+    import pathlib
+    import re
+
+    from whatnext import _core
+
+    stub = ast.parse(pathlib.Path(_core.__file__).with_name("_core.pyi").read_text())
+    functions = {n.name: n for n in stub.body if isinstance(n, ast.FunctionDef)}
+    classes = {n.name: n for n in stub.body if isinstance(n, ast.ClassDef)}
+    constants = {n.target.id for n in stub.body if isinstance(n, ast.AnnAssign)}
+    assert {n for n in dir(_core) if not n.startswith("_")} == set(functions) | set(classes) | constants
+
+    def arguments(doc):  # "name(a: T, b: U) -> R" -> ["a", "b"]
+        line = doc.splitlines()[0]
+        return re.findall(r"(\w+): ", line[line.index("(") + 1:line.rindex(")")])
+
+    for name, node in functions.items():
+        assert [a.arg for a in node.args.args] == arguments(getattr(_core, name).__doc__), name
+    handle = classes["MachineHandle"]
+    for node in handle.body:
+        if isinstance(node, ast.FunctionDef):
+            assert [a.arg for a in node.args.args] == arguments(getattr(_core.MachineHandle, node.name).__doc__), node.name
+        else:
+            assert isinstance(getattr(_core.MachineHandle, node.target.id), property), node.target.id
+    for name in ("InputError", "SimulationError"):
+        base = classes[name].bases[0].id
+        assert issubclass(getattr(_core, name), {"ValueError": ValueError, "RuntimeError": RuntimeError}[base])
