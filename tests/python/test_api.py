@@ -223,3 +223,28 @@ def test_the_stub_matches_the_compiled_module():
     for name in ("InputError", "SimulationError"):
         base = classes[name].bases[0].id
         assert issubclass(getattr(_core, name), {"ValueError": ValueError, "RuntimeError": RuntimeError}[base])
+
+
+@pytest.mark.parametrize("page", ["README.md", "docs/python.md"])
+def test_the_documented_python_runs(page, tmp_path, monkeypatch):
+    # A student copies the examples of the page in order into one session: each must run (the
+    # InputError example must raise exactly that), and the comments' outcomes must be what it says.
+    import pathlib
+    import re
+
+    import matplotlib
+    matplotlib.use("Agg")
+    text = (pathlib.Path(__file__).resolve().parents[2] / page).read_text()
+    monkeypatch.chdir(tmp_path)
+    space = {}
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+    assert blocks
+    for block in blocks:
+        if block.startswith(">>> "):  # an interactive session: the call and what it prints
+            call, shown = block[4:].split("\n", 1)
+            with pytest.raises(whatnext.InputError) as err:
+                exec(call, {"whatnext": whatnext})
+            assert shown.strip() == f"whatnext.InputError: {err.value}"
+            continue
+        exec(compile(block, page, "exec"), space)
+    assert space["run"].outcome.sentence == "lid open at 0.820 s"  # as the comments say
