@@ -37,16 +37,20 @@ constexpr double kDeg = 180.0 / 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A validated machine: the input as given (so that further overrides are checked, and named in
-// messages, exactly as the CLI's --set) and the scenario built from it.
+// messages, exactly as the CLI's --set), the overrides applied to it so far and the scenario built
+// from it.
 struct MachineHandle {
   Config config;
   Scenario scenario;
-  std::string source;  // the timeline's and the events JSON's "input": "example 1", a path, ...
+  std::string origin;             // "example 1", a path, "whatnext.machine()"
+  std::vector<std::string> sets;  // the "KEY=VALUE" overrides, in order, as --set takes them
+  std::string source;             // the timeline's and the events JSON's "input", as the CLI names it
 };
 
-MachineHandle make_machine(Config config, std::string source) {
-  MachineHandle m{std::move(config), Scenario{}, std::move(source)};
+MachineHandle make_machine(Config config, std::string origin, std::vector<std::string> sets = {}) {
+  MachineHandle m{std::move(config), Scenario{}, std::move(origin), std::move(sets), {}};
   m.scenario = build_scenario(m.config);
+  m.source = input_label(m.origin, m.sets);  // "example 2 with --set geometry.rope_length=0.7"
   return m;
 }
 
@@ -54,12 +58,9 @@ MachineHandle make_machine(Config config, std::string source) {
 MachineHandle with_set(const MachineHandle& base, const std::vector<std::string>& assignments) {
   Config config = base.config;
   for (const std::string& a : assignments) apply_set(config, a);
-  const std::string suffix = " with set()";
-  std::string source = base.source;
-  if (source.size() < suffix.size() || source.compare(source.size() - suffix.size(), suffix.size(), suffix) != 0) {
-    source += suffix;
-  }
-  return make_machine(std::move(config), std::move(source));
+  std::vector<std::string> sets = base.sets;
+  sets.insert(sets.end(), assignments.begin(), assignments.end());
+  return make_machine(std::move(config), base.origin, std::move(sets));
 }
 
 // The keys the input gives, in inputs.md's units (degrees for angles), as Python values.

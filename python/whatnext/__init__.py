@@ -97,7 +97,10 @@ class Machine:
 
     @property
     def source(self) -> str:
-        """Where the machine came from: ``"example 1"``, a file name, ``"whatnext.machine()"``."""
+        """Where the machine came from, named as the command line names a run: ``"example 1"``, a
+        file name or ``"whatnext.machine()"``, and the changes made with :meth:`set` as the
+        ``--set`` options that make them (``"example 2 with --set geometry.rope_length=0.7"``).
+        The timeline and the events JSON begin with it."""
         return self._handle.source
 
     @property

@@ -104,6 +104,7 @@
       runCompare();
       showRun();
     }
+    writeUrl();
   }
 
   function runCompare() {
@@ -154,7 +155,7 @@
     $('perf').textContent = `Last run: ${st.runMs.toFixed(1)} ms in WebAssembly, ${run.events.length} events, ` +
                             `${run.samples.t.length} states.`;
     document.body.dataset.runs = String(st.runs);
-    writeUrl();
+    writeUrlSoon();
     render();
   }
 
@@ -226,7 +227,10 @@
     st.font = Math.min(Math.max(width / 42, 13), 24);
     st.lines = width < 600 ? 2 : 1;  // a narrow caption wraps the event's words
     st.band = (1.8 + 1.1 * st.lines) * st.font;
-    const height = Math.round(Math.min(Math.max(st.aspect * width + st.band, 240), 0.75 * window.innerHeight));
+    // At most three quarters of the window's height, but never less than the caption and a
+    // picture below it (a short window, or one not laid out yet, has almost no height).
+    const height = Math.round(Math.max(Math.min(Math.max(st.aspect * width + st.band, 240), 0.75 * window.innerHeight),
+                                       st.band + 150));
     st.dpr = window.devicePixelRatio || 1;
     canvas.style.height = `${height}px`;
     canvas.width = Math.round(width * st.dpr);
@@ -390,7 +394,21 @@
   const fromBase64 = (b64) => new TextDecoder().decode(
     Uint8Array.from(atob(b64.replace(/-/g, '+').replace(/_/g, '/')), (c) => c.charCodeAt(0)));
 
+  // The link follows the machine on screen. Browsers limit how often a page may rewrite it (Safari
+  // refuses more than 100 times in 30 s, Chromium ignores calls beyond 200 in 10 s) and each write
+  // is slow (8 ms in Chromium), so while a slider moves it is written at most every 250 ms, and at
+  // once when a change is finished.
+  let urlWritten = -Infinity, urlTimer = null;
+  function writeUrlSoon() {
+    if (urlTimer !== null) return;
+    const wait = urlWritten + 250 - performance.now();
+    if (wait <= 0) writeUrl(); else urlTimer = setTimeout(writeUrl, wait);
+  }
+
   function writeUrl() {
+    clearTimeout(urlTimer);
+    urlTimer = null;
+    urlWritten = performance.now();
     const p = new URLSearchParams();
     if (st.base.id === 'file') {
       p.set('file', st.base.title);
@@ -473,6 +491,7 @@
   });
   $('reset-all').addEventListener('click', () => choose(st.base, []));
   $('share').addEventListener('click', async () => {
+    writeUrl();
     try {
       await navigator.clipboard.writeText(location.href);
       toast('Link copied: it opens this machine.');
@@ -506,6 +525,7 @@
     showCompareControls();
     runCompare();
     showRun();
+    writeUrl();
   };
   $('compare').addEventListener('change', (e) => { st.compare.mode = e.target.value; compareChanged(); });
   $('compare-law').addEventListener('change', (e) => { st.compare.law = e.target.value; compareChanged(); });
@@ -546,6 +566,10 @@
   });
 
   new ResizeObserver(() => { sizeCanvas(); render(); }).observe($('canvas-box'));
+  // A link pasted into this tab (or the address edited): open its machine as a new page would.
+  // The page's own link updates (history.replaceState) do not fire this.
+  window.addEventListener('hashchange', () => location.reload());
+  window.addEventListener('pagehide', () => { if (urlTimer !== null) writeUrl(); });
   new ResizeObserver(() => plots.resize()).observe($('plots'));
 
   // ---- start: the machine of the link, or example 1 -----------------------------------------------

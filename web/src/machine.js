@@ -18,6 +18,7 @@
     midGrey: 'rgb(160,160,160)',
     band: 'rgb(236,236,236)',
     eventRed: 'rgb(204,0,0)',
+    bagText: 'rgb(153,85,0)',
     ghost: 'rgb(60,90,200)',
   };
 
@@ -41,21 +42,23 @@
   }
 
   // A slack rope or string: a parabola sagging under its chord, as long as the rope.
-  function sagCurve(a, b, length, n = 40) {
+  function sagCurve(a, b, length, n = 48) {
     const point = (s, d) => add(add(a, scale(s, sub(b, a))), { x: 0, h: -4 * d * s * (1 - s) });
+    // The polyline's length, in plain numbers (it is evaluated 60 times a frame).
+    const dx = b.x - a.x, dh = b.h - a.h;
     const arc = (d) => {
-      let len = 0, prev = a;
+      let len = 0, ph = 0;
       for (let i = 1; i <= n; ++i) {
-        const p = point(i / n, d);
-        len += norm(sub(p, prev));
-        prev = p;
+        const s = i / n, h = s * dh - 4 * d * s * (1 - s);
+        len += Math.hypot(dx / n, h - ph);
+        ph = h;
       }
       return len;
     };
     let d = 0;
     if (norm(sub(b, a)) < length - 1e-9) {
       let lo = 0, hi = length;
-      for (let it = 0; it < 50; ++it) {
+      for (let it = 0; it < 60; ++it) {
         const mid = 0.5 * (lo + hi);
         if (arc(mid) < length) lo = mid; else hi = mid;
       }
@@ -64,6 +67,44 @@
     const pts = [];
     for (let i = 0; i <= n; ++i) pts.push(point(i / n, d));
     return pts;
+  }
+
+  // Is a point inside the box, under its lid (or under the box's top while the lid is open)?
+  function inBox(m, edge, p) {
+    const hinge = m.hinge;
+    if (p.x <= hinge.x || p.x >= hinge.x + 2 * m.lid_half_length) return false;
+    let top = hinge.h;
+    if (edge.x > hinge.x + 1e-9 && p.x <= edge.x) {
+      top = Math.max(top, hinge.h + (p.x - hinge.x) * (edge.h - hinge.h) / (edge.x - hinge.x));
+    }
+    return p.h < top;
+  }
+
+  // The slack rope from the seesaw's end a to the lid's edge e, as `whatnext animate` draws it
+  // (src/viz/animation.cpp): a parabola under its chord, as long as the rope, unless that would
+  // hang through the lid into the box. Then the rope lies on the lid from its edge back towards the
+  // hinge and hangs from the hinge (or, with less rope to spare, runs straight from the seesaw to
+  // a point on the lid).
+  function slackRope(m, a, e, length) {
+    const pts = sagCurve(a, e, length);
+    if (!pts.some((p) => inBox(m, e, p))) return pts;
+    const hinge = m.hinge;
+    const rest = length - norm(sub(e, hinge));
+    if (rest >= norm(sub(a, hinge))) return [...sagCurve(a, hinge, rest), e];
+    // |e - p| + |p - a| = length for p between e (too short) and the hinge (too long).
+    let lo = 0, hi = 1;
+    for (let it = 0; it < 60; ++it) {
+      const mid = 0.5 * (lo + hi);
+      const p = add(e, scale(mid, sub(hinge, e)));
+      if (norm(sub(e, p)) + norm(sub(p, a)) < length) lo = mid; else hi = mid;
+    }
+    return [a, add(e, scale(lo, sub(hinge, e))), e];
+  }
+
+  // The rope as drawn in state s: straight when taut, else slack.
+  function ropePath(m, s) {
+    const a = seesawEnd(m, s.phi_s), b = lidEdge(m, s.phi_l);
+    return s.rope_taut ? [a, b] : slackRope(m, a, b, m.rope_length);
   }
 
   // The balloon's string from the balloon's skin to the radio's switch; while the balloon is in
@@ -154,8 +195,8 @@
   // World to canvas pixels: the extent fitted below the caption band, the same scale on both axes.
   function makeView(run, width, height, top) {
     const box = extent(run);
-    const areaH = height - top;
-    const k = Math.min(width / (box.x1 - box.x0), areaH / (box.h1 - box.h0));
+    const areaH = Math.max(1, height - top);
+    const k = Math.max(1e-9, Math.min(width / (box.x1 - box.x0), areaH / (box.h1 - box.h0)));
     return {
       width, height, top, scale: k, leftArm: box.leftArm,
       ox: 0.5 * width - 0.5 * (box.x0 + box.x1) * k,
@@ -284,12 +325,11 @@
       p.circle({ x: 0, h: 0 }, Math.max(2.5, 0.015 * v.scale));
       ctx.fill();
     }
-    // The rope: straight when taut, sagging when slack.
-    const a = seesawEnd(m, s.phi_s), b = lidEdge(m, s.phi_l);
+    // The rope: straight when taut; slack, sagging or lying on the lid.
     ctx.strokeStyle = ghost ? colour.ghost : colour.dark;
     ctx.lineWidth = Math.max(1.5, 0.008 * v.scale);
     if (ghost) ctx.setLineDash([6, 4]);
-    p.line(s.rope_taut ? [a, b] : sagCurve(a, b, m.rope_length));
+    p.line(ropePath(m, s));
     ctx.setLineDash([]);
     // The sandbag, centred on the simulated point.
     const bag = toPixel(v, { x: s.x, h: s.h });
@@ -300,8 +340,9 @@
     return { x: bag.x, y: bag.y, radius };
   }
 
-  // An arrow at the edge of the picture towards a sandbag that is far out, with its distance.
-  function drawFarSandbag(ctx, v, s, font) {
+  // An arrow at the edge of the picture towards a sandbag that is far out (its distance is in the
+  // caption).
+  function drawFarSandbag(ctx, v, s) {
     const o = toPixel(v, { x: 0, h: 0 }), bag = toPixel(v, { x: s.x, h: s.h });
     const dx = bag.x - o.x, dy = bag.y - o.y, len = Math.hypot(dx, dy);
     const ux = dx / len, uy = dy / len;
@@ -318,12 +359,6 @@
     ctx.lineTo(tx - 16 * ux + 8 * uy, ty - 16 * uy - 8 * ux);
     ctx.closePath();
     ctx.fill();
-    const text = `sandbag ${Number(Math.hypot(s.x, s.h).toPrecision(4))} m out`;
-    ctx.font = `${0.85 * font}px sans-serif`;
-    const w = ctx.measureText(text).width;
-    ctx.fillStyle = 'black';
-    ctx.fillText(text, Math.min(Math.max(4, tx - 0.5 * w), v.width - w - 4),
-                 Math.min(Math.max(v.top + font, ty - 18 * uy - 10), v.height - 4));
   }
 
   // Splits text into at most n lines that fit the width, breaking between words (the last line
@@ -368,7 +403,7 @@
     ctx.restore();
     const visible = bag.x >= -bag.radius && bag.x <= v.width + bag.radius &&
                     bag.y >= v.top - bag.radius && bag.y <= v.height + bag.radius;
-    if (!visible) drawFarSandbag(ctx, v, s, font);
+    if (!visible) drawFarSandbag(ctx, v, s);
 
     // Caption band, as in the animation.
     ctx.fillStyle = event ? 'rgb(255,235,235)' : colour.band;
@@ -382,11 +417,26 @@
     ctx.fillStyle = 'black';
     fit(caption[0], font, '600');
     ctx.fillText(caption[0], margin, 1.2 * font);
+    // A sandbag beyond the picture: its distance at the right end of the second line, as the
+    // animation writes it (next to the arrow it would cover the machine).
+    let room = v.width - 2 * margin;
+    if (!visible) {
+      const out = `sandbag ${Number(Math.hypot(s.x, s.h).toPrecision(4))} m out`;
+      ctx.font = `400 ${0.9 * font}px sans-serif`;
+      const w = ctx.measureText(out).width, most = 0.45 * v.width;
+      if (w > most) ctx.font = `400 ${0.9 * font * most / w}px sans-serif`;
+      const used = Math.min(w, most);
+      ctx.fillStyle = colour.bagText;
+      ctx.fillText(out, v.width - margin - used, 2.35 * font);
+      room -= used + font;
+    }
     ctx.fillStyle = event ? colour.eventRed : colour.grey;
     const weight = event ? '600' : '400';
     ctx.font = `${weight} ${0.9 * font}px sans-serif`;
-    wrap(ctx, caption[1], v.width - 2 * margin, frame.lines || 1).forEach((line, i) => {
-      fit(line, 0.9 * font, weight);
+    wrap(ctx, caption[1], room, frame.lines || 1).forEach((line, i) => {
+      ctx.font = `${weight} ${0.9 * font}px sans-serif`;
+      const w = ctx.measureText(line).width;
+      if (w > room) ctx.font = `${weight} ${0.9 * font * room / w}px sans-serif`;
       ctx.fillText(line, margin, (2.35 + 1.1 * i) * font);
     });
     if (event) {  // the event's frame, outlined as in the animation's held frames
@@ -397,5 +447,5 @@
     return bag;
   }
 
-  window.whatnextMachine = { draw, extent, makeView, toPixel, stateAt, colour };
+  window.whatnextMachine = { draw, extent, makeView, toPixel, stateAt, ropePath, colour };
 })();

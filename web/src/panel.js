@@ -162,29 +162,31 @@
       // Shows the run's inputs: what the machine file and the changes give, blank (with the
       // value it stands for in grey) where nothing is given. The field being typed in is left alone.
       show(values, sets) {
+        // Only what differs is written: a change of one key rewrites one field, not 36.
+        const put = (el, prop, v) => { if (el[prop] !== v) el[prop] = v; };
         for (const [key, field] of fields) {
           const given = values.given[key], set = sets.get(key), blank = blankMeaning(key, values);
           const kind = field.spec.kind;
-          field.root.classList.toggle('changed', sets.has(key));
-          field.reset.hidden = !sets.has(key);
+          if (field.root.classList.contains('changed') !== sets.has(key)) field.root.classList.toggle('changed');
+          put(field.reset, 'hidden', !sets.has(key));
           if (field.inputs.includes(document.activeElement)) continue;
           if (kind === 'text') {
-            field.inputs[0].value = set !== undefined ? set : given ? given.text : blank;
+            put(field.inputs[0], 'value', set !== undefined ? set : given ? given.text : blank);
           } else if (kind === 'flag') {
             const on = set !== undefined ? set === 'true' : given ? given.number !== 0 : flagMeaning(key, values);
-            field.inputs[0].checked = on;
+            put(field.inputs[0], 'checked', on);
           } else if (kind === 'pair') {
             let parts = ['', ''];
             if (set !== undefined) parts = set.replace(/[[\]\s]/g, '').split(',');
             else if (given && given.pair) parts = given.pair.map(number);
-            field.inputs.forEach((inp, i) => { inp.value = parts[i] || ''; inp.placeholder = blank[i] || ''; });
+            field.inputs.forEach((inp, i) => { put(inp, 'value', parts[i] || ''); put(inp, 'placeholder', blank[i] || ''); });
           } else {
             const input = field.inputs[0];
-            input.value = set !== undefined ? set : given && given.number !== undefined ? number(given.number) : '';
-            input.placeholder = blank;
+            put(input, 'value', set !== undefined ? set : given && given.number !== undefined ? number(given.number) : '');
+            put(input, 'placeholder', blank);
             if (field.slider) {
               const v = Number(input.value || blank);
-              if (Number.isFinite(v)) field.slider.value = String(Math.round(field.toSlider(v)));
+              if (Number.isFinite(v)) put(field.slider, 'value', String(Math.round(field.toSlider(v))));
             }
           }
         }
@@ -201,6 +203,7 @@
       },
       clearErrors() {
         for (const field of fields.values()) {
+          if (field.error.hidden) continue;
           field.error.hidden = true;
           field.error.textContent = '';
           field.root.classList.remove('invalid');

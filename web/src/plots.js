@@ -89,7 +89,8 @@
 
     function seriesFor(plot, withCompare) {
       const series = [{ label: 't [s]', value: (u, v) => (v == null ? '' : v.toFixed(4)) }];
-      const format = (v) => (v == null ? '—' : Number(v.toPrecision(5)).toString());
+      // Rounding noise (an energy-keeping impact's loss of -1.8e-15 J) reads as the zero it is.
+      const format = (v) => (v == null ? '—' : Math.abs(v) < 1e-9 ? '0' : Number(v.toPrecision(5)).toString());
       // With two runs a row holds one run's values only: the other's value at that time is its
       // nearest row.
       const value = (u, v, sidx, idx) => {
@@ -180,11 +181,15 @@
       return Math.round(Math.min(320, Math.max(170, 0.5 * width)));
     }
 
+    // The plotting area's width in CSS pixels, as uPlot set it: reading clientWidth instead would
+    // make the browser lay out the whole page again after every change (a third of a change's time).
+    const areaWidth = (u) => parseFloat(u.over.style.width) || 0;
+
     function placeCursor(chart) {
       const u = chart.u;
       if (!u) return;
       const x = u.valToPos(time, 'x');
-      const inside = x >= 0 && x <= u.over.clientWidth;
+      const inside = x >= 0 && x <= areaWidth(u);
       chart.cursor.style.display = inside ? 'block' : 'none';
       chart.cursor.style.transform = `translateX(${x}px)`;
     }
@@ -196,7 +201,7 @@
       for (const { u } of charts) {
         if (!u) continue;
         const x = u.valToPos(time, 'x');
-        if (x >= 0 && x <= u.over.clientWidth) u.setCursor({ left: x, top: 1 }, false);
+        if (x >= 0 && x <= areaWidth(u)) u.setCursor({ left: x, top: 1 }, false);
       }
     }
 

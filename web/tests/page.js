@@ -372,6 +372,36 @@ const checks = {
     });
   },
 
+  // The extensions set in the panel as a user would (a number typed and the next control clicked
+  // at once, check boxes, a choice): a heavy seesaw with a finite arm, the radio, air drag and
+  // another impact law give the command line's run, and the page names that command.
+  async extensions() {
+    await withPage(async (page) => {
+      const before = await runs(page);
+      await page.selectOption('#preset', 'example2');
+      await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, before);
+      await page.click('details.group:last-of-type > summary');  // "Extensions beyond the paper"
+      // Clicks move the mouse from a field to one further down, over the first one's help.
+      await page.click(fieldId('balloon.drag'));
+      await page.click(fieldId('radio.enabled'));
+      await page.fill(fieldId('seesaw.left_arm'), '1.2');
+      await page.click(fieldId('seesaw.mass'));
+      await page.fill(fieldId('seesaw.mass'), '0.4');
+      await page.click(fieldId('seesaw.com_offset'));
+      await page.selectOption(fieldId('run.impact_law'), 'angular-momentum-sum');
+      const set = ['balloon.drag=true', 'radio.enabled=true', 'seesaw.left_arm=1.2', 'seesaw.mass=0.4',
+                   'run.impact_law=angular-momentum-sum'];
+      for (const key of ['radio.enabled', 'balloon.drag']) assert.ok(await page.isChecked(fieldId(key)), key);
+      const args = ['--example', '2', ...sets(set)];
+      const expected = cli('run', ...args);
+      assert.equal(expected.status, 0);
+      assert.deepEqual(await pageTimeline(page), cliTimeline(expected.stdout).rows);
+      assert.equal(await outcomeText(page), cliTimeline(expected.stdout).outcome);
+      assert.equal(await page.textContent('#cli-command'), `$ whatnext run ${args.join(' ')}`);
+      assert.equal(await page.textContent('#cli-text'), expected.stdout);
+    });
+  },
+
   // The second run: another impact law, the paper's Euler method at a chosen step, and the
   // parameters before the last change; each one's outcome is the command line's.
   async compare() {
@@ -380,6 +410,13 @@ const checks = {
       await page.selectOption('#compare', 'law');
       await page.selectOption('#compare-law', 'kinetic-energy');
       assert.equal(await compared(), `Dashed, impact law kinetic-energy: ${cliOutcome(['--example', '1', '--set', 'run.impact_law=kinetic-energy'])}.`);
+      // The kinetic-energy law keeps the energy: after the pull the legend says nothing was lost
+      // (not the rounding noise of the sum, -1.8e-15 J).
+      await page.evaluate(() => window.whatnext.seek(0.7));
+      const legend = await page.$$eval('#plot-energy .u-legend .u-series', (rows) => Object.fromEntries(
+        rows.map((r) => [r.querySelector('.u-label').textContent, r.querySelector('.u-value').textContent])));
+      assert.equal(legend['lost (impacts, damping), dashed'], '0');
+      assert.notEqual(legend['lost (impacts, damping)'], '0');
       await page.selectOption('#compare', 'euler');
       await page.fill('#compare-step', '0.002');
       assert.equal(await compared(), `Dashed, Euler, step 0.002 s: ${cliOutcome(['--example', '1', ...sets(['run.integrator=euler', 'run.step=0.002'])])}.`);
@@ -395,13 +432,125 @@ const checks = {
     });
   },
 
+  // The drawing as `whatnext animate` draws it: a slack rope never hangs through the closed lid
+  // into the box (it lies on the lid and hangs from the hinge); a sandbag far out is an arrow with
+  // its distance in the caption, not over the machine; a window too short for the picture still
+  // gets one (it used to stop the page with a negative radius).
+  async drawing() {
+    const kRope = [51, 42, 51], kBagText = [153, 85, 0];  // web/src/machine.js, as the animation
+    await withPage(async (page) => {
+      // Example 1 at the start: the rope is slack by 0.4 m, the lid closed at 5 degrees.
+      await scrubTo(page, 0);
+      const m = await page.evaluate(() => window.whatnext.run.machine);
+      assert.equal(await page.evaluate(() => window.whatnext.stateAt(0).rope_taut), 0);
+      const rl = m.lid_half_length, ground = m.hinge.h - 2 * rl;
+      // The box's inside, well clear of its walls and of the lid (which rises to the right).
+      const a = await page.evaluate(([x, h]) => window.whatnext.canvasPixel(x, h), [m.hinge.x + 0.03, m.hinge.h - 0.03]);
+      const b = await page.evaluate(([x, h]) => window.whatnext.canvasPixel(x, h), [m.hinge.x + 2 * rl - 0.03, ground + 0.03]);
+      const inside = await page.evaluate(([x0, y0, x1, y1]) => {
+        const c = document.getElementById('machine');
+        return [...c.getContext('2d').getImageData(x0, y0, x1 - x0, y1 - y0).data];
+      }, [a.x, a.y, b.x, b.y].map(Math.round));
+      let rope = 0;
+      for (let i = 0; i < inside.length; i += 4) if (near(inside.slice(i, i + 3), kRope, 30)) ++rope;
+      assert.ok(inside.length > 4000, 'the box is on the canvas');
+      assert.equal(rope, 0, 'rope-coloured pixels inside the closed box');
+
+      // Example 3 after 10 s: the sandbag is hundreds of metres out (the CLI's CSV says how far).
+      const captionHas = async (colour) => page.evaluate(([rgb]) => {
+        const c = document.getElementById('machine'), band = c.getContext('2d').getImageData(0, 0, c.width, 40).data;
+        for (let i = 0; i < band.length; i += 4) {
+          if (Math.abs(band[i] - rgb[0]) + Math.abs(band[i + 1] - rgb[1]) + Math.abs(band[i + 2] - rgb[2]) < 30) return true;
+        }
+        return false;
+      }, [colour]);
+      assert.equal(await captionHas(kBagText), false, 'no distance while the sandbag is in the picture');
+      const before = await runs(page);
+      await page.selectOption('#preset', 'example3');
+      await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, before);
+      await scrubTo(page, 10);
+      const far = await page.evaluate(() => { const s = window.whatnext.stateAt(10); return Math.hypot(s.x, s.h); });
+      assert.ok(far > 100, `the sandbag is ${far} m out`);
+      assert.ok(await captionHas(kBagText), 'the distance of a sandbag far out is in the caption');
+    }, { scale: 1 });
+    // A window a hundred pixels high.
+    await withPage(async (page) => {
+      const box = await page.locator('#machine').boundingBox();
+      assert.ok(box.height >= 180, `the drawing is ${box.height} px high`);
+      assert.match(await outcomeText(page), /^Outcome: lid open at 0\.820 s\.$/);
+    }, { viewport: { width: 800, height: 100 } });
+  },
+
+  // A change is shown at once without the browser laying out the page in between, and the link
+  // follows it without being rewritten at every step of a slider (browsers limit how often a page
+  // may rewrite its address; Safari throws after 100 times in 30 s); a link pasted into the tab
+  // opens its machine.
+  async changes() {
+    await withPage(async (page) => {
+      const cdp = await page.context().newCDPSession(page);
+      await cdp.send('Performance.enable');
+      const layouts = async () => (await cdp.send('Performance.getMetrics')).metrics.find((m) => m.name === 'LayoutCount').value;
+      await page.evaluate(() => {
+        const real = history.replaceState.bind(history);
+        window.linkWrites = 0;
+        history.replaceState = (...args) => { window.linkWrites += 1; return real(...args); };
+      });
+      const before = await runs(page), layoutsBefore = await layouts();
+      // A slider dragged over 60 positions in one go, as fast as the events come.
+      const [last, ms] = await page.evaluate(() => {
+        const slider = document.querySelector('[data-key="geometry.rope_length"] input.slider');
+        const t0 = performance.now();
+        for (let p = 400; p < 460; ++p) {
+          slider.value = String(p);
+          slider.dispatchEvent(new Event('input', { bubbles: true }));
+        }
+        return [document.getElementById('field-geometry-rope_length').value, performance.now() - t0];
+      });
+      assert.equal(await runs(page), before + 60, 'every position ran');
+      assert.ok((await layouts()) - layoutsBefore <= 5, `${(await layouts()) - layoutsBefore} layouts for 60 changes`);
+      const writes = await page.evaluate(() => window.linkWrites);
+      assert.ok(writes <= 1 + Math.ceil(ms / 250), `the link was written ${writes} times in ${ms} ms`);
+      await page.evaluate(() => {
+        document.querySelector('[data-key="geometry.rope_length"] input.slider').dispatchEvent(new Event('change', { bubbles: true }));
+      });
+      assert.equal(new URL(page.url()).hash, `#machine=example1&geometry.rope_length=${last}`);
+      assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(['--example', '1', '--set', `geometry.rope_length=${last}`])}.`);
+
+      // One key typed rewrites its own field, not the panel's 36 (each write costs the browser).
+      const touched = await page.evaluate(() => new Promise((resolve) => {
+        const records = [];
+        const observer = new MutationObserver((list) => records.push(...list));
+        observer.observe(document.getElementById('fields'), { attributes: true, subtree: true, childList: true });
+        const input = document.getElementById('field-masses-lid');
+        input.value = '0.45';
+        input.dispatchEvent(new Event('input', { bubbles: true }));
+        setTimeout(() => { observer.disconnect(); resolve(new Set(records.map((r) => r.target.closest('[data-key]').dataset.key))); }, 0);
+      }).then((keys) => [...keys]));
+      assert.ok(touched.length <= 2, `a change of masses.lid rewrote ${touched.join(', ')}`);
+
+      // Another machine's link pasted into the address bar of this tab.
+      await page.evaluate(() => { location.hash = 'machine=example2&masses.sandbag=1.1'; });
+      await page.waitForFunction(() => document.body.dataset.ready && window.whatnext.run.label.startsWith('example 2'));
+      assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(['--example', '2', '--set', 'masses.sandbag=1.1'])}.`);
+      assert.equal(await page.inputValue(fieldId('masses.sandbag')), '1.1');
+    });
+  },
+
   // Phone and projector: nothing wider than the window, the machine and the outcome in view; the
   // screenshots for the README (build/web-test/).
   async layout() {
     fs.mkdirSync(outDir, { recursive: true });
-    for (const [name, viewport, scale] of [['phone', { width: 390, height: 844 }, 3], ['projector', { width: 1280, height: 720 }, 1],
-                                           ['desktop', { width: 1600, height: 1000 }, 1]]) {
+    for (const [name, viewport, scale] of [['phone', { width: 390, height: 844 }, 3], ['projector', { width: 1920, height: 1080 }, 1],
+                                           ['small-projector', { width: 1280, height: 720 }, 1],
+                                           ['desktop', { width: 1400, height: 900 }, 1]]) {
       await withPage(async (page) => {
+        // The timeline's columns whole, even with example 3's sandbag 1929.5922 m out.
+        const before = await runs(page);
+        await page.selectOption('#preset', 'example3');
+        await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, before);
+        const table = await page.evaluate(() => { const b = document.querySelector('.table-box'); return [b.scrollWidth, b.clientWidth]; });
+        assert.ok(table[0] <= table[1], `${name}: the timeline is ${table[0]} px wide in ${table[1]} px`);
+        await page.selectOption('#preset', 'example1');
         const fits = await page.evaluate(() => document.documentElement.scrollWidth <= window.innerWidth);
         assert.ok(fits, `${name}: the page is wider than the window`);
         const box = await page.locator('#machine').boundingBox();
@@ -415,12 +564,14 @@ const checks = {
           await page.selectOption('#compare-law', 'kinetic-energy');
           await page.evaluate(() => window.whatnext.seek(0.6));
         }
-        await page.screenshot({ path: path.join(outDir, `web-${name}.png`), fullPage: name !== 'projector' });
+        await page.screenshot({ path: path.join(outDir, `web-${name}.png`), fullPage: name === 'phone' || name === 'desktop' });
       }, { viewport, scale });
     }
   },
 
-  // Not a test: how long one run of example 2 takes in the page (printed for docs/web.md).
+  // Not a test: how long one run of example 2 takes in the page, and a whole change (a rope
+  // length typed: the run, the timeline, the plots, the panel and the drawing), printed for
+  // docs/web.md and docs/performance.md.
   async speed() {
     await withPage(async (page) => {
       const times = await page.evaluate(() => { window.whatnext.timeRun('example2', 50); return window.whatnext.timeRun('example2', 500); });
@@ -428,6 +579,20 @@ const checks = {
       const version = await page.evaluate(() => navigator.userAgent.match(/Chrome\/[\d.]+/)[0]);
       console.log(`example 2 in the page (${version}): median ${median.toFixed(3)} ms, fastest ${times[0].toFixed(3)} ms ` +
                   `over ${times.length} runs`);
+      await page.selectOption('#preset', 'example2');
+      const changes = await page.evaluate(() => {
+        const input = document.getElementById('field-geometry-rope_length');
+        const out = [];
+        for (let i = 0; i < 250; ++i) {
+          input.value = String(0.62 + 0.001 * (i % 50));
+          const t0 = performance.now();
+          input.dispatchEvent(new Event('input', { bubbles: true }));
+          if (i >= 50) out.push(performance.now() - t0);
+        }
+        return out.sort((a, b) => a - b);
+      });
+      console.log(`a change of example 2's rope length, run and shown: median ${changes[changes.length >> 1].toFixed(3)} ms, ` +
+                  `fastest ${changes[0].toFixed(3)} ms over ${changes.length} changes`);
     });
   },
 };
