@@ -554,6 +554,47 @@ TEST(VizAnimation, SlackRopeStaysOutOfTheBox) {
   EXPECT_EQ(rope, 0);
 }
 
+// Once the lid is open, example 1's slack rope (0.26 m to spare, the seesaw's end far above the lid)
+// hangs freely from the seesaw to the lid's edge: it is not drawn lying along the open lid. Before
+// the fix a rounding error put the lid's edge itself "under the lid", and the rope was drawn
+// straight, as if taut, to the middle of the lid and up along it. Checked at lid_open and, with
+// the radio, while the lid stands latched open.
+TEST(VizAnimation, SlackRopeHangsFreeOfTheOpenLid) {
+  const Recording ex1 = record(example(1));
+  const Recording radio =
+      record(build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml")));
+  double open = -1.0;
+  for (const Event& e : ex1.result.events) {
+    if (e.type == EventType::lid_open) open = e.t;
+  }
+  ASSERT_GT(open, 0.0);
+  for (const auto& [rec, t] : {std::pair<const Recording*, double>{&ex1, open}, {&radio, open + 0.05},
+                               {&radio, open + 0.25}}) {
+    SCOPED_TRACE(t);
+    const Machine& m = rec->scenario.machine;
+    const View view = make_view(*rec, 480, 0);
+    Frame f;
+    f.t = t;
+    f.state = rec->at(t);
+    ASSERT_FALSE(f.state.rope_taut);
+    ASSERT_GT(f.state.phi_l, 80.0 * 3.14159265358979323846 / 180.0);
+    const Image img = render_frame(*rec, view, f, small_animation());
+    const RopeGeometry geo(m);
+    const Vec2 edge = geo.lid_edge(f.state.phi_l);
+    int on_lid = 0, probes = 0;
+    for (int k = 10; k <= 88; k += 2) {  // along the lid, from near the hinge to short of its edge
+      const Pixel p = to_pixel(view, m.hinge + (k / 100.0) * (edge - m.hinge));
+      for (int dx = -2; dx <= 2; ++dx) {
+        const Rgb c = img.at(static_cast<int>(std::lround(p.x)) + dx, static_cast<int>(std::lround(p.y)));
+        on_lid += c.r == 51 && c.g == 42 && c.b == 51;  // the rope's colour
+        ++probes;
+      }
+    }
+    EXPECT_GT(probes, 100);
+    EXPECT_EQ(on_lid, 0);
+  }
+}
+
 // With the radio, the lid latches at lid_open and the sandbag flies free; the seesaw keeps its
 // angle, and the arm the length it had (it does not shrink back to a stub).
 TEST(VizAnimation, ArmKeepsItsLengthAfterTheRadiosLatch) {

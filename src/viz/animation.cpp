@@ -130,7 +130,10 @@ bool in_box(const Machine& m, Vec2 lid_edge, Vec2 p) {
 // straight from the seesaw to a point on the lid).
 std::vector<Vec2> slack_rope(const Machine& m, Vec2 a, Vec2 e, double length) {
   std::vector<Vec2> pts = sag_curve(a, e, length);
-  if (std::none_of(pts.begin(), pts.end(), [&](Vec2 p) { return in_box(m, e, p); })) return pts;
+  // The ends are tied to the seesaw and to the lid's edge, which lies on the lid's line: only the
+  // points between them can hang into the box (an end counted "under the lid" by a rounding error
+  // drew the slack rope straight and along the open lid).
+  if (std::none_of(pts.begin() + 1, pts.end() - 1, [&](Vec2 p) { return in_box(m, e, p); })) return pts;
   const Vec2 hinge = m.hinge;
   const double rest = length - norm(e - hinge);
   if (rest >= norm(a - hinge)) {
