@@ -61,7 +61,7 @@ constexpr double kStateBytes = 600.0;
 double max_rows(const Scenario& scenario);
 // Throws InputError when `bytes_per_row * max_rows` exceeds kLargeBytes and force is false.
 void check_size(const Scenario& scenario, double bytes_per_row, const std::string& option, bool force,
-                const std::string& what = "writes");
+                const std::string& what = "write");
 // The directory given to --plots or --out of plot: created if missing (and removed again if the
 // command then fails or is interrupted while it is still empty). Returns its path.
 void prepare_picture_dir(const std::string& dir, const std::string& option);

@@ -261,6 +261,10 @@ TEST_F(Abuse, HugeOutputsNeedToBeAskedFor) {
   const std::string csv = path("r.csv");
   expect_rejected("run --example 1 --set masses.sandbag=0.001 --set run.t_max=9999 --csv " + csv, "--force-large",
                   {csv});
+  // The size in words one can read: "would write about 4.0 GB" (it said "would writes").
+  expect_rejected("run --example 1 --set run.t_max=9999 --dat " + csv, "would write about", {csv});
+  expect_rejected("animate --example 1 --set run.t_max=9999 --out " + path("a.gif"), "would hold in memory about",
+                  {dir_ / "a.gif"});
   expect_rejected("sweep --example 1 --samples 20000000 --vary masses.lid=0.2:1 --vary masses.sandbag=0.2:1 "
                   "--vary start.sandbag_x=-1:-0.1 --vary start.sandbag_height=0.5:2 --out " + csv,
                   "--force-large", {csv});
