@@ -256,6 +256,70 @@ TEST(VizPlots, TextNeverHidesDataOrOtherText) {
   }
 }
 
+// Left of every plot PLplot writes the tick numbers and the y axis' title. The layout says where
+// (axis_texts): those boxes must not overlap, and every inked pixel left of the axes must lie in
+// one of them, so the PNG's numbers and title are really apart however wide the numbers get. In
+// example 3's trajectory "-2000" ran into "h [m] (above the pivot)".
+TEST(VizPlots, AxisTitleClearsTheTickNumbers) {
+  std::vector<std::pair<std::string, Scenario>> runs;
+  for (int n = 1; n <= 4; ++n) runs.emplace_back("example " + std::to_string(n), example(n));
+  runs.emplace_back("radio", build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml")));
+  int panels = 0;
+  for (const auto& [name, sc] : runs) {
+    SCOPED_TRACE(name);
+    const fs::path dir = fresh_dir("ticks");
+    FigureOptions opts;
+    opts.formats = {Format::png};
+    opts.title = name;
+    std::vector<PageLayout> pages;
+    write_run_figures(record(sc), dir.string(), opts, &pages);
+    write_law_comparison(sc, dir.string(), opts, &pages);
+    for (const PageLayout& page : pages) {
+      SCOPED_TRACE(page.name);
+      for (std::size_t i = 0; i < page.axis_texts.size(); ++i) {
+        for (std::size_t j = i + 1; j < page.axis_texts.size(); ++j) {
+          EXPECT_FALSE(overlaps(page.axis_texts[i].box, page.axis_texts[j].box))
+              << page.axis_texts[i].text << " on " << page.axis_texts[j].text;
+        }
+      }
+      cairo_surface_t* s = cairo_image_surface_create_from_png((dir / (page.name + ".png")).c_str());
+      ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
+      const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+      const unsigned char* data = cairo_image_surface_get_data(s);
+      const int stride = cairo_image_surface_get_stride(s);
+      const double px = w / page.width;
+      for (const Box& a : page.axes) {
+        // The room left of these axes, as the layout reserves it for PLplot's texts.
+        const Box* room = nullptr;
+        for (const Box& r : page.axis_labels) {
+          if (std::fabs(r.x1 - a.x0) < 1e-9 && r.y1 > a.y1) room = &r;
+        }
+        ASSERT_NE(room, nullptr);
+        int inked = 0, stray = 0;
+        for (int y = static_cast<int>(h - room->y1 * px) + 1; y < static_cast<int>(h - room->y0 * px); ++y) {
+          const auto* row = reinterpret_cast<const std::uint32_t*>(data + y * stride);
+          for (int x = static_cast<int>(std::ceil(room->x0 * px)); x < static_cast<int>(a.x0 * px) - 1; ++x) {
+            if ((row[x] & 0xffffff) == 0xffffff) continue;
+            ++inked;
+            const double mx = (x + 0.5) / px, my = (h - y - 0.5) / px;
+            bool known = false;
+            for (const PlacedText& t : page.axis_texts) {
+              known = known || (mx > t.box.x0 - 0.25 && mx < t.box.x1 + 0.25 && my > t.box.y0 - 0.25 &&
+                                my < t.box.y1 + 0.25);
+            }
+            stray += !known;
+          }
+        }
+        EXPECT_GT(inked, 200);
+        EXPECT_EQ(stray, 0) << "ink left of the axes outside the tick numbers and the title";
+        ++panels;
+      }
+      cairo_surface_destroy(s);
+    }
+  }
+  EXPECT_GT(panels, 60);
+}
+
 TEST(VizPlots, TrajectoryIsToScaleOrSaysSo) {
   bool stretched = false, scaled = false;
   for (int n = 1; n <= 4; ++n) {
