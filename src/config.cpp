@@ -1,6 +1,7 @@
 #include "whatnext/config.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -94,10 +95,16 @@ constexpr double kMaxInertia = 1e4;                        // seesaw [kg m^2]
 
 std::string fmt_num(double v) { return fmt::format("{}", v); }
 
-// Reads at most kMaxInputBytes: a directory, /dev/zero or a huge file is refused at once.
+// How long a pipe (a FIFO, or `<(command)`) may keep whatnext waiting for its first byte: a FIFO
+// that nobody writes into would otherwise block it for ever.
+constexpr int kPipeWaitMs = 5000;
+
+// Reads at most kMaxInputBytes from a regular file or a pipe: a directory, a device (/dev/null,
+// /dev/zero, a terminal) or a huge file is refused at once, an idle pipe after kPipeWaitMs.
 std::string read_file(const std::string& path) {
   const std::string shown = printable(path, 96);
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // Non-blocking, so that opening a FIFO without a writer returns at once.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) {
     throw InputError(fmt::format("{}: cannot read the input file: {}", shown, std::strerror(errno)));
   }
@@ -110,6 +117,21 @@ std::string read_file(const std::string& path) {
     throw InputError(fmt::format("{}: cannot read the input file: {}", shown, std::strerror(errno)));
   }
   if (S_ISDIR(st.st_mode)) throw InputError(fmt::format("{}: is a directory, not an input file", shown));
+  if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) {
+    throw InputError(fmt::format("{}: is a device, not an input file (give a machine's TOML or .inp file)", shown));
+  }
+  if (S_ISFIFO(st.st_mode)) {
+    pollfd p{fd, POLLIN, 0};
+    int ready = 0;
+    do {
+      ready = ::poll(&p, 1, kPipeWaitMs);
+    } while (ready < 0 && errno == EINTR);
+    if (ready == 0) {
+      throw InputError(fmt::format("{}: a pipe that nothing was written into within {} s; nothing to read",
+                                   shown, kPipeWaitMs / 1000));
+    }
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
   const auto too_big = [&] {
     return InputError(fmt::format("{}: an input file has at most {} bytes; this one has more", shown,
                                   kMaxInputBytes));

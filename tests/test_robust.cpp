@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "cli_runner.hpp"
 #include "whatnext/config.hpp"
@@ -103,14 +104,31 @@ TEST_F(Abuse, MisplacedArgumentsAreNamed) {
 
 TEST_F(Abuse, InputsThatAreNotFilesAreRefusedAtOnce) {
   expect_rejected("run " + dir_.string(), "is a directory");
-  // /dev/zero never ends: it must be refused after at most the size cap, not read to exhaustion.
-  expect_rejected("run /dev/zero", "at most");
+  // Devices are not machines: /dev/zero never ends, /dev/null ran the default machine as if it were
+  // an empty file.
+  expect_rejected("run /dev/zero", "is a device");
+  expect_rejected("run /dev/null", "is a device");
   const fs::path big = dir_ / "big.toml";
   {
     std::ofstream out(big);
     out << "# " << std::string(whatnext::kMaxInputBytes, 'x') << "\n";
   }
   expect_rejected("run " + big.string(), "at most");
+}
+
+// A pipe is read (`whatnext run <(command)`), but one that nobody writes into does not keep
+// whatnext waiting for ever.
+TEST_F(Abuse, PipesAreReadButAnIdleOneIsNotWaitedForEver) {
+  const fs::path fifo = dir_ / "machine.fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::thread writer([&] {
+    std::ofstream(fifo) << "[masses]\nsandbag = 0.7\n";  // blocks until whatnext opens it
+  });
+  const CliResult fed = whatnext("run -q " + fifo.string());
+  writer.join();
+  EXPECT_EQ(fed.code, 0) << fed.err;
+  EXPECT_NE(fed.out.find("lid open"), std::string::npos) << fed.out;
+  expect_rejected("run " + fifo.string(), "nothing was written into");
 }
 
 TEST_F(Abuse, InpFilesAreReadStrictly) {
