@@ -171,12 +171,15 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   throw InputError(fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, printable(key), near));
 }
 
-// TOML integers become doubles too (rounded when they have more than 53 bits).
-bool number_of(const toml::node& node, double& out) {
+// TOML integers become doubles too (rounded when they have more than 53 bits; `literal` then
+// keeps the integer as written, for messages: "given 9007199254740993", not ...992).
+bool number_of(const toml::node& node, double& out, std::string* literal = nullptr) {
   if (const auto* i = node.as_integer()) {
     out = static_cast<double>(i->get());
+    if (literal) *literal = std::fabs(out) >= 9007199254740992.0 ? std::to_string(i->get()) : fmt_num(out);
     return true;
   }
+  if (literal) literal->clear();
   if (const auto* f = node.as_floating_point()) {
     out = f->get();
     return true;
@@ -210,16 +213,24 @@ void store(Config& cfg, const std::string& key, const toml::node& node, const st
     v.text = node.as_string()->get();
   } else if (spec->kind == KeyKind::pair) {
     const toml::array* arr = node.as_array();
-    if (!arr || arr->size() != 2 || !number_of((*arr)[0], v.pair[0]) || !number_of((*arr)[1], v.pair[1])) {
+    std::string lit[2];
+    if (!arr || arr->size() != 2 || !number_of((*arr)[0], v.pair[0], &lit[0]) ||
+        !number_of((*arr)[1], v.pair[1], &lit[1])) {
       throw InputError(fmt::format("{}: {} must be a pair of numbers [dx, dh] in {} (given {})", origin, key,
                                    spec->unit, shown_node(node)));
     }
     v.type = ConfigValue::Type::pair;
+    if ((!lit[0].empty() && lit[0] != fmt_num(v.pair[0])) || (!lit[1].empty() && lit[1] != fmt_num(v.pair[1]))) {
+      v.text = fmt::format("[{}, {}]", lit[0].empty() ? fmt_num(v.pair[0]) : lit[0],
+                           lit[1].empty() ? fmt_num(v.pair[1]) : lit[1]);
+    }
   } else {
-    if (!number_of(node, v.number)) {
+    std::string lit;
+    if (!number_of(node, v.number, &lit)) {
       throw InputError(fmt::format("{}: {} must be a number in {} (given {})", origin, key,
                                    spec->unit.empty() ? "plain units" : spec->unit, shown_node(node)));
     }
+    if (!lit.empty() && lit != fmt_num(v.number)) v.text = lit;  // an integer a double rounds
   }
   cfg.values[key] = v;
 }
@@ -244,6 +255,12 @@ struct Reader {
   [[noreturn]] void fail(const std::string& key, const std::string& rule) const {
     throw InputError(fmt::format("{}: {} {}", where(key), key, rule));
   }
+  // The value as the input gave it: an integer too long for a double as written.
+  std::string shown(const std::string& key, double x) const {
+    const ConfigValue* v = find(key);
+    if (v && v->type == ConfigValue::Type::number && !v->text.empty() && v->number == x) return v->text;
+    return fmt_num(x);
+  }
   std::string unit(const std::string& key) const {
     const KeySpec* spec = find_key(key);
     return spec ? std::string(spec->unit) : std::string();
@@ -257,7 +274,7 @@ struct Reader {
   double positive(const std::string& key, double fallback) const {
     const double x = number(key, fallback);
     const std::string u = unit(key);
-    if (!(x > 0.0)) fail(key, fmt::format("must be > 0{} (given {})", u.empty() ? "" : " " + u, fmt_num(x)));
+    if (!(x > 0.0)) fail(key, fmt::format("must be > 0{} (given {})", u.empty() ? "" : " " + u, shown(key, x)));
     return x;
   }
   double in_range(const std::string& key, double fallback, double lo, bool lo_closed, double hi,
@@ -267,7 +284,7 @@ struct Reader {
     if (!ok) {
       const std::string u = unit(key);
       fail(key, fmt::format("must be in {}{}, {}{}{} (given {})", lo_closed ? "[" : "(", fmt_num(lo), fmt_num(hi),
-                            hi_closed ? "]" : ")", u.empty() ? "" : " " + u, fmt_num(x)));
+                            hi_closed ? "]" : ")", u.empty() ? "" : " " + u, shown(key, x)));
     }
     return x;
   }
@@ -276,7 +293,7 @@ struct Reader {
     if (!(x >= lo && x <= hi)) {
       const std::string u = unit(key);
       fail(key, fmt::format("must be within [{}, {}]{}, the range the model is made for (given {})", fmt_num(lo),
-                            fmt_num(hi), u.empty() ? "" : " " + u, fmt_num(x)));
+                            fmt_num(hi), u.empty() ? "" : " " + u, shown(key, x)));
     }
   }
   double length(const std::string& key, double fallback) const {
@@ -301,8 +318,9 @@ struct Reader {
       fail(key, fmt::format("must hold finite numbers (given [{}, {}])", fmt_num(v.pair[0]), fmt_num(v.pair[1])));
     }
     if (std::fabs(v.pair[0]) > kMaxLength || std::fabs(v.pair[1]) > kMaxLength) {
-      fail(key, fmt::format("must hold numbers within [{}, {}] m, the range the model is made for (given [{}, {}])",
-                            fmt_num(-kMaxLength), fmt_num(kMaxLength), fmt_num(v.pair[0]), fmt_num(v.pair[1])));
+      fail(key, fmt::format("must hold numbers within [{}, {}] m, the range the model is made for (given {})",
+                            fmt_num(-kMaxLength), fmt_num(kMaxLength),
+                            v.text.empty() ? fmt::format("[{}, {}]", fmt_num(v.pair[0]), fmt_num(v.pair[1])) : v.text));
     }
     return {v.pair[0], v.pair[1]};
   }

@@ -83,8 +83,14 @@ TEST_F(Abuse, LongValuesAreCut) {
 }
 
 TEST_F(Abuse, HugeIntegersAndWrongKindsNameTheRule) {
-  expect_rejected("run --example 1 --set masses.sandbag=9007199254740993", "masses.sandbag must be within");
-  expect_rejected("run --example 1 --set 'geometry.hinge_offset=[9007199254740993,1]'", "hinge_offset");
+  // The value as given, not as a double rounds it (9007199254740992).
+  expect_rejected("run --example 1 --set masses.sandbag=9007199254740993",
+                  "masses.sandbag must be within [0.001, 1000] kg, the range the model is made for "
+                  "(given 9007199254740993)");
+  expect_rejected("run --example 1 --set 'geometry.hinge_offset=[9007199254740993,1]'",
+                  "(given [9007199254740993, 1])");
+  expect_rejected("run " + write("big.toml", "[run]\ntolerance = -12345678901234567\n").string(),
+                  "big.toml:2: run.tolerance must be in [1e-15, 0.001] (given -12345678901234567)");
   expect_rejected("run --example 1 --set radio.enabled=yes", "radio.enabled must be true or false (given 'yes')");
   expect_rejected("run --example 1 --set geometry.hinge_offset=left", "must be a pair of numbers");
   expect_rejected("run --example 1 --set masses.sandbag=", "give a value");
