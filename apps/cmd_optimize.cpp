@@ -95,7 +95,7 @@ void register_optimize(CLI::App& app, int& exit_code) {
       exit_code = 1;
       return;
     }
-    const std::string toml = to_toml(sc);
+    const std::string toml = to_toml(sc, &best);  // the hinge in the form the input gave it
     out->stream() << fmt::format("# whatnext optimize: {} {} over {} ({} machines): {}; {} = {}\n",
                                  o.maximize ? "maximise" : "minimise", o.value, in.source, r.evaluations, values,
                                  o.value, shortest(r.value))

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -841,7 +842,19 @@ Scenario build_scenario(const Config& cfg) {
   return sc;
 }
 
-std::string to_toml(const Scenario& sc) {
+namespace {
+// The fewest decimal digits of `value` that `back` turns into exactly `want` again.
+template <typename Back>
+std::optional<double> fewest_digits(double value, double want, Back back) {
+  for (int digits = 1; digits <= 17; ++digits) {
+    const double d = std::strtod(fmt::format("{:.{}g}", value, digits).c_str(), nullptr);
+    if (back(d) == want) return d;
+  }
+  return std::nullopt;
+}
+}  // namespace
+
+std::string to_toml(const Scenario& sc, const Config* given) {
   const Machine& m = sc.machine;
   const Start& st = sc.start;
   const RunSettings& r = sc.run;
@@ -851,7 +864,24 @@ std::string to_toml(const Scenario& sc) {
   line("seesaw_right_arm", m.seesaw_right_arm);
   line("lid_half_length", m.lid_half_length);
   line("rope_length", m.rope_length);
-  out += fmt::format("hinge_offset = [{}, {}]\n", shortest(m.hinge.x), shortest(-m.hinge.h));
+  // An angle as input reads it (degrees times kDeg): the shortest degrees that give the same radians,
+  // so that 27 stays 27 and not 27.000000000000004.
+  auto angle_line = [&](std::string_view key, double radians) {
+    const auto d = fewest_digits(radians / kDeg, radians, [](double deg) { return deg * kDeg; });
+    line(key, d ? *d : radians / kDeg);
+  };
+  if (given && !given->has("geometry.hinge_offset")) {
+    // As given: the same numbers make the same hinge.
+    auto given_number = [&](const std::string& key, double fallback) {
+      const auto it = given->values.find(key);
+      return it == given->values.end() ? fallback : it->second.number;
+    };
+    line("hinge_distance", given_number("geometry.hinge_distance", 0.8));
+    line("hinge_angle", given_number("geometry.hinge_angle", 27.0));
+  } else {
+    out += fmt::format("hinge_offset = [{}, {}]\n", shortest(m.hinge.x), shortest(-m.hinge.h));
+  }
+
   out += "\n[masses]\n";
   line("sandbag", m.sandbag_mass);
   line("lid", m.lid_mass);
@@ -888,8 +918,8 @@ std::string to_toml(const Scenario& sc) {
   out += "\n[start]\n";
   line("sandbag_x", st.sandbag_x);
   line("sandbag_height", st.sandbag_h);
-  line("seesaw_angle", st.seesaw_angle / kDeg);
-  line("lid_angle", st.lid_angle / kDeg);
+  angle_line("seesaw_angle", st.seesaw_angle);
+  angle_line("lid_angle", st.lid_angle);
   out += "\n[run]\n";
   line("t_max", r.t_max);
   line("output_step", r.output_step);
@@ -897,7 +927,7 @@ std::string to_toml(const Scenario& sc) {
   line("step", r.step);
   line("tolerance", r.tolerance);
   out += fmt::format("impact_law = \"{}\"\n", to_string(r.impact_law));
-  line("vertical_margin", r.vertical_margin / kDeg);
+  angle_line("vertical_margin", r.vertical_margin);
   line("gravity", m.gravity);
   return out;
 }

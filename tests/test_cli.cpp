@@ -284,6 +284,36 @@ TEST_F(Cli, OptimizedTomlHasShortNumbers) {
   EXPECT_NE(text.find("\nlid_angle = 5\n"), std::string::npos) << text;
   EXPECT_EQ(text.find("99999999"), std::string::npos) << text;
   EXPECT_EQ(text.find("00000000"), std::string::npos) << text;
+  // The hinge in the example's own form, not as an offset with 16 digits [0.7128052193506944, ...].
+  EXPECT_NE(text.find("\nhinge_distance = 0.8\nhinge_angle = 27\n"), std::string::npos) << text;
+  EXPECT_EQ(text.find("hinge_offset"), std::string::npos) << text;
+}
+
+// Angles are kept in radians and written back in degrees: as they were typed, and every machine
+// written reads back as exactly the same machine (the hinge as an offset where its distance and
+// angle would not).
+TEST_F(Cli, OptimizedTomlWritesAnglesAsTyped) {
+  for (const std::string hinge : {"geometry.hinge_angle=27.3", "geometry.hinge_offset=[0.64,0.3]"}) {
+    SCOPED_TRACE(hinge);
+    const fs::path best = dir_ / "best.toml";
+    const std::string sets = "--set " + hinge + " --set start.seesaw_angle=-33.3 --set start.lid_angle=7.7 "
+                             "--set run.vertical_margin=1.1";
+    ASSERT_EQ(whatnext("optimize --example 2 " + sets + " --vary start.sandbag_x=-0.6:-0.1 --grid 5 --max-evals 10 "
+                       "--minimize final_r --out " + best.string()).code, 0);
+    const std::string text = slurp(best);
+    for (const char* line : {"\nseesaw_angle = -33.3\n", "\nlid_angle = 7.7\n", "\nvertical_margin = 1.1\n"}) {
+      EXPECT_NE(text.find(line), std::string::npos) << line << text;
+    }
+    const bool angle = hinge.find("hinge_angle") != std::string::npos;
+    EXPECT_NE(text.find(angle ? "\nhinge_distance = 0.8\nhinge_angle = 27.3\n" : "\nhinge_offset = [0.64, 0.3]\n"),
+              std::string::npos) << text;
+    whatnext::Config given = whatnext::example_config(2);
+    whatnext::apply_set(given, hinge);
+    const whatnext::Scenario a = whatnext::build_scenario(given);
+    const whatnext::Scenario b = whatnext::build_scenario(whatnext::load_config_file(best.string()));
+    EXPECT_EQ(a.machine.hinge.x, b.machine.hinge.x);
+    EXPECT_EQ(a.machine.hinge.h, b.machine.hinge.h);
+  }
 }
 
 TEST_F(Cli, TitlesNameTheOverrides) {
