@@ -1,5 +1,8 @@
 #include "cli_common.hpp"
 
+#include <cerrno>
+#include <cctype>
+#include <cstdlib>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -52,6 +55,28 @@ LoadedInput load_input(const InputOptions& opts) {
   in.source = input_label(in.source, opts.sets);
   in.scenario = build_scenario(in.config);
   return in;
+}
+
+CLI::Validator number_text(bool whole, double lo, double hi) {
+  const std::string what = whole ? "a whole number" : "a number";
+  std::string range;
+  if (std::isfinite(lo) && std::isfinite(hi)) range = fmt::format(" from {} to {}", shortest(lo), shortest(hi));
+  return CLI::Validator(
+      [what, range, whole, lo, hi](std::string& text) -> std::string {
+        const std::string shown = printable(text, 40);
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(begin, &end);
+        const bool number = end != begin && *end == '\0' && !std::isspace(static_cast<unsigned char>(text[0]));
+        if (!number || (whole && !(std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 1e15)) ||
+            !(v >= lo && v <= hi)) {
+          return fmt::format("must be {}{} (given '{}')", what, range, shown);
+        }
+        if (whole) text = fmt::format("{:.0f}", v);  // "1e3" -> "1000", which CLI11 converts
+        return std::string();
+      },
+      what + range);
 }
 
 bool given(const CLI::App& cmd, const std::string& option) { return cmd.count(option) > 0; }

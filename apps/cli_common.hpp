@@ -2,6 +2,7 @@
 // output files are checked before any work, and how big a job may get without being asked.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -34,6 +35,11 @@ LoadedInput load_input(const InputOptions& opts);
 // Arguments CLI11 could not place (each subcommand allows extras so that we can say what they
 // are): a mistyped option gets "did you mean", a stray word a hint. Throws InputError.
 void check_leftovers(const CLI::App& cmd);
+
+// For a numeric option: the text must be one number, a whole one if `whole` ("1e3" is read as
+// 1000), within [lo, hi] if those are given; otherwise "--grid: must be a whole number from 2 to
+// 100000 (given 'abc')" instead of CLI11's "Could not convert" or "Value abc not in range".
+CLI::Validator number_text(bool whole, double lo = -HUGE_VAL, double hi = HUGE_VAL);
 
 // True when the option was given on the command line (even as an empty string).
 bool given(const CLI::App& cmd, const std::string& option);

@@ -26,16 +26,22 @@ void register_animate(CLI::App& app, int& exit_code) {
   add_input_options(*cmd, opts->input);
   cmd->add_option("--out", opts->out, "FILE.gif, or FILE.mp4 (needs ffmpeg on PATH)")->required();
   cmd->add_option("--slowmo", opts->anim.slowmo, "one simulated second lasts this many seconds")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->transform(number_text(false));
   cmd->add_option("--fps", opts->anim.fps,
                   "frames per second (a GIF: at most 50, viewers slow down shorter frames)")
-      ->capture_default_str();
-  cmd->add_option("--width", opts->anim.width, "[px]")->capture_default_str();
-  cmd->add_option("--height", opts->anim.height, "[px] (default: as high as the machine needs)");
-  cmd->add_option("--hold", opts->anim.hold, "seconds each event's frame is held")->capture_default_str();
+      ->capture_default_str()
+      ->transform(number_text(false));
+  cmd->add_option("--width", opts->anim.width, "[px]")->capture_default_str()->transform(number_text(true));
+  cmd->add_option("--height", opts->anim.height, "[px] (default: as high as the machine needs)")
+      ->transform(number_text(true));
+  cmd->add_option("--hold", opts->anim.hold, "seconds each event's frame is held")
+      ->capture_default_str()
+      ->transform(number_text(false));
   cmd->add_option("--max-length", opts->anim.max_length,
                   "seconds on screen at most; longer runs are fast-forwarded between events")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->transform(number_text(false));
   cmd->add_option("--dump-frames", opts->dump,
                   "also write the held frames and one frame per second as PNG into this directory");
   cmd->add_flag("-q,--quiet", opts->quiet, "print nothing");

@@ -36,11 +36,11 @@ void register_optimize(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", opts->out, "write the best machine to this TOML file ('-': standard output)")
       ->required();
   cmd->add_option("--threads", opts->threads, "threads for the coarse grid (default: all cores)")
-      ->check(CLI::Range(1, 1024));
+      ->transform(number_text(true, 1, 1024));
   cmd->add_option("--grid", opts->grid, "coarse grid points per key (default: about 400 machines in all)")
-      ->check(CLI::Range(2, 100000));
-  cmd->add_option("--starts", opts->starts, "local searches from the best grid points")->check(CLI::Range(1, 100));
-  cmd->add_option("--max-evals", opts->max_evals, "machines per local search")->check(CLI::Range(1, 1000000));
+      ->transform(number_text(true, 2, 100000));
+  cmd->add_option("--starts", opts->starts, "local searches from the best grid points")->transform(number_text(true, 1, 100));
+  cmd->add_option("--max-evals", opts->max_evals, "machines per local search")->transform(number_text(true, 1, 1000000));
   cmd->callback([opts, cmd, &exit_code] {
     check_leftovers(*cmd);
     if (opts->minimize.empty() == opts->maximize.empty()) {

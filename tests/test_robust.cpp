@@ -97,6 +97,24 @@ TEST_F(Abuse, HugeIntegersAndWrongKindsNameTheRule) {
   expect_rejected("run --example 1 --set =3", "expected KEY=VALUE");
 }
 
+// Numeric options say what they take and what they were given (CLI11 said "Could not convert:
+// --width = 3.5" or "Value abc not in range 2 to 100000"); a whole number may be written 1e3.
+TEST_F(Abuse, NumericOptionsNameTheRuleAndTheValue) {
+  const fs::path figs = dir_ / "figs", gif = dir_ / "a.gif", toml = dir_ / "b.toml";
+  expect_rejected("plot --example 1 --width 3.5 --out " + figs.string(), "--width: must be a whole number (given '3.5')",
+                  {figs});
+  expect_rejected("animate --example 1 --fps 25x --out " + gif.string(), "--fps: must be a number (given '25x')", {gif});
+  expect_rejected("animate --example 1 --width '' --out " + gif.string(), "--width: must be a whole number (given '')",
+                  {gif});
+  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --grid abc --out " + toml.string(),
+                  "--grid: must be a whole number from 2 to 100000 (given 'abc')", {toml});
+  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --starts 0 --out " + toml.string(),
+                  "--starts: must be a whole number from 1 to 100 (given '0')", {toml});
+  const CliResult ok = whatnext("plot --example 1 -q --format png --width 1e3 --height 6.5e2 --out " + figs.string());
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_TRUE(fs::exists(figs / "overview.png"));
+}
+
 TEST_F(Abuse, MisplacedArgumentsAreNamed) {
   expect_rejected("run --example 0", "examples 1 to 4 (given '0')");
   expect_rejected("run --example x", "(given 'x')");
