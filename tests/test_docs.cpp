@@ -62,6 +62,65 @@ TEST_F(Docs, ShippedInpIsExampleOneInThePapersLayout) {
   EXPECT_TRUE(fs::exists(dir_ / "w.dat"));
 }
 
+// The `whatnext ...` command lines of the code blocks of a Markdown page, in order (a line ending
+// in a backslash goes on; a trailing `# comment` is dropped).
+std::vector<std::string> commands_of(const std::string& markdown) {
+  std::vector<std::string> out;
+  std::istringstream in(markdown);
+  bool code = false;
+  std::string pending;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("```", 0) == 0) {
+      code = !code;
+      continue;
+    }
+    if (!code) continue;
+    if (!pending.empty()) {
+      line = pending + " " + line;
+      pending.clear();
+    }
+    if (!line.empty() && line.back() == '\\') {
+      pending = line.substr(0, line.size() - 1);
+      continue;
+    }
+    if (line.rfind("whatnext ", 0) != 0) continue;
+    const std::size_t comment = line.find("  #");
+    if (comment != std::string::npos) line = line.substr(0, comment);
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out.push_back(line);
+  }
+  return out;
+}
+
+// A new user's first hour: every command of the README and of the pages on inputs, pictures and
+// exploring, typed in order in a fresh folder (with the shipped examples/), runs and says nothing
+// is wrong. To keep the test quick, the 100,000-machine hypercube runs 300 machines and animations
+// are 240 pixels wide; nothing else is changed.
+TEST_F(Docs, EveryCommandOnTheUsersPagesRuns) {
+  std::error_code ec;
+  fs::create_directory_symlink(kSource + "/examples", dir_ / "examples", ec);
+  ASSERT_FALSE(ec) << ec.message();
+  int ran = 0;
+  for (const char* page : {"README.md", "docs/inputs.md", "docs/pictures.md", "docs/explore.md",
+                           "docs/extensions.md", "docs/model.md"}) {
+    for (std::string command : commands_of(slurp(kSource + "/" + page))) {
+      SCOPED_TRACE(std::string(page) + ": " + command);
+      const std::size_t samples = command.find("--samples 100000");
+      if (samples != std::string::npos) command.replace(samples, 16, "--samples 300");
+      if (command.rfind("whatnext animate ", 0) == 0) command += " --width 240";
+      const CliResult r = whatnext("cd " + dir_.string() + " && " + WHATNEXT_CLI + command.substr(8), false);
+      EXPECT_EQ(r.code, 0) << r.err;
+      EXPECT_EQ(r.err.find("error"), std::string::npos) << r.err;
+      ++ran;
+    }
+  }
+  EXPECT_GE(ran, 20);
+  EXPECT_TRUE(fs::exists(dir_ / "my-machine.toml"));
+  EXPECT_TRUE(fs::exists(dir_ / "whatnext.dat"));
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "compare_laws.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "sweep.png"));
+}
+
 // Users have docs/model.md; the specification MODEL.md is not in the repository.
 TEST_F(Docs, UserPagesCiteNoMissingSpecification) {
   for (const char* page : {"README.md", "docs/inputs.md", "docs/pictures.md", "docs/explore.md",
