@@ -320,6 +320,27 @@ TEST(VizPlots, AxisTitleClearsTheTickNumbers) {
   EXPECT_GT(panels, 60);
 }
 
+// A long input name shrinks the titles that would not fit; the titles of one page then share that
+// size (with the radio example's path, three of the overview's six titles were smaller).
+TEST(VizPlots, TitlesOfAPageShareOneSize) {
+  const Scenario radio = build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"));
+  FigureOptions opts;
+  opts.formats = {Format::png};
+  opts.title = "examples/example1-radio.toml";
+  std::vector<PageLayout> pages;
+  write_run_figures(record(radio), fresh_dir("titles").string(), opts, &pages);
+  write_law_comparison(radio, fresh_dir("titles").string(), opts, &pages);
+  for (const PageLayout& page : pages) {
+    SCOPED_TRACE(page.name);
+    std::vector<double> heights;
+    for (const PlacedText& t : page.texts) {
+      if (t.kind == PlacedText::title) heights.push_back(t.box.y1 - t.box.y0);
+    }
+    ASSERT_FALSE(heights.empty());
+    for (double h : heights) EXPECT_NEAR(h, heights.front(), 1e-9);
+  }
+}
+
 TEST(VizPlots, TrajectoryIsToScaleOrSaysSo) {
   bool stretched = false, scaled = false;
   for (int n = 1; n <= 4; ++n) {

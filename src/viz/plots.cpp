@@ -227,6 +227,7 @@ struct PanelGeometry {
   double ylabel_at = 0.0;        // the y axis' title: its reference point left of the axes [mm]
   double left_needed = 0.0;      // room the tick numbers and the y title need left of the axes [mm]
   std::vector<Text> axis_texts;  // where PLplot will write the y tick numbers and the y title
+  double title_h = 0.0;          // the title's character height [mm] (shrunk to fit the panel)
 };
 
 struct PageGeometry {
@@ -326,7 +327,9 @@ std::vector<std::pair<double, std::string>> tick_numbers(double lo, double hi, d
 // strip, event numbers) take at least min_bands, so that panels side by side line up.
 // `left` is the room left of the axes for the tick numbers and the y axis' title (at least 6 ch;
 // layout_page widens it to what the panels of a column need, g.left_needed).
-PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_bands = 0.0, double left = 0.0) {
+// `title_cap` (if > 0) is the largest title height, so that the panels of a page share one.
+PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_bands = 0.0, double left = 0.0,
+                           double title_cap = 0.0) {
   PanelGeometry g;
   g.h = ch;
   const double pad = 0.5 * ch;
@@ -441,9 +444,10 @@ PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_b
   g.wx0 = wx0, g.wx1 = wx1, g.wy0 = wy0, g.wy1 = wy1;
 
   // Title.
-  double th = title_h;
+  double th = title_cap > 0.0 ? std::min(title_h, title_cap) : title_h;
   const double tw = text_width(title, th);
   if (tw > r.x1 - r.x0 - 2.0 * pad) th *= (r.x1 - r.x0 - 2.0 * pad) / tw;
+  g.title_h = th;
   y -= 0.55 * title_h;
   const double title_x = std::clamp(0.5 * (g.axes.x0 + g.axes.x1), r.x0 + pad + 0.5 * text_width(title, th),
                                     r.x1 - pad - 0.5 * text_width(title, th));
@@ -651,18 +655,25 @@ PageGeometry layout_page(const Page& page) {
   // Panels side by side share the height of their bands, panels above each other the room left of
   // their axes (so that their axes line up); that room is what the widest tick numbers and the y
   // title need. The data window can change with the room (a trajectory to scale), hence the rounds.
+  // Titles share one size, the smallest any of them needs to fit its panel (a long input name
+  // shrinks one title; the page's titles should not then differ in size).
   std::vector<double> row_bands(page.ny, 0.0), col_left(page.nx, 0.0);
+  double title_cap = 0.0;
   for (int round = 0; round < 4; ++round) {
     std::vector<double> bands(page.ny, 0.0), left = col_left;
     pg.panels.clear();
     for (std::size_t i = 0; i < page.panels.size(); ++i) {
-      pg.panels.push_back(layout_panel(page.panels[i], cell(i), ch, row_bands[i / page.nx], col_left[i % page.nx]));
+      pg.panels.push_back(
+          layout_panel(page.panels[i], cell(i), ch, row_bands[i / page.nx], col_left[i % page.nx], title_cap));
       double& b = bands[i / page.nx];
       b = std::max(b, pg.panels.back().bands);
       double& l = left[i % page.nx];
       l = std::max(l, pg.panels.back().left_needed);
     }
-    if (bands == row_bands && left == col_left) break;
+    double smallest = 0.0;
+    for (const PanelGeometry& g : pg.panels) smallest = smallest > 0.0 ? std::min(smallest, g.title_h) : g.title_h;
+    if (bands == row_bands && left == col_left && (title_cap > 0.0 || pg.panels.size() < 2)) break;
+    title_cap = smallest;
     for (std::size_t r = 0; r < bands.size(); ++r) row_bands[r] = std::max(row_bands[r], bands[r]);
     for (std::size_t c = 0; c < left.size(); ++c) col_left[c] = std::max(col_left[c], left[c]);
   }
