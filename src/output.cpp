@@ -142,6 +142,9 @@ void install_interrupt_cleanup() {
     sigemptyset(&sa.sa_mask);
     sa.sa_flags = SA_RESTART;
     for (int sig : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(sig, &sa, nullptr);
+    // Beyond the file-size limit (ulimit -f) a write then fails with EFBIG, like a full disk,
+    // instead of SIGXFSZ killing whatnext with a .part file left behind.
+    ::signal(SIGXFSZ, SIG_IGN);
   });
 }
 

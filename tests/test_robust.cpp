@@ -297,6 +297,30 @@ TEST(Writers, ANonFiniteStateIsAFailedRunNotAFile) {
   EXPECT_THROW(whatnext::events_json(r, whatnext::Scenario{}, "x"), whatnext::SimulationError);
 }
 
+// Beyond the file-size limit (ulimit -f) a write fails like on a full disk: one line naming the file
+// and why, exit code 1, and no file or temporary left (SIGXFSZ killed whatnext and left r.csv.part).
+TEST_F(Abuse, FileSizeLimitFailsTheWriteCleanly) {
+  const std::string cli = WHATNEXT_CLI;
+  for (const std::string& job : {"run -q --example 3 --csv " + path("r.csv"), "animate -q --example 3 --out " + path("a.gif")}) {
+    SCOPED_TRACE(job);
+    const CliResult r = whatnext("ulimit -f 64; " + cli + " " + job, false);
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_TRUE(one_printable_line(r.err)) << r.err;
+    EXPECT_NE(r.err.find("writing failed: File too large"), std::string::npos) << r.err;
+  }
+  for (const char* name : {"r.csv", "r.csv.part", "a.gif", "a.gif.part"}) EXPECT_FALSE(fs::exists(dir_ / name)) << name;
+}
+
+// With standard error closed, bad input still ends with exit code 2 (printing the line threw and
+// whatnext aborted).
+TEST_F(Abuse, ClosedStandardErrorIsNoCrash) {
+  const CliResult r = whatnext(std::string(WHATNEXT_CLI) + " run --example 1 --set masses.sandbag=-1 --csv " +
+                               path("r.csv") + " 2>&-; echo $?", false);
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out, "2\n");
+  EXPECT_FALSE(fs::exists(dir_ / "r.csv"));
+}
+
 // --- big jobs ------------------------------------------------------------------------------------
 
 TEST_F(Abuse, HugeOutputsNeedToBeAskedFor) {
