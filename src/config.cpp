@@ -172,17 +172,45 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   throw InputError(fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, printable(key), near));
 }
 
-// TOML integers become doubles too (rounded when they have more than 53 bits; `literal` then
-// keeps the integer as written, for messages: "given 9007199254740993", not ...992).
-bool number_of(const toml::node& node, double& out, std::string* literal = nullptr) {
+// A number as the input wrote it, from the node's place in the text it was parsed from: "1e-400"
+// (which reads as 0), "9007199254740993" (which a double rounds). Empty if it cannot be found or
+// does not read as the node's value.
+std::string literal_of(const toml::node& node, std::string_view source, double value) {
+  const toml::source_region& where = node.source();
+  if (source.empty() || where.begin.line != where.end.line || where.end.column <= where.begin.column) return {};
+  std::size_t at = 0;
+  for (auto line = where.begin.line; line > 1 && at != std::string_view::npos; --line) {
+    at = source.find('\n', at);
+    if (at != std::string_view::npos) ++at;
+  }
+  if (at == std::string_view::npos) return {};
+  const std::size_t from = at + where.begin.column - 1, n = where.end.column - where.begin.column;
+  if (from + n > source.size()) return {};
+  std::string text(source.substr(from, n)), digits;
+  for (char c : text) {
+    if (c != '_') digits += c;
+  }
+  char* end = nullptr;
+  const double read = std::strtod(digits.c_str(), &end);
+  if (digits.empty() || *end != '\0' || !(read == value || (std::isnan(read) && std::isnan(value)))) return {};
+  return printable(text, 40);
+}
+
+// TOML integers become doubles too (rounded when they have more than 53 bits). `literal` gets the
+// number as written, for messages ("given 9007199254740993", not ...992; "given 1e-400", not 0).
+bool number_of(const toml::node& node, double& out, std::string* literal = nullptr, std::string_view source = {}) {
   if (const auto* i = node.as_integer()) {
     out = static_cast<double>(i->get());
-    if (literal) *literal = std::fabs(out) >= 9007199254740992.0 ? std::to_string(i->get()) : fmt_num(out);
+    if (literal) {
+      *literal = literal_of(node, source, out);
+      if (literal->empty()) *literal = std::fabs(out) >= 9007199254740992.0 ? std::to_string(i->get()) : fmt_num(out);
+    }
     return true;
   }
   if (literal) literal->clear();
   if (const auto* f = node.as_floating_point()) {
     out = f->get();
+    if (literal) *literal = literal_of(node, source, out);
     return true;
   }
   return false;
@@ -194,8 +222,10 @@ std::string shown_node(const toml::node& node) {
   return printable(given.str());
 }
 
-// Stores one TOML node under key, checking its type against the key's kind.
-void store(Config& cfg, const std::string& key, const toml::node& node, const std::string& origin) {
+// Stores one TOML node under key, checking its type against the key's kind; `source` is the text the
+// node was parsed from (for numbers as written in messages).
+void store(Config& cfg, const std::string& key, const toml::node& node, const std::string& origin,
+           std::string_view source = {}) {
   const KeySpec* spec = find_key(key);
   if (!spec) unknown_key(origin, key);
   ConfigValue v;
@@ -215,8 +245,8 @@ void store(Config& cfg, const std::string& key, const toml::node& node, const st
   } else if (spec->kind == KeyKind::pair) {
     const toml::array* arr = node.as_array();
     std::string lit[2];
-    if (!arr || arr->size() != 2 || !number_of((*arr)[0], v.pair[0], &lit[0]) ||
-        !number_of((*arr)[1], v.pair[1], &lit[1])) {
+    if (!arr || arr->size() != 2 || !number_of((*arr)[0], v.pair[0], &lit[0], source) ||
+        !number_of((*arr)[1], v.pair[1], &lit[1], source)) {
       throw InputError(fmt::format("{}: {} must be a pair of numbers [dx, dh] in {} (given {})", origin, key,
                                    spec->unit, shown_node(node)));
     }
@@ -227,7 +257,7 @@ void store(Config& cfg, const std::string& key, const toml::node& node, const st
     }
   } else {
     std::string lit;
-    if (!number_of(node, v.number, &lit)) {
+    if (!number_of(node, v.number, &lit, source)) {
       throw InputError(fmt::format("{}: {} must be a number in {} (given {})", origin, key,
                                    spec->unit.empty() ? "plain units" : spec->unit, shown_node(node)));
     }
@@ -269,7 +299,7 @@ struct Reader {
   double number(const std::string& key, double fallback) const {
     const ConfigValue* v = find(key);
     if (!v) return fallback;
-    if (!std::isfinite(v->number)) fail(key, fmt::format("must be a finite number (given {})", fmt_num(v->number)));
+    if (!std::isfinite(v->number)) fail(key, fmt::format("must be a finite number (given {})", shown(key, v->number)));
     return v->number;
   }
   double positive(const std::string& key, double fallback) const {
@@ -316,7 +346,8 @@ struct Reader {
   Vec2 pair(const std::string& key) const {
     const ConfigValue& v = *find(key);
     if (!std::isfinite(v.pair[0]) || !std::isfinite(v.pair[1])) {
-      fail(key, fmt::format("must hold finite numbers (given [{}, {}])", fmt_num(v.pair[0]), fmt_num(v.pair[1])));
+      fail(key, fmt::format("must hold finite numbers (given {})",
+                            v.text.empty() ? fmt::format("[{}, {}]", fmt_num(v.pair[0]), fmt_num(v.pair[1])) : v.text));
     }
     if (std::fabs(v.pair[0]) > kMaxLength || std::fabs(v.pair[1]) > kMaxLength) {
       fail(key, fmt::format("must hold numbers within [{}, {}] m, the range the model is made for (given {})",
@@ -445,7 +476,7 @@ Config parse_toml(std::string_view text, const std::string& source) {
     const toml::table* table = node.as_table();
     if (!table) unknown_key(line_origin(cfg.source, node), sect);
     for (const auto& [name, value] : *table) {
-      store(cfg, sect + "." + std::string(name.str()), value, line_origin(cfg.source, value));
+      store(cfg, sect + "." + std::string(name.str()), value, line_origin(cfg.source, value), text);
     }
   }
   return cfg;
@@ -486,6 +517,8 @@ Config parse_inp(std::string_view text, const std::string& source) {
     std::replace(token.begin(), token.end(), 'D', 'e');
     ConfigValue cv;
     cv.number = std::strtod(token.c_str(), nullptr);  // out of range gives inf or 0: validation says so
+    const std::string written = line.substr(first, end - first);
+    if (written != fmt_num(cv.number)) cv.text = printable(written, 40);  // messages quote "1e999", not inf
     cv.origin = fmt::format("{} ({})", origin, kFields[field][1]);
     cfg.values[kFields[field][0]] = cv;
     ++field;
@@ -559,14 +592,15 @@ void apply_set(Config& cfg, std::string_view assignment) {
   if (value.empty()) throw InputError(fmt::format("{}: give a value after '='", origin));
   toml::table parsed;
   bool ok = true;
+  const std::string line = "v = " + value;
   try {
-    parsed = toml::parse("v = " + value);
+    parsed = toml::parse(line);
     ok = parsed.size() == 1 && parsed.contains("v");
   } catch (const toml::parse_error&) {
     ok = false;
   }
   if (ok) {
-    store(cfg, key, *parsed.get("v"), origin);
+    store(cfg, key, *parsed.get("v"), origin, line);
   } else if (spec->kind == KeyKind::text) {
     store(cfg, key, toml::value<std::string>(value), origin);
   } else if (spec->kind == KeyKind::flag) {

@@ -89,6 +89,14 @@ TEST_F(Abuse, HugeIntegersAndWrongKindsNameTheRule) {
                   "(given 9007199254740993)");
   expect_rejected("run --example 1 --set 'geometry.hinge_offset=[9007199254740993,1]'",
                   "(given [9007199254740993, 1])");
+  // Numbers a double reads as 0 or infinity are quoted as written too.
+  expect_rejected("run " + write("tiny.toml", "[masses]\nsandbag = 1e-400\n").string(),
+                  "tiny.toml:2: masses.sandbag must be > 0 kg (given 1e-400)");
+  expect_rejected("run --example 1 --set 'geometry.hinge_offset=[1e-400, 1e5]'", "(given [1e-400, 1e5])");
+  std::string inp = slurp(WHATNEXT_SOURCE_DIR "/examples/whatnext.inp");
+  inp.replace(inp.find("-25.0"), 5, "1d999");
+  expect_rejected("run " + write("huge.inp", inp).string(),
+                  "huge.inp line 3 (phiS): start.seesaw_angle must be a finite number (given 1d999)");
   expect_rejected("run " + write("big.toml", "[run]\ntolerance = -12345678901234567\n").string(),
                   "big.toml:2: run.tolerance must be in [1e-15, 0.001] (given -12345678901234567)");
   expect_rejected("run --example 1 --set radio.enabled=yes", "radio.enabled must be true or false (given 'yes')");
