@@ -316,6 +316,36 @@ TEST_F(Cli, OptimizedTomlWritesAnglesAsTyped) {
   }
 }
 
+// A fixed-step run's CSV starts with the start (t = 0, the sandbag at its start height) and has one
+// row per time: it started with the first step's end, and a step longer than run.output_step wrote
+// the same row, with the same time, once for every grid time it passed.
+TEST_F(Cli, FixedStepCsvStartsAtTheStartWithOneRowPerTime) {
+  for (const char* integrator : {"euler", "rk4"}) {
+    for (const char* step : {"0.001", "0.0025"}) {
+      SCOPED_TRACE(std::string(integrator) + " " + step);
+      const CliResult r = whatnext(std::string("run -q --example 1 --set run.integrator=") + integrator +
+                                   " --set run.step=" + step + " --csv " + (dir_ / "r.csv").string());
+      ASSERT_EQ(r.code, 0) << r.err;
+      std::istringstream in(slurp(dir_ / "r.csv"));
+      std::string line;
+      std::getline(in, line);
+      std::getline(in, line);
+      EXPECT_EQ(line.rfind("0,,M1,0,-0.3,1,", 0), 0u) << line;  // t, event, mode, rope, x, h
+      double last = -1.0;
+      int rows = 0;
+      while (std::getline(in, line)) {
+        const auto cells = line.find(',');
+        if (line[cells + 1] != ',') continue;  // an event's row
+        const double t = std::stod(line.substr(0, cells));
+        EXPECT_GT(t, last) << line;
+        last = t;
+        ++rows;
+      }
+      EXPECT_GT(rows, 250);
+    }
+  }
+}
+
 TEST_F(Cli, TitlesNameTheOverrides) {
   const CliResult r = whatnext("run --example 4 --set masses.lid=0.7 --set 'geometry.hinge_offset=[0.64, 0.3]'");
   ASSERT_EQ(r.code, 0) << r.err;
