@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
 #include <functional>
 #include <regex>
 #include <sstream>
@@ -119,6 +120,32 @@ TEST_F(Docs, EveryCommandOnTheUsersPagesRuns) {
   EXPECT_TRUE(fs::exists(dir_ / "whatnext.dat"));
   EXPECT_TRUE(fs::exists(dir_ / "out" / "compare_laws.png"));
   EXPECT_TRUE(fs::exists(dir_ / "sweep.png"));
+}
+
+// pictures.md's numbers for `--compare integrator` (Euler at 2 ms on example 1) are the program's.
+TEST_F(Docs, PicturesPageDescribesEulerAsItRuns) {
+  Config cfg = example_config(1);
+  const Result exact = simulate(build_scenario(cfg));
+  apply_set(cfg, "run.integrator=euler");
+  apply_set(cfg, "run.step=0.002");
+  const Result fixed = simulate(build_scenario(cfg));
+  // The energy just before the rope's jerk (the first impact): the adaptive run's is the start's.
+  auto before_jerk = [](const Result& r) {
+    for (const Event& e : r.events) {
+      if (e.impact) return e.energy_before;
+    }
+    return 0.0;
+  };
+  const double drift = (before_jerk(fixed) - before_jerk(exact)) / before_jerk(exact) * 100.0;
+  const double early_ms = (exact.outcome().t - fixed.outcome().t) * 1e3;
+  char energy[64], open[96];
+  std::snprintf(energy, sizeof energy, "(by %.1f%% before the rope's jerk)", drift);
+  std::snprintf(open, sizeof open, "opens %.0f ms early (%.3f s against %.3f s)", early_ms, fixed.outcome().t,
+                exact.outcome().t);
+  std::string flat;
+  for (char c : slurp(kSource + "/docs/pictures.md")) flat += c == '\n' ? ' ' : c;
+  EXPECT_NE(flat.find(energy), std::string::npos) << energy;
+  EXPECT_NE(flat.find(open), std::string::npos) << open;
 }
 
 // Users have docs/model.md; the specification MODEL.md is not in the repository.
