@@ -44,6 +44,11 @@ CLI::Validator number_text(bool whole, double lo = -HUGE_VAL, double hi = HUGE_V
 // True when the option was given on the command line (even as an empty string).
 bool given(const CLI::App& cmd, const std::string& option);
 
+// Throws InputError when `path` is the command's input file or one of its outputs already added
+// (as given or through a symlink): an output must never overwrite the machine it was made from,
+// nor another output. load_input and Outputs::add register what they see.
+void check_unclaimed(const std::string& option, const std::string& path);
+
 // The output files of one command, opened (and so checked) before any work, and committed
 // together: if one fails to write, none of the others appears.
 class Outputs {
@@ -69,7 +74,8 @@ double max_rows(const Scenario& scenario);
 void check_size(const Scenario& scenario, double bytes_per_row, const std::string& option, bool force,
                 const std::string& what = "write");
 // The directory given to --plots or --out of plot: created if missing (and removed again if the
-// command then fails or is interrupted while it is still empty). Returns its path.
+// command then fails or is interrupted while it is still empty); a figure it would hold must not
+// be the input or another output (check_unclaimed).
 void prepare_picture_dir(const std::string& dir, const std::string& option);
 // Removes the directories prepare_picture_dir created, if they are still empty.
 void remove_empty_picture_dirs();

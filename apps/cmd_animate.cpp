@@ -54,6 +54,7 @@ void register_animate(CLI::App& app, int& exit_code) {
     // Checked before the run: the extension, a regular file (symlinks followed), a writable place.
     const std::string target = regular_output_target(opts->out, "--out");
     viz::check_animation_target(target, "--out");
+    check_unclaimed("--out", target);
     if (given(*cmd, "--dump-frames")) prepare_picture_dir(opts->dump, "--dump-frames");
     // Progress on stderr: a counter on a terminal, otherwise a line every 100 frames.
     const bool tty = ::isatty(STDERR_FILENO) != 0;

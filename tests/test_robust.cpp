@@ -226,6 +226,39 @@ TEST_F(Abuse, BadOutputsAreFoundBeforeAnyWork) {
                   "is a directory");
 }
 
+// No output may overwrite the machine it is made from (`run m.toml --csv m.toml` replaced the
+// machine with the CSV), also through a symlink, nor another output: the animation and the
+// figures are compared with --csv, --dat and --events too.
+TEST_F(Abuse, OutputsNeverOverwriteTheInputOrEachOther) {
+  const std::string machine = slurp(WHATNEXT_SOURCE_DIR "/examples/example2.toml");
+  const fs::path m = write("m.toml", machine), inp = write("w.inp", slurp(WHATNEXT_SOURCE_DIR "/examples/whatnext.inp"));
+  fs::create_symlink("m.toml", dir_ / "link.toml");
+  expect_rejected("run " + m.string() + " --csv " + m.string(), "is the input file");
+  expect_rejected("run " + (dir_ / "link.toml").string() + " --events " + m.string(), "is the input file");
+  expect_rejected("run " + m.string() + " --csv " + path("r.csv") + " --events " + (dir_ / "link.toml").string(),
+                  "is the input file", {dir_ / "r.csv"});
+  expect_rejected("run " + inp.string() + " --dat " + inp.string(), "is the input file");
+  expect_rejected("optimize " + m.string() + " --vary masses.lid=0.2:1 --minimize lid_open --out " + m.string(),
+                  "is the input file");
+  expect_rejected("sweep " + m.string() + " --vary masses.lid=0.2:1:3 --out " + m.string(), "is the input file");
+  EXPECT_EQ(slurp(m), machine);
+  expect_rejected("run --example 1 --csv " + path("x.gif") + " --animate " + path("x.gif"),
+                  "--animate " + path("x.gif") + ": is the same file as --csv", {dir_ / "x.gif"});
+  ASSERT_TRUE(fs::create_directory(dir_ / "pd"));
+  expect_rejected("run --example 1 --csv " + path("pd/overview.png") + " --plots " + path("pd"),
+                  "is the same file as --csv", {dir_ / "pd" / "overview.png"});
+  // Outputs beside the figures, and /dev/null for several, are fine.
+  const CliResult ok = whatnext("run -q " + m.string() + " --csv " + path("figs/run.csv") + " --plots " + path("figs") +
+                                " --events /dev/null --dat /dev/null");
+  EXPECT_EQ(ok.code, 2) << ok.err;  // figs/ does not exist yet when --csv is checked
+  ASSERT_TRUE(fs::create_directory(dir_ / "figs"));
+  const CliResult ok2 = whatnext("run -q " + m.string() + " --csv " + path("figs/run.csv") + " --plots " +
+                                 path("figs") + " --events /dev/null --dat /dev/null");
+  EXPECT_EQ(ok2.code, 0) << ok2.err;
+  EXPECT_TRUE(fs::exists(dir_ / "figs" / "run.csv"));
+  EXPECT_TRUE(fs::exists(dir_ / "figs" / "overview.png"));
+}
+
 TEST_F(Abuse, ReadOnlyFilesAreNotReplaced) {
   const fs::path ro = write("ro.csv", "keep me\n");
   fs::permissions(ro, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
