@@ -414,6 +414,12 @@ std::string outcome_sentence(const Result& result) {
     case EventType::radio_on:
       return fmt::format("radio on at t = {:.3f} s", e.t);
     case EventType::timeout:
+      // With the radio the lid may have opened (and latched) before: say so, not "no outcome".
+      for (const Event& open : result.events) {
+        if (open.type == EventType::lid_open) {
+          return fmt::format("lid open at {:.3f} s; the radio is not on by t_max = {:.3f} s", open.t, e.t);
+        }
+      }
       return fmt::format("no outcome by t_max = {:.3f} s: the lid is at {:.1f} deg", e.t,
                          s.phi_l * kRadToDeg);
     case EventType::event_limit:

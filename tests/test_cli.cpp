@@ -346,6 +346,16 @@ TEST_F(Cli, FixedStepCsvStartsAtTheStartWithOneRowPerTime) {
   }
 }
 
+// With the radio, a run that ends at t_max after the lid opened says that the lid opened (it said
+// "no outcome by t_max", though the lid stood latched at 89.1 deg).
+TEST_F(Cli, RadioTimeoutAfterTheLidOpenedSaysTheLidOpened) {
+  const CliResult r = whatnext("run -q --example 1 --set radio.enabled=true --set run.t_max=1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, "lid open at 0.820 s; the radio is not on by t_max = 1.000 s\n");
+  const CliResult plain = whatnext("run -q --example 1 --set run.t_max=0.5");
+  EXPECT_EQ(plain.out.rfind("no outcome by t_max = 0.500 s", 0), 0u) << plain.out;
+}
+
 TEST_F(Cli, TitlesNameTheOverrides) {
   const CliResult r = whatnext("run --example 4 --set masses.lid=0.7 --set 'geometry.hinge_offset=[0.64, 0.3]'");
   ASSERT_EQ(r.code, 0) << r.err;
