@@ -111,7 +111,7 @@ CLI::Validator number_text(bool whole, double lo, double hi) {
         if (whole) text = fmt::format("{:.0f}", v);  // "1e3" -> "1000", which CLI11 converts
         return std::string();
       },
-      what + range);
+      range.empty() ? std::string() : range.substr(1));  // shown in --help: "INT:from 1 to 100"
 }
 
 bool given(const CLI::App& cmd, const std::string& option) { return cmd.count(option) > 0; }
