@@ -16,9 +16,10 @@ namespace whatnext::cli {
 namespace fs = std::filesystem;
 
 void add_input_options(CLI::App& cmd, InputOptions& opts) {
-  cmd.add_option("FILE", opts.file, "machine as TOML or the paper's whatnext.inp");
-  cmd.add_option("--example", opts.example, "the paper's example N (1-4) instead of FILE");
+  cmd.add_option("FILE", opts.file, "machine as TOML or the paper's whatnext.inp")->type_name("");
+  cmd.add_option("--example", opts.example, "the paper's example N (1-4) instead of FILE")->type_name("N");
   cmd.add_option("--set", opts.sets, "override an input key, e.g. --set geometry.rope_length=0.9")
+      ->type_name("KEY=VALUE")
       ->take_all()
       ->allow_extra_args(false);
   // Unknown options are left over rather than refused by CLI11, so that check_leftovers can say

@@ -24,7 +24,7 @@ void register_animate(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<AnimateOptions>();
   CLI::App* cmd = app.add_subcommand("animate", "draw the machine moving, as an animated GIF or MP4");
   add_input_options(*cmd, opts->input);
-  cmd->add_option("--out", opts->out, "FILE.gif, or FILE.mp4 (needs ffmpeg on PATH)")->required();
+  cmd->add_option("--out", opts->out, "FILE.gif, or FILE.mp4 (needs ffmpeg on PATH)")->required()->type_name("FILE");
   cmd->add_option("--slowmo", opts->anim.slowmo, "one simulated second lasts this many seconds")
       ->capture_default_str()
       ->transform(number_text(false));
@@ -43,7 +43,8 @@ void register_animate(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->transform(number_text(false));
   cmd->add_option("--dump-frames", opts->dump,
-                  "also write the held frames and one frame per second as PNG into this directory");
+                  "also write the held frames and one frame per second as PNG into this directory")
+      ->type_name("DIR");
   cmd->add_flag("-q,--quiet", opts->quiet, "print nothing");
   cmd->add_flag("--force-large", opts->force_large, "animate runs whose states would take more than 256 MB of memory");
   cmd->callback([opts, cmd, &exit_code] {

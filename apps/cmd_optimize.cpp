@@ -26,15 +26,18 @@ void register_optimize(CLI::App& app, int& exit_code) {
   add_input_options(*cmd, opts->input);
   cmd->add_option("--vary", opts->vary, "KEY=A:B: search KEY between A and B; repeat for more keys")
       ->required()
+      ->type_name("KEY=A:B")
       ->take_all()
       ->allow_extra_args(false);
   auto* mn = cmd->add_option("--minimize", opts->minimize,
                              "value to minimise: an event name (its first time, e.g. lid_open), outcome_t, "
-                             "final_r or final_phi_l_deg");
-  auto* mx = cmd->add_option("--maximize", opts->maximize, "value to maximise (as --minimize)");
+                             "final_r or final_phi_l_deg")
+                ->type_name("VALUE");
+  auto* mx = cmd->add_option("--maximize", opts->maximize, "value to maximise (as --minimize)")->type_name("VALUE");
   mn->excludes(mx);
   cmd->add_option("--out", opts->out, "write the best machine to this TOML file ('-': standard output)")
-      ->required();
+      ->required()
+      ->type_name("FILE");
   cmd->add_option("--threads", opts->threads, "threads for the coarse grid (default: all cores)")
       ->transform(number_text(true, 1, 1024));
   cmd->add_option("--grid", opts->grid, "coarse grid points per key (default: about 400 machines in all)")

@@ -356,6 +356,16 @@ TEST_F(Cli, RadioTimeoutAfterTheLidOpenedSaysTheLidOpened) {
   EXPECT_EQ(plain.out.rfind("no outcome by t_max = 0.500 s", 0), 0u) << plain.out;
 }
 
+// Options that take a value name what they take, in the help and when the value is missing.
+TEST_F(Cli, MissingValuesSayWhatIsWanted) {
+  EXPECT_NE(whatnext("run --example 1 --set").err.find("--set: 1 required KEY=VALUE missing"), std::string::npos);
+  EXPECT_NE(whatnext("run --example").err.find("--example: 1 required N missing"), std::string::npos);
+  const std::string help = whatnext("help plot").out;
+  for (const char* shown : {"--set KEY=VALUE", "--out DIR", "--compare laws|integrator", "--width INT=1000"}) {
+    EXPECT_NE(help.find(shown), std::string::npos) << shown << "\n" << help;
+  }
+}
+
 TEST_F(Cli, TitlesNameTheOverrides) {
   const CliResult r = whatnext("run --example 4 --set masses.lid=0.7 --set 'geometry.hinge_offset=[0.64, 0.3]'");
   ASSERT_EQ(r.code, 0) << r.err;
