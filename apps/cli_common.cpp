@@ -1,5 +1,10 @@
 #include "cli_common.hpp"
 
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cctype>
+#include <cstdlib>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -11,9 +16,10 @@ namespace whatnext::cli {
 namespace fs = std::filesystem;
 
 void add_input_options(CLI::App& cmd, InputOptions& opts) {
-  cmd.add_option("FILE", opts.file, "machine as TOML or the paper's whatnext.inp");
-  cmd.add_option("--example", opts.example, "the paper's example N (1-4) instead of FILE");
+  cmd.add_option("FILE", opts.file, "machine as TOML or the paper's whatnext.inp")->type_name("");
+  cmd.add_option("--example", opts.example, "the paper's example N (1-4) instead of FILE")->type_name("N");
   cmd.add_option("--set", opts.sets, "override an input key, e.g. --set geometry.rope_length=0.9")
+      ->type_name("KEY=VALUE")
       ->take_all()
       ->allow_extra_args(false);
   // Unknown options are left over rather than refused by CLI11, so that check_leftovers can say
@@ -22,6 +28,36 @@ void add_input_options(CLI::App& cmd, InputOptions& opts) {
 }
 
 namespace {
+// The input file and the outputs of this command, to keep them apart.
+struct Claim {
+  std::string option, shown;
+  bool exists = false;
+  dev_t dev = 0;
+  ino_t ino = 0;
+  std::string where;  // the absolute path a new file will have
+};
+std::vector<Claim> g_claims;
+
+Claim identify(const std::string& option, const std::string& path) {
+  Claim c;
+  c.option = option;
+  c.shown = printable(path, 96);
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {  // follows symlinks
+    c.exists = true;
+    c.dev = st.st_dev;
+    c.ino = st.st_ino;
+  }
+  std::error_code ec;
+  c.where = fs::weakly_canonical(fs::absolute(path, ec), ec).string();
+  return c;
+}
+
+bool same(const Claim& a, const Claim& b) {
+  if (a.exists && b.exists) return a.dev == b.dev && a.ino == b.ino;
+  return !a.where.empty() && a.where == b.where;
+}
+
 int example_number(const std::string& text) {
   if (text.size() == 1 && text[0] >= '1' && text[0] <= '4') return text[0] - '0';
   throw InputError(fmt::format("--example: the paper has examples 1 to 4 (given '{}')", printable(text)));
@@ -45,6 +81,9 @@ LoadedInput load_input(const InputOptions& opts) {
   } else if (!opts.file.empty()) {
     in.config = load_config_file(opts.file);
     in.source = printable(opts.file, 96);
+    Claim input = identify("input", opts.file);
+    struct stat st {};
+    if (input.exists && ::stat(opts.file.c_str(), &st) == 0 && S_ISREG(st.st_mode)) g_claims.push_back(input);
   } else {
     throw InputError("input: give a machine FILE or --example N (1-4)");
   }
@@ -52,6 +91,28 @@ LoadedInput load_input(const InputOptions& opts) {
   in.source = input_label(in.source, opts.sets);
   in.scenario = build_scenario(in.config);
   return in;
+}
+
+CLI::Validator number_text(bool whole, double lo, double hi) {
+  const std::string what = whole ? "a whole number" : "a number";
+  std::string range;
+  if (std::isfinite(lo) && std::isfinite(hi)) range = fmt::format(" from {} to {}", shortest(lo), shortest(hi));
+  return CLI::Validator(
+      [what, range, whole, lo, hi](std::string& text) -> std::string {
+        const std::string shown = printable(text, 40);
+        const char* begin = text.c_str();
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(begin, &end);
+        const bool number = end != begin && *end == '\0' && !std::isspace(static_cast<unsigned char>(text[0]));
+        if (!number || (whole && !(std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 1e15)) ||
+            !(v >= lo && v <= hi)) {
+          return fmt::format("must be {}{} (given '{}')", what, range, shown);
+        }
+        if (whole) text = fmt::format("{:.0f}", v);  // "1e3" -> "1000", which CLI11 converts
+        return std::string();
+      },
+      range.empty() ? std::string() : range.substr(1));  // shown in --help: "INT:from 1 to 100"
 }
 
 bool given(const CLI::App& cmd, const std::string& option) { return cmd.count(option) > 0; }
@@ -79,8 +140,35 @@ void check_leftovers(const CLI::App& cmd) {
                                cmd.get_name(), printable(first), cmd.get_name()));
 }
 
+namespace {
+// Throws when path is already claimed; returns its claim otherwise (exists == false and where
+// empty for what needs no check: standard output, devices).
+Claim unclaimed(const std::string& option, const std::string& path) {
+  if (path.empty() || path == "-") return {};
+  const Claim c = identify(option, path);
+  struct stat st {};
+  if (c.exists && ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) return {};  // /dev/null and the like
+  for (const Claim& other : g_claims) {
+    if (!same(c, other)) continue;
+    if (other.option == "input") {
+      throw InputError(fmt::format("{} {}: is the input file; whatnext does not write over its input (give the "
+                                   "output another name)", option, c.shown));
+    }
+    throw InputError(fmt::format("{} {}: is the same file as {}; give each output its own", option, c.shown,
+                                 other.option));
+  }
+  return c;
+}
+}  // namespace
+
+void check_unclaimed(const std::string& option, const std::string& path) {
+  Claim c = unclaimed(option, path);
+  if (c.exists || !c.where.empty()) g_claims.push_back(std::move(c));
+}
+
 AtomicFile* Outputs::add(const CLI::App& cmd, const std::string& option, const std::string& path) {
   if (!given(cmd, option)) return nullptr;
+  check_unclaimed(option, path);
   files_.push_back(std::make_unique<AtomicFile>(path, option));
   return files_.back().get();
 }
@@ -134,6 +222,12 @@ void prepare_picture_dir(const std::string& dir, const std::string& option) {
     }
   }
   viz::prepare_output_dir(dir, option);
+  for (const char* name : {"sandbag_x", "sandbag_h", "trajectory", "angles", "balloon", "energy", "overview",
+                           "compare_laws", "compare_integrator"}) {
+    for (const char* ext : {".png", ".svg", ".pdf"}) {
+      unclaimed(option, (fs::path(dir) / (std::string(name) + ext)).string());
+    }
+  }
   for (const std::string& d : created) {
     g_created_dirs.push_back(d);
     remove_on_interrupt(d);

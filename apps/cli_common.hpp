@@ -2,6 +2,7 @@
 // output files are checked before any work, and how big a job may get without being asked.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -35,8 +36,18 @@ LoadedInput load_input(const InputOptions& opts);
 // are): a mistyped option gets "did you mean", a stray word a hint. Throws InputError.
 void check_leftovers(const CLI::App& cmd);
 
+// For a numeric option: the text must be one number, a whole one if `whole` ("1e3" is read as
+// 1000), within [lo, hi] if those are given; otherwise "--grid: must be a whole number from 2 to
+// 100000 (given 'abc')" instead of CLI11's "Could not convert" or "Value abc not in range".
+CLI::Validator number_text(bool whole, double lo = -HUGE_VAL, double hi = HUGE_VAL);
+
 // True when the option was given on the command line (even as an empty string).
 bool given(const CLI::App& cmd, const std::string& option);
+
+// Throws InputError when `path` is the command's input file or one of its outputs already added
+// (as given or through a symlink): an output must never overwrite the machine it was made from,
+// nor another output. load_input and Outputs::add register what they see.
+void check_unclaimed(const std::string& option, const std::string& path);
 
 // The output files of one command, opened (and so checked) before any work, and committed
 // together: if one fails to write, none of the others appears.
@@ -61,9 +72,10 @@ constexpr double kStateBytes = 600.0;
 double max_rows(const Scenario& scenario);
 // Throws InputError when `bytes_per_row * max_rows` exceeds kLargeBytes and force is false.
 void check_size(const Scenario& scenario, double bytes_per_row, const std::string& option, bool force,
-                const std::string& what = "writes");
+                const std::string& what = "write");
 // The directory given to --plots or --out of plot: created if missing (and removed again if the
-// command then fails or is interrupted while it is still empty). Returns its path.
+// command then fails or is interrupted while it is still empty); a figure it would hold must not
+// be the input or another output (check_unclaimed).
 void prepare_picture_dir(const std::string& dir, const std::string& option);
 // Removes the directories prepare_picture_dir created, if they are still empty.
 void remove_empty_picture_dirs();

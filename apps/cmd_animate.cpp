@@ -24,20 +24,27 @@ void register_animate(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<AnimateOptions>();
   CLI::App* cmd = app.add_subcommand("animate", "draw the machine moving, as an animated GIF or MP4");
   add_input_options(*cmd, opts->input);
-  cmd->add_option("--out", opts->out, "FILE.gif, or FILE.mp4 (needs ffmpeg on PATH)")->required();
+  cmd->add_option("--out", opts->out, "FILE.gif, or FILE.mp4 (needs ffmpeg on PATH)")->required()->type_name("FILE");
   cmd->add_option("--slowmo", opts->anim.slowmo, "one simulated second lasts this many seconds")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->transform(number_text(false));
   cmd->add_option("--fps", opts->anim.fps,
                   "frames per second (a GIF: at most 50, viewers slow down shorter frames)")
-      ->capture_default_str();
-  cmd->add_option("--width", opts->anim.width, "[px]")->capture_default_str();
-  cmd->add_option("--height", opts->anim.height, "[px] (default: as high as the machine needs)");
-  cmd->add_option("--hold", opts->anim.hold, "seconds each event's frame is held")->capture_default_str();
+      ->capture_default_str()
+      ->transform(number_text(false));
+  cmd->add_option("--width", opts->anim.width, "[px]")->capture_default_str()->transform(number_text(true));
+  cmd->add_option("--height", opts->anim.height, "[px] (default: as high as the machine needs)")
+      ->transform(number_text(true));
+  cmd->add_option("--hold", opts->anim.hold, "seconds each event's frame is held")
+      ->capture_default_str()
+      ->transform(number_text(false));
   cmd->add_option("--max-length", opts->anim.max_length,
                   "seconds on screen at most; longer runs are fast-forwarded between events")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->transform(number_text(false));
   cmd->add_option("--dump-frames", opts->dump,
-                  "also write the held frames and one frame per second as PNG into this directory");
+                  "also write the held frames and one frame per second as PNG into this directory")
+      ->type_name("DIR");
   cmd->add_flag("-q,--quiet", opts->quiet, "print nothing");
   cmd->add_flag("--force-large", opts->force_large, "animate runs whose states would take more than 256 MB of memory");
   cmd->callback([opts, cmd, &exit_code] {
@@ -48,6 +55,7 @@ void register_animate(CLI::App& app, int& exit_code) {
     // Checked before the run: the extension, a regular file (symlinks followed), a writable place.
     const std::string target = regular_output_target(opts->out, "--out");
     viz::check_animation_target(target, "--out");
+    check_unclaimed("--out", target);
     if (given(*cmd, "--dump-frames")) prepare_picture_dir(opts->dump, "--dump-frames");
     // Progress on stderr: a counter on a terminal, otherwise a line every 100 frames.
     const bool tty = ::isatty(STDERR_FILENO) != 0;

@@ -26,21 +26,24 @@ void register_optimize(CLI::App& app, int& exit_code) {
   add_input_options(*cmd, opts->input);
   cmd->add_option("--vary", opts->vary, "KEY=A:B: search KEY between A and B; repeat for more keys")
       ->required()
+      ->type_name("KEY=A:B")
       ->take_all()
       ->allow_extra_args(false);
   auto* mn = cmd->add_option("--minimize", opts->minimize,
                              "value to minimise: an event name (its first time, e.g. lid_open), outcome_t, "
-                             "final_r or final_phi_l_deg");
-  auto* mx = cmd->add_option("--maximize", opts->maximize, "value to maximise (as --minimize)");
+                             "final_r or final_phi_l_deg")
+                ->type_name("VALUE");
+  auto* mx = cmd->add_option("--maximize", opts->maximize, "value to maximise (as --minimize)")->type_name("VALUE");
   mn->excludes(mx);
   cmd->add_option("--out", opts->out, "write the best machine to this TOML file ('-': standard output)")
-      ->required();
+      ->required()
+      ->type_name("FILE");
   cmd->add_option("--threads", opts->threads, "threads for the coarse grid (default: all cores)")
-      ->check(CLI::Range(1, 1024));
+      ->transform(number_text(true, 1, 1024));
   cmd->add_option("--grid", opts->grid, "coarse grid points per key (default: about 400 machines in all)")
-      ->check(CLI::Range(2, 100000));
-  cmd->add_option("--starts", opts->starts, "local searches from the best grid points")->check(CLI::Range(1, 100));
-  cmd->add_option("--max-evals", opts->max_evals, "machines per local search")->check(CLI::Range(1, 1000000));
+      ->transform(number_text(true, 2, 100000));
+  cmd->add_option("--starts", opts->starts, "local searches from the best grid points")->transform(number_text(true, 1, 100));
+  cmd->add_option("--max-evals", opts->max_evals, "machines per local search")->transform(number_text(true, 1, 1000000));
   cmd->callback([opts, cmd, &exit_code] {
     check_leftovers(*cmd);
     if (opts->minimize.empty() == opts->maximize.empty()) {
@@ -95,7 +98,7 @@ void register_optimize(CLI::App& app, int& exit_code) {
       exit_code = 1;
       return;
     }
-    const std::string toml = to_toml(sc);
+    const std::string toml = to_toml(sc, &best);  // the hinge in the form the input gave it
     out->stream() << fmt::format("# whatnext optimize: {} {} over {} ({} machines): {}; {} = {}\n",
                                  o.maximize ? "maximise" : "minimise", o.value, in.source, r.evaluations, values,
                                  o.value, shortest(r.value))

@@ -22,16 +22,23 @@ void register_plot(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<PlotOptions>();
   CLI::App* cmd = app.add_subcommand("plot", "draw the paper's figures (Fig. 8, 9) for one machine");
   add_input_options(*cmd, opts->input);
-  cmd->add_option("--out", opts->out, "directory for the figures (created if missing)")->required();
+  cmd->add_option("--out", opts->out, "directory for the figures (created if missing)")->required()->type_name("DIR");
   cmd->add_option("--compare", opts->compare,
                   "laws: phiS and phiL for the four impact laws; integrator: adaptive against "
-                  "--integrator with --step");
+                  "--integrator with --step")
+      ->type_name("laws|integrator");
   cmd->add_option("--integrator", opts->integrator, "with --compare integrator: euler or rk4")
-      ->capture_default_str();
-  cmd->add_option("--step", opts->step, "with --compare integrator: its step [s] (default: run.step)");
-  cmd->add_option("--format", opts->formats, "comma-separated: png, svg, pdf")->capture_default_str();
-  cmd->add_option("--width", opts->width, "width of a one-panel figure [px]")->capture_default_str();
-  cmd->add_option("--height", opts->height, "height of a one-panel figure [px]")->capture_default_str();
+      ->capture_default_str()
+      ->type_name("euler|rk4");
+  cmd->add_option("--step", opts->step, "with --compare integrator: its step [s] (default: run.step)")
+      ->transform(number_text(false));
+  cmd->add_option("--format", opts->formats, "comma-separated: png, svg, pdf")->capture_default_str()->type_name("LIST");
+  cmd->add_option("--width", opts->width, "width of a one-panel figure [px]")
+      ->capture_default_str()
+      ->transform(number_text(true));
+  cmd->add_option("--height", opts->height, "height of a one-panel figure [px]")
+      ->capture_default_str()
+      ->transform(number_text(true));
   cmd->add_flag("-q,--quiet", opts->quiet, "do not list the files written");
   cmd->add_flag("--force-large", opts->force_large, "draw runs whose states would take more than 256 MB of memory");
   cmd->callback([opts, cmd, &exit_code] {

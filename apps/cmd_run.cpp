@@ -58,6 +58,7 @@ void register_run(CLI::App& app, int& exit_code) {
     if (given(*cmd, "--animate")) {
       animation = regular_output_target(opts->animate, "--animate");
       viz::check_animation_target(animation, "--animate");
+      check_unclaimed("--animate", animation);  // not the input, not --csv/--dat/--events
     }
     // With an output on standard output, the timeline goes to standard error.
     std::FILE* text = outputs.any_to_stdout() ? stderr : stdout;

@@ -20,7 +20,8 @@ namespace {
 using namespace whatnext;
 
 void print_error(const std::string& message) {
-  fmt::print(stderr, "whatnext: error: {}\n", printable(message, 400));
+  // fputs, not fmt::print, which throws when stderr is closed (whatnext ... 2>&- aborted).
+  std::fputs(fmt::format("whatnext: error: {}\n", printable(message, 400)).c_str(), stderr);
 }
 
 // `whatnext examples [N]`: the shipped examples, or one of them as TOML to copy.

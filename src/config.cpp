@@ -1,6 +1,7 @@
 #include "whatnext/config.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -94,10 +96,16 @@ constexpr double kMaxInertia = 1e4;                        // seesaw [kg m^2]
 
 std::string fmt_num(double v) { return fmt::format("{}", v); }
 
-// Reads at most kMaxInputBytes: a directory, /dev/zero or a huge file is refused at once.
+// How long a pipe (a FIFO, or `<(command)`) may keep whatnext waiting for its first byte: a FIFO
+// that nobody writes into would otherwise block it for ever.
+constexpr int kPipeWaitMs = 5000;
+
+// Reads at most kMaxInputBytes from a regular file or a pipe: a directory, a device (/dev/null,
+// /dev/zero, a terminal) or a huge file is refused at once, an idle pipe after kPipeWaitMs.
 std::string read_file(const std::string& path) {
   const std::string shown = printable(path, 96);
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // Non-blocking, so that opening a FIFO without a writer returns at once.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) {
     throw InputError(fmt::format("{}: cannot read the input file: {}", shown, std::strerror(errno)));
   }
@@ -110,6 +118,21 @@ std::string read_file(const std::string& path) {
     throw InputError(fmt::format("{}: cannot read the input file: {}", shown, std::strerror(errno)));
   }
   if (S_ISDIR(st.st_mode)) throw InputError(fmt::format("{}: is a directory, not an input file", shown));
+  if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) {
+    throw InputError(fmt::format("{}: is a device, not an input file (give a machine's TOML or .inp file)", shown));
+  }
+  if (S_ISFIFO(st.st_mode)) {
+    pollfd p{fd, POLLIN, 0};
+    int ready = 0;
+    do {
+      ready = ::poll(&p, 1, kPipeWaitMs);
+    } while (ready < 0 && errno == EINTR);
+    if (ready == 0) {
+      throw InputError(fmt::format("{}: a pipe that nothing was written into within {} s; nothing to read",
+                                   shown, kPipeWaitMs / 1000));
+    }
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
   const auto too_big = [&] {
     return InputError(fmt::format("{}: an input file has at most {} bytes; this one has more", shown,
                                   kMaxInputBytes));
@@ -149,14 +172,45 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   throw InputError(fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, printable(key), near));
 }
 
-// TOML integers become doubles too (rounded when they have more than 53 bits).
-bool number_of(const toml::node& node, double& out) {
+// A number as the input wrote it, from the node's place in the text it was parsed from: "1e-400"
+// (which reads as 0), "9007199254740993" (which a double rounds). Empty if it cannot be found or
+// does not read as the node's value.
+std::string literal_of(const toml::node& node, std::string_view source, double value) {
+  const toml::source_region& where = node.source();
+  if (source.empty() || where.begin.line != where.end.line || where.end.column <= where.begin.column) return {};
+  std::size_t at = 0;
+  for (auto line = where.begin.line; line > 1 && at != std::string_view::npos; --line) {
+    at = source.find('\n', at);
+    if (at != std::string_view::npos) ++at;
+  }
+  if (at == std::string_view::npos) return {};
+  const std::size_t from = at + where.begin.column - 1, n = where.end.column - where.begin.column;
+  if (from + n > source.size()) return {};
+  std::string text(source.substr(from, n)), digits;
+  for (char c : text) {
+    if (c != '_') digits += c;
+  }
+  char* end = nullptr;
+  const double read = std::strtod(digits.c_str(), &end);
+  if (digits.empty() || *end != '\0' || !(read == value || (std::isnan(read) && std::isnan(value)))) return {};
+  return printable(text, 40);
+}
+
+// TOML integers become doubles too (rounded when they have more than 53 bits). `literal` gets the
+// number as written, for messages ("given 9007199254740993", not ...992; "given 1e-400", not 0).
+bool number_of(const toml::node& node, double& out, std::string* literal = nullptr, std::string_view source = {}) {
   if (const auto* i = node.as_integer()) {
     out = static_cast<double>(i->get());
+    if (literal) {
+      *literal = literal_of(node, source, out);
+      if (literal->empty()) *literal = std::fabs(out) >= 9007199254740992.0 ? std::to_string(i->get()) : fmt_num(out);
+    }
     return true;
   }
+  if (literal) literal->clear();
   if (const auto* f = node.as_floating_point()) {
     out = f->get();
+    if (literal) *literal = literal_of(node, source, out);
     return true;
   }
   return false;
@@ -168,8 +222,10 @@ std::string shown_node(const toml::node& node) {
   return printable(given.str());
 }
 
-// Stores one TOML node under key, checking its type against the key's kind.
-void store(Config& cfg, const std::string& key, const toml::node& node, const std::string& origin) {
+// Stores one TOML node under key, checking its type against the key's kind; `source` is the text the
+// node was parsed from (for numbers as written in messages).
+void store(Config& cfg, const std::string& key, const toml::node& node, const std::string& origin,
+           std::string_view source = {}) {
   const KeySpec* spec = find_key(key);
   if (!spec) unknown_key(origin, key);
   ConfigValue v;
@@ -188,16 +244,24 @@ void store(Config& cfg, const std::string& key, const toml::node& node, const st
     v.text = node.as_string()->get();
   } else if (spec->kind == KeyKind::pair) {
     const toml::array* arr = node.as_array();
-    if (!arr || arr->size() != 2 || !number_of((*arr)[0], v.pair[0]) || !number_of((*arr)[1], v.pair[1])) {
+    std::string lit[2];
+    if (!arr || arr->size() != 2 || !number_of((*arr)[0], v.pair[0], &lit[0], source) ||
+        !number_of((*arr)[1], v.pair[1], &lit[1], source)) {
       throw InputError(fmt::format("{}: {} must be a pair of numbers [dx, dh] in {} (given {})", origin, key,
                                    spec->unit, shown_node(node)));
     }
     v.type = ConfigValue::Type::pair;
+    if ((!lit[0].empty() && lit[0] != fmt_num(v.pair[0])) || (!lit[1].empty() && lit[1] != fmt_num(v.pair[1]))) {
+      v.text = fmt::format("[{}, {}]", lit[0].empty() ? fmt_num(v.pair[0]) : lit[0],
+                           lit[1].empty() ? fmt_num(v.pair[1]) : lit[1]);
+    }
   } else {
-    if (!number_of(node, v.number)) {
+    std::string lit;
+    if (!number_of(node, v.number, &lit, source)) {
       throw InputError(fmt::format("{}: {} must be a number in {} (given {})", origin, key,
                                    spec->unit.empty() ? "plain units" : spec->unit, shown_node(node)));
     }
+    if (!lit.empty() && lit != fmt_num(v.number)) v.text = lit;  // an integer a double rounds
   }
   cfg.values[key] = v;
 }
@@ -222,6 +286,12 @@ struct Reader {
   [[noreturn]] void fail(const std::string& key, const std::string& rule) const {
     throw InputError(fmt::format("{}: {} {}", where(key), key, rule));
   }
+  // The value as the input gave it: an integer too long for a double as written.
+  std::string shown(const std::string& key, double x) const {
+    const ConfigValue* v = find(key);
+    if (v && v->type == ConfigValue::Type::number && !v->text.empty() && v->number == x) return v->text;
+    return fmt_num(x);
+  }
   std::string unit(const std::string& key) const {
     const KeySpec* spec = find_key(key);
     return spec ? std::string(spec->unit) : std::string();
@@ -229,13 +299,13 @@ struct Reader {
   double number(const std::string& key, double fallback) const {
     const ConfigValue* v = find(key);
     if (!v) return fallback;
-    if (!std::isfinite(v->number)) fail(key, fmt::format("must be a finite number (given {})", fmt_num(v->number)));
+    if (!std::isfinite(v->number)) fail(key, fmt::format("must be a finite number (given {})", shown(key, v->number)));
     return v->number;
   }
   double positive(const std::string& key, double fallback) const {
     const double x = number(key, fallback);
     const std::string u = unit(key);
-    if (!(x > 0.0)) fail(key, fmt::format("must be > 0{} (given {})", u.empty() ? "" : " " + u, fmt_num(x)));
+    if (!(x > 0.0)) fail(key, fmt::format("must be > 0{} (given {})", u.empty() ? "" : " " + u, shown(key, x)));
     return x;
   }
   double in_range(const std::string& key, double fallback, double lo, bool lo_closed, double hi,
@@ -245,7 +315,7 @@ struct Reader {
     if (!ok) {
       const std::string u = unit(key);
       fail(key, fmt::format("must be in {}{}, {}{}{} (given {})", lo_closed ? "[" : "(", fmt_num(lo), fmt_num(hi),
-                            hi_closed ? "]" : ")", u.empty() ? "" : " " + u, fmt_num(x)));
+                            hi_closed ? "]" : ")", u.empty() ? "" : " " + u, shown(key, x)));
     }
     return x;
   }
@@ -254,7 +324,7 @@ struct Reader {
     if (!(x >= lo && x <= hi)) {
       const std::string u = unit(key);
       fail(key, fmt::format("must be within [{}, {}]{}, the range the model is made for (given {})", fmt_num(lo),
-                            fmt_num(hi), u.empty() ? "" : " " + u, fmt_num(x)));
+                            fmt_num(hi), u.empty() ? "" : " " + u, shown(key, x)));
     }
   }
   double length(const std::string& key, double fallback) const {
@@ -276,11 +346,13 @@ struct Reader {
   Vec2 pair(const std::string& key) const {
     const ConfigValue& v = *find(key);
     if (!std::isfinite(v.pair[0]) || !std::isfinite(v.pair[1])) {
-      fail(key, fmt::format("must hold finite numbers (given [{}, {}])", fmt_num(v.pair[0]), fmt_num(v.pair[1])));
+      fail(key, fmt::format("must hold finite numbers (given {})",
+                            v.text.empty() ? fmt::format("[{}, {}]", fmt_num(v.pair[0]), fmt_num(v.pair[1])) : v.text));
     }
     if (std::fabs(v.pair[0]) > kMaxLength || std::fabs(v.pair[1]) > kMaxLength) {
-      fail(key, fmt::format("must hold numbers within [{}, {}] m, the range the model is made for (given [{}, {}])",
-                            fmt_num(-kMaxLength), fmt_num(kMaxLength), fmt_num(v.pair[0]), fmt_num(v.pair[1])));
+      fail(key, fmt::format("must hold numbers within [{}, {}] m, the range the model is made for (given {})",
+                            fmt_num(-kMaxLength), fmt_num(kMaxLength),
+                            v.text.empty() ? fmt::format("[{}, {}]", fmt_num(v.pair[0]), fmt_num(v.pair[1])) : v.text));
     }
     return {v.pair[0], v.pair[1]};
   }
@@ -404,7 +476,7 @@ Config parse_toml(std::string_view text, const std::string& source) {
     const toml::table* table = node.as_table();
     if (!table) unknown_key(line_origin(cfg.source, node), sect);
     for (const auto& [name, value] : *table) {
-      store(cfg, sect + "." + std::string(name.str()), value, line_origin(cfg.source, value));
+      store(cfg, sect + "." + std::string(name.str()), value, line_origin(cfg.source, value), text);
     }
   }
   return cfg;
@@ -445,6 +517,8 @@ Config parse_inp(std::string_view text, const std::string& source) {
     std::replace(token.begin(), token.end(), 'D', 'e');
     ConfigValue cv;
     cv.number = std::strtod(token.c_str(), nullptr);  // out of range gives inf or 0: validation says so
+    const std::string written = line.substr(first, end - first);
+    if (written != fmt_num(cv.number)) cv.text = printable(written, 40);  // messages quote "1e999", not inf
     cv.origin = fmt::format("{} ({})", origin, kFields[field][1]);
     cfg.values[kFields[field][0]] = cv;
     ++field;
@@ -518,14 +592,15 @@ void apply_set(Config& cfg, std::string_view assignment) {
   if (value.empty()) throw InputError(fmt::format("{}: give a value after '='", origin));
   toml::table parsed;
   bool ok = true;
+  const std::string line = "v = " + value;
   try {
-    parsed = toml::parse("v = " + value);
+    parsed = toml::parse(line);
     ok = parsed.size() == 1 && parsed.contains("v");
   } catch (const toml::parse_error&) {
     ok = false;
   }
   if (ok) {
-    store(cfg, key, *parsed.get("v"), origin);
+    store(cfg, key, *parsed.get("v"), origin, line);
   } else if (spec->kind == KeyKind::text) {
     store(cfg, key, toml::value<std::string>(value), origin);
   } else if (spec->kind == KeyKind::flag) {
@@ -801,7 +876,19 @@ Scenario build_scenario(const Config& cfg) {
   return sc;
 }
 
-std::string to_toml(const Scenario& sc) {
+namespace {
+// The fewest decimal digits of `value` that `back` turns into exactly `want` again.
+template <typename Back>
+std::optional<double> fewest_digits(double value, double want, Back back) {
+  for (int digits = 1; digits <= 17; ++digits) {
+    const double d = std::strtod(fmt::format("{:.{}g}", value, digits).c_str(), nullptr);
+    if (back(d) == want) return d;
+  }
+  return std::nullopt;
+}
+}  // namespace
+
+std::string to_toml(const Scenario& sc, const Config* given) {
   const Machine& m = sc.machine;
   const Start& st = sc.start;
   const RunSettings& r = sc.run;
@@ -811,7 +898,24 @@ std::string to_toml(const Scenario& sc) {
   line("seesaw_right_arm", m.seesaw_right_arm);
   line("lid_half_length", m.lid_half_length);
   line("rope_length", m.rope_length);
-  out += fmt::format("hinge_offset = [{}, {}]\n", shortest(m.hinge.x), shortest(-m.hinge.h));
+  // An angle as input reads it (degrees times kDeg): the shortest degrees that give the same radians,
+  // so that 27 stays 27 and not 27.000000000000004.
+  auto angle_line = [&](std::string_view key, double radians) {
+    const auto d = fewest_digits(radians / kDeg, radians, [](double deg) { return deg * kDeg; });
+    line(key, d ? *d : radians / kDeg);
+  };
+  if (given && !given->has("geometry.hinge_offset")) {
+    // As given: the same numbers make the same hinge.
+    auto given_number = [&](const std::string& key, double fallback) {
+      const auto it = given->values.find(key);
+      return it == given->values.end() ? fallback : it->second.number;
+    };
+    line("hinge_distance", given_number("geometry.hinge_distance", 0.8));
+    line("hinge_angle", given_number("geometry.hinge_angle", 27.0));
+  } else {
+    out += fmt::format("hinge_offset = [{}, {}]\n", shortest(m.hinge.x), shortest(-m.hinge.h));
+  }
+
   out += "\n[masses]\n";
   line("sandbag", m.sandbag_mass);
   line("lid", m.lid_mass);
@@ -848,8 +952,8 @@ std::string to_toml(const Scenario& sc) {
   out += "\n[start]\n";
   line("sandbag_x", st.sandbag_x);
   line("sandbag_height", st.sandbag_h);
-  line("seesaw_angle", st.seesaw_angle / kDeg);
-  line("lid_angle", st.lid_angle / kDeg);
+  angle_line("seesaw_angle", st.seesaw_angle);
+  angle_line("lid_angle", st.lid_angle);
   out += "\n[run]\n";
   line("t_max", r.t_max);
   line("output_step", r.output_step);
@@ -857,7 +961,7 @@ std::string to_toml(const Scenario& sc) {
   line("step", r.step);
   line("tolerance", r.tolerance);
   out += fmt::format("impact_law = \"{}\"\n", to_string(r.impact_law));
-  line("vertical_margin", r.vertical_margin / kDeg);
+  angle_line("vertical_margin", r.vertical_margin);
   line("gravity", m.gravity);
   return out;
 }

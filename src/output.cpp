@@ -142,6 +142,9 @@ void install_interrupt_cleanup() {
     sigemptyset(&sa.sa_mask);
     sa.sa_flags = SA_RESTART;
     for (int sig : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(sig, &sa, nullptr);
+    // Beyond the file-size limit (ulimit -f) a write then fails with EFBIG, like a full disk,
+    // instead of SIGXFSZ killing whatnext with a .part file left behind.
+    ::signal(SIGXFSZ, SIG_IGN);
   });
 }
 
@@ -411,6 +414,12 @@ std::string outcome_sentence(const Result& result) {
     case EventType::radio_on:
       return fmt::format("radio on at t = {:.3f} s", e.t);
     case EventType::timeout:
+      // With the radio the lid may have opened (and latched) before: say so, not "no outcome".
+      for (const Event& open : result.events) {
+        if (open.type == EventType::lid_open) {
+          return fmt::format("lid open at {:.3f} s; the radio is not on by t_max = {:.3f} s", open.t, e.t);
+        }
+      }
       return fmt::format("no outcome by t_max = {:.3f} s: the lid is at {:.1f} deg", e.t,
                          s.phi_l * kRadToDeg);
     case EventType::event_limit:

@@ -84,6 +84,11 @@ Result simulate(const Scenario& sc, Observer* observer) {
   if (stopped) return res;
   OutputGrid grid{observer ? sc.run.output_step : 0.0, 0};
   const double t_end = sc.run.t_max;
+  // Pieces in a row that end where they began: the automaton going round at one instant (rk4 with
+  // run.step = 1 s on example 4 did so for ever) is stopped instead of hanging.
+  constexpr int kMaxPiecesWithoutProgress = 10'000;
+  double last_t = hs.t;
+  int no_progress = 0;
   for (;;) {
     const MachineSystem sys{&model, hs.d};
     auto sample = [&](double t, const State& y) {
@@ -113,6 +118,12 @@ Result simulate(const Scenario& sc, Observer* observer) {
            c.t, hs.d.mode());
     }
     hs.t = t;
+    no_progress = t > last_t ? 0 : no_progress + 1;
+    last_t = t;
+    if (no_progress > kMaxPiecesWithoutProgress) {
+      fail("the run stopped advancing (the same instant's contacts decided again and again; a fixed step may be "
+           "too long for this machine)", hs.t, hs.d.mode());
+    }
     fresh.clear();
     bool stop = false;
     if (c.kind == Crossing::end) {

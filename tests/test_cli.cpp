@@ -284,6 +284,86 @@ TEST_F(Cli, OptimizedTomlHasShortNumbers) {
   EXPECT_NE(text.find("\nlid_angle = 5\n"), std::string::npos) << text;
   EXPECT_EQ(text.find("99999999"), std::string::npos) << text;
   EXPECT_EQ(text.find("00000000"), std::string::npos) << text;
+  // The hinge in the example's own form, not as an offset with 16 digits [0.7128052193506944, ...].
+  EXPECT_NE(text.find("\nhinge_distance = 0.8\nhinge_angle = 27\n"), std::string::npos) << text;
+  EXPECT_EQ(text.find("hinge_offset"), std::string::npos) << text;
+}
+
+// Angles are kept in radians and written back in degrees: as they were typed, and every machine
+// written reads back as exactly the same machine (the hinge as an offset where its distance and
+// angle would not).
+TEST_F(Cli, OptimizedTomlWritesAnglesAsTyped) {
+  for (const std::string hinge : {"geometry.hinge_angle=27.3", "geometry.hinge_offset=[0.64,0.3]"}) {
+    SCOPED_TRACE(hinge);
+    const fs::path best = dir_ / "best.toml";
+    const std::string sets = "--set " + hinge + " --set start.seesaw_angle=-33.3 --set start.lid_angle=7.7 "
+                             "--set run.vertical_margin=1.1";
+    ASSERT_EQ(whatnext("optimize --example 2 " + sets + " --vary start.sandbag_x=-0.6:-0.1 --grid 5 --max-evals 10 "
+                       "--minimize final_r --out " + best.string()).code, 0);
+    const std::string text = slurp(best);
+    for (const char* line : {"\nseesaw_angle = -33.3\n", "\nlid_angle = 7.7\n", "\nvertical_margin = 1.1\n"}) {
+      EXPECT_NE(text.find(line), std::string::npos) << line << text;
+    }
+    const bool angle = hinge.find("hinge_angle") != std::string::npos;
+    EXPECT_NE(text.find(angle ? "\nhinge_distance = 0.8\nhinge_angle = 27.3\n" : "\nhinge_offset = [0.64, 0.3]\n"),
+              std::string::npos) << text;
+    whatnext::Config given = whatnext::example_config(2);
+    whatnext::apply_set(given, hinge);
+    const whatnext::Scenario a = whatnext::build_scenario(given);
+    const whatnext::Scenario b = whatnext::build_scenario(whatnext::load_config_file(best.string()));
+    EXPECT_EQ(a.machine.hinge.x, b.machine.hinge.x);
+    EXPECT_EQ(a.machine.hinge.h, b.machine.hinge.h);
+  }
+}
+
+// A fixed-step run's CSV starts with the start (t = 0, the sandbag at its start height) and has one
+// row per time: it started with the first step's end, and a step longer than run.output_step wrote
+// the same row, with the same time, once for every grid time it passed.
+TEST_F(Cli, FixedStepCsvStartsAtTheStartWithOneRowPerTime) {
+  for (const char* integrator : {"euler", "rk4"}) {
+    for (const char* step : {"0.001", "0.0025"}) {
+      SCOPED_TRACE(std::string(integrator) + " " + step);
+      const CliResult r = whatnext(std::string("run -q --example 1 --set run.integrator=") + integrator +
+                                   " --set run.step=" + step + " --csv " + (dir_ / "r.csv").string());
+      ASSERT_EQ(r.code, 0) << r.err;
+      std::istringstream in(slurp(dir_ / "r.csv"));
+      std::string line;
+      std::getline(in, line);
+      std::getline(in, line);
+      EXPECT_EQ(line.rfind("0,,M1,0,-0.3,1,", 0), 0u) << line;  // t, event, mode, rope, x, h
+      double last = -1.0;
+      int rows = 0;
+      while (std::getline(in, line)) {
+        const auto cells = line.find(',');
+        if (line[cells + 1] != ',') continue;  // an event's row
+        const double t = std::stod(line.substr(0, cells));
+        EXPECT_GT(t, last) << line;
+        last = t;
+        ++rows;
+      }
+      EXPECT_GT(rows, 250);
+    }
+  }
+}
+
+// With the radio, a run that ends at t_max after the lid opened says that the lid opened (it said
+// "no outcome by t_max", though the lid stood latched at 89.1 deg).
+TEST_F(Cli, RadioTimeoutAfterTheLidOpenedSaysTheLidOpened) {
+  const CliResult r = whatnext("run -q --example 1 --set radio.enabled=true --set run.t_max=1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, "lid open at 0.820 s; the radio is not on by t_max = 1.000 s\n");
+  const CliResult plain = whatnext("run -q --example 1 --set run.t_max=0.5");
+  EXPECT_EQ(plain.out.rfind("no outcome by t_max = 0.500 s", 0), 0u) << plain.out;
+}
+
+// Options that take a value name what they take, in the help and when the value is missing.
+TEST_F(Cli, MissingValuesSayWhatIsWanted) {
+  EXPECT_NE(whatnext("run --example 1 --set").err.find("--set: 1 required KEY=VALUE missing"), std::string::npos);
+  EXPECT_NE(whatnext("run --example").err.find("--example: 1 required N missing"), std::string::npos);
+  const std::string help = whatnext("help plot").out;
+  for (const char* shown : {"--set KEY=VALUE", "--out DIR", "--compare laws|integrator", "--width INT=1000"}) {
+    EXPECT_NE(help.find(shown), std::string::npos) << shown << "\n" << help;
+  }
 }
 
 TEST_F(Cli, TitlesNameTheOverrides) {

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
 #include <functional>
 #include <regex>
 #include <sstream>
@@ -60,6 +61,91 @@ TEST_F(Docs, ShippedInpIsExampleOneInThePapersLayout) {
   const CliResult r = whatnext("run " + kSource + "/examples/whatnext.inp --dat " + (dir_ / "w.dat").string());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir_ / "w.dat"));
+}
+
+// The `whatnext ...` command lines of the code blocks of a Markdown page, in order (a line ending
+// in a backslash goes on; a trailing `# comment` is dropped).
+std::vector<std::string> commands_of(const std::string& markdown) {
+  std::vector<std::string> out;
+  std::istringstream in(markdown);
+  bool code = false;
+  std::string pending;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("```", 0) == 0) {
+      code = !code;
+      continue;
+    }
+    if (!code) continue;
+    if (!pending.empty()) {
+      line = pending + " " + line;
+      pending.clear();
+    }
+    if (!line.empty() && line.back() == '\\') {
+      pending = line.substr(0, line.size() - 1);
+      continue;
+    }
+    if (line.rfind("whatnext ", 0) != 0) continue;
+    const std::size_t comment = line.find("  #");
+    if (comment != std::string::npos) line = line.substr(0, comment);
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out.push_back(line);
+  }
+  return out;
+}
+
+// A new user's first hour: every command of the README and of the pages on inputs, pictures and
+// exploring, typed in order in a fresh folder (with the shipped examples/), runs and says nothing
+// is wrong. To keep the test quick, the 100,000-machine hypercube runs 300 machines and animations
+// are 240 pixels wide; nothing else is changed.
+TEST_F(Docs, EveryCommandOnTheUsersPagesRuns) {
+  std::error_code ec;
+  fs::create_directory_symlink(kSource + "/examples", dir_ / "examples", ec);
+  ASSERT_FALSE(ec) << ec.message();
+  int ran = 0;
+  for (const char* page : {"README.md", "docs/inputs.md", "docs/pictures.md", "docs/explore.md",
+                           "docs/extensions.md", "docs/model.md"}) {
+    for (std::string command : commands_of(slurp(kSource + "/" + page))) {
+      SCOPED_TRACE(std::string(page) + ": " + command);
+      const std::size_t samples = command.find("--samples 100000");
+      if (samples != std::string::npos) command.replace(samples, 16, "--samples 300");
+      if (command.rfind("whatnext animate ", 0) == 0) command += " --width 240";
+      const CliResult r = whatnext("cd " + dir_.string() + " && " + WHATNEXT_CLI + command.substr(8), false);
+      EXPECT_EQ(r.code, 0) << r.err;
+      EXPECT_EQ(r.err.find("error"), std::string::npos) << r.err;
+      ++ran;
+    }
+  }
+  EXPECT_GE(ran, 20);
+  EXPECT_TRUE(fs::exists(dir_ / "my-machine.toml"));
+  EXPECT_TRUE(fs::exists(dir_ / "whatnext.dat"));
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "compare_laws.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "sweep.png"));
+}
+
+// pictures.md's numbers for `--compare integrator` (Euler at 2 ms on example 1) are the program's.
+TEST_F(Docs, PicturesPageDescribesEulerAsItRuns) {
+  Config cfg = example_config(1);
+  const Result exact = simulate(build_scenario(cfg));
+  apply_set(cfg, "run.integrator=euler");
+  apply_set(cfg, "run.step=0.002");
+  const Result fixed = simulate(build_scenario(cfg));
+  // The energy just before the rope's jerk (the first impact): the adaptive run's is the start's.
+  auto before_jerk = [](const Result& r) {
+    for (const Event& e : r.events) {
+      if (e.impact) return e.energy_before;
+    }
+    return 0.0;
+  };
+  const double drift = (before_jerk(fixed) - before_jerk(exact)) / before_jerk(exact) * 100.0;
+  const double early_ms = (exact.outcome().t - fixed.outcome().t) * 1e3;
+  char energy[64], open[96];
+  std::snprintf(energy, sizeof energy, "(by %.1f%% before the rope's jerk)", drift);
+  std::snprintf(open, sizeof open, "opens %.0f ms early (%.3f s against %.3f s)", early_ms, fixed.outcome().t,
+                exact.outcome().t);
+  std::string flat;
+  for (char c : slurp(kSource + "/docs/pictures.md")) flat += c == '\n' ? ' ' : c;
+  EXPECT_NE(flat.find(energy), std::string::npos) << energy;
+  EXPECT_NE(flat.find(open), std::string::npos) << open;
 }
 
 // Users have docs/model.md; the specification MODEL.md is not in the repository.

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "cli_runner.hpp"
 #include "whatnext/config.hpp"
@@ -82,12 +83,44 @@ TEST_F(Abuse, LongValuesAreCut) {
 }
 
 TEST_F(Abuse, HugeIntegersAndWrongKindsNameTheRule) {
-  expect_rejected("run --example 1 --set masses.sandbag=9007199254740993", "masses.sandbag must be within");
-  expect_rejected("run --example 1 --set 'geometry.hinge_offset=[9007199254740993,1]'", "hinge_offset");
+  // The value as given, not as a double rounds it (9007199254740992).
+  expect_rejected("run --example 1 --set masses.sandbag=9007199254740993",
+                  "masses.sandbag must be within [0.001, 1000] kg, the range the model is made for "
+                  "(given 9007199254740993)");
+  expect_rejected("run --example 1 --set 'geometry.hinge_offset=[9007199254740993,1]'",
+                  "(given [9007199254740993, 1])");
+  // Numbers a double reads as 0 or infinity are quoted as written too.
+  expect_rejected("run " + write("tiny.toml", "[masses]\nsandbag = 1e-400\n").string(),
+                  "tiny.toml:2: masses.sandbag must be > 0 kg (given 1e-400)");
+  expect_rejected("run --example 1 --set 'geometry.hinge_offset=[1e-400, 1e5]'", "(given [1e-400, 1e5])");
+  std::string inp = slurp(WHATNEXT_SOURCE_DIR "/examples/whatnext.inp");
+  inp.replace(inp.find("-25.0"), 5, "1d999");
+  expect_rejected("run " + write("huge.inp", inp).string(),
+                  "huge.inp line 3 (phiS): start.seesaw_angle must be a finite number (given 1d999)");
+  expect_rejected("run " + write("big.toml", "[run]\ntolerance = -12345678901234567\n").string(),
+                  "big.toml:2: run.tolerance must be in [1e-15, 0.001] (given -12345678901234567)");
   expect_rejected("run --example 1 --set radio.enabled=yes", "radio.enabled must be true or false (given 'yes')");
   expect_rejected("run --example 1 --set geometry.hinge_offset=left", "must be a pair of numbers");
   expect_rejected("run --example 1 --set masses.sandbag=", "give a value");
   expect_rejected("run --example 1 --set =3", "expected KEY=VALUE");
+}
+
+// Numeric options say what they take and what they were given (CLI11 said "Could not convert:
+// --width = 3.5" or "Value abc not in range 2 to 100000"); a whole number may be written 1e3.
+TEST_F(Abuse, NumericOptionsNameTheRuleAndTheValue) {
+  const fs::path figs = dir_ / "figs", gif = dir_ / "a.gif", toml = dir_ / "b.toml";
+  expect_rejected("plot --example 1 --width 3.5 --out " + figs.string(), "--width: must be a whole number (given '3.5')",
+                  {figs});
+  expect_rejected("animate --example 1 --fps 25x --out " + gif.string(), "--fps: must be a number (given '25x')", {gif});
+  expect_rejected("animate --example 1 --width '' --out " + gif.string(), "--width: must be a whole number (given '')",
+                  {gif});
+  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --grid abc --out " + toml.string(),
+                  "--grid: must be a whole number from 2 to 100000 (given 'abc')", {toml});
+  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --starts 0 --out " + toml.string(),
+                  "--starts: must be a whole number from 1 to 100 (given '0')", {toml});
+  const CliResult ok = whatnext("plot --example 1 -q --format png --width 1e3 --height 6.5e2 --out " + figs.string());
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_TRUE(fs::exists(figs / "overview.png"));
 }
 
 TEST_F(Abuse, MisplacedArgumentsAreNamed) {
@@ -103,14 +136,31 @@ TEST_F(Abuse, MisplacedArgumentsAreNamed) {
 
 TEST_F(Abuse, InputsThatAreNotFilesAreRefusedAtOnce) {
   expect_rejected("run " + dir_.string(), "is a directory");
-  // /dev/zero never ends: it must be refused after at most the size cap, not read to exhaustion.
-  expect_rejected("run /dev/zero", "at most");
+  // Devices are not machines: /dev/zero never ends, /dev/null ran the default machine as if it were
+  // an empty file.
+  expect_rejected("run /dev/zero", "is a device");
+  expect_rejected("run /dev/null", "is a device");
   const fs::path big = dir_ / "big.toml";
   {
     std::ofstream out(big);
     out << "# " << std::string(whatnext::kMaxInputBytes, 'x') << "\n";
   }
   expect_rejected("run " + big.string(), "at most");
+}
+
+// A pipe is read (`whatnext run <(command)`), but one that nobody writes into does not keep
+// whatnext waiting for ever.
+TEST_F(Abuse, PipesAreReadButAnIdleOneIsNotWaitedForEver) {
+  const fs::path fifo = dir_ / "machine.fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::thread writer([&] {
+    std::ofstream(fifo) << "[masses]\nsandbag = 0.7\n";  // blocks until whatnext opens it
+  });
+  const CliResult fed = whatnext("run -q " + fifo.string());
+  writer.join();
+  EXPECT_EQ(fed.code, 0) << fed.err;
+  EXPECT_NE(fed.out.find("lid open"), std::string::npos) << fed.out;
+  expect_rejected("run " + fifo.string(), "nothing was written into");
 }
 
 TEST_F(Abuse, InpFilesAreReadStrictly) {
@@ -126,6 +176,23 @@ TEST_F(Abuse, InpFilesAreReadStrictly) {
 }
 
 // --- plausibility limits ------------------------------------------------------------------------
+
+// A run that goes round at one instant without end stops with exit code 3 and one line (rk4 with a
+// 1 s step on example 4 reached 7459 J from 3.6 J and then decided the same contacts at t = 1.548 s
+// for ever), writing nothing.
+TEST_F(Abuse, ARunThatStopsAdvancingEndsWithAnError) {
+  for (const std::string& sets : {"--example 4 --set run.integrator=rk4 --set run.step=1",
+                                  "--example 3 --set run.integrator=rk4 --set run.step=0.719 --set start.seesaw_angle=29.24"}) {
+    SCOPED_TRACE(sets);
+    const CliResult r = whatnext("run " + sets + " --csv " + path("r.csv") + " --events " + path("e.json"));
+    EXPECT_EQ(r.code, 3) << r.err;
+    EXPECT_TRUE(one_printable_line(r.err)) << r.err;
+    EXPECT_NE(r.err.find("stopped advancing"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_FALSE(fs::exists(dir_ / "r.csv"));
+    EXPECT_FALSE(fs::exists(dir_ / "e.json"));
+  }
+}
 
 TEST_F(Abuse, InputsWhereTheModelBreaksAreRefused) {
   const std::string csv = path("r.csv");
@@ -174,6 +241,39 @@ TEST_F(Abuse, BadOutputsAreFoundBeforeAnyWork) {
                       " --heatmap " + path("h.jpg"), "PNG", {out, dir_ / "h.jpg"});
   expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --out " + path("existing"),
                   "is a directory");
+}
+
+// No output may overwrite the machine it is made from (`run m.toml --csv m.toml` replaced the
+// machine with the CSV), also through a symlink, nor another output: the animation and the
+// figures are compared with --csv, --dat and --events too.
+TEST_F(Abuse, OutputsNeverOverwriteTheInputOrEachOther) {
+  const std::string machine = slurp(WHATNEXT_SOURCE_DIR "/examples/example2.toml");
+  const fs::path m = write("m.toml", machine), inp = write("w.inp", slurp(WHATNEXT_SOURCE_DIR "/examples/whatnext.inp"));
+  fs::create_symlink("m.toml", dir_ / "link.toml");
+  expect_rejected("run " + m.string() + " --csv " + m.string(), "is the input file");
+  expect_rejected("run " + (dir_ / "link.toml").string() + " --events " + m.string(), "is the input file");
+  expect_rejected("run " + m.string() + " --csv " + path("r.csv") + " --events " + (dir_ / "link.toml").string(),
+                  "is the input file", {dir_ / "r.csv"});
+  expect_rejected("run " + inp.string() + " --dat " + inp.string(), "is the input file");
+  expect_rejected("optimize " + m.string() + " --vary masses.lid=0.2:1 --minimize lid_open --out " + m.string(),
+                  "is the input file");
+  expect_rejected("sweep " + m.string() + " --vary masses.lid=0.2:1:3 --out " + m.string(), "is the input file");
+  EXPECT_EQ(slurp(m), machine);
+  expect_rejected("run --example 1 --csv " + path("x.gif") + " --animate " + path("x.gif"),
+                  "--animate " + path("x.gif") + ": is the same file as --csv", {dir_ / "x.gif"});
+  ASSERT_TRUE(fs::create_directory(dir_ / "pd"));
+  expect_rejected("run --example 1 --csv " + path("pd/overview.png") + " --plots " + path("pd"),
+                  "is the same file as --csv", {dir_ / "pd" / "overview.png"});
+  // Outputs beside the figures, and /dev/null for several, are fine.
+  const CliResult ok = whatnext("run -q " + m.string() + " --csv " + path("figs/run.csv") + " --plots " + path("figs") +
+                                " --events /dev/null --dat /dev/null");
+  EXPECT_EQ(ok.code, 2) << ok.err;  // figs/ does not exist yet when --csv is checked
+  ASSERT_TRUE(fs::create_directory(dir_ / "figs"));
+  const CliResult ok2 = whatnext("run -q " + m.string() + " --csv " + path("figs/run.csv") + " --plots " +
+                                 path("figs") + " --events /dev/null --dat /dev/null");
+  EXPECT_EQ(ok2.code, 0) << ok2.err;
+  EXPECT_TRUE(fs::exists(dir_ / "figs" / "run.csv"));
+  EXPECT_TRUE(fs::exists(dir_ / "figs" / "overview.png"));
 }
 
 TEST_F(Abuse, ReadOnlyFilesAreNotReplaced) {
@@ -255,12 +355,40 @@ TEST(Writers, ANonFiniteStateIsAFailedRunNotAFile) {
   EXPECT_THROW(whatnext::events_json(r, whatnext::Scenario{}, "x"), whatnext::SimulationError);
 }
 
+// Beyond the file-size limit (ulimit -f) a write fails like on a full disk: one line naming the file
+// and why, exit code 1, and no file or temporary left (SIGXFSZ killed whatnext and left r.csv.part).
+TEST_F(Abuse, FileSizeLimitFailsTheWriteCleanly) {
+  const std::string cli = WHATNEXT_CLI;
+  for (const std::string& job : {"run -q --example 3 --csv " + path("r.csv"), "animate -q --example 3 --out " + path("a.gif")}) {
+    SCOPED_TRACE(job);
+    const CliResult r = whatnext("ulimit -f 64; " + cli + " " + job, false);
+    EXPECT_EQ(r.code, 1) << r.err;
+    EXPECT_TRUE(one_printable_line(r.err)) << r.err;
+    EXPECT_NE(r.err.find("writing failed: File too large"), std::string::npos) << r.err;
+  }
+  for (const char* name : {"r.csv", "r.csv.part", "a.gif", "a.gif.part"}) EXPECT_FALSE(fs::exists(dir_ / name)) << name;
+}
+
+// With standard error closed, bad input still ends with exit code 2 (printing the line threw and
+// whatnext aborted).
+TEST_F(Abuse, ClosedStandardErrorIsNoCrash) {
+  const CliResult r = whatnext(std::string(WHATNEXT_CLI) + " run --example 1 --set masses.sandbag=-1 --csv " +
+                               path("r.csv") + " 2>&-; echo $?", false);
+  EXPECT_EQ(r.code, 0);
+  EXPECT_EQ(r.out, "2\n");
+  EXPECT_FALSE(fs::exists(dir_ / "r.csv"));
+}
+
 // --- big jobs ------------------------------------------------------------------------------------
 
 TEST_F(Abuse, HugeOutputsNeedToBeAskedFor) {
   const std::string csv = path("r.csv");
   expect_rejected("run --example 1 --set masses.sandbag=0.001 --set run.t_max=9999 --csv " + csv, "--force-large",
                   {csv});
+  // The size in words one can read: "would write about 4.0 GB" (it said "would writes").
+  expect_rejected("run --example 1 --set run.t_max=9999 --dat " + csv, "would write about", {csv});
+  expect_rejected("animate --example 1 --set run.t_max=9999 --out " + path("a.gif"), "would hold in memory about",
+                  {dir_ / "a.gif"});
   expect_rejected("sweep --example 1 --samples 20000000 --vary masses.lid=0.2:1 --vary masses.sandbag=0.2:1 "
                   "--vary start.sandbag_x=-1:-0.1 --vary start.sandbag_height=0.5:2 --out " + csv,
                   "--force-large", {csv});

@@ -256,6 +256,91 @@ TEST(VizPlots, TextNeverHidesDataOrOtherText) {
   }
 }
 
+// Left of every plot PLplot writes the tick numbers and the y axis' title. The layout says where
+// (axis_texts): those boxes must not overlap, and every inked pixel left of the axes must lie in
+// one of them, so the PNG's numbers and title are really apart however wide the numbers get. In
+// example 3's trajectory "-2000" ran into "h [m] (above the pivot)".
+TEST(VizPlots, AxisTitleClearsTheTickNumbers) {
+  std::vector<std::pair<std::string, Scenario>> runs;
+  for (int n = 1; n <= 4; ++n) runs.emplace_back("example " + std::to_string(n), example(n));
+  runs.emplace_back("radio", build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml")));
+  int panels = 0;
+  for (const auto& [name, sc] : runs) {
+    SCOPED_TRACE(name);
+    const fs::path dir = fresh_dir("ticks");
+    FigureOptions opts;
+    opts.formats = {Format::png};
+    opts.title = name;
+    std::vector<PageLayout> pages;
+    write_run_figures(record(sc), dir.string(), opts, &pages);
+    write_law_comparison(sc, dir.string(), opts, &pages);
+    for (const PageLayout& page : pages) {
+      SCOPED_TRACE(page.name);
+      for (std::size_t i = 0; i < page.axis_texts.size(); ++i) {
+        for (std::size_t j = i + 1; j < page.axis_texts.size(); ++j) {
+          EXPECT_FALSE(overlaps(page.axis_texts[i].box, page.axis_texts[j].box))
+              << page.axis_texts[i].text << " on " << page.axis_texts[j].text;
+        }
+      }
+      cairo_surface_t* s = cairo_image_surface_create_from_png((dir / (page.name + ".png")).c_str());
+      ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
+      const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+      const unsigned char* data = cairo_image_surface_get_data(s);
+      const int stride = cairo_image_surface_get_stride(s);
+      const double px = w / page.width;
+      for (const Box& a : page.axes) {
+        // The room left of these axes, as the layout reserves it for PLplot's texts.
+        const Box* room = nullptr;
+        for (const Box& r : page.axis_labels) {
+          if (std::fabs(r.x1 - a.x0) < 1e-9 && r.y1 > a.y1) room = &r;
+        }
+        ASSERT_NE(room, nullptr);
+        int inked = 0, stray = 0;
+        for (int y = static_cast<int>(h - room->y1 * px) + 1; y < static_cast<int>(h - room->y0 * px); ++y) {
+          const auto* row = reinterpret_cast<const std::uint32_t*>(data + y * stride);
+          for (int x = static_cast<int>(std::ceil(room->x0 * px)); x < static_cast<int>(a.x0 * px) - 1; ++x) {
+            if ((row[x] & 0xffffff) == 0xffffff) continue;
+            ++inked;
+            const double mx = (x + 0.5) / px, my = (h - y - 0.5) / px;
+            bool known = false;
+            for (const PlacedText& t : page.axis_texts) {
+              known = known || (mx > t.box.x0 - 0.25 && mx < t.box.x1 + 0.25 && my > t.box.y0 - 0.25 &&
+                                my < t.box.y1 + 0.25);
+            }
+            stray += !known;
+          }
+        }
+        EXPECT_GT(inked, 200);
+        EXPECT_EQ(stray, 0) << "ink left of the axes outside the tick numbers and the title";
+        ++panels;
+      }
+      cairo_surface_destroy(s);
+    }
+  }
+  EXPECT_GT(panels, 60);
+}
+
+// A long input name shrinks the titles that would not fit; the titles of one page then share that
+// size (with the radio example's path, three of the overview's six titles were smaller).
+TEST(VizPlots, TitlesOfAPageShareOneSize) {
+  const Scenario radio = build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"));
+  FigureOptions opts;
+  opts.formats = {Format::png};
+  opts.title = "examples/example1-radio.toml";
+  std::vector<PageLayout> pages;
+  write_run_figures(record(radio), fresh_dir("titles").string(), opts, &pages);
+  write_law_comparison(radio, fresh_dir("titles").string(), opts, &pages);
+  for (const PageLayout& page : pages) {
+    SCOPED_TRACE(page.name);
+    std::vector<double> heights;
+    for (const PlacedText& t : page.texts) {
+      if (t.kind == PlacedText::title) heights.push_back(t.box.y1 - t.box.y0);
+    }
+    ASSERT_FALSE(heights.empty());
+    for (double h : heights) EXPECT_NEAR(h, heights.front(), 1e-9);
+  }
+}
+
 TEST(VizPlots, TrajectoryIsToScaleOrSaysSo) {
   bool stretched = false, scaled = false;
   for (int n = 1; n <= 4; ++n) {
@@ -552,6 +637,47 @@ TEST(VizAnimation, SlackRopeStaysOutOfTheBox) {
   }
   EXPECT_GT(inside, 1000);
   EXPECT_EQ(rope, 0);
+}
+
+// Once the lid is open, example 1's slack rope (0.26 m to spare, the seesaw's end far above the lid)
+// hangs freely from the seesaw to the lid's edge: it is not drawn lying along the open lid. Before
+// the fix a rounding error put the lid's edge itself "under the lid", and the rope was drawn
+// straight, as if taut, to the middle of the lid and up along it. Checked at lid_open and, with
+// the radio, while the lid stands latched open.
+TEST(VizAnimation, SlackRopeHangsFreeOfTheOpenLid) {
+  const Recording ex1 = record(example(1));
+  const Recording radio =
+      record(build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml")));
+  double open = -1.0;
+  for (const Event& e : ex1.result.events) {
+    if (e.type == EventType::lid_open) open = e.t;
+  }
+  ASSERT_GT(open, 0.0);
+  for (const auto& [rec, t] : {std::pair<const Recording*, double>{&ex1, open}, {&radio, open + 0.05},
+                               {&radio, open + 0.25}}) {
+    SCOPED_TRACE(t);
+    const Machine& m = rec->scenario.machine;
+    const View view = make_view(*rec, 480, 0);
+    Frame f;
+    f.t = t;
+    f.state = rec->at(t);
+    ASSERT_FALSE(f.state.rope_taut);
+    ASSERT_GT(f.state.phi_l, 80.0 * 3.14159265358979323846 / 180.0);
+    const Image img = render_frame(*rec, view, f, small_animation());
+    const RopeGeometry geo(m);
+    const Vec2 edge = geo.lid_edge(f.state.phi_l);
+    int on_lid = 0, probes = 0;
+    for (int k = 10; k <= 88; k += 2) {  // along the lid, from near the hinge to short of its edge
+      const Pixel p = to_pixel(view, m.hinge + (k / 100.0) * (edge - m.hinge));
+      for (int dx = -2; dx <= 2; ++dx) {
+        const Rgb c = img.at(static_cast<int>(std::lround(p.x)) + dx, static_cast<int>(std::lround(p.y)));
+        on_lid += c.r == 51 && c.g == 42 && c.b == 51;  // the rope's colour
+        ++probes;
+      }
+    }
+    EXPECT_GT(probes, 100);
+    EXPECT_EQ(on_lid, 0);
+  }
 }
 
 // With the radio, the lid latches at lid_open and the sandbag flies free; the seesaw keeps its

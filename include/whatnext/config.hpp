@@ -64,8 +64,11 @@ void apply_set(Config& config, std::string_view assignment);
 void set_number(Config& config, const std::string& key, double value);
 // Validates everything and converts to SI and radians. Throws InputError.
 Scenario build_scenario(const Config& config);
-// Writes a scenario back as TOML that build_scenario accepts (round trip up to rounding).
-std::string to_toml(const Scenario& scenario);
+// Writes a scenario back as TOML that build_scenario accepts (round trip up to rounding; angles
+// in the fewest digits that give the same radians). The hinge is written as hinge_offset, or, if
+// `given` is the config the scenario was built from and gives the hinge as distance and angle (or
+// not at all), in that form with its values.
+std::string to_toml(const Scenario& scenario, const Config* given = nullptr);
 
 // Closest known key to a misspelt one ("" if nothing is close).
 std::string nearest_key(std::string_view key);

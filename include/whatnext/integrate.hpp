@@ -309,7 +309,7 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
 // in which its guard is first seen to have fired (of several, the one whose crossing comes first)
 // and placed where the guard, interpolated linearly over the step, crosses zero: the state there is
 // the step's linear interpolation, so a contact is not entered by a whole step's overshoot.
-// Samples are the step-end states at or after each grid time.
+// Samples are the step-end states at or after each grid time, one per step, and the start.
 template <class Stepper, class System, class Sample>
 Crossing integrate_fixed(const System& sys, typename System::state_type& y, double& t,
                          double t_end, double dt, OutputGrid& grid, Sample&& sample,
@@ -330,6 +330,10 @@ Crossing integrate_fixed(const System& sys, typename System::state_type& y, doub
     if (s.order > 0) g0[i] = s.lead;  // zero now, negative just after: see above
   }
   const double t0 = t;
+  if (grid.step > 0.0 && grid.next == 0) {  // the run's start (the first row was the first step's end)
+    sample(t, y);
+    ++grid.next;
+  }
   for (bool first = true;; first = false) {
     const double h = std::fmin(dt, t_end - t);
     const double t_before = t;
@@ -363,11 +367,11 @@ Crossing integrate_fixed(const System& sys, typename System::state_type& y, doub
       t = t_before + best * h;
       return {Crossing::event, hit, t};
     }
-    if (grid.step > 0.0) {
-      while (grid.time() <= t) {
-        sample(t, y);
-        ++grid.next;
-      }
+    // One row per step for all the grid times it passed (a step longer than run.output_step wrote
+    // the same row, with the same time, once for each), allowing for t's rounding.
+    if (grid.step > 0.0 && grid.time() <= t + 1e-9 * dt) {
+      sample(t, y);
+      while (grid.time() <= t + 1e-9 * dt) ++grid.next;
     }
     if (t >= t_end) return {Crossing::end, -1, t_end};
     g0 = g1;

@@ -125,7 +125,7 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
     const double cx = x0 + wx * static_cast<double>(ix), cy = y0 + wy * static_cast<double>(iy);
     fill_rect(cx, cx + wx, cy, cy + wy);
   }
-  // Whatever is drawn, machines that never open the lid stay recognisable: hatched.
+  // Whatever is drawn, machines whose lid did not open in their run stay recognisable: hatched.
   bool any_closed = false;
   if (value != "lid_open") {
     plcol0(kInk);
@@ -143,8 +143,9 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
   plbox("bcnst", 0.0, 0, "bcnstv", 0.0, 0);
   pllab(key_with_unit(rx.key).c_str(), key_with_unit(ry.key).c_str(), fmt::format("{} by {} and {}", with_unit(value), rx.key, ry.key).c_str());
   std::string legend;
-  if (any_never) legend += fmt::format("grey: no {}", value);
-  if (any_closed) legend += fmt::format("{}hatched: the lid never opens", legend.empty() ? "" : "   ");
+  // "before the run ended": a grey machine may well get there given a longer run.t_max.
+  if (any_never) legend += fmt::format("grey: no {} before the run ended", value);
+  if (any_closed) legend += fmt::format("{}hatched: the lid did not open", legend.empty() ? "" : "   ");
   if (any_invalid) legend += fmt::format("{}black: invalid inputs or failed runs", legend.empty() ? "" : "   ");
   if (!legend.empty()) plmtex("b", 5.2, 0.0, 0.0, legend.c_str());
 

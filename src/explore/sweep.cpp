@@ -5,6 +5,7 @@
 #include <condition_variable>
 #include <cstdlib>
 #include <limits>
+#include <exception>
 #include <mutex>
 #include <ostream>
 #include <random>
@@ -337,9 +338,16 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   std::atomic<int> running{0};
   std::mutex m;
   std::condition_variable cv;
-  auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
+  // An exception in a worker (out of memory) stops the others and is thrown again by this thread;
+  // escaping a worker it would end whatnext through std::terminate, with the .part file left.
+  std::exception_ptr failure;
+  std::atomic<bool> failed{false};
+  auto stopped = [&] {
+    return failed.load(std::memory_order_relaxed) || (options.stop && options.stop->load(std::memory_order_relaxed));
+  };
   res.lines.resize(static_cast<std::size_t>(total));
   auto worker = [&] {
+    try {
     Config work = base;
     std::vector<double> values(keys.size());
     for (;;) {
@@ -357,6 +365,11 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
       }
       if (stopped()) break;
     }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(m);
+      if (!failure) failure = std::current_exception();
+      failed = true;
+    }
     std::lock_guard<std::mutex> lock(m);
     --running;
     cv.notify_all();
@@ -365,7 +378,13 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   running = threads;
   std::vector<std::thread> pool;
   pool.reserve(static_cast<std::size_t>(threads));
-  for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+  try {
+    for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+  } catch (...) {  // no thread to be had (out of memory): stop those started, then say so
+    failed = true;
+    for (std::thread& t : pool) t.join();
+    throw;
+  }
   {
     std::unique_lock<std::mutex> lock(m);
     while (running > 0) {
@@ -378,6 +397,7 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
     }
   }
   for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
   if (options.progress) options.progress(completed.load(), total);  // the final count, not the last tick's
   res.completed = completed.load();
   res.interrupted = res.completed < total;

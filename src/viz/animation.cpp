@@ -3,11 +3,14 @@
 #include "whatnext/viz/animation.hpp"
 
 #include <cairo.h>
+#include <fcntl.h>
 #include <gif_lib.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +25,7 @@
 #include "whatnext/config.hpp"
 #include "whatnext/events.hpp"
 #include "whatnext/geometry.hpp"
+#include "whatnext/output.hpp"
 #include "whatnext/viz/plots.hpp"
 #include "placement.hpp"
 
@@ -130,7 +134,10 @@ bool in_box(const Machine& m, Vec2 lid_edge, Vec2 p) {
 // straight from the seesaw to a point on the lid).
 std::vector<Vec2> slack_rope(const Machine& m, Vec2 a, Vec2 e, double length) {
   std::vector<Vec2> pts = sag_curve(a, e, length);
-  if (std::none_of(pts.begin(), pts.end(), [&](Vec2 p) { return in_box(m, e, p); })) return pts;
+  // The ends are tied to the seesaw and to the lid's edge, which lies on the lid's line: only the
+  // points between them can hang into the box (an end counted "under the lid" by a rounding error
+  // drew the slack rope straight and along the open lid).
+  if (std::none_of(pts.begin() + 1, pts.end() - 1, [&](Vec2 p) { return in_box(m, e, p); })) return pts;
   const Vec2 hinge = m.hinge;
   const double rest = length - norm(e - hinge);
   if (rest >= norm(a - hinge)) {
@@ -314,17 +321,27 @@ Warp time_warp(const Recording& rec, const AnimationOptions& opts) {
 }
 
 // ---- GIF output through giflib's low-level encoder ----
+thread_local int g_gif_errno = 0;  // why the last write failed, for the message
+
 int gif_write(GifFileType* gif, const GifByteType* data, int n) {
-  auto* out = static_cast<std::ostream*>(gif->UserData);
-  out->write(reinterpret_cast<const char*>(data), n);
-  return out->good() ? n : 0;
+  const int fd = *static_cast<int*>(gif->UserData);
+  for (int done = 0; done < n;) {
+    const ssize_t w = ::write(fd, data + done, static_cast<std::size_t>(n - done));
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) {
+      g_gif_errno = w < 0 ? errno : EIO;
+      return 0;
+    }
+    done += static_cast<int>(w);
+  }
+  return n;
 }
 
 class GifEncoder {
  public:
-  GifEncoder(std::ostream& out, int width, int height) : w_(width), h_(height) {
+  GifEncoder(int& fd, int width, int height) : w_(width), h_(height) {
     int err = 0;
-    gif_ = EGifOpen(&out, gif_write, &err);
+    gif_ = EGifOpen(&fd, gif_write, &err);
     if (!gif_) throw std::runtime_error(fmt::format("GIF: {}", GifErrorString(err)));
     EGifSetGifVersion(gif_, true);
     auto pal = make_palette();
@@ -955,10 +972,15 @@ int write_animation(const Recording& rec, const std::string& path, const Animati
   }
 
   {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(fmt::format("{}: cannot write '{}'", option, path));
+    int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) throw InputError(fmt::format("{}: cannot write '{}'", option, path));
+    g_gif_errno = 0;
+    auto failed = [&](int err) {  // the work is done: a write error, not bad input (exit code 1)
+      std::remove(tmp.c_str());
+      return OutputError(fmt::format("{} {}: writing failed: {}", option, printable(path, 96), std::strerror(err)));
+    };
     try {
-      GifEncoder gif(out, view.width, view.height);
+      GifEncoder gif(fd, view.width, view.height);
       double shown = 0.0;
       long shown_cs = 0;
       int index = 0;
@@ -976,16 +998,20 @@ int write_animation(const Recording& rec, const std::string& path, const Animati
         if (progress) progress(index, total);
       }
       gif.close();
+    } catch (const std::runtime_error&) {
+      // giflib's "Write failed (disk full?)": say which file and why (a full disk, ulimit -f).
+      ::close(fd);
+      if (g_gif_errno == 0) {
+        std::remove(tmp.c_str());
+        throw;
+      }
+      throw failed(g_gif_errno);
     } catch (...) {
-      out.close();
+      ::close(fd);
       std::remove(tmp.c_str());
       throw;
     }
-    out.close();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw InputError(fmt::format("{}: cannot write '{}'", option, path));
-    }
+    if (::close(fd) != 0) throw failed(errno);
   }
   fs::rename(tmp, path);
   return static_cast<int>(frames.size());

@@ -223,6 +223,11 @@ struct PanelGeometry {
   double h = 1.0;                // base character height [mm]
   double bands = 0.0;            // height of the bands above the axes [mm]
   double ylabel_h = 1.0;         // character height of the y axis' title [mm]
+  double ytick = 0.0;            // spacing of the y axis' numbered ticks (data units)
+  double ylabel_at = 0.0;        // the y axis' title: its reference point left of the axes [mm]
+  double left_needed = 0.0;      // room the tick numbers and the y title need left of the axes [mm]
+  std::vector<Text> axis_texts;  // where PLplot will write the y tick numbers and the y title
+  double title_h = 0.0;          // the title's character height [mm] (shrunk to fit the panel)
 };
 
 struct PageGeometry {
@@ -280,13 +285,55 @@ Grid grid(const std::vector<double>& widths, double x0, double x1, double spacin
   return g;
 }
 
+// PLplot's own choice of the spacing of numbered ticks over [lo, hi] (pldtik, not exported): 1, 2
+// or 5 times a power of ten, three to eight ticks. The axes are drawn with this spacing, so the
+// numbers are the ones measured here.
+double tick_spacing(double lo, double hi) {
+  const double span = std::fabs(hi - lo);
+  if (!(span > 0.0) || !std::isfinite(span)) return 1.0;
+  double t1 = std::log10(span);
+  int np = static_cast<int>(std::floor(t1));
+  t1 -= np;
+  double t2 = 2.0;
+  if (t1 > 0.7781512503) {
+    t2 = 2.0;
+  } else if (t1 > 0.4771212549) {
+    t2 = 1.0;
+  } else if (t1 > 0.1760912591) {
+    t2 = 5.0, np -= 1;
+  } else {
+    t2 = 2.0, np -= 1;
+  }
+  return t2 * std::pow(10.0, np);
+}
+
+// The numbers PLplot writes at the ticks of [lo, hi] (fixed point with as many decimals as the
+// spacing needs, as plsyax(12, 0) asks: pldprec's mode 0).
+std::vector<std::pair<double, std::string>> tick_numbers(double lo, double hi, double tick) {
+  std::vector<std::pair<double, std::string>> out;
+  if (!(tick > 0.0)) return out;
+  const int prec = std::max(0, -static_cast<int>(std::floor(std::log10(tick))));
+  const double first = std::ceil(std::min(lo, hi) / tick - 1e-6);
+  for (int k = 0; k < 100; ++k) {
+    double v = (first + k) * tick;
+    if (v > std::max(lo, hi) + 1e-6 * tick) break;
+    if (std::fabs(v) < 1e-6 * tick) v = 0.0;  // no "-0.0"
+    out.emplace_back(v, fmt::format("{:.{}f}", v, prec));
+  }
+  return out;
+}
+
 // The panel in rect r with base character height ch; the bands above the axes (title, legend, mode
 // strip, event numbers) take at least min_bands, so that panels side by side line up.
-PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_bands = 0.0) {
+// `left` is the room left of the axes for the tick numbers and the y axis' title (at least 6 ch;
+// layout_page widens it to what the panels of a column need, g.left_needed).
+// `title_cap` (if > 0) is the largest title height, so that the panels of a page share one.
+PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_bands = 0.0, double left = 0.0,
+                           double title_cap = 0.0) {
   PanelGeometry g;
   g.h = ch;
   const double pad = 0.5 * ch;
-  g.axes.x0 = r.x0 + 6.0 * ch;
+  g.axes.x0 = r.x0 + std::max(6.0 * ch, left);
   g.axes.x1 = r.x1 - 1.5 * ch;
   g.axes.y0 = r.y0 + 4.4 * ch;
   const double aw = g.axes.x1 - g.axes.x0;
@@ -397,9 +444,10 @@ PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_b
   g.wx0 = wx0, g.wx1 = wx1, g.wy0 = wy0, g.wy1 = wy1;
 
   // Title.
-  double th = title_h;
+  double th = title_cap > 0.0 ? std::min(title_h, title_cap) : title_h;
   const double tw = text_width(title, th);
   if (tw > r.x1 - r.x0 - 2.0 * pad) th *= (r.x1 - r.x0 - 2.0 * pad) / tw;
+  g.title_h = th;
   y -= 0.55 * title_h;
   const double title_x = std::clamp(0.5 * (g.axes.x0 + g.axes.x1), r.x0 + pad + 0.5 * text_width(title, th),
                                     r.x1 - pad - 0.5 * text_width(title, th));
@@ -441,8 +489,30 @@ PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_b
     }
   }
 
-  // The y axis' title, smaller if it is longer than the axes are high.
+  // The y axis' title, smaller if it is longer than the axes are high, and clear of the widest
+  // tick number: PLplot writes those 0.5 ch left of the axes, right-aligned; the title, turned
+  // upright, reaches 0.85 of its height (1.4 with a subscript) from its reference point towards
+  // the axes and 0.55 away from them.
   g.ylabel_h = std::min(ch, ch * 0.97 * (g.axes.y1 - g.axes.y0) / std::max(1e-9, text_width(p.ylabel, ch)));
+  g.ytick = tick_spacing(wy0, wy1);
+  double widest_tick = 0.0;
+  const auto numbers = tick_numbers(wy0, wy1, g.ytick);
+  for (const auto& n : numbers) widest_tick = std::max(widest_tick, text_width(n.second, ch));
+  const double inward = (has_subscript(p.ylabel) ? 1.4 : 0.85) * g.ylabel_h;
+  g.ylabel_at = std::max(4.6 * ch, 0.5 * ch + widest_tick + 0.4 * ch + inward);
+  g.left_needed = g.ylabel_at + 0.55 * g.ylabel_h + 0.4 * ch;
+  for (const auto& [v, text] : numbers) {
+    const double y = g.axes.y0 + (v - wy0) / (wy1 - wy0) * (g.axes.y1 - g.axes.y0);
+    g.axis_texts.push_back(make_text(PlacedText::label, text, g.axes.x0 - 0.5 * ch, y, 1.0, ch));
+  }
+  {
+    // The title turned upright: its box is a text box turned by 90 degrees.
+    const double half = 0.5 * text_width(p.ylabel, g.ylabel_h), x = g.axes.x0 - g.ylabel_at;
+    const double ym = 0.5 * (g.axes.y0 + g.axes.y1);
+    Text t = make_text(PlacedText::label, p.ylabel, x, ym, 0.5, g.ylabel_h);
+    t.box = {x - 0.55 * g.ylabel_h, ym - half, x + inward, ym + half};
+    g.axis_texts.push_back(std::move(t));
+  }
 
   // Where PLplot writes tick numbers and axis titles.
   g.reserved.push_back({r.x0, g.axes.y0 - 0.6 * ch, g.axes.x0, g.axes.y1 + 0.6 * ch});
@@ -582,13 +652,30 @@ PageGeometry layout_page(const Page& page) {
     const int col = static_cast<int>(i) % page.nx, row = static_cast<int>(i) / page.nx;
     return Box{col * cell_w, pg.h - (row + 1) * cell_h, (col + 1) * cell_w, pg.h - row * cell_h};
   };
-  std::vector<double> row_bands(page.ny, 0.0);
-  for (std::size_t i = 0; i < page.panels.size(); ++i) {
-    double& b = row_bands[i / page.nx];
-    b = std::max(b, layout_panel(page.panels[i], cell(i), ch).bands);
-  }
-  for (std::size_t i = 0; i < page.panels.size(); ++i) {
-    pg.panels.push_back(layout_panel(page.panels[i], cell(i), ch, row_bands[i / page.nx]));
+  // Panels side by side share the height of their bands, panels above each other the room left of
+  // their axes (so that their axes line up); that room is what the widest tick numbers and the y
+  // title need. The data window can change with the room (a trajectory to scale), hence the rounds.
+  // Titles share one size, the smallest any of them needs to fit its panel (a long input name
+  // shrinks one title; the page's titles should not then differ in size).
+  std::vector<double> row_bands(page.ny, 0.0), col_left(page.nx, 0.0);
+  double title_cap = 0.0;
+  for (int round = 0; round < 4; ++round) {
+    std::vector<double> bands(page.ny, 0.0), left = col_left;
+    pg.panels.clear();
+    for (std::size_t i = 0; i < page.panels.size(); ++i) {
+      pg.panels.push_back(
+          layout_panel(page.panels[i], cell(i), ch, row_bands[i / page.nx], col_left[i % page.nx], title_cap));
+      double& b = bands[i / page.nx];
+      b = std::max(b, pg.panels.back().bands);
+      double& l = left[i % page.nx];
+      l = std::max(l, pg.panels.back().left_needed);
+    }
+    double smallest = 0.0;
+    for (const PanelGeometry& g : pg.panels) smallest = smallest > 0.0 ? std::min(smallest, g.title_h) : g.title_h;
+    if (bands == row_bands && left == col_left && (title_cap > 0.0 || pg.panels.size() < 2)) break;
+    title_cap = smallest;
+    for (std::size_t r = 0; r < bands.size(); ++r) row_bands[r] = std::max(row_bands[r], bands[r]);
+    for (std::size_t c = 0; c < left.size(); ++c) col_left[c] = std::max(col_left[c], left[c]);
   }
   return pg;
 }
@@ -604,6 +691,7 @@ PageLayout public_layout(const Page& page, const PageGeometry& pg) {
     out.windows.push_back({g.wx0, g.wy0, g.wx1, g.wy1});
     out.axis_labels.insert(out.axis_labels.end(), g.reserved.begin(), g.reserved.end());
     for (const Text& t : g.texts) add(t);
+    for (const Text& t : g.axis_texts) out.axis_texts.push_back({t.kind, t.text, t.box});
     out.legend_samples.insert(out.legend_samples.end(), g.samples.begin(), g.samples.end());
     out.data.insert(out.data.end(), g.data.begin(), g.data.end());
   }
@@ -696,16 +784,16 @@ void draw_panel(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) 
   plsmin(0.3 * ch, 1.0);
   plcol0(kLightGrey);
   plwidth(0.5);
-  plbox("g", 0.0, 0, "g", 0.0, 0);
+  plbox("g", 0.0, 0, "g", g.ytick, 0);
   plcol0(kBlack);
   plwidth(1.0);
   // Plain numbers on the axes: no "(x10^3)" above the axis where the title and legend are.
   plsxax(12, 0);
   plsyax(12, 0);
-  plbox("bcnst", 0.0, 0, "bcnstv", 0.0, 0);
+  plbox("bcnst", 0.0, 0, "bcnstv", g.ytick, 0);
   plmtex("b", 3.0, 0.5, 0.5, p.xlabel.c_str());
   plschr(g.ylabel_h, 1.0);
-  plmtex("l", 4.6 * ch / g.ylabel_h, 0.5, 0.5, p.ylabel.c_str());
+  plmtex("l", g.ylabel_at / g.ylabel_h, 0.5, 0.5, p.ylabel.c_str());
   plschr(ch, 1.0);
 
   for (const auto& l : p.hlines) {

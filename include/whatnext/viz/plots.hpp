@@ -40,6 +40,7 @@ struct PageLayout {
   std::vector<Box> axes;                // each panel's plot area: data is drawn only inside
   std::vector<Box> windows;             // each panel's data range in its own units
   std::vector<Box> axis_labels;         // where PLplot writes tick numbers and axis titles
+  std::vector<PlacedText> axis_texts;   // the y axes' tick numbers and titles, where PLplot writes them
   std::vector<PlacedText> texts;        // every text whatnext places itself
   std::vector<Box> legend_samples;      // the line samples of the legends
   std::vector<std::vector<std::pair<double, double>>> data;  // curves and dots as drawn [mm]
