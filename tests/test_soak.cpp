@@ -154,6 +154,7 @@ class Checker : public Observer {
   Checker(const Scenario& sc, const RandomMachine& m, Failures& f) : sc_(sc), m_(m), f_(f) {}
   void on_sample(const Snapshot& s) override { check(s, "sample"); }
   void on_event(const Event& e) override {
+    on_event_before(e);
     check(e.after, std::string(to_string(e.type)));
     if (!e.impact) return;
     const ImpactLaw law = sc_.run.impact_law;
@@ -165,9 +166,24 @@ class Checker : public Observer {
     }
     const bool governed = e.type == EventType::rope_taut ||
                           (e.type == EventType::sandbag_lands && e.mode_before == Mode::M2);
+    // A landing on a heavy seesaw whose rope takes no jerk (it goes slack at the same instant) is
+    // the arm's perfectly inelastic stop, which no impact law governs: it is judged when the next
+    // event shows whether the rope went slack.
     if (law == ImpactLaw::kinetic_energy && governed && std::fabs(gain) > 1e-9) {
-      f_.add("a kinetic-energy impact changes the energy", m_, what);
+      pending_ = what;
+      pending_t_ = e.t;
+      pending_heavy_landing_ = e.type == EventType::sandbag_lands && sc_.machine.seesaw_mass > 0.0;
+      if (!pending_heavy_landing_) flush();
     }
+  }
+  void on_event_before(const Event& e) {
+    if (pending_.empty()) return;
+    if (e.t == pending_t_ && e.type == EventType::rope_slack && pending_heavy_landing_) pending_.clear();
+    flush();
+  }
+  void flush() {
+    if (!pending_.empty()) f_.add("a kinetic-energy impact changes the energy", m_, pending_);
+    pending_.clear();
   }
 
  private:
@@ -181,9 +197,14 @@ class Checker : public Observer {
         return;
       }
     }
-    // A fixed step places an event by linear interpolation within the step, exact only to the
-    // step's second order: there the lid may be a hair (1e-6 rad) past its limits.
-    const double slack = sc_.run.integrator == IntegratorKind::adaptive ? 1e-9 : 1e-6;
+    // A fixed step places an event's state by linear interpolation within the step, exact only to
+    // the step's second order: there the lid may be past its limits by up to dt^2 |phiL''| / 8,
+    // with |phiL''| about its own weight's 3 g / (4 r_L) (a rope jerk that lifts the lid a hair and
+    // lets it fall back within one step). Allowed: eight times that, and 1e-6 rad at least.
+    const double dt = sc_.run.step;
+    const double fixed_step_slack =
+        std::fmax(1e-6, dt * dt * 3.0 * sc_.machine.gravity / (4.0 * sc_.machine.lid_half_length));
+    const double slack = sc_.run.integrator == IntegratorKind::adaptive ? 1e-9 : fixed_step_slack;
     if (s.phi_l < sc_.start.lid_angle - slack || s.phi_l > kPi / 2 + slack) {
       f_.add("the lid leaves [phiL0, 90 deg]", m_, fmt::format("{} at t = {}: phiL = {} deg", where, s.t, s.phi_l / kDeg));
     }
@@ -208,6 +229,9 @@ class Checker : public Observer {
   const RandomMachine& m_;
   Failures& f_;
   double scale_ = 1.0;
+  std::string pending_;  // a kinetic-energy impact that changed the energy, judged at the next event
+  double pending_t_ = 0.0;
+  bool pending_heavy_landing_ = false;
 };
 
 // Runs one machine in a child process, so that a machine that hangs or crashes is reported (and
@@ -236,6 +260,7 @@ ChildReport run_in_child(const Scenario& sc, const RandomMachine& m, double limi
     Checker checker(sc, m, f);
     try {
       const Result r = simulate(sc, &checker);
+      checker.flush();
       if (!is_stop(r.outcome().type)) f.add("a run ends without an outcome", m, "");
       out += fmt::format("outcome\t{}\n", to_string(r.outcome().type));
     } catch (const SimulationError& e) {
@@ -291,7 +316,9 @@ TEST_F(Soak, RandomMachinesKeepThePromiseAndThePhysics) {
   // A healthy machine takes milliseconds; this is the "runs for minutes" of issue 12, with room
   // for the sanitizer build.
   constexpr double kLimit = 10.0;
-  Draw draw(20240612);
+  // WHATNEXT_SOAK_SEED draws other machines (the fixed seed keeps CI repeatable).
+  const char* seed = std::getenv("WHATNEXT_SOAK_SEED");
+  Draw draw(seed ? std::strtoull(seed, nullptr, 10) : 20240612);
   Failures failures;
   int ran = 0, refused = 0, through_cli = 0;
   std::map<std::string, int> outcomes;
