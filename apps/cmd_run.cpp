@@ -65,15 +65,18 @@ void register_run(CLI::App& app, int& exit_code) {
     Fanout fan;
     std::unique_ptr<CsvWriter> csv;
     std::unique_ptr<DatWriter> dat;
+    // The rows' text is made and written on threads of their own while the machine runs.
     if (csv_file) {
-      csv = std::make_unique<CsvWriter>(csv_file->stream());
+      csv = std::make_unique<CsvWriter>(csv_file->stream(), Writing::background);
       fan.add(csv.get());
     }
     if (dat_file) {
-      dat = std::make_unique<DatWriter>(dat_file->stream());
+      dat = std::make_unique<DatWriter>(dat_file->stream(), Writing::background);
       fan.add(dat.get());
     }
     const Result result = simulate(in.scenario, fan.empty() ? nullptr : &fan);
+    if (csv) csv->finish();
+    if (dat) dat->finish();
     if (events_file) events_file->stream() << events_json(result, in.scenario, in.source);
     outputs.commit_all();
     if (opts->quiet) {
