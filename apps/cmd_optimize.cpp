@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#if WHATNEXT_FULL
 #include "whatnext/explore/optimize.hpp"
+#endif
 #include "whatnext/output.hpp"
 
 namespace whatnext::cli {
@@ -41,6 +43,10 @@ void register_optimize(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(2, 100000));
   cmd->add_option("--starts", opts->starts, "local searches from the best grid points")->check(CLI::Range(1, 100));
   cmd->add_option("--max-evals", opts->max_evals, "machines per local search")->check(CLI::Range(1, 1000000));
+#if !WHATNEXT_FULL
+  (void)exit_code;
+  cmd->callback([opts] { hand_over_to_full(); });  // opts: the options write into it
+#else
   cmd->callback([opts, cmd, &exit_code] {
     check_leftovers(*cmd);
     if (opts->minimize.empty() == opts->maximize.empty()) {
@@ -113,6 +119,7 @@ void register_optimize(CLI::App& app, int& exit_code) {
                printable(opts->out, 96));
     exit_code = 0;
   });
+#endif
 }
 
 }  // namespace whatnext::cli

@@ -6,8 +6,10 @@
 
 #include "cli_common.hpp"
 #include "whatnext/output.hpp"
+#if WHATNEXT_FULL
 #include "whatnext/viz/animation.hpp"
 #include "whatnext/viz/plots.hpp"
+#endif
 
 namespace whatnext::cli {
 
@@ -37,6 +39,9 @@ void register_run(CLI::App& app, int& exit_code) {
   cmd->add_flag("--force-large", opts->force_large,
                 "write outputs even when they would be larger than 256 MB");
   cmd->callback([opts, cmd, &exit_code] {
+#if !WHATNEXT_FULL
+    if (given(*cmd, "--plots") || given(*cmd, "--animate")) hand_over_to_full();
+#endif
     check_leftovers(*cmd);
     const LoadedInput in = load_input(opts->input);
     // Every output is checked (and its temporary opened) before any work; files appear only when
@@ -52,6 +57,7 @@ void register_run(CLI::App& app, int& exit_code) {
     AtomicFile* dat_file = outputs.add(*cmd, "--dat", opts->dat);
     AtomicFile* events_file = outputs.add(*cmd, "--events", opts->events);
     outputs.check_distinct();
+#if WHATNEXT_FULL
     // The pictures last: a directory made for --plots is removed again if anything else fails.
     if (given(*cmd, "--plots")) prepare_picture_dir(opts->plots, "--plots");
     std::string animation;
@@ -59,6 +65,7 @@ void register_run(CLI::App& app, int& exit_code) {
       animation = regular_output_target(opts->animate, "--animate");
       viz::check_animation_target(animation, "--animate");
     }
+#endif
     // With an output on standard output, the timeline goes to standard error.
     std::FILE* text = outputs.any_to_stdout() ? stderr : stdout;
 
@@ -84,6 +91,7 @@ void register_run(CLI::App& app, int& exit_code) {
     } else {
       fmt::print(text, "{}", timeline_text(result, in.scenario, in.source));
     }
+#if WHATNEXT_FULL
     if (given(*cmd, "--plots") || given(*cmd, "--animate")) {
       const viz::Recording rec = viz::record(in.scenario);
       if (given(*cmd, "--plots")) {
@@ -99,6 +107,7 @@ void register_run(CLI::App& app, int& exit_code) {
         if (!opts->quiet) fmt::print(text, "Animation: {} ({} frames)\n", printable(opts->animate, 96), frames);
       }
     }
+#endif
     exit_code = 0;
   });
 }
