@@ -81,7 +81,8 @@ void register_run(CLI::App& app, int& exit_code) {
       dat = std::make_unique<DatWriter>(dat_file->stream(), Writing::background);
       fan.add(dat.get());
     }
-    const Result result = simulate(in.scenario, fan.empty() ? nullptr : &fan);
+    Observer* observer = csv && dat ? &fan : csv ? static_cast<Observer*>(csv.get()) : dat.get();
+    const Result result = simulate(in.scenario, observer);
     if (csv) csv->finish();
     if (dat) dat->finish();
     if (events_file) events_file->stream() << events_json(result, in.scenario, in.source);

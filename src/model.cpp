@@ -447,15 +447,15 @@ double Model::lid_push_now(const Discrete& d, const Kinematics& k, const State& 
          (y[slot::lost_drag] - b.drag_mark);
 }
 
-Snapshot Model::snapshot(const HybridState& hs, bool full) const {
-  const Kinematics k = kinematics(hs.d, hs.y, full);
+Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full) const {
+  const Kinematics k = kinematics(d, y, full);
   Snapshot s;
-  s.t = hs.t;
-  s.mode = hs.d.mode();
-  s.on_seesaw = hs.d.on_seesaw;
-  s.rope_taut = hs.d.taut;
-  s.lid_resting = hs.d.lid_resting;
-  s.balloon_stuck = hs.d.balloon_stuck;
+  s.t = t;
+  s.mode = d.mode();
+  s.on_seesaw = d.on_seesaw;
+  s.rope_taut = d.taut;
+  s.lid_resting = d.lid_resting;
+  s.balloon_stuck = d.balloon_stuck;
   s.x = k.x, s.h = k.h, s.vx = k.vx, s.vh = k.vh, s.r = k.r, s.dr = k.dr;
   s.phi_s = k.phi_s, s.dphi_s = k.dphi_s;
   s.phi_l = k.phi_l, s.dphi_l = k.dphi_l, s.ddphi_l = k.ddphi_l;
@@ -464,9 +464,9 @@ Snapshot Model::snapshot(const HybridState& hs, bool full) const {
   if (!full) return s;
   s.balloon_limit_rate = limit_.rate_at(k.sin_l, k.dphi_l);
   s.balloon_v = k.balloon_v;
-  if (!hs.d.latched) {
+  if (!d.latched) {
     contact::PerContact f;
-    contact_forces(hs.d, k, f);
+    contact_forces(d, k, f);
     s.tension = f[kRope];
     s.normal_force = f[kBag];
     s.box_reaction = f[kLid];
@@ -479,13 +479,13 @@ Snapshot Model::snapshot(const HybridState& hs, bool full) const {
   s.seesaw_potential = w_s_ * g_ * std::sin(k.phi_s);
   s.balloon_kinetic = 0.5 * m_b_ * k.balloon_v * k.balloon_v;
   s.balloon_potential = -m_b_ * a_b_ * k.balloon_h;
-  const Books& b = hs.d.books;
+  const Books& b = d.books;
   s.lost_impacts = b.impacts;
   s.lost_balloon_catch = b.balloon_catch;
-  s.dissipated_pivot = hs.y[slot::lost_pivot];
-  s.dissipated_hinge = hs.y[slot::lost_hinge];
-  s.dissipated_drag = hs.y[slot::lost_drag];
-  s.lid_push_work = lid_push_now(hs.d, k, hs.y);
+  s.dissipated_pivot = y[slot::lost_pivot];
+  s.dissipated_hinge = y[slot::lost_hinge];
+  s.dissipated_drag = y[slot::lost_drag];
+  s.lid_push_work = lid_push_now(d, k, y);
   s.initial_total = b.initial_total;
   return s;
 }

@@ -88,7 +88,7 @@ Result simulate(const Scenario& sc, Observer* observer) {
   for (;;) {
     const MachineSystem sys{&model, hs.d};
     auto sample = [&](double t, const State& y) {
-      const Snapshot s = model.snapshot(HybridState{t, sys.d, y}, full_samples);
+      const Snapshot s = model.snapshot(t, sys.d, y, full_samples);
       observer->on_sample(s);
     };
     Crossing c;

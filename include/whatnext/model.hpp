@@ -87,7 +87,8 @@ class Model {
   // height), the same numbers, without the rates, accelerations and the linkage's k (all zero).
   Kinematics kinematics(const Discrete& d, const State& y, bool rates = true) const;
   // full = false: positions only (Observer::Detail::positions), no rates, forces nor energies.
-  Snapshot snapshot(const HybridState& hs, bool full = true) const;
+  Snapshot snapshot(double t, const Discrete& d, const State& y, bool full = true) const;
+  Snapshot snapshot(const HybridState& hs) const { return snapshot(hs.t, hs.d, hs.y); }
   // The contact problem at this instant: masses, forces, the contacts' gap gradients and
   // curvatures in the coordinates (x, h, phiS, phiL).
   contact::System contact_system(const Discrete& d, const Kinematics& k) const;
