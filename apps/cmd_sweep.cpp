@@ -174,9 +174,9 @@ void register_sweep(CLI::App& app, int& exit_code) {
       signal.store(sig);
       stop.store(true);
     });
+    ro.csv = &csv->stream();  // written while the machines run
     const explore::SweepResult result = explore::run(in.config, machines, ro);
     bar.finish();
-    explore::write_csv(csv->stream(), machines, result);
 #if WHATNEXT_FULL
     if (heat) explore::draw_heatmap(heat->temp_path(), machines, result, opts->heatmap_value);
 #endif

@@ -324,22 +324,36 @@ double value_of(const Outcome& o, std::string_view name) {
   return kNaN;
 }
 
+namespace {
+void write_header(std::ostream& out, const Plan& plan) {
+  fmt::memory_buffer line;
+  auto put = [&line](std::string_view text) { line.append(text.data(), text.data() + text.size()); };
+  put("index");
+  for (const Range& r : plan.ranges) fmt::format_to(std::back_inserter(line), ",{}", r.key);
+  put(",outcome,outcome_t,final_r,final_phi_l_deg");
+  for (EventType t : event_types()) fmt::format_to(std::back_inserter(line), ",{}", to_string(t));
+  put(",error\n");
+  out.write(line.data(), static_cast<std::streamsize>(line.size()));
+}
+}  // namespace
+
 SweepResult run(const Config& base, const Machines& machines, const RunOptions& options) {
   const std::int64_t total = machines.size();
   const std::vector<std::string> keys = machines.plan().keys();
   SweepResult res;
   res.rows.resize(static_cast<std::size_t>(total));
   res.done.assign(static_cast<std::size_t>(total), 0);
+  res.lines.resize(static_cast<std::size_t>(total));
 
   // Workers claim small blocks of indices; each row lands in its own slot, so the rows (and the
-  // CSV) do not depend on which thread ran which machine.
+  // CSV) do not depend on which thread ran which machine. A finished block is marked done under
+  // the lock, which also hands its lines to the calling thread.
   constexpr std::int64_t kBlock = 8;
   std::atomic<std::int64_t> next{0}, completed{0};
-  std::atomic<int> running{0};
+  int running = 0;
   std::mutex m;
   std::condition_variable cv;
   auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
-  res.lines.resize(static_cast<std::size_t>(total));
   auto worker = [&] {
     Config work = base;
     std::vector<double> values(keys.size());
@@ -347,15 +361,19 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
       const std::int64_t start = next.fetch_add(kBlock);
       if (start >= total) break;
       const std::int64_t end = std::min(total, start + kBlock);
-      for (std::int64_t i = start; i < end; ++i) {
-        if (stopped()) break;
+      std::int64_t i = start;
+      for (; i < end && !stopped(); ++i) {
         machines.point(i, values.data());
         const auto slot = static_cast<std::size_t>(i);
         res.rows[slot] = evaluate_in(work, keys, values.data(), options.accuracy);
         res.lines[slot] = csv_row(i, values, res.rows[slot]);  // formatted here, on all cores
-        res.done[slot] = 1;
         completed.fetch_add(1, std::memory_order_relaxed);
       }
+      {
+        std::lock_guard<std::mutex> lock(m);
+        for (std::int64_t j = start; j < i; ++j) res.done[static_cast<std::size_t>(j)] = 1;
+      }
+      cv.notify_all();
       if (stopped()) break;
     }
     std::lock_guard<std::mutex> lock(m);
@@ -367,18 +385,56 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   std::vector<std::thread> pool;
   pool.reserve(static_cast<std::size_t>(threads));
   for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+
+  // Meanwhile this thread writes the rows that are done, in index order, and lets their lines go
+  // (their memory is used again: every page a sweep touches costs), and reports progress.
+  if (options.csv) write_header(*options.csv, machines.plan());
+  std::int64_t written = 0;
+  std::vector<std::string> ready;
+  auto write_ready = [&] {
+    for (std::string& line : ready) {
+      options.csv->write(line.data(), static_cast<std::streamsize>(line.size()));
+      std::string().swap(line);
+    }
+    ready.clear();
+  };
   {
     std::unique_lock<std::mutex> lock(m);
-    while (running > 0) {
-      cv.wait_for(lock, std::chrono::milliseconds(100));
-      if (options.progress) {
+    auto last_progress = std::chrono::steady_clock::now();
+    for (;;) {
+      if (options.csv) {
+        while (written < total && res.done[static_cast<std::size_t>(written)]) {
+          ready.push_back(std::move(res.lines[static_cast<std::size_t>(written)]));
+          ++written;
+        }
+      }
+      const bool finished = running == 0;
+      if (!ready.empty()) {
+        lock.unlock();
+        write_ready();
+        lock.lock();
+      }
+      if (finished) break;
+      const auto now = std::chrono::steady_clock::now();
+      if (options.progress && now - last_progress >= std::chrono::milliseconds(100)) {
+        last_progress = now;
         lock.unlock();
         options.progress(completed.load(), total);
         lock.lock();
+        continue;
       }
+      cv.wait_until(lock, last_progress + std::chrono::milliseconds(100));
     }
   }
   for (std::thread& t : pool) t.join();
+  if (options.csv) {  // after a stop: the rows done beyond the first one that is not
+    for (std::int64_t i = written; i < total; ++i) {
+      const auto slot = static_cast<std::size_t>(i);
+      if (res.done[slot]) ready.push_back(std::move(res.lines[slot]));
+    }
+    write_ready();
+    res.lines.clear();
+  }
   if (options.progress) options.progress(completed.load(), total);  // the final count, not the last tick's
   res.completed = completed.load();
   res.interrupted = res.completed < total;
@@ -387,14 +443,7 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
 
 void write_csv(std::ostream& out, const Machines& machines, const SweepResult& result) {
   const Plan& plan = machines.plan();
-  fmt::memory_buffer line;
-  auto put = [&line](std::string_view text) { line.append(text.data(), text.data() + text.size()); };
-  put("index");
-  for (const Range& r : plan.ranges) fmt::format_to(std::back_inserter(line), ",{}", r.key);
-  put(",outcome,outcome_t,final_r,final_phi_l_deg");
-  for (EventType t : event_types()) fmt::format_to(std::back_inserter(line), ",{}", to_string(t));
-  put(",error\n");
-  out.write(line.data(), static_cast<std::streamsize>(line.size()));
+  write_header(out, plan);
   std::vector<double> values(plan.ranges.size());
   for (std::int64_t i = 0; i < machines.size(); ++i) {
     const auto slot = static_cast<std::size_t>(i);
