@@ -283,9 +283,9 @@ void format_numbers(benchmark::State& state, std::vector<double> (*values)(const
     benchmark::DoNotOptimize(text.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(all.size()));
-  state.counters["ns_per_number"] = benchmark::Counter(static_cast<double>(all.size()) * 1e-9,
-                                                       benchmark::Counter::kIsIterationInvariantRate |
-                                                           benchmark::Counter::kInvert);
+  state.counters["s_per_number"] = benchmark::Counter(static_cast<double>(all.size()),
+                                                      benchmark::Counter::kIsIterationInvariantRate |
+                                                          benchmark::Counter::kInvert);
   state.counters["text_bytes"] = static_cast<double>(bytes);
 }
 
