@@ -348,8 +348,8 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   // Workers claim small blocks of indices; each row lands in its own slot, so the rows (and the
   // CSV) do not depend on which thread ran which machine. A finished block is marked done under
   // the lock, which also hands its lines to the calling thread.
-  constexpr std::int64_t kBlock = 8;
-  std::atomic<std::int64_t> next{0}, completed{0};
+  constexpr std::int64_t kBlock = 8, kWake = 256;
+  std::atomic<std::int64_t> next{0}, completed{0}, written{0};
   int running = 0;
   std::mutex m;
   std::condition_variable cv;
@@ -373,7 +373,10 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
         std::lock_guard<std::mutex> lock(m);
         for (std::int64_t j = start; j < i; ++j) res.done[static_cast<std::size_t>(j)] = 1;
       }
-      cv.notify_all();
+      // A few hundred lines waiting: time for the writer (cheap when it is awake already).
+      if (options.csv && completed.load(std::memory_order_relaxed) - written.load(std::memory_order_relaxed) >= kWake) {
+        cv.notify_one();
+      }
       if (stopped()) break;
     }
     std::lock_guard<std::mutex> lock(m);
@@ -387,9 +390,9 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
 
   // Meanwhile this thread writes the rows that are done, in index order, and lets their lines go
-  // (their memory is used again: every page a sweep touches costs), and reports progress.
+  // (their memory is used again: every page a sweep touches costs), every kWake rows (waking it
+  // for every block cost more than it saved), and reports progress about ten times a second.
   if (options.csv) write_header(*options.csv, machines.plan());
-  std::int64_t written = 0;
   std::vector<std::string> ready;
   auto write_ready = [&] {
     for (std::string& line : ready) {
@@ -403,10 +406,12 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
     auto last_progress = std::chrono::steady_clock::now();
     for (;;) {
       if (options.csv) {
-        while (written < total && res.done[static_cast<std::size_t>(written)]) {
-          ready.push_back(std::move(res.lines[static_cast<std::size_t>(written)]));
-          ++written;
+        std::int64_t w = written.load(std::memory_order_relaxed);
+        while (w < total && res.done[static_cast<std::size_t>(w)]) {
+          ready.push_back(std::move(res.lines[static_cast<std::size_t>(w)]));
+          ++w;
         }
+        written.store(w, std::memory_order_relaxed);
       }
       const bool finished = running == 0;
       if (!ready.empty()) {
@@ -421,14 +426,17 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
         lock.unlock();
         options.progress(completed.load(), total);
         lock.lock();
-        continue;
       }
-      cv.wait_until(lock, last_progress + std::chrono::milliseconds(100));
+      if (options.progress || options.csv) {
+        cv.wait_for(lock, std::chrono::milliseconds(100));
+      } else {
+        cv.wait(lock);  // until a worker ends
+      }
     }
   }
   for (std::thread& t : pool) t.join();
   if (options.csv) {  // after a stop: the rows done beyond the first one that is not
-    for (std::int64_t i = written; i < total; ++i) {
+    for (std::int64_t i = written.load(); i < total; ++i) {
       const auto slot = static_cast<std::size_t>(i);
       if (res.done[slot]) ready.push_back(std::move(res.lines[slot]));
     }
