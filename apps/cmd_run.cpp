@@ -72,13 +72,15 @@ void register_run(CLI::App& app, int& exit_code) {
     Fanout fan;
     std::unique_ptr<CsvWriter> csv;
     std::unique_ptr<DatWriter> dat;
-    // The rows' text is made and written on threads of their own while the machine runs.
+    // The CSV's text is made and written on a thread of its own while the machine runs (example 3
+    // at the paper's step: 64 ms instead of 81); the .dat's rows are cheap enough that a second
+    // thread cost more than it saved (30 ms instead of 27; docs/performance.md).
     if (csv_file) {
       csv = std::make_unique<CsvWriter>(csv_file->stream(), Writing::background);
       fan.add(csv.get());
     }
     if (dat_file) {
-      dat = std::make_unique<DatWriter>(dat_file->stream(), Writing::background);
+      dat = std::make_unique<DatWriter>(dat_file->stream(), Writing::at_once);
       fan.add(dat.get());
     }
     Observer* observer = csv && dat ? &fan : csv ? static_cast<Observer*>(csv.get()) : dat.get();

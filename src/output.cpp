@@ -587,6 +587,10 @@ class RowPipe {
 
   void hand_over() {
     if (!worker_.joinable() && !failed_) {
+      // Everything the worker uses is allocated here, so that it allocates nothing: a thread's
+      // first allocation would make it a malloc arena of its own.
+      text_.resize(std::max<std::size_t>(kBlockBytes, max_chars_));
+      spare_.reserve(kPending + 2);
       try {
         worker_ = std::thread([this] { work(); });
       } catch (const std::system_error&) {  // no threads here: the rows are written at once
