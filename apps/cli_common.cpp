@@ -1,19 +1,58 @@
 #include "cli_common.hpp"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
-#include <cerrno>
 #include <cctype>
+#include <cerrno>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
+#if WHATNEXT_FULL
 #include "whatnext/viz/plots.hpp"
+#endif
 
 namespace whatnext::cli {
 
 namespace fs = std::filesystem;
+
+namespace {
+std::vector<char*> g_command_line;
+}
+
+void keep_command_line(int argc, char** argv) { g_command_line.assign(argv, argv + argc); }
+
+void hand_over_to_full() {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  std::vector<fs::path> places;
+  if (!ec) {
+    places.push_back(self.parent_path() / "whatnext-full");  // the build tree
+#ifdef WHATNEXT_FULL_FROM_BINDIR
+    places.push_back((self.parent_path() / WHATNEXT_FULL_FROM_BINDIR / "whatnext-full").lexically_normal());
+#endif
+  }
+  std::vector<char*> argv = g_command_line;
+  argv.push_back(nullptr);
+  std::fflush(stdout);
+  std::fflush(stderr);
+  std::string tried;
+  for (const fs::path& p : places) {
+    if (::access(p.c_str(), X_OK) != 0) {
+      tried += (tried.empty() ? "" : ", ") + p.string();
+      continue;
+    }
+    ::execv(p.c_str(), argv.data());
+    throw std::runtime_error(fmt::format("cannot start {}: {}", p.string(), std::strerror(errno)));
+  }
+  throw std::runtime_error(fmt::format("whatnext-full, which draws and optimises, is not installed (looked for {})",
+                                       tried.empty() ? std::string("it beside whatnext") : tried));
+}
 
 void add_input_options(CLI::App& cmd, InputOptions& opts) {
   cmd.add_option("FILE", opts.file, "machine as TOML or the paper's whatnext.inp")->type_name("");
@@ -211,6 +250,7 @@ namespace {
 std::vector<std::string> g_created_dirs;  // by prepare_picture_dir, outermost first
 }
 
+#if WHATNEXT_FULL
 void prepare_picture_dir(const std::string& dir, const std::string& option) {
   std::vector<std::string> created;
   if (!dir.empty()) {
@@ -234,6 +274,7 @@ void prepare_picture_dir(const std::string& dir, const std::string& option) {
   }
   remove_new_parts_on_interrupt(dir);
 }
+#endif
 
 void remove_empty_picture_dirs() {
   for (auto it = g_created_dirs.rbegin(); it != g_created_dirs.rend(); ++it) {

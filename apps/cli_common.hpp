@@ -13,7 +13,23 @@
 #include "whatnext/config.hpp"
 #include "whatnext/output.hpp"
 
+// The command is two programs built from these sources. whatnext-full (WHATNEXT_FULL=1) does
+// everything. whatnext (WHATNEXT_FULL=0) is what people wait for, run and sweep, and starts in
+// about 3 ms more than /bin/true: no picture libraries (PLplot, Cairo, giflib and thirty more), no
+// NLopt, and its C++ libraries linked in; loading them took 8-15 ms (docs/performance.md). It hands a command that draws (plot, animate, run --plots/--animate,
+// sweep --heatmap) or optimises over to whatnext-full, whole and before any work.
+#ifndef WHATNEXT_FULL
+#define WHATNEXT_FULL 1
+#endif
+
 namespace whatnext::cli {
+
+// The command line as main() got it, for hand_over_to_full().
+void keep_command_line(int argc, char** argv);
+// Replaces this process by whatnext-full with the same arguments (same process, so the same
+// exit code and signals). It lies beside this program (the build tree) or in the installed
+// libexec directory; a missing one is a broken installation (std::runtime_error: exit 1).
+[[noreturn]] void hand_over_to_full();
 
 struct InputOptions {
   std::string file;
@@ -73,10 +89,12 @@ double max_rows(const Scenario& scenario);
 // Throws InputError when `bytes_per_row * max_rows` exceeds kLargeBytes and force is false.
 void check_size(const Scenario& scenario, double bytes_per_row, const std::string& option, bool force,
                 const std::string& what = "write");
+#if WHATNEXT_FULL
 // The directory given to --plots or --out of plot: created if missing (and removed again if the
 // command then fails or is interrupted while it is still empty); a figure it would hold must not
 // be the input or another output (check_unclaimed).
 void prepare_picture_dir(const std::string& dir, const std::string& option);
+#endif
 // Removes the directories prepare_picture_dir created, if they are still empty.
 void remove_empty_picture_dirs();
 

@@ -47,6 +47,10 @@ void register_animate(CLI::App& app, int& exit_code) {
       ->type_name("DIR");
   cmd->add_flag("-q,--quiet", opts->quiet, "print nothing");
   cmd->add_flag("--force-large", opts->force_large, "animate runs whose states would take more than 256 MB of memory");
+#if !WHATNEXT_FULL
+  (void)exit_code;
+  cmd->callback([opts] { hand_over_to_full(); });  // opts: the options write into it
+#else
   cmd->callback([opts, cmd, &exit_code] {
     check_leftovers(*cmd);
     const LoadedInput in = load_input(opts->input);
@@ -75,6 +79,7 @@ void register_animate(CLI::App& app, int& exit_code) {
     if (!opts->quiet) fmt::print("{}: {} frames\n", printable(opts->out, 96), frames);
     exit_code = 0;
   });
+#endif
 }
 
 }  // namespace whatnext::cli

@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#if WHATNEXT_FULL
 #include "whatnext/explore/optimize.hpp"
+#endif
 #include "whatnext/output.hpp"
 
 namespace whatnext::cli {
@@ -44,6 +46,10 @@ void register_optimize(CLI::App& app, int& exit_code) {
       ->transform(number_text(true, 2, 100000));
   cmd->add_option("--starts", opts->starts, "local searches from the best grid points")->transform(number_text(true, 1, 100));
   cmd->add_option("--max-evals", opts->max_evals, "machines per local search")->transform(number_text(true, 1, 1000000));
+#if !WHATNEXT_FULL
+  (void)exit_code;
+  cmd->callback([opts] { hand_over_to_full(); });  // opts: the options write into it
+#else
   cmd->callback([opts, cmd, &exit_code] {
     check_leftovers(*cmd);
     if (opts->minimize.empty() == opts->maximize.empty()) {
@@ -116,6 +122,7 @@ void register_optimize(CLI::App& app, int& exit_code) {
                printable(opts->out, 96));
     exit_code = 0;
   });
+#endif
 }
 
 }  // namespace whatnext::cli

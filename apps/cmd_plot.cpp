@@ -4,7 +4,9 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#if WHATNEXT_FULL
 #include "whatnext/viz/plots.hpp"
+#endif
 
 namespace whatnext::cli {
 
@@ -41,6 +43,10 @@ void register_plot(CLI::App& app, int& exit_code) {
       ->transform(number_text(true));
   cmd->add_flag("-q,--quiet", opts->quiet, "do not list the files written");
   cmd->add_flag("--force-large", opts->force_large, "draw runs whose states would take more than 256 MB of memory");
+#if !WHATNEXT_FULL
+  (void)exit_code;
+  cmd->callback([opts] { hand_over_to_full(); });  // opts: the options write into it
+#else
   cmd->callback([opts, cmd, &exit_code] {
     check_leftovers(*cmd);
     const LoadedInput in = load_input(opts->input);
@@ -86,6 +92,7 @@ void register_plot(CLI::App& app, int& exit_code) {
     }
     exit_code = 0;
   });
+#endif
 }
 
 }  // namespace whatnext::cli

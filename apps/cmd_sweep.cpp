@@ -11,7 +11,9 @@
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
+#if WHATNEXT_FULL
 #include "whatnext/explore/heatmap.hpp"
+#endif
 #include "whatnext/explore/sweep.hpp"
 #include "whatnext/output.hpp"
 
@@ -102,6 +104,9 @@ void register_sweep(CLI::App& app, int& exit_code) {
   cmd->add_flag("--force-large", opts->force_large,
                 fmt::format("run sweeps of more than {} machines", kLargeSweep));
   cmd->callback([opts, cmd, &exit_code] {
+#if !WHATNEXT_FULL
+    if (given(*cmd, "--heatmap")) hand_over_to_full();
+#endif
     check_leftovers(*cmd);
     explore::check_accuracy(opts->accuracy, "--accuracy");
     // Everything about the input is checked before any machine runs or any file appears.
@@ -128,7 +133,9 @@ void register_sweep(CLI::App& app, int& exit_code) {
     check_large(machines.size());
     const LoadedInput in = load_input(opts->input);
     if (given(*cmd, "--heatmap")) {
+#if WHATNEXT_FULL
       explore::check_heatmap_plan(plan, "--heatmap");
+#endif
       if (!ends_with(opts->heatmap, ".png") && !ends_with(opts->heatmap, ".PNG")) {
         throw InputError(fmt::format("--heatmap {}: the heat map is a PNG; give a name ending in .png",
                                      printable(opts->heatmap, 96)));
@@ -167,10 +174,12 @@ void register_sweep(CLI::App& app, int& exit_code) {
       signal.store(sig);
       stop.store(true);
     });
+    ro.csv = &csv->stream();  // written while the machines run
     const explore::SweepResult result = explore::run(in.config, machines, ro);
     bar.finish();
-    explore::write_csv(csv->stream(), machines, result);
+#if WHATNEXT_FULL
     if (heat) explore::draw_heatmap(heat->temp_path(), machines, result, opts->heatmap_value);
+#endif
     outputs.commit_all();
     std::int64_t invalid = 0, failed = 0;
     for (std::int64_t i = 0; i < machines.size(); ++i) {

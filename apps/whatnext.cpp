@@ -146,6 +146,7 @@ int main(int argc, char** argv) {
                             near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), joined(commands)));
     return 2;
   }
+  whatnext::cli::keep_command_line(argc, argv);
   whatnext::install_interrupt_cleanup();
   try {
     app.parse(argc, argv);

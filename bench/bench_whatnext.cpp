@@ -11,13 +11,18 @@
 #include <limits>
 #include <map>
 #include <new>
+#include <ostream>
+#include <streambuf>
 #include <string>
 #include <vector>
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 
+#include "number_text.hpp"  // src/: the output files' number writers
 #include "whatnext/config.hpp"
 #include "whatnext/explore/sweep.hpp"
+#include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
 
 // --- counting global operator new: shows that a run allocates per event, never per step ---------
@@ -105,13 +110,15 @@ void run_example(benchmark::State& state, int example, Method m) {
 
 // The sweep: 10^4 example-2-class machines, rope length and drop height varied around
 // example 2, as `whatnext sweep` runs them (the tolerance chosen from the accuracy asked, rows
-// formatted as CSV lines in the workers).
+// formatted as CSV lines in the workers, the CSV written).
 explore::Plan sweep_plan() {
   explore::Plan p;
   p.ranges.push_back(explore::parse_range("geometry.rope_length=0.64:0.80:100", "--vary", true));
   p.ranges.push_back(explore::parse_range("start.sandbag_height=0.3:1.2:100", "--vary", true));
   return p;
 }
+
+std::int64_t write_sweep_csv(const explore::Machines& machines, const explore::SweepResult& r);
 
 void sweep_throughput(benchmark::State& state, double accuracy) {
   const int threads = static_cast<int>(state.range(0));
@@ -125,26 +132,32 @@ void sweep_throughput(benchmark::State& state, double accuracy) {
     const explore::SweepResult r = explore::run(base, machines, ro);
     invalid = 0;
     for (const auto& o : r.rows) invalid += o.valid ? 0 : 1;
-    benchmark::DoNotOptimize(r.lines.data());
+    benchmark::DoNotOptimize(write_sweep_csv(machines, r));
   }
   state.SetItemsProcessed(state.iterations() * machines.size());
-  // Accuracy of these very machines: every 10th against tolerance 1e-14 (event times to 1e-14 s).
-  // err_over_accuracy must stay below 1; seq_diff counts machines whose events differ in kind.
+  // Accuracy of these very machines, every one of them, against tolerance 1e-14 (event times to
+  // 1e-14 s): the first time of each event type, as the sweep reports it. err_over_accuracy must
+  // stay below 1; seq_diff counts machines whose events (or validity) differ in kind, which no
+  // accuracy can excuse; beyond_half those whose worst event is off by more than half the accuracy.
   const explore::SweepResult run = explore::run(base, machines, ro);
   static const explore::SweepResult ref = [&] {  // the same for every accuracy: computed once
     Config tight = base;
     set_number(tight, "run.tolerance", 1e-14);
     explore::RunOptions tight_ro = ro;
-    tight_ro.threads = 0;
-    tight_ro.accuracy = 1e-12;
+    tight_ro.threads = 2;
+    tight_ro.accuracy = 1e-12;  // the events located to 1e-14 s; the tolerance is the one given
     return explore::run(tight, machines, tight_ro);
   }();
   double err = 0.0;
-  std::int64_t seq_diff = 0;
-  for (std::size_t i = 0; i < run.rows.size(); i += 10) {
+  std::int64_t seq_diff = 0, beyond_half = 0;
+  for (std::size_t i = 0; i < run.rows.size(); ++i) {
     const auto& a = run.rows[i];
     const auto& b = ref.rows[i];
-    if (!a.valid || !b.valid) continue;
+    if (a.valid != b.valid || a.outcome != b.outcome) {
+      ++seq_diff;
+      continue;
+    }
+    if (!a.valid) continue;
     bool differs = false;
     double e = 0.0;
     for (std::size_t k = 0; k < a.first.size(); ++k) {
@@ -153,11 +166,127 @@ void sweep_throughput(benchmark::State& state, double accuracy) {
     }
     if (differs) ++seq_diff;
     else err = std::fmax(err, e);
+    if (!differs && e > 0.5 * accuracy) ++beyond_half;
   }
   state.counters["err_s"] = err;
   state.counters["err_over_accuracy"] = err / accuracy;
   state.counters["seq_diff"] = static_cast<double>(seq_diff);
+  state.counters["beyond_half"] = static_cast<double>(beyond_half);
   state.counters["invalid"] = static_cast<double>(invalid);
+}
+
+// --- output files: `whatnext run --example 3 --set run.output_step=0.00025 --dat/--csv` ---------
+
+// A stream that counts what it is given and keeps nothing, as fast as a stream can be: what is
+// left is the writers' own cost.
+class CountingBuf : public std::streambuf {
+ public:
+  std::int64_t bytes = 0;
+
+ protected:
+  int_type overflow(int_type ch) override {
+    ++bytes;
+    return traits_type::not_eof(ch);
+  }
+  std::streamsize xsputn(const char*, std::streamsize n) override {
+    bytes += n;
+    return n;
+  }
+};
+
+std::int64_t write_sweep_csv(const explore::Machines& machines, const explore::SweepResult& r) {
+  CountingBuf buf;
+  std::ostream out(&buf);
+  explore::write_csv(out, machines, r);
+  return buf.bytes;
+}
+
+Scenario example3_fine() {
+  Config c = example_config(3);
+  set_number(c, "run.output_step", 0.00025);  // the paper's step for example 3: 79,777 rows
+  return build_scenario(c);
+}
+
+// Samples taken and thrown away: the cost of the rows before any text (dense output, kinematics
+// and, for full samples, forces and energies).
+class Discard : public Observer {
+ public:
+  explicit Discard(Detail d) : detail_(d) {}
+  Detail sample_detail() const override { return detail_; }
+  void on_sample(const Snapshot& s) override { benchmark::DoNotOptimize(s.x); }
+
+ private:
+  Detail detail_;
+};
+
+void samples_only(benchmark::State& state, Observer::Detail detail) {
+  const Scenario sc = example3_fine();
+  Discard sink(detail);
+  for (auto _ : state) {
+    Result r = simulate(sc, &sink);
+    benchmark::DoNotOptimize(r.events.data());
+  }
+}
+
+// The run with its writer, as the command does it (the file itself excluded: see CountingBuf).
+template <class Writer>
+void run_with_writer(benchmark::State& state) {
+  const Scenario sc = example3_fine();
+  std::int64_t bytes = 0;
+  for (auto _ : state) {
+    CountingBuf buf;
+    std::ostream out(&buf);
+    Writer w(out);
+    Result r = simulate(sc, &w);
+    benchmark::DoNotOptimize(r.events.data());
+    bytes = buf.bytes;
+  }
+  state.SetBytesProcessed(state.iterations() * bytes);
+  state.counters["file_bytes"] = static_cast<double>(bytes);
+}
+
+// Formatting alone, over the run's recorded samples: the library's number writers against fmt's
+// compiled formats for the same text ("{:8.3f}" for the .dat, "{:.9g}" for the CSV). This is the
+// benchmark that justifies numtext (docs/performance.md).
+const std::vector<Snapshot>& example3_fine_samples() {
+  static const std::vector<Snapshot> samples = [] {
+    Recorder rec;
+    simulate(example3_fine(), &rec);
+    return rec.samples;
+  }();
+  return samples;
+}
+
+std::vector<double> dat_values(const Snapshot& s) {
+  return {s.t, s.x, s.h, s.phi_s, s.phi_l, s.balloon_limit, s.balloon_h, 0.0, s.rope_taut ? 1.0 : 0.0};
+}
+std::vector<double> csv_values(const Snapshot& s) {
+  return {s.t, s.x, s.h, s.r, s.dr, s.phi_s, s.dphi_s, s.phi_l, s.dphi_l, s.balloon_h, s.balloon_v,
+          s.balloon_limit, s.tension, s.energy(), s.sandbag_kinetic, s.sandbag_potential, s.lid_kinetic,
+          s.lid_potential, s.seesaw_kinetic, s.seesaw_potential, s.balloon_kinetic, s.balloon_potential,
+          s.lost_impacts, s.lost_balloon_catch, s.dissipated_pivot, s.dissipated_hinge, s.dissipated_drag,
+          s.lid_push_work, s.ledger_residual()};
+}
+
+template <class Put>
+void format_numbers(benchmark::State& state, std::vector<double> (*values)(const Snapshot&), Put put) {
+  std::vector<double> all;
+  for (const Snapshot& s : example3_fine_samples()) {
+    for (double v : values(s)) all.push_back(v);
+  }
+  std::vector<char> text(all.size() * 24);
+  std::int64_t bytes = 0;
+  for (auto _ : state) {
+    char* p = text.data();
+    for (double v : all) p = put(p, v);
+    bytes = p - text.data();
+    benchmark::DoNotOptimize(text.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(all.size()));
+  state.counters["s_per_number"] = benchmark::Counter(static_cast<double>(all.size()),
+                                                      benchmark::Counter::kIsIterationInvariantRate |
+                                                          benchmark::Counter::kInvert);
+  state.counters["text_bytes"] = static_cast<double>(bytes);
 }
 
 // Heap allocations per run: constant in the number of steps means none per step.
@@ -208,6 +337,27 @@ int main(int argc, char** argv) {
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
   }
+  benchmark::RegisterBenchmark("output/example3_step0.00025/samples_positions", samples_only,
+                               Observer::Detail::positions)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("output/example3_step0.00025/samples_full", samples_only, Observer::Detail::full)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("output/example3_step0.00025/dat", run_with_writer<DatWriter>)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("output/example3_step0.00025/csv", run_with_writer<CsvWriter>)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("format/dat_numbers/numtext", format_numbers<char* (*)(char*, double)>, dat_values,
+                               numtext::put_f8_3)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("format/dat_numbers/fmt_compiled", format_numbers<char* (*)(char*, double)>,
+                               dat_values, [](char* p, double v) { return fmt::format_to(p, FMT_COMPILE("{:8.3f}"), v); })
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("format/csv_numbers/numtext", format_numbers<char* (*)(char*, double)>, csv_values,
+                               numtext::put_g9)
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark("format/csv_numbers/fmt_compiled", format_numbers<char* (*)(char*, double)>,
+                               csv_values, [](char* p, double v) { return fmt::format_to(p, FMT_COMPILE("{:.9g}"), v); })
+      ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("allocations/example2/adaptive_tol1e-12", allocations, 2, adaptive_default);
   benchmark::RegisterBenchmark("allocations/example3/adaptive_tol1e-12", allocations, 3, adaptive_default);
   benchmark::RegisterBenchmark("allocations/example3/euler_dt0.00025", allocations, 3, euler_fine);

@@ -275,40 +275,44 @@ std::string line_origin(const std::string& source, const toml::node& node) {
 struct Reader {
   const Config& cfg;
 
-  const ConfigValue* find(const std::string& key) const {
+  // Keys are literals: looked up as string_views (Config's map compares transparently), and the
+  // unit looked up only for a message, since a sweep builds a machine for every row.
+  const ConfigValue* find(std::string_view key) const {
     auto it = cfg.values.find(key);
     return it == cfg.values.end() ? nullptr : &it->second;
   }
-  std::string where(const std::string& key) const {
+  std::string where(std::string_view key) const {
     const ConfigValue* v = find(key);
     return v ? v->origin : cfg.source;
   }
-  [[noreturn]] void fail(const std::string& key, const std::string& rule) const {
+  [[noreturn]] void fail(std::string_view key, const std::string& rule) const {
     throw InputError(fmt::format("{}: {} {}", where(key), key, rule));
   }
   // The value as the input gave it: an integer too long for a double as written.
-  std::string shown(const std::string& key, double x) const {
+  std::string shown(std::string_view key, double x) const {
     const ConfigValue* v = find(key);
     if (v && v->type == ConfigValue::Type::number && !v->text.empty() && v->number == x) return v->text;
     return fmt_num(x);
   }
-  std::string unit(const std::string& key) const {
+  std::string unit(std::string_view key) const {
     const KeySpec* spec = find_key(key);
     return spec ? std::string(spec->unit) : std::string();
   }
-  double number(const std::string& key, double fallback) const {
+  double number(std::string_view key, double fallback) const {
     const ConfigValue* v = find(key);
     if (!v) return fallback;
     if (!std::isfinite(v->number)) fail(key, fmt::format("must be a finite number (given {})", shown(key, v->number)));
     return v->number;
   }
-  double positive(const std::string& key, double fallback) const {
+  double positive(std::string_view key, double fallback) const {
     const double x = number(key, fallback);
-    const std::string u = unit(key);
-    if (!(x > 0.0)) fail(key, fmt::format("must be > 0{} (given {})", u.empty() ? "" : " " + u, shown(key, x)));
+    if (!(x > 0.0)) {
+      const std::string u = unit(key);
+      fail(key, fmt::format("must be > 0{} (given {})", u.empty() ? "" : " " + u, shown(key, x)));
+    }
     return x;
   }
-  double in_range(const std::string& key, double fallback, double lo, bool lo_closed, double hi,
+  double in_range(std::string_view key, double fallback, double lo, bool lo_closed, double hi,
                   bool hi_closed) const {
     const double x = number(key, fallback);
     const bool ok = (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
@@ -320,30 +324,30 @@ struct Reader {
     return x;
   }
   // The plausibility limits: a value the rules accept, outside what the model is made for.
-  void plausible(const std::string& key, double x, double lo, double hi) const {
+  void plausible(std::string_view key, double x, double lo, double hi) const {
     if (!(x >= lo && x <= hi)) {
       const std::string u = unit(key);
       fail(key, fmt::format("must be within [{}, {}]{}, the range the model is made for (given {})", fmt_num(lo),
                             fmt_num(hi), u.empty() ? "" : " " + u, shown(key, x)));
     }
   }
-  double length(const std::string& key, double fallback) const {
+  double length(std::string_view key, double fallback) const {
     const double x = positive(key, fallback);
     plausible(key, x, kMinLength, kMaxLength);
     return x;
   }
-  double mass(const std::string& key, double fallback) const {
+  double mass(std::string_view key, double fallback) const {
     const double x = positive(key, fallback);
     plausible(key, x, kMinMass, kMaxMass);
     return x;
   }
   // A signed distance (an offset or a start position) within the machine's reach.
-  double offset(const std::string& key, double fallback) const {
+  double offset(std::string_view key, double fallback) const {
     const double x = number(key, fallback);
     plausible(key, x, -kMaxLength, kMaxLength);
     return x;
   }
-  Vec2 pair(const std::string& key) const {
+  Vec2 pair(std::string_view key) const {
     const ConfigValue& v = *find(key);
     if (!std::isfinite(v.pair[0]) || !std::isfinite(v.pair[1])) {
       fail(key, fmt::format("must hold finite numbers (given {})",
@@ -356,7 +360,7 @@ struct Reader {
     }
     return {v.pair[0], v.pair[1]};
   }
-  std::string text(const std::string& key, const std::string& fallback) const {
+  std::string text(std::string_view key, const std::string& fallback) const {
     const ConfigValue* v = find(key);
     return v ? v->text : fallback;
   }
@@ -638,7 +642,7 @@ void set_number(Config& cfg, const std::string& key, double value) {
 
 namespace {
 
-bool flag(const Reader& in, const std::string& key, bool fallback) {
+bool flag(const Reader& in, std::string_view key, bool fallback) {
   const ConfigValue* v = in.find(key);
   return v ? v->number != 0.0 : fallback;
 }

@@ -59,7 +59,7 @@ namespace {
 double clamp_unit(double c) { return c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c); }
 }  // namespace
 
-RopeGeometry::Linkage RopeGeometry::from_seesaw(double cos_s, double sin_s) const {
+RopeGeometry::Linkage RopeGeometry::from_seesaw(double cos_s, double sin_s, bool derivatives) const {
   const Vec2 r{r_h_ * cos_s, r_h_ * sin_s};
   const Vec2 hr = r - hinge_;
   const double d = std::sqrt(dot(hr, hr));
@@ -68,10 +68,10 @@ RopeGeometry::Linkage RopeGeometry::from_seesaw(double cos_s, double sin_s) cons
   // E - H is HR turned clockwise by sigma and scaled to 2 r_L (the lid below the rope).
   const double f = 2.0 * r_l_ / d;
   const Vec2 el{f * (hr.x * cs + hr.h * sn), f * (hr.h * cs - hr.x * sn)};
-  return linkage_at(r, el);
+  return linkage_at(r, el, derivatives);
 }
 
-RopeGeometry::Linkage RopeGeometry::from_lid(double cos_l, double sin_l, int side) const {
+RopeGeometry::Linkage RopeGeometry::from_lid(double cos_l, double sin_l, int side, bool derivatives) const {
   const Vec2 el{2.0 * r_l_ * cos_l, 2.0 * r_l_ * sin_l};
   const Vec2 e = hinge_ + el;
   const double de = std::sqrt(dot(e, e));
@@ -80,17 +80,18 @@ RopeGeometry::Linkage RopeGeometry::from_lid(double cos_l, double sin_l, int sid
   // R is the direction of E turned by +-rho (counterclockwise for side +1), scaled to r_H.
   const double f = r_h_ / de;
   const Vec2 r{f * (e.x * cr - e.h * sr), f * (e.h * cr + e.x * sr)};
-  return linkage_at(r, el);
+  return linkage_at(r, el, derivatives);
 }
 
-RopeGeometry::Linkage RopeGeometry::linkage_at(Vec2 r, Vec2 el) const {
-  const Partials c = partials_at(r, el);
+RopeGeometry::Linkage RopeGeometry::linkage_at(Vec2 r, Vec2 el, bool derivatives) const {
   Linkage g;
   const double inv_rh = 1.0 / r_h_, inv_lid = 0.5 / r_l_;
   g.cos_s = r.x * inv_rh;
   g.sin_s = r.h * inv_rh;
   g.cos_l = el.x * inv_lid;
   g.sin_l = el.h * inv_lid;
+  if (!derivatives) return g;
+  const Partials c = partials_at(r, el);
   const double inv_cl = 1.0 / c.c_l, inv_cs = 1.0 / c.c_s;
   g.transfer.k = -c.c_s * inv_cl;
   g.transfer.dk = -(c.c_ss + 2.0 * c.c_sl * g.transfer.k + c.c_ll * g.transfer.k * g.transfer.k) * inv_cl;

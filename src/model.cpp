@@ -207,13 +207,13 @@ void Model::dissipation(const Discrete& /*d*/, const Kinematics& k, State& dy) c
 
 // --- kinematics --------------------------------------------------------------------------------
 
-Kinematics Model::kinematics(const Discrete& d, const State& y) const {
+Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) const {
   Kinematics k;
   bool trig_s = false, trig_l = false;  // cos and sin of phiS / phiL already known
   auto free_lid = [&] {
     if (d.lid_resting) {
       k.phi_l = phi_l0_;
-    } else if (d.latched) {
+    } else if (d.latched || !rates) {
       k.phi_l = y[slot::phi_l];
     } else {
       k.phi_l = y[slot::phi_l];
@@ -235,71 +235,100 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
     lid_chart(k, p, phi_l, dphi_l);
     trig_s = trig_l = true;
   };
+  // Positions only: the same linkage the swings start from, without their accelerations.
+  auto placed = [&](const RopeGeometry::Linkage& lk, bool by_lid_angle, double phi) {
+    if (by_lid_angle) {
+      k.phi_l = phi;
+      k.phi_s = lk.phi_s();
+    } else {
+      k.phi_l = lk.phi_l();
+    }
+    k.cos_s = lk.cos_s, k.sin_s = lk.sin_s, k.cos_l = lk.cos_l, k.sin_l = lk.sin_l;
+    trig_s = trig_l = true;
+  };
   if (d.polar()) {
     k.r = y[slot::r];
     k.phi_s = y[slot::phi_s];
-    k.dr = y[slot::dr];
-    k.dphi_s = y[slot::dphi_s];
+    if (rates) k.dr = y[slot::dr], k.dphi_s = y[slot::dphi_s];
     if (!d.taut) {  // a heavy seesaw carrying the sandbag, the lid on its own
-      const Swing p = swing(true, false, k.r, k.phi_s, k.dr, k.dphi_s);
-      k.ddphi_s = p.ddphi_s;
-      k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
-      trig_s = true;
+      if (rates) {
+        const Swing p = swing(true, false, k.r, k.phi_s, k.dr, k.dphi_s);
+        k.ddphi_s = p.ddphi_s;
+        k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
+        trig_s = true;
+      }
       free_lid();
     } else if (d.lid_resting) {
       k.phi_l = phi_l0_;
-      k.transfer = rope_.transfer(k.phi_s, k.phi_l);
+      if (rates) k.transfer = rope_.transfer(k.phi_s, k.phi_l);
     } else if (d.lid_chart) {
-      by_lid(swing_by_lid(true, k.r, y[slot::phi_s], k.dr, y[slot::dphi_s], d.side), y[slot::phi_s],
-             y[slot::dphi_s]);
-    } else {
+      const double phi_l = y[slot::phi_s];
+      if (rates) {
+        by_lid(swing_by_lid(true, k.r, phi_l, k.dr, y[slot::dphi_s], d.side), phi_l, y[slot::dphi_s]);
+      } else {
+        placed(rope_.from_lid(std::cos(phi_l), std::sin(phi_l), d.side, false), true, phi_l);
+      }
+    } else if (rates) {
       const Swing p = swing(true, true, k.r, k.phi_s, k.dr, k.dphi_s);
       k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
       trig_s = true;
       on_rope(p);
+    } else {
+      placed(rope_.from_seesaw(std::cos(k.phi_s), std::sin(k.phi_s), false), false, k.phi_s);
     }
     if (!trig_s) k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s), trig_s = true;
     const double c = k.cos_s, s = k.sin_s;
     k.x = -k.r * c;
     k.h = -k.r * s;
-    k.vx = -k.dr * c + k.r * s * k.dphi_s;
-    k.vh = -k.dr * s - k.r * c * k.dphi_s;
+    if (rates) {
+      k.vx = -k.dr * c + k.r * s * k.dphi_s;
+      k.vh = -k.dr * s - k.r * c * k.dphi_s;
+    }
   } else {
     k.x = y[slot::x];
     k.h = y[slot::h];
-    k.vx = y[slot::vx];
-    k.vh = y[slot::vh];
+    if (rates) k.vx = y[slot::vx], k.vh = y[slot::vh];
     k.r = std::sqrt(k.x * k.x + k.h * k.h);
-    k.dr = k.r > 0.0 ? (k.x * k.vx + k.h * k.vh) / k.r : 0.0;
+    if (rates) k.dr = k.r > 0.0 ? (k.x * k.vx + k.h * k.vh) / k.r : 0.0;
     if (!(d.heavy && d.taut)) free_lid();
     if (d.on_seesaw) {  // M3: the massless seesaw turns with the sandbag
       k.phi_s = std::atan2(-k.h, -k.x);
       const double c = -k.x / k.r, s = -k.h / k.r;
       k.cos_s = c, k.sin_s = s;
       trig_s = k.r > 0.0;
-      k.dphi_s = (k.vx * s - k.vh * c) / k.r;
-      k.ddphi_s = (g_ * c - 2.0 * k.dr * k.dphi_s) / k.r;
+      if (rates) {
+        k.dphi_s = (k.vx * s - k.vh * c) / k.r;
+        k.ddphi_s = (g_ * c - 2.0 * k.dr * k.dphi_s) / k.r;
+      }
     } else if (d.heavy) {  // the unloaded heavy seesaw, on its own or with the lid on the rope
       k.phi_s = y[slot::seesaw_phi];
-      k.dphi_s = y[slot::seesaw_dphi];
+      if (rates) k.dphi_s = y[slot::seesaw_dphi];
       if (d.taut && d.lid_resting) {
         k.phi_l = phi_l0_;
-        k.transfer = rope_.transfer(k.phi_s, k.phi_l);
+        if (rates) k.transfer = rope_.transfer(k.phi_s, k.phi_l);
       } else if (d.lid_chart && d.taut) {
-        by_lid(swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side),
-               y[slot::seesaw_phi], y[slot::seesaw_dphi]);
-      } else {
+        const double phi_l = y[slot::seesaw_phi];
+        if (rates) {
+          by_lid(swing_by_lid(false, 0.0, phi_l, 0.0, y[slot::seesaw_dphi], d.side), phi_l, y[slot::seesaw_dphi]);
+        } else {
+          placed(rope_.from_lid(std::cos(phi_l), std::sin(phi_l), d.side, false), true, phi_l);
+        }
+      } else if (rates) {
         const Swing p = swing(false, d.taut, 0.0, k.phi_s, 0.0, k.dphi_s);
         k.ddphi_s = p.ddphi_s;
         k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
         trig_s = true;
         if (d.taut) on_rope(p);
+      } else if (d.taut) {
+        placed(rope_.from_seesaw(std::cos(k.phi_s), std::sin(k.phi_s), false), false, k.phi_s);
       }
     } else if (d.taut) {  // M2: the unloaded massless seesaw follows the lid, on its side of P-E
       k.phi_s = d.parked_seesaw;  // exact while the lid rests
       if (!d.lid_resting) rope_.seesaw_angle_for(k.phi_l, d.side, k.phi_s);
-      k.transfer = rope_.transfer(k.phi_s, k.phi_l);
-      k.dphi_s = d.lid_resting ? 0.0 : k.dphi_l / k.transfer.k;
+      if (rates) {
+        k.transfer = rope_.transfer(k.phi_s, k.phi_l);
+        k.dphi_s = d.lid_resting ? 0.0 : k.dphi_l / k.transfer.k;
+      }
     } else {  // M1: nothing moves the unloaded seesaw
       k.phi_s = d.parked_seesaw;
     }
@@ -308,10 +337,10 @@ Kinematics Model::kinematics(const Discrete& d, const State& y) const {
   if (!trig_l) k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
   if (d.balloon_stuck) {
     k.balloon_h = limit_.height_at(k.cos_l, k.sin_l);
-    k.balloon_v = limit_.rate_at(k.sin_l, k.dphi_l);
+    if (rates) k.balloon_v = limit_.rate_at(k.sin_l, k.dphi_l);
   } else {
     k.balloon_h = y[slot::balloon_h];
-    k.balloon_v = y[slot::balloon_v];
+    if (rates) k.balloon_v = y[slot::balloon_v];
   }
   return k;
 }
@@ -418,25 +447,26 @@ double Model::lid_push_now(const Discrete& d, const Kinematics& k, const State& 
          (y[slot::lost_drag] - b.drag_mark);
 }
 
-Snapshot Model::snapshot(const HybridState& hs) const {
-  const Kinematics k = kinematics(hs.d, hs.y);
+Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full) const {
+  const Kinematics k = kinematics(d, y, full);
   Snapshot s;
-  s.t = hs.t;
-  s.mode = hs.d.mode();
-  s.on_seesaw = hs.d.on_seesaw;
-  s.rope_taut = hs.d.taut;
-  s.lid_resting = hs.d.lid_resting;
-  s.balloon_stuck = hs.d.balloon_stuck;
+  s.t = t;
+  s.mode = d.mode();
+  s.on_seesaw = d.on_seesaw;
+  s.rope_taut = d.taut;
+  s.lid_resting = d.lid_resting;
+  s.balloon_stuck = d.balloon_stuck;
   s.x = k.x, s.h = k.h, s.vx = k.vx, s.vh = k.vh, s.r = k.r, s.dr = k.dr;
   s.phi_s = k.phi_s, s.dphi_s = k.dphi_s;
   s.phi_l = k.phi_l, s.dphi_l = k.dphi_l, s.ddphi_l = k.ddphi_l;
   s.balloon_limit = limit_.height_at(k.cos_l, k.sin_l);
-  s.balloon_limit_rate = limit_.rate_at(k.sin_l, k.dphi_l);
   s.balloon_h = k.balloon_h;
+  if (!full) return s;
+  s.balloon_limit_rate = limit_.rate_at(k.sin_l, k.dphi_l);
   s.balloon_v = k.balloon_v;
-  if (!hs.d.latched) {
+  if (!d.latched) {
     contact::PerContact f;
-    contact_forces(hs.d, k, f);
+    contact_forces(d, k, f);
     s.tension = f[kRope];
     s.normal_force = f[kBag];
     s.box_reaction = f[kLid];
@@ -449,13 +479,13 @@ Snapshot Model::snapshot(const HybridState& hs) const {
   s.seesaw_potential = w_s_ * g_ * std::sin(k.phi_s);
   s.balloon_kinetic = 0.5 * m_b_ * k.balloon_v * k.balloon_v;
   s.balloon_potential = -m_b_ * a_b_ * k.balloon_h;
-  const Books& b = hs.d.books;
+  const Books& b = d.books;
   s.lost_impacts = b.impacts;
   s.lost_balloon_catch = b.balloon_catch;
-  s.dissipated_pivot = hs.y[slot::lost_pivot];
-  s.dissipated_hinge = hs.y[slot::lost_hinge];
-  s.dissipated_drag = hs.y[slot::lost_drag];
-  s.lid_push_work = lid_push_now(hs.d, k, hs.y);
+  s.dissipated_pivot = y[slot::lost_pivot];
+  s.dissipated_hinge = y[slot::lost_hinge];
+  s.dissipated_drag = y[slot::lost_drag];
+  s.lid_push_work = lid_push_now(d, k, y);
   s.initial_total = b.initial_total;
   return s;
 }

@@ -83,6 +83,7 @@ Result simulate(const Scenario& sc, Observer* observer) {
   publish(fresh);  // anything the start itself decides, at t = 0
   if (stopped) return res;
   OutputGrid grid{observer ? sc.run.output_step : 0.0, 0};
+  const bool full_samples = observer && observer->sample_detail() == Observer::Detail::full;
   const double t_end = sc.run.t_max;
   // Pieces in a row that end where they began: the automaton going round at one instant (rk4 with
   // run.step = 1 s on example 4 did so for ever) is stopped instead of hanging.
@@ -92,7 +93,7 @@ Result simulate(const Scenario& sc, Observer* observer) {
   for (;;) {
     const MachineSystem sys{&model, hs.d};
     auto sample = [&](double t, const State& y) {
-      const Snapshot s = model.snapshot(HybridState{t, sys.d, y});
+      const Snapshot s = model.snapshot(t, sys.d, y, full_samples);
       observer->on_sample(s);
     };
     Crossing c;

@@ -44,8 +44,8 @@ struct ConfigValue {
 class Config {
  public:
   std::string source;  // shown in messages
-  std::map<std::string, ConfigValue> values;
-  bool has(const std::string& key) const { return values.count(key) != 0; }
+  std::map<std::string, ConfigValue, std::less<>> values;  // found by string_view too
+  bool has(std::string_view key) const { return values.count(key) != 0; }
 };
 
 // Reads a TOML file or the paper's 15-line .inp file (chosen by content: an .inp starts with a

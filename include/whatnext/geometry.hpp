@@ -61,10 +61,11 @@ class RopeGeometry {
   };
   // From the seesaw's angle: the lid below the rope. |cos sigma| is clamped to 1; callers stop
   // the run at rope_locked before it gets there.
-  Linkage from_seesaw(double cos_s, double sin_s) const;
+  // derivatives = false: the angles' cos and sin only (transfer, ds, dds zero), for positions.
+  Linkage from_seesaw(double cos_s, double sin_s, bool derivatives = true) const;
   // From the lid's angle: the seesaw on a side of the line P-E (the chart in which a lid near
   // its dead centre, k -> infinity, moves smoothly). |cos rho| is clamped likewise.
-  Linkage from_lid(double cos_l, double sin_l, int side) const;
+  Linkage from_lid(double cos_l, double sin_l, int side, bool derivatives = true) const;
   // Where the lid stands against the straight rope: < 0 below it (MODEL.md's branch), 0 along
   // it (the dead centre: the rope would touch the hinge), > 0 on the mirror side. Dimensionless.
   double lid_side_of_rope(double phi_s, double phi_l) const;
@@ -86,7 +87,7 @@ class RopeGeometry {
     double c_s, c_l, c_ss, c_sl, c_ll;
   };
   Partials partials_at(Vec2 r, Vec2 el) const;
-  Linkage linkage_at(Vec2 r, Vec2 el) const;
+  Linkage linkage_at(Vec2 r, Vec2 el, bool derivatives) const;
   // transfer() given the seesaw end R and the lid vector E - H.
   Transfer transfer_at(Vec2 r, Vec2 el) const;
   double r_h_, r_l_, l_r_;

@@ -83,8 +83,12 @@ class Model {
   // The rounding band of a guard in d (see GuardStart): values within it count as zero.
   double guard_floor(Guard g, const Discrete& d) const;
 
-  Kinematics kinematics(const Discrete& d, const State& y) const;
-  Snapshot snapshot(const HybridState& hs) const;
+  // rates = false: where everything is (x, h, r, phiS, phiL with their cos and sin, the balloon's
+  // height), the same numbers, without the rates, accelerations and the linkage's k (all zero).
+  Kinematics kinematics(const Discrete& d, const State& y, bool rates = true) const;
+  // full = false: positions only (Observer::Detail::positions), no rates, forces nor energies.
+  Snapshot snapshot(double t, const Discrete& d, const State& y, bool full = true) const;
+  Snapshot snapshot(const HybridState& hs) const { return snapshot(hs.t, hs.d, hs.y); }
   // The contact problem at this instant: masses, forces, the contacts' gap gradients and
   // curvatures in the coordinates (x, h, phiS, phiL).
   contact::System contact_system(const Discrete& d, const Kinematics& k) const;

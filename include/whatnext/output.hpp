@@ -3,10 +3,12 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <stdexcept>
 #include <streambuf>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "whatnext/simulate.hpp"
@@ -117,28 +119,43 @@ class Recorder : public Observer {
   std::vector<Event> events;
 };
 
+// How the CSV and .dat writers get their rows into the stream. at_once: each row as soon as it
+// is complete. background: the rows' numbers are kept and a thread of their own formats and
+// writes them while the run goes on (the command's --csv and --dat: the text of example 3's
+// 80,000 rows took as long as the run); the stream is then the writer's until finish() (or the
+// destructor), which waits for the last row and marks the stream bad if a write failed. The same
+// bytes either way.
+enum class Writing { at_once, background };
+class RowPipe;  // output.cpp
+
 // CSV: a row per output sample and a row (with the event's name) after each event.
 class CsvWriter : public Observer {
  public:
-  explicit CsvWriter(std::ostream& out);
+  explicit CsvWriter(std::ostream& out, Writing writing = Writing::at_once);
+  ~CsvWriter() override;
   void on_sample(const Snapshot& s) override;
   void on_event(const Event& e) override;
+  void finish();
   static const char* header();
 
  private:
-  void row(const Snapshot& s, const char* event);
-  std::ostream& out_;
+  void row(const Snapshot& s, std::string_view event);
+  std::unique_ptr<RowPipe> pipe_;
 };
 
 // The paper's whatnext.dat: t, xs, hs, phiS, phiL, hbl, hb, cr, straight in Fortran 9F8.3.
+// Positions only: it asks for samples of Detail::positions.
 class DatWriter : public Observer {
  public:
-  explicit DatWriter(std::ostream& out) : out_(out) {}
+  explicit DatWriter(std::ostream& out, Writing writing = Writing::at_once);
+  ~DatWriter() override;
+  Detail sample_detail() const override { return Detail::positions; }
   void on_sample(const Snapshot& s) override;
   void on_event(const Event& e) override;
+  void finish();
 
  private:
-  std::ostream& out_;
+  std::unique_ptr<RowPipe> pipe_;
   bool slack_since_last_row_ = false;
 };
 
@@ -150,6 +167,12 @@ class Fanout : public Observer {
  public:
   void add(Observer* o) { targets_.push_back(o); }
   bool empty() const { return targets_.empty(); }
+  Detail sample_detail() const override {
+    for (const Observer* o : targets_) {
+      if (o->sample_detail() == Detail::full) return Detail::full;
+    }
+    return Detail::positions;
+  }
   void on_sample(const Snapshot& s) override {
     for (Observer* o : targets_) o->on_sample(s);
   }

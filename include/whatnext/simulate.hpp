@@ -22,6 +22,12 @@ class SimulationError : public std::runtime_error {
 // Called per output sample and per event, never per integration step.
 class Observer {
  public:
+  // How much of each sample's Snapshot the observer reads. positions: t, the mode and contacts,
+  // where everything is (x, h, r, phi_s, phi_l, the balloon's height and its limit), everything
+  // else zero; full: also the rates, the contact forces, the energies and the ledger, which cost a
+  // contact problem per sample. Event states are always full.
+  enum class Detail { positions, full };
+  virtual Detail sample_detail() const { return Detail::full; }
   virtual ~Observer() = default;
   virtual void on_sample(const Snapshot& s) { (void)s; }
   virtual void on_event(const Event& e) { (void)e; }

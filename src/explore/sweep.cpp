@@ -11,6 +11,7 @@
 #include <random>
 #include <thread>
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
 #include <iterator>
 
@@ -324,18 +325,33 @@ double value_of(const Outcome& o, std::string_view name) {
   return kNaN;
 }
 
+namespace {
+void write_header(std::ostream& out, const Plan& plan) {
+  fmt::memory_buffer line;
+  auto put = [&line](std::string_view text) { line.append(text.data(), text.data() + text.size()); };
+  put("index");
+  for (const Range& r : plan.ranges) fmt::format_to(std::back_inserter(line), ",{}", r.key);
+  put(",outcome,outcome_t,final_r,final_phi_l_deg");
+  for (EventType t : event_types()) fmt::format_to(std::back_inserter(line), ",{}", to_string(t));
+  put(",error\n");
+  out.write(line.data(), static_cast<std::streamsize>(line.size()));
+}
+}  // namespace
+
 SweepResult run(const Config& base, const Machines& machines, const RunOptions& options) {
   const std::int64_t total = machines.size();
   const std::vector<std::string> keys = machines.plan().keys();
   SweepResult res;
   res.rows.resize(static_cast<std::size_t>(total));
   res.done.assign(static_cast<std::size_t>(total), 0);
+  res.lines.resize(static_cast<std::size_t>(total));
 
   // Workers claim small blocks of indices; each row lands in its own slot, so the rows (and the
-  // CSV) do not depend on which thread ran which machine.
-  constexpr std::int64_t kBlock = 8;
-  std::atomic<std::int64_t> next{0}, completed{0};
-  std::atomic<int> running{0};
+  // CSV) do not depend on which thread ran which machine. A finished block is marked done under
+  // the lock, which also hands its lines to the calling thread.
+  constexpr std::int64_t kBlock = 8, kWake = 256;
+  std::atomic<std::int64_t> next{0}, completed{0}, written{0};
+  int running = 0;
   std::mutex m;
   std::condition_variable cv;
   // An exception in a worker (out of memory) stops the others and is thrown again by this thread;
@@ -345,7 +361,6 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   auto stopped = [&] {
     return failed.load(std::memory_order_relaxed) || (options.stop && options.stop->load(std::memory_order_relaxed));
   };
-  res.lines.resize(static_cast<std::size_t>(total));
   auto worker = [&] {
     try {
     Config work = base;
@@ -354,14 +369,21 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
       const std::int64_t start = next.fetch_add(kBlock);
       if (start >= total) break;
       const std::int64_t end = std::min(total, start + kBlock);
-      for (std::int64_t i = start; i < end; ++i) {
-        if (stopped()) break;
+      std::int64_t i = start;
+      for (; i < end && !stopped(); ++i) {
         machines.point(i, values.data());
         const auto slot = static_cast<std::size_t>(i);
         res.rows[slot] = evaluate_in(work, keys, values.data(), options.accuracy);
         res.lines[slot] = csv_row(i, values, res.rows[slot]);  // formatted here, on all cores
-        res.done[slot] = 1;
         completed.fetch_add(1, std::memory_order_relaxed);
+      }
+      {
+        std::lock_guard<std::mutex> lock(m);
+        for (std::int64_t j = start; j < i; ++j) res.done[static_cast<std::size_t>(j)] = 1;
+      }
+      // A few hundred lines waiting: time for the writer (cheap when it is awake already).
+      if (options.csv && completed.load(std::memory_order_relaxed) - written.load(std::memory_order_relaxed) >= kWake) {
+        cv.notify_one();
       }
       if (stopped()) break;
     }
@@ -385,19 +407,62 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
     for (std::thread& t : pool) t.join();
     throw;
   }
+
+  // Meanwhile this thread writes the rows that are done, in index order, and lets their lines go
+  // (their memory is used again: every page a sweep touches costs), every kWake rows (waking it
+  // for every block cost more than it saved), and reports progress about ten times a second.
+  if (options.csv) write_header(*options.csv, machines.plan());
+  std::vector<std::string> ready;
+  auto write_ready = [&] {
+    for (std::string& line : ready) {
+      options.csv->write(line.data(), static_cast<std::streamsize>(line.size()));
+      std::string().swap(line);
+    }
+    ready.clear();
+  };
   {
     std::unique_lock<std::mutex> lock(m);
-    while (running > 0) {
-      cv.wait_for(lock, std::chrono::milliseconds(100));
-      if (options.progress) {
+    auto last_progress = std::chrono::steady_clock::now();
+    for (;;) {
+      if (options.csv) {
+        std::int64_t w = written.load(std::memory_order_relaxed);
+        while (w < total && res.done[static_cast<std::size_t>(w)]) {
+          ready.push_back(std::move(res.lines[static_cast<std::size_t>(w)]));
+          ++w;
+        }
+        written.store(w, std::memory_order_relaxed);
+      }
+      const bool finished = running == 0;
+      if (!ready.empty()) {
+        lock.unlock();
+        write_ready();
+        lock.lock();
+      }
+      if (finished) break;
+      const auto now = std::chrono::steady_clock::now();
+      if (options.progress && now - last_progress >= std::chrono::milliseconds(100)) {
+        last_progress = now;
         lock.unlock();
         options.progress(completed.load(), total);
         lock.lock();
+      }
+      if (options.progress || options.csv) {
+        cv.wait_for(lock, std::chrono::milliseconds(100));
+      } else {
+        cv.wait(lock);  // until a worker ends
       }
     }
   }
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
+  if (options.csv) {  // after a stop: the rows done beyond the first one that is not
+    for (std::int64_t i = written.load(); i < total; ++i) {
+      const auto slot = static_cast<std::size_t>(i);
+      if (res.done[slot]) ready.push_back(std::move(res.lines[slot]));
+    }
+    write_ready();
+    res.lines.clear();
+  }
   if (options.progress) options.progress(completed.load(), total);  // the final count, not the last tick's
   res.completed = completed.load();
   res.interrupted = res.completed < total;
@@ -406,14 +471,7 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
 
 void write_csv(std::ostream& out, const Machines& machines, const SweepResult& result) {
   const Plan& plan = machines.plan();
-  fmt::memory_buffer line;
-  auto put = [&line](std::string_view text) { line.append(text.data(), text.data() + text.size()); };
-  put("index");
-  for (const Range& r : plan.ranges) fmt::format_to(std::back_inserter(line), ",{}", r.key);
-  put(",outcome,outcome_t,final_r,final_phi_l_deg");
-  for (EventType t : event_types()) fmt::format_to(std::back_inserter(line), ",{}", to_string(t));
-  put(",error\n");
-  out.write(line.data(), static_cast<std::streamsize>(line.size()));
+  write_header(out, plan);
   std::vector<double> values(plan.ranges.size());
   for (std::int64_t i = 0; i < machines.size(); ++i) {
     const auto slot = static_cast<std::size_t>(i);
@@ -429,17 +487,20 @@ void write_csv(std::ostream& out, const Machines& machines, const SweepResult& r
 }
 
 std::string csv_row(std::int64_t index, const std::vector<double>& values, const Outcome& o) {
+  // Compiled formats: the row is formatted for every machine, and the format strings' parsing
+  // took as long as the formatting (callgrind, issue 9).
   fmt::memory_buffer line;
   auto put = [&line](std::string_view text) { line.append(text.data(), text.data() + text.size()); };
-  fmt::format_to(std::back_inserter(line), "{}", index);
+  fmt::format_to(std::back_inserter(line), FMT_COMPILE("{}"), index);
   // "{}" prints the shortest text that reads back to the same double: lossless and deterministic.
-  for (double v : values) fmt::format_to(std::back_inserter(line), ",{}", v);
+  for (double v : values) fmt::format_to(std::back_inserter(line), FMT_COMPILE(",{}"), v);
   if (o.valid) {
-    fmt::format_to(std::back_inserter(line), ",{},{},{},{}", to_string(o.outcome), o.outcome_t, o.final_r,
-                   o.final_phi_l_deg);
+    put(",");
+    put(to_string(o.outcome));
+    fmt::format_to(std::back_inserter(line), FMT_COMPILE(",{},{},{}"), o.outcome_t, o.final_r, o.final_phi_l_deg);
     for (double t : o.first) {
       put(",");
-      if (!std::isnan(t)) fmt::format_to(std::back_inserter(line), "{}", t);
+      if (!std::isnan(t)) fmt::format_to(std::back_inserter(line), FMT_COMPILE("{}"), t);
     }
     put(",\n");
   } else {

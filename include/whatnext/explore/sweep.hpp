@@ -107,11 +107,14 @@ struct RunOptions {
   const std::atomic<bool>* stop = nullptr;  // set (e.g. by SIGINT) to stop early
   // Called on the calling thread about ten times a second with (done, total).
   std::function<void(std::int64_t, std::int64_t)> progress;
+  // If given, the CSV (write_csv's layout) is written here by the calling thread while the
+  // machines run, rows in index order as they are done, and SweepResult::lines is left empty.
+  std::ostream* csv = nullptr;
 };
 
 struct SweepResult {
   std::vector<Outcome> rows;  // by machine index
-  std::vector<std::string> lines;  // rows[i] as its CSV line, formatted by the workers
+  std::vector<std::string> lines;  // rows[i] as its CSV line, formatted by the workers (or empty: RunOptions::csv)
   std::vector<char> done;     // done[i]: rows[i] holds machine i's outcome
   std::int64_t completed = 0;
   bool interrupted = false;
