@@ -134,7 +134,8 @@ inline char* put_g9(char* out, double v) {
     n = 100'000'000u;
     ++e10;
   }
-  char d[16] = {};  // the nine digits; fixed-size copies below may read past them
+  // The nine digits; the fixed-size copies below read up to d[whole + 8], whole <= 9.
+  char d[24] = {};
   int len = kDigits;   // without the trailing zeros
   if constexpr (std::endian::native == std::endian::little) {
     d[0] = static_cast<char>('0' + n / 100'000'000);
