@@ -627,7 +627,11 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
   const double acc = g_ + v * v / len;
   c.force_tol = 1e-9 * mass * acc * (1.0 + len);
   c.impulse_tol = 1e-9 * mass * v * (1.0 + len);
-  c.rate_tol = 1e-7 * v;
+  // A contact that would separate slower than a millionth of the machine's speed is held: the
+  // end of an inelastic cascade (rope jerks the lid a hair off the box, the lid drops back, the
+  // seesaw lets the rope go, ...) whose gaps never open beyond rounding. Without it such a Zeno
+  // cascade never reaches its limit, where both contacts hold (MODEL.md: impacts are inelastic).
+  c.rate_tol = 1e-6 * v;
   c.closing_tol = 1e-12 * v;
   c.accel_tol = 1e-9 * acc;
   (void)sys;
@@ -787,8 +791,11 @@ void Model::resolve(HybridState& hs, const Kinematics& k_event, int trigger, Tre
     }
   }
   Set held = 0;  // touching contacts with zero gap rate after the impact
-  for (int i = 0; i < 3; ++i)
-    if (has(touch, i) && (has(imp.impulsive, i) || rate[i] <= ch.rate_tol)) held |= bit(i);
+  for (int i = 0; i < 3; ++i) {
+    // The lid's gap is an angle: its rate compared as the speed of the lid's far edge.
+    const double speed = i == kLid ? 2.0 * r_l_ * rate[i] : rate[i];
+    if (has(touch, i) && (has(imp.impulsive, i) || speed <= ch.rate_tol)) held |= bit(i);
+  }
 
   // Accelerations: which of them carry the motion on.
   const Kinematics k1 = with_velocity(k0, u);

@@ -489,3 +489,37 @@ TEST(Reproducers, ALidThatFallsBackNeverEntersTheBox) {
   wn::simulate(sc, &rec);
   for (const wn::Snapshot& s : rec.samples) EXPECT_GE(s.phi_l, sc.start.lid_angle - 1e-9) << s.t;
 }
+
+TEST(Reproducers, AnInelasticCascadeEndsWithTheLidAndTheRopeBothHeld) {
+  // The rope jerks the lid a hair off the box, the lid drops back, the seesaw lets the rope go and
+  // tightens it again: each round slower, an infinite (Zeno) sequence whose limit has the lid on
+  // the box and the rope taut. The run must reach that limit and go on, not stop at the event
+  // limit; the lid then opens when an independent full-coordinate simulation says (2.755021 s and
+  // 0.552874 s), at every tolerance. Found by that simulation: a massless and a heavy seesaw.
+  struct Case {
+    int example;
+    std::vector<std::string> sets;
+    double lid_open;
+  };
+  const Case cases[] = {
+      {2,
+       {"geometry.rope_length=0.616546660448563", "masses.sandbag=0.6932980412335121",
+        "masses.lid=1.8291585487310837", "start.sandbag_height=0.15658505449929822",
+        "start.seesaw_angle=-27.562315732255144", "run.t_max=3"},
+       2.755021},
+      {2,
+       {"geometry.rope_length=0.49809694031244534", "start.sandbag_height=0.8818703019666724",
+        "start.seesaw_angle=-0.4343105700865948", "start.lid_angle=27.67254180864503", "run.t_max=3",
+        "seesaw.mass=1.1329401584863061", "seesaw.com_offset=-0.02226326117333477",
+        "seesaw.inertia=0.03345621784201832"},
+       0.552874},
+  };
+  for (const Case& c : cases) {
+    for (double tol : {1e-10, 1e-12, 1e-14}) {
+      const wn::Result r = run_example(c.example, c.sets, tol);
+      EXPECT_LT(r.events.size(), 1000u) << c.lid_open << " " << tol;
+      EXPECT_EQ(r.outcome().type, wn::EventType::lid_open) << c.lid_open << " " << tol;
+      EXPECT_NEAR(r.outcome().t, c.lid_open, 1e-6) << tol;
+    }
+  }
+}
