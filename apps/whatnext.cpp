@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -181,6 +182,12 @@ int main(int argc, char** argv) {
     whatnext::cli::remove_empty_picture_dirs();
     print_error(fmt::format("the run failed: {}; no file written", e.what()));
     return 3;
+  } catch (const std::bad_alloc&) {
+    // std::bad_alloc's own text says nothing a user can act on.
+    whatnext::cli::remove_empty_picture_dirs();
+    print_error("out of memory: the machine cannot hold this job (fewer machines, samples or threads, or a "
+                "coarser run.output_step); no file written");
+    return 1;
   } catch (const std::exception& e) {
     whatnext::cli::remove_empty_picture_dirs();
     print_error(e.what());

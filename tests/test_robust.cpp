@@ -369,6 +369,23 @@ TEST_F(Abuse, FileSizeLimitFailsTheWriteCleanly) {
   for (const char* name : {"r.csv", "r.csv.part", "a.gif", "a.gif.part"}) EXPECT_FALSE(fs::exists(dir_ / name)) << name;
 }
 
+// A job larger than the memory there is (here: a 16-million-machine sweep under ulimit -v) ends with
+// one line that says so and what to change, exit code 1, and no file (it said "std::bad_alloc").
+TEST_F(Abuse, OutOfMemoryIsOneLineAndNoFile) {
+#ifdef WHATNEXT_SANITIZED
+  GTEST_SKIP() << "AddressSanitizer cannot run under ulimit -v";
+#endif
+  const CliResult r = whatnext("ulimit -v 300000; " + std::string(WHATNEXT_CLI) +
+                                   " sweep --example 2 --vary geometry.rope_length=0.64:0.80:4000 --vary "
+                                   "start.sandbag_height=0.3:1.2:4000 --force-large --out " + path("s.csv"),
+                               false);
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_TRUE(one_printable_line(r.err)) << r.err;
+  EXPECT_NE(r.err.find("out of memory"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("bad_alloc"), std::string::npos) << r.err;
+  for (const char* name : {"s.csv", "s.csv.part"}) EXPECT_FALSE(fs::exists(dir_ / name)) << name;
+}
+
 // With standard error closed, bad input still ends with exit code 2 (printing the line threw and
 // whatnext aborted).
 TEST_F(Abuse, ClosedStandardErrorIsNoCrash) {
