@@ -184,6 +184,30 @@ Vec2 balloon_centre(const Machine& m, const Snapshot& s) {
 
 double ground_level(const Machine& m) { return m.hinge.h - 2.0 * m.lid_half_length; }
 
+// The rope let go at the seesaw's end: hanging from the lid's edge e straight down into the open
+// box (the radio's latch holds the lid short of 90 deg, so e is above the box); what reaches the
+// floor lies on it, folded between the walls. Beside the box it would lie on the ground, away from it.
+std::vector<Vec2> hanging_rope(const Machine& m, Vec2 e, double length) {
+  const double floor = ground_level(m);
+  const double drop = std::clamp(e.h - floor, 0.0, length);
+  std::vector<Vec2> pts{e, {e.x, e.h - drop}};
+  double rest = length - drop;
+  const double x0 = m.hinge.x, x1 = m.hinge.x + 2.0 * m.lid_half_length;
+  if (rest <= 0.0) return pts;
+  if (e.x < x0 || e.x > x1) {
+    pts.push_back({e.x < x0 ? e.x - rest : e.x + rest, floor});
+    return pts;
+  }
+  double x = e.x;
+  for (bool right = true; rest > 0.0; right = !right) {
+    const double along = std::min(rest, right ? x1 - x : x - x0);
+    x += right ? along : -along;
+    rest -= along;
+    pts.push_back({x, floor});
+  }
+  return pts;
+}
+
 // The radio: its body stands on the ground under the switch (or hangs below a switch that is lower).
 struct RadioBox {
   double x0, x1, h0, h1;
@@ -207,6 +231,25 @@ double drawn_arm(const Recording& rec, double endless_default, double t) {
     if (rec.states[i].on_seesaw) far = std::max(far, rec.states[i].r);
   }
   return std::max(endless_default, far + 0.1);
+}
+
+// A span up to this many rope lengths counts as the rope's length: the taut rope's closure holds
+// the span to rounding, and the slack rope drawn straight is then no visible bit longer.
+constexpr double kSpanTolerance = 1.0 + 1e-9;
+
+// The radio's latch: lid_open in a run with the radio, which lets the rope go for good (without
+// the radio lid_open ends the run); infinity if there is none.
+double latch_time(const Recording& rec) {
+  if (rec.scenario.machine.radio) {
+    for (const Event& e : rec.result.events) {
+      if (e.type == EventType::lid_open) return e.t;
+    }
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+bool beyond_rope(const RopeGeometry& geo, const Snapshot& s) {
+  return geo.span(s.phi_s, s.phi_l) > kSpanTolerance * geo.rope_length();
 }
 
 // Distance from the pivot beyond which the view no longer follows the sandbag.
@@ -570,6 +613,31 @@ std::vector<Frame> plan_frames(const Recording& rec, const AnimationOptions& opt
   return frames;
 }
 
+std::vector<Vec2> rope_path(const Recording& rec, const Snapshot& s) {
+  const Machine& m = rec.scenario.machine;
+  const RopeGeometry geo(m);
+  const Vec2 r = geo.seesaw_end(s.phi_s), e = geo.lid_edge(s.phi_l);
+  if (s.rope_taut) return {r, e};
+  // Before the latch the model keeps the span within the rope's length (to its tolerance; a frame
+  // between two recorded taut states, its angles interpolated, has the ends up to 3e-5 m too far
+  // apart in example 3, a hundredth of a pixel): the slack rope sags, or is straight at full stretch.
+  const double latch = latch_time(rec);
+  if (s.t < latch) return slack_rope(m, r, e, m.rope_length);
+  // After it nothing holds the rope. Once pulled off the seesaw's end it stays off, even where a
+  // seesaw swinging back brings its end near enough again.
+  bool off = beyond_rope(geo, s);
+  for (auto it = std::lower_bound(rec.states.begin(), rec.states.end(), latch,
+                                  [](const Snapshot& q, double t) { return q.t < t; });
+       !off && it != rec.states.end() && it->t <= s.t; ++it) {
+    off = beyond_rope(geo, *it);
+  }
+  if (off) return hanging_rope(m, e, m.rope_length);
+  // Within the tolerance of the rope's length: straight, and a hair short of the seesaw's end.
+  const double span = norm(r - e);
+  if (span > m.rope_length) return {e + (m.rope_length / span) * (r - e), e};
+  return slack_rope(m, r, e, m.rope_length);
+}
+
 Rgb Image::at(int x, int y) const {
   const std::uint32_t p = pixels[static_cast<std::size_t>(y) * width + x];
   return {static_cast<std::uint8_t>(p >> 16), static_cast<std::uint8_t>(p >> 8),
@@ -702,16 +770,10 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   circle({0.0, 0.0}, std::max(2.5, 0.015 * v.scale));
   cairo_fill(cr);
 
-  // Rope: straight when taut; slack, sagging or lying on the lid.
-  const Vec2 rope_r = geo.seesaw_end(s.phi_s), rope_e = geo.lid_edge(s.phi_l);
+  // Rope: straight when taut; slack, sagging or lying on the lid; let go, hanging from the lid.
   set(cr, kDark);
   cairo_set_line_width(cr, std::max(1.5, 0.008 * v.scale));
-  if (s.rope_taut) {
-    move(rope_r);
-    line(rope_e);
-  } else {
-    polyline(slack_rope(m, rope_r, rope_e, m.rope_length));
-  }
+  polyline(rope_path(rec, s));
   cairo_stroke(cr);
 
   // Sandbag, centred on the simulated point.

@@ -101,10 +101,64 @@
     return [a, add(e, scale(lo, sub(hinge, e))), e];
   }
 
-  // The rope as drawn in state s: straight when taut, else slack.
-  function ropePath(m, s) {
+  // The rope let go at the seesaw's end, as `whatnext animate` draws it: hanging from the lid's edge
+  // e straight down into the open box; what reaches the floor lies on it, folded between the walls
+  // (beside the box it would lie on the ground, away from it).
+  function hangingRope(m, e, length) {
+    const floor = groundLevel(m);
+    const drop = Math.min(Math.max(e.h - floor, 0), length);
+    const pts = [e, { x: e.x, h: e.h - drop }];
+    let rest = length - drop;
+    const x0 = m.hinge.x, x1 = m.hinge.x + 2 * m.lid_half_length;
+    if (rest <= 0) return pts;
+    if (e.x < x0 || e.x > x1) return [...pts, { x: e.x < x0 ? e.x - rest : e.x + rest, h: floor }];
+    let x = e.x;
+    for (let right = true; rest > 0; right = !right) {
+      const along = Math.min(rest, right ? x1 - x : x - x0);
+      x += right ? along : -along;
+      rest -= along;
+      pts.push({ x, h: floor });
+    }
+    return pts;
+  }
+
+  // A span up to this many rope lengths counts as the rope's length (the taut rope's closure holds
+  // it to rounding), as in the animation.
+  const kSpanTolerance = 1 + 1e-9;
+  const beyondRope = (m, phiS, phiL) => norm(sub(seesawEnd(m, phiS), lidEdge(m, phiL))) > kSpanTolerance * m.rope_length;
+
+  // With the radio the rope is let go for good at lid_open (the latch): when that is, and the first
+  // sample after it with the seesaw's end farther from the lid's edge than the rope is long (a heavy
+  // seesaw swings on); Infinity for none. Worked out once for each run.
+  const releases = new WeakMap();
+  function release(run) {
+    let r = releases.get(run);
+    if (r) return r;
+    const m = run.machine, s = run.samples;
+    const latch = m.radio ? run.events.find((e) => e.type === 'lid_open') : undefined;
+    r = { latch: latch ? latch.t : Infinity, off: Infinity };
+    for (let i = 0; i < s.t.length; ++i) {
+      if (s.t[i] >= r.latch && beyondRope(m, s.phi_s[i], s.phi_l[i])) { r.off = s.t[i]; break; }
+    }
+    releases.set(run, r);
+    return r;
+  }
+
+  // The rope as drawn in state s of a run (src/viz/animation.cpp's rope_path): straight when taut,
+  // else slack. Before the latch the model keeps its ends within the rope's length. After it, once
+  // the seesaw's end has been farther from the lid's edge than the rope reaches, the rope is off the
+  // seesaw for good and hangs from the lid's edge; within the tolerance it is straight, a hair short
+  // of the seesaw's end: never longer than the rope.
+  function ropePath(run, s) {
+    const m = run.machine, length = m.rope_length;
     const a = seesawEnd(m, s.phi_s), b = lidEdge(m, s.phi_l);
-    return s.rope_taut ? [a, b] : slackRope(m, a, b, m.rope_length);
+    if (s.rope_taut) return [a, b];
+    const r = release(run);
+    if (s.t < r.latch) return slackRope(m, a, b, length);
+    if (s.t >= r.off || beyondRope(m, s.phi_s, s.phi_l)) return hangingRope(m, b, length);
+    const span = norm(sub(a, b));
+    if (span > length) return [add(b, scale(length / span, sub(a, b))), b];
+    return slackRope(m, a, b, length);
   }
 
   // The balloon's string from the balloon's skin to the radio's switch; while the balloon is in
@@ -304,8 +358,8 @@
   }
 
   // Lid, seesaw, rope and sandbag. Returns where the sandbag is on the canvas.
-  function drawMoving(ctx, v, m, s, ghost) {
-    const p = painter(ctx, v);
+  function drawMoving(ctx, v, run, s, ghost) {
+    const m = run.machine, p = painter(ctx, v);
     ctx.lineCap = 'round';
     ctx.lineJoin = 'round';
     ctx.strokeStyle = ghost ? colour.ghost : colour.lid;
@@ -325,11 +379,11 @@
       p.circle({ x: 0, h: 0 }, Math.max(2.5, 0.015 * v.scale));
       ctx.fill();
     }
-    // The rope: straight when taut; slack, sagging or lying on the lid.
+    // The rope: straight when taut; slack, sagging or lying on the lid; let go, hanging from the lid.
     ctx.strokeStyle = ghost ? colour.ghost : colour.dark;
     ctx.lineWidth = Math.max(1.5, 0.008 * v.scale);
     if (ghost) ctx.setLineDash([6, 4]);
-    p.line(ropePath(m, s));
+    p.line(ropePath(run, s));
     ctx.setLineDash([]);
     // The sandbag, centred on the simulated point.
     const bag = toPixel(v, { x: s.x, h: s.h });
@@ -396,10 +450,10 @@
     if (ghost) {
       ctx.save();
       ctx.globalAlpha = 0.6;
-      drawMoving(ctx, v, ghost.run.machine, ghost.state, true);
+      drawMoving(ctx, v, ghost.run, ghost.state, true);
       ctx.restore();
     }
-    const bag = drawMoving(ctx, v, m, s, false);
+    const bag = drawMoving(ctx, v, run, s, false);
     ctx.restore();
     const visible = bag.x >= -bag.radius && bag.x <= v.width + bag.radius &&
                     bag.y >= v.top - bag.radius && bag.y <= v.height + bag.radius;

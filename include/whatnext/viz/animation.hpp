@@ -45,6 +45,16 @@ Pixel to_pixel(const View& view, Vec2 p);
 // as high as the machine needs at this width (between 0.45 and 1.25 times the width).
 View make_view(const Recording& rec, int width, int height);
 
+// The rope as drawn in state s of the run, a polyline in metres from the seesaw's end (or the lid's
+// edge): straight while taut; slack, sagging under the line between the seesaw's end and the lid's
+// edge, or lying on the closed lid and hanging from the hinge. With the radio the model lets the
+// rope go at lid_open for good, and a heavy seesaw may swing its end farther from the lid's edge
+// than the rope reaches: from the first such instant on the rope has come off the seesaw's end and
+// hangs from the lid's edge straight down into the open box (what reaches the floor lies on it).
+// After the latch the polyline is never longer than the rope; before it the model keeps its ends
+// within the rope's length.
+std::vector<Vec2> rope_path(const Recording& rec, const Snapshot& s);
+
 // One frame: a state to draw and how long it stays on screen.
 struct Frame {
   double t = 0.0;
