@@ -87,7 +87,9 @@
   // a point on the lid).
   function slackRope(m, a, e, length) {
     const pts = sagCurve(a, e, length);
-    if (!pts.some((p) => inBox(m, e, p))) return pts;
+    // The ends are tied to the seesaw and the lid's edge, on the lid's line: only the points between
+    // them can hang into the box (an end counted "under the lid" by rounding drew the rope straight).
+    if (!pts.slice(1, -1).some((p) => inBox(m, e, p))) return pts;
     const hinge = m.hinge;
     const rest = length - norm(sub(e, hinge));
     if (rest >= norm(sub(a, hinge))) return [...sagCurve(a, hinge, rest), e];
