@@ -235,8 +235,12 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) cons
     lid_chart(k, p, phi_l, dphi_l);
     trig_s = trig_l = true;
   };
-  // Positions only: the same linkage the swings start from, without their accelerations.
-  auto placed = [&](const RopeGeometry::Linkage& lk, bool by_lid_angle, double phi) {
+  // Positions only: the same linkage the swings start from, without their accelerations, from the
+  // lid's angle (its chart) or the seesaw's.
+  auto placed = [&](bool by_lid_angle, double phi) {
+    const double c = std::cos(phi), sn = std::sin(phi);
+    const RopeGeometry::Linkage lk =
+        by_lid_angle ? rope_.from_lid(c, sn, d.side, false) : rope_.from_seesaw(c, sn, false);
     if (by_lid_angle) {
       k.phi_l = phi;
       k.phi_s = lk.phi_s();
@@ -266,7 +270,7 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) cons
       if (rates) {
         by_lid(swing_by_lid(true, k.r, phi_l, k.dr, y[slot::dphi_s], d.side), phi_l, y[slot::dphi_s]);
       } else {
-        placed(rope_.from_lid(std::cos(phi_l), std::sin(phi_l), d.side, false), true, phi_l);
+        placed(true, phi_l);
       }
     } else if (rates) {
       const Swing p = swing(true, true, k.r, k.phi_s, k.dr, k.dphi_s);
@@ -274,7 +278,7 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) cons
       trig_s = true;
       on_rope(p);
     } else {
-      placed(rope_.from_seesaw(std::cos(k.phi_s), std::sin(k.phi_s), false), false, k.phi_s);
+      placed(false, k.phi_s);
     }
     if (!trig_s) k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s), trig_s = true;
     const double c = k.cos_s, s = k.sin_s;
@@ -311,7 +315,7 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) cons
         if (rates) {
           by_lid(swing_by_lid(false, 0.0, phi_l, 0.0, y[slot::seesaw_dphi], d.side), phi_l, y[slot::seesaw_dphi]);
         } else {
-          placed(rope_.from_lid(std::cos(phi_l), std::sin(phi_l), d.side, false), true, phi_l);
+          placed(true, phi_l);
         }
       } else if (rates) {
         const Swing p = swing(false, d.taut, 0.0, k.phi_s, 0.0, k.dphi_s);
@@ -320,7 +324,7 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) cons
         trig_s = true;
         if (d.taut) on_rope(p);
       } else if (d.taut) {
-        placed(rope_.from_seesaw(std::cos(k.phi_s), std::sin(k.phi_s), false), false, k.phi_s);
+        placed(false, k.phi_s);
       }
     } else if (d.taut) {  // M2: the unloaded massless seesaw follows the lid, on its side of P-E
       k.phi_s = d.parked_seesaw;  // exact while the lid rests
