@@ -363,30 +363,30 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   };
   auto worker = [&] {
     try {
-    Config work = base;
-    std::vector<double> values(keys.size());
-    for (;;) {
-      const std::int64_t start = next.fetch_add(kBlock);
-      if (start >= total) break;
-      const std::int64_t end = std::min(total, start + kBlock);
-      std::int64_t i = start;
-      for (; i < end && !stopped(); ++i) {
-        machines.point(i, values.data());
-        const auto slot = static_cast<std::size_t>(i);
-        res.rows[slot] = evaluate_in(work, keys, values.data(), options.accuracy);
-        res.lines[slot] = csv_row(i, values, res.rows[slot]);  // formatted here, on all cores
-        completed.fetch_add(1, std::memory_order_relaxed);
+      Config work = base;
+      std::vector<double> values(keys.size());
+      for (;;) {
+        const std::int64_t start = next.fetch_add(kBlock);
+        if (start >= total) break;
+        const std::int64_t end = std::min(total, start + kBlock);
+        std::int64_t i = start;
+        for (; i < end && !stopped(); ++i) {
+          machines.point(i, values.data());
+          const auto slot = static_cast<std::size_t>(i);
+          res.rows[slot] = evaluate_in(work, keys, values.data(), options.accuracy);
+          res.lines[slot] = csv_row(i, values, res.rows[slot]);  // formatted here, on all cores
+          completed.fetch_add(1, std::memory_order_relaxed);
+        }
+        {
+          std::lock_guard<std::mutex> lock(m);
+          for (std::int64_t j = start; j < i; ++j) res.done[static_cast<std::size_t>(j)] = 1;
+        }
+        // A few hundred lines waiting: time for the writer (cheap when it is awake already).
+        if (options.csv && completed.load(std::memory_order_relaxed) - written.load(std::memory_order_relaxed) >= kWake) {
+          cv.notify_one();
+        }
+        if (stopped()) break;
       }
-      {
-        std::lock_guard<std::mutex> lock(m);
-        for (std::int64_t j = start; j < i; ++j) res.done[static_cast<std::size_t>(j)] = 1;
-      }
-      // A few hundred lines waiting: time for the writer (cheap when it is awake already).
-      if (options.csv && completed.load(std::memory_order_relaxed) - written.load(std::memory_order_relaxed) >= kWake) {
-        cv.notify_one();
-      }
-      if (stopped()) break;
-    }
     } catch (...) {
       std::lock_guard<std::mutex> lock(m);
       if (!failure) failure = std::current_exception();
