@@ -349,14 +349,16 @@ struct Reader {
   }
   Vec2 pair(std::string_view key) const {
     const ConfigValue& v = *find(key);
+    // As the input wrote it (v.text: numbers a double rounds), for the messages.
+    const auto given = [&v] {
+      return v.text.empty() ? fmt::format("[{}, {}]", fmt_num(v.pair[0]), fmt_num(v.pair[1])) : v.text;
+    };
     if (!std::isfinite(v.pair[0]) || !std::isfinite(v.pair[1])) {
-      fail(key, fmt::format("must hold finite numbers (given {})",
-                            v.text.empty() ? fmt::format("[{}, {}]", fmt_num(v.pair[0]), fmt_num(v.pair[1])) : v.text));
+      fail(key, fmt::format("must hold finite numbers (given {})", given()));
     }
     if (std::fabs(v.pair[0]) > kMaxLength || std::fabs(v.pair[1]) > kMaxLength) {
       fail(key, fmt::format("must hold numbers within [{}, {}] m, the range the model is made for (given {})",
-                            fmt_num(-kMaxLength), fmt_num(kMaxLength),
-                            v.text.empty() ? fmt::format("[{}, {}]", fmt_num(v.pair[0]), fmt_num(v.pair[1])) : v.text));
+                            fmt_num(-kMaxLength), fmt_num(kMaxLength), given()));
     }
     return {v.pair[0], v.pair[1]};
   }
