@@ -52,27 +52,43 @@ struct Png {
   std::map<std::uint32_t, int> counts;
 };
 
-Png read_png(const fs::path& path) {
+// A PNG's pixels as 0xRRGGBB, row by row from the top (empty, with a failure, if it does not decode).
+struct Pixels {
+  int width = 0, height = 0;
+  std::vector<std::uint32_t> rgb;
+  std::uint32_t at(int x, int y) const { return rgb[static_cast<std::size_t>(y) * width + x]; }
+};
+
+Pixels read_pixels(const fs::path& path) {
   cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
-  Png png;
+  Pixels img;
   if (cairo_surface_status(s) != CAIRO_STATUS_SUCCESS) {
     cairo_surface_destroy(s);
     ADD_FAILURE() << path << " does not decode as PNG";
-    return png;
+    return img;
   }
-  png.width = cairo_image_surface_get_width(s);
-  png.height = cairo_image_surface_get_height(s);
+  img.width = cairo_image_surface_get_width(s);
+  img.height = cairo_image_surface_get_height(s);
   const unsigned char* data = cairo_image_surface_get_data(s);
   const int stride = cairo_image_surface_get_stride(s);
-  for (int y = 0; y < png.height; ++y) {
+  img.rgb.reserve(static_cast<std::size_t>(img.width) * img.height);
+  for (int y = 0; y < img.height; ++y) {
     const auto* row = reinterpret_cast<const std::uint32_t*>(data + y * stride);
-    for (int x = 0; x < png.width; ++x) {
-      const std::uint32_t v = row[x] & 0xffffff;
-      png.colours.insert(v);
-      ++png.counts[v];
-    }
+    for (int x = 0; x < img.width; ++x) img.rgb.push_back(row[x] & 0xffffff);
   }
   cairo_surface_destroy(s);
+  return img;
+}
+
+Png read_png(const fs::path& path) {
+  const Pixels img = read_pixels(path);
+  Png png;
+  png.width = img.width;
+  png.height = img.height;
+  for (const std::uint32_t v : img.rgb) {
+    png.colours.insert(v);
+    ++png.counts[v];
+  }
   return png;
 }
 
@@ -282,11 +298,9 @@ TEST(VizPlots, AxisTitleClearsTheTickNumbers) {
               << page.axis_texts[i].text << " on " << page.axis_texts[j].text;
         }
       }
-      cairo_surface_t* s = cairo_image_surface_create_from_png((dir / (page.name + ".png")).c_str());
-      ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
-      const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
-      const unsigned char* data = cairo_image_surface_get_data(s);
-      const int stride = cairo_image_surface_get_stride(s);
+      const Pixels img = read_pixels(dir / (page.name + ".png"));
+      ASSERT_GT(img.width, 0);
+      const int w = img.width, h = img.height;
       const double px = w / page.width;
       for (const Box& a : page.axes) {
         // The room left of these axes, as the layout reserves it for PLplot's texts.
@@ -297,9 +311,8 @@ TEST(VizPlots, AxisTitleClearsTheTickNumbers) {
         ASSERT_NE(room, nullptr);
         int inked = 0, stray = 0;
         for (int y = static_cast<int>(h - room->y1 * px) + 1; y < static_cast<int>(h - room->y0 * px); ++y) {
-          const auto* row = reinterpret_cast<const std::uint32_t*>(data + y * stride);
           for (int x = static_cast<int>(std::ceil(room->x0 * px)); x < static_cast<int>(a.x0 * px) - 1; ++x) {
-            if ((row[x] & 0xffffff) == 0xffffff) continue;
+            if (img.at(x, y) == 0xffffff) continue;
             ++inked;
             const double mx = (x + 0.5) / px, my = (h - y - 0.5) / px;
             bool known = false;
@@ -314,7 +327,6 @@ TEST(VizPlots, AxisTitleClearsTheTickNumbers) {
         EXPECT_EQ(stray, 0) << "ink left of the axes outside the tick numbers and the title";
         ++panels;
       }
-      cairo_surface_destroy(s);
     }
   }
   EXPECT_GT(panels, 60);
@@ -383,11 +395,9 @@ TEST(VizPlots, TextIsNoWiderThanMeasured) {
   int checked = 0;
   for (const PageLayout& page : pages) {
     SCOPED_TRACE(page.name);
-    cairo_surface_t* s = cairo_image_surface_create_from_png((dir / (page.name + ".png")).c_str());
-    ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
-    const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
-    const unsigned char* data = cairo_image_surface_get_data(s);
-    const int stride = cairo_image_surface_get_stride(s);
+    const Pixels img = read_pixels(dir / (page.name + ".png"));
+    ASSERT_GT(img.width, 0);
+    const int w = img.width, h = img.height;
     const double px_per_mm = w / page.width;
     for (const PlacedText& t : page.texts) {
       if (t.kind != PlacedText::legend && t.kind != PlacedText::key && t.kind != PlacedText::title) continue;
@@ -399,13 +409,11 @@ TEST(VizPlots, TextIsNoWiderThanMeasured) {
       const int y1 = static_cast<int>(h - (t.box.y0 + 0.3 * (t.box.y1 - t.box.y0)) * px_per_mm);
       int ink = 0;
       for (int y = std::max(0, y0); y <= std::min(h - 1, y1); ++y) {
-        const auto* row = reinterpret_cast<const std::uint32_t*>(data + y * stride);
-        for (int x = x0; x <= x1; ++x) ink += (row[x] & 0xffffff) != 0xffffff;
+        for (int x = x0; x <= x1; ++x) ink += img.at(x, y) != 0xffffff;
       }
       EXPECT_EQ(ink, 0);
       ++checked;
     }
-    cairo_surface_destroy(s);
   }
   EXPECT_GT(checked, 20);
 }
