@@ -194,4 +194,47 @@ bool constrained_motion(const System& sys, Set active, Coords& acceleration, Per
   return solve_set(sys, active, false, force, acceleration);
 }
 
+bool multipliers_for(const System& sys, Set active, const Coords& acceleration, PerContact& force) {
+  // W^T lambda = M a - f over all coordinates (a massless one's row reads -f_j = sum W_ij lambda_i),
+  // in the least-squares sense: (W W^T) lambda = W (M a - f), an m x m system for m active contacts,
+  // symmetric and positive definite unless the gradients are dependent: Cholesky, no pivoting.
+  int idx[kMaxContacts];
+  int m = 0;
+  for (int i = 0; i < sys.contacts; ++i)
+    if (has(active, i)) idx[m++] = i;
+  Coords residual{};
+  for (int j = 0; j < sys.coords; ++j) residual[j] = sys.mass[j] * acceleration[j] - sys.force[j];
+  double l[kMaxContacts][kMaxContacts] = {};
+  double y[kMaxContacts] = {};
+  force.fill(0.0);
+  for (int a = 0; a < m; ++a) {
+    const Coords& wa = sys.normal[idx[a]];
+    for (int b = 0; b <= a; ++b) {
+      const Coords& wb = sys.normal[idx[b]];
+      double s = 0.0;
+      for (int j = 0; j < sys.coords; ++j) s += wa[j] * wb[j];
+      for (int c = 0; c < b; ++c) s -= l[a][c] * l[b][c];
+      if (b < a) {
+        l[a][b] = s / l[b][b];
+      } else {
+        double norm2 = 0.0;  // |W_a|^2: what is left of it must not be rounding
+        for (int j = 0; j < sys.coords; ++j) norm2 += wa[j] * wa[j];
+        if (!(s > 1e-24 * norm2)) return false;
+        l[a][a] = std::sqrt(s);
+      }
+    }
+    double r = 0.0;
+    for (int j = 0; j < sys.coords; ++j) r += wa[j] * residual[j];
+    for (int c = 0; c < a; ++c) r -= l[a][c] * y[c];
+    y[a] = r / l[a][a];
+  }
+  for (int a = m - 1; a >= 0; --a) {
+    double s = y[a];
+    for (int c = a + 1; c < m; ++c) s -= l[c][a] * force[idx[c]];
+    force[idx[a]] = s / l[a][a];
+    if (!std::isfinite(force[idx[a]])) return false;
+  }
+  return true;
+}
+
 }  // namespace whatnext::contact

@@ -119,9 +119,9 @@ Transfer RopeGeometry::transfer_at(Vec2 r, Vec2 el) const {
   return t;
 }
 
-double RopeGeometry::lid_side_of_rope(double phi_s, double phi_l) const {
-  const Vec2 hr = seesaw_end(phi_s) - hinge_;
-  return cross(hr, polar(1.0, phi_l)) / norm(hr);
+double RopeGeometry::lid_side_of_rope(Vec2 u_s, Vec2 u_l) const {
+  const Vec2 hr = r_h_ * u_s - hinge_;
+  return cross(hr, u_l) / norm(hr);
 }
 
 double RopeGeometry::paper_transfer(double phi_s, double phi_l) const {

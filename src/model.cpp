@@ -114,7 +114,7 @@ Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, do
   double num = -w_s_ * g_ * cs - c_p_ * dphi_s;
   double den = i_s_;
   if (on) {
-    p.ddr = g_ * ss + r * dphi_s * dphi_s;
+    p.ddr = along_arm_acceleration(r, ss, dphi_s);
     num += m_s_ * g_ * r * cs - 2.0 * m_s_ * r * dr * dphi_s;
     den += m_s_ * r * r;
   }
@@ -143,7 +143,7 @@ Model::LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, dou
   double q_s = -w_s_ * g_ * cs - c_p_ * dphi_s;
   if (on) {
     q_s += m_s_ * g_ * r * cs;
-    p.ddr = g_ * p.lk.sin_s + r * dphi_s * dphi_s;
+    p.ddr = along_arm_acceleration(r, p.lk.sin_s, dphi_s);
   }
   const double q_l = -m_l_ * g_ * r_l_ * p.lk.cos_l - c_l_ * dphi_l;
   const double num = ds * q_s + q_l - carried * ds * p.lk.dds * dphi_l * dphi_l -
@@ -158,7 +158,7 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     dy[slot::r] = y[slot::dr];
     dy[slot::phi_s] = y[slot::dphi_s];
     if (d.taut && d.lid_resting) {  // M5: seesaw held by the rope, sandbag slides on the fixed arm
-      dy[slot::dr] = g_ * std::sin(y[slot::phi_s]);
+      dy[slot::dr] = along_arm_acceleration(y[slot::r], std::sin(y[slot::phi_s]), 0.0);
     } else if (d.lid_chart && d.taut) {  // M4 near the lid's dead centre: the lid's angle integrated
       const LidSwing p = swing_by_lid(true, y[slot::r], y[slot::phi_s], y[slot::dr], y[slot::dphi_s], d.side);
       dy[slot::dr] = p.ddr;
@@ -257,6 +257,7 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) cons
     if (!d.taut) {  // a heavy seesaw carrying the sandbag, the lid on its own
       if (rates) {
         const Swing p = swing(true, false, k.r, k.phi_s, k.dr, k.dphi_s);
+        k.ddr = p.ddr;
         k.ddphi_s = p.ddphi_s;
         k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
         trig_s = true;
@@ -268,12 +269,15 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) cons
     } else if (d.lid_chart) {
       const double phi_l = y[slot::phi_s];
       if (rates) {
-        by_lid(swing_by_lid(true, k.r, phi_l, k.dr, y[slot::dphi_s], d.side), phi_l, y[slot::dphi_s]);
+        const LidSwing p = swing_by_lid(true, k.r, phi_l, k.dr, y[slot::dphi_s], d.side);
+        k.ddr = p.ddr;
+        by_lid(p, phi_l, y[slot::dphi_s]);
       } else {
         placed(true, phi_l);
       }
     } else if (rates) {
       const Swing p = swing(true, true, k.r, k.phi_s, k.dr, k.dphi_s);
+      k.ddr = p.ddr;
       k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
       trig_s = true;
       on_rope(p);
@@ -284,6 +288,7 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) cons
     const double c = k.cos_s, s = k.sin_s;
     k.x = -k.r * c;
     k.h = -k.r * s;
+    if (rates && d.taut && d.lid_resting) k.ddr = along_arm_acceleration(k.r, s, 0.0);  // M5: the arm is fixed
     if (rates) {
       k.vx = -k.dr * c + k.r * s * k.dphi_s;
       k.vh = -k.dr * s - k.r * c * k.dphi_s;
@@ -418,9 +423,15 @@ contact::Set Model::active_set(const Discrete& d) {
   return (d.on_seesaw ? bit(kBag) : 0u) | (d.taut ? bit(kRope) : 0u) | (d.lid_resting ? bit(kLid) : 0u);
 }
 
+contact::Coords Model::accelerations(const Discrete& d, const Kinematics& k) const {
+  if (!d.polar()) return {0.0, -g_, k.ddphi_s, k.ddphi_l};  // the sandbag falls freely
+  // x = -r cos phiS, h = -r sin phiS: along the arm r'' - r phiS'^2, across it 2 r' phiS' + r phiS''.
+  const double along = k.ddr - k.r * k.dphi_s * k.dphi_s, across = 2.0 * k.dr * k.dphi_s + k.r * k.ddphi_s;
+  return {-along * k.cos_s + across * k.sin_s, -along * k.sin_s - across * k.cos_s, k.ddphi_s, k.ddphi_l};
+}
+
 bool Model::contact_forces(const Discrete& d, const Kinematics& k, contact::PerContact& force) const {
-  contact::Coords acc;
-  if (contact::constrained_motion(contact_system(d, k), active_set(d), acc, force)) return true;
+  if (contact::multipliers_for(contact_system(d, k), active_set(d), accelerations(d, k), force)) return true;
   force.fill(0.0);
   return false;
 }
@@ -514,7 +525,8 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
 
   // Open contacts: their gaps, negative while open.
   if (!d.on_seesaw && !d.fallen_off) g[kGuardBag] = -height_above_arm(k);
-  if (!d.taut) g[kGuardRope] = rope_.span(k.phi_s, k.phi_l) - rope_.rope_length();
+  const Vec2 u_s{k.cos_s, k.sin_s}, u_l{k.cos_l, k.sin_l};
+  if (!d.taut) g[kGuardRope] = rope_.span(u_s, u_l) - rope_.rope_length();
   if (!d.lid_resting) g[kGuardLid] = phi_l0_ - k.phi_l;
   // Closed contacts: minus their forces. A massless seesaw held by one contact alone carries no
   // force through it at all (identically zero: no guard); held by sandbag and rope together, the
@@ -533,9 +545,9 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
     if (!d.lid_resting) (*rates)[kGuardLid] = -k.dphi_l;
   }
   if (forces) {
-    contact::Coords acc;
+    // The forces that make the flow's own accelerations (k has them).
     contact::PerContact f;
-    if (contact::constrained_motion(sys, active_set(d), acc, f)) {
+    if (contact::multipliers_for(sys, active_set(d), accelerations(d, k), f)) {
       // The sign of k is that of -W_RS (the rope's gap gradient along phiS), which stays finite
       // where k passes through infinity at the lid's dead centre.
       if (d.on_seesaw) g[kGuardBag] = heavy_ ? -f[kBag] : sys.normal[kRope][2];
@@ -548,7 +560,7 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   if (on_closure(d)) {
     // The lid's dead centre: it reaches the rope's line (the rope would touch the hinge and then
     // run through the box). Crossed at a finite rate in the lid chart, so found exactly.
-    if (only < 0 || only == kGuardRopeLocked) g[kGuardRopeLocked] = rope_.lid_side_of_rope(k.phi_s, k.phi_l);
+    if (only < 0 || only == kGuardRopeLocked) g[kGuardRopeLocked] = rope_.lid_side_of_rope(u_s, u_l);
     // Integrate the angle that moves slower: switch charts at |k| = 2 (seesaw) or 1/2 (lid).
     g[kGuardChart] = d.lid_chart ? std::fabs(1.0 / k.transfer.k) - 2.0 : std::fabs(k.transfer.k) - 2.0;
   } else if (d.taut && !d.lid_resting && !d.latched) {

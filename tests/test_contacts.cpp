@@ -523,3 +523,41 @@ TEST(Reproducers, AnInelasticCascadeEndsWithTheLidAndTheRopeBothHeld) {
     }
   }
 }
+
+// The forces that make a constrained motion's accelerations are that motion's forces (the
+// guards and snapshots take them from the flow's accelerations this way): an identity of
+// M a = f + W^T lambda, on random systems with a massless coordinate or none.
+TEST(ContactSolver, InverseDynamicsGivesBackTheForcesOfTheConstrainedMotion) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int compared = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    wn::contact::System sys;
+    sys.coords = 4;
+    sys.contacts = 3;
+    for (int j = 0; j < 4; ++j) {
+      sys.mass[j] = 0.1 + 2.0 * (u(rng) + 1.0);
+      sys.force[j] = 10.0 * u(rng);
+      sys.velocity[j] = u(rng);
+    }
+    if (trial % 2 == 0) sys.mass[2] = 0.0;  // the massless seesaw
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 4; ++j) sys.normal[i][j] = u(rng);
+      sys.curvature[i] = u(rng);
+    }
+    for (wn::contact::Set s = 1; s < 8; ++s) {
+      wn::contact::Coords acc;
+      wn::contact::PerContact force, again;
+      if (!wn::contact::constrained_motion(sys, s, acc, force)) continue;
+      ASSERT_TRUE(wn::contact::multipliers_for(sys, s, acc, again)) << "trial " << trial << " set " << s;
+      double scale = 1.0;
+      for (double f : force) scale = std::fmax(scale, std::fabs(f));
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(again[i], force[i], 1e-9 * scale) << "trial " << trial << " set " << s << " contact " << i;
+        if (!wn::contact::has(s, i)) EXPECT_EQ(again[i], 0.0);
+      }
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 10000);
+}

@@ -178,11 +178,11 @@ TEST_F(Abuse, InpFilesAreReadStrictly) {
 // --- plausibility limits ------------------------------------------------------------------------
 
 // A run that goes round at one instant without end stops with exit code 3 and one line (rk4 with a
-// 1 s step on example 4 reached 7459 J from 3.6 J and then decided the same contacts at t = 1.548 s
-// for ever), writing nothing.
+// 0.719 s step on a tilted example 3 decides the same contacts at t = 1.006 s for ever), writing
+// nothing. Which absurd fixed steps do this depends on the last bits of the contact forces: rk4
+// with a 1 s step on example 4 did until the forces came from the flow's accelerations.
 TEST_F(Abuse, ARunThatStopsAdvancingEndsWithAnError) {
-  for (const std::string& sets : {"--example 4 --set run.integrator=rk4 --set run.step=1",
-                                  "--example 3 --set run.integrator=rk4 --set run.step=0.719 --set start.seesaw_angle=29.24"}) {
+  for (const std::string& sets : {"--example 3 --set run.integrator=rk4 --set run.step=0.719 --set start.seesaw_angle=29.24"}) {
     SCOPED_TRACE(sets);
     const CliResult r = whatnext("run " + sets + " --csv " + path("r.csv") + " --events " + path("e.json"));
     EXPECT_EQ(r.code, 3) << r.err;

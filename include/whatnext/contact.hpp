@@ -78,4 +78,10 @@ bool constrained_velocity(const System& sys, Set closed, Coords& velocity);
 // what the motion is while that set holds. false where the set does not determine it.
 bool constrained_motion(const System& sys, Set active, Coords& acceleration, PerContact& force);
 
+// The forces of the given contacts that make the given accelerations, M a = f + sum_i W_i force_i
+// (inverse dynamics, no sign checks): where the caller has the motion already (a flow), the same
+// forces as constrained_motion's at a fraction of its cost. false where the set's gradients are
+// dependent.
+bool multipliers_for(const System& sys, Set active, const Coords& acceleration, PerContact& force);
+
 }  // namespace whatnext::contact

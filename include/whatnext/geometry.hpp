@@ -24,8 +24,10 @@ class RopeGeometry {
   double rope_length() const { return l_r_; }
   Vec2 seesaw_end(double phi_s) const { return polar(r_h_, phi_s); }
   Vec2 lid_edge(double phi_l) const { return hinge_ + polar(2.0 * r_l_, phi_l); }
-  // Distance |R - E|.
-  double span(double phi_s, double phi_l) const { return norm(seesaw_end(phi_s) - lid_edge(phi_l)); }
+  // Distance |R - E|; from the angles, or from their directions u = (cos, sin) where the caller
+  // has those already (the guards: no trigonometric function computed twice).
+  double span(Vec2 u_s, Vec2 u_l) const { return norm(r_h_ * u_s - (hinge_ + (2.0 * r_l_) * u_l)); }
+  double span(double phi_s, double phi_l) const { return span(polar(1.0, phi_s), polar(1.0, phi_l)); }
   // C = |R - E|^2 - l_R^2: negative while the rope is slack, zero when it is straight.
   double gap(double phi_s, double phi_l) const;
 
@@ -68,7 +70,10 @@ class RopeGeometry {
   Linkage from_lid(double cos_l, double sin_l, int side, bool derivatives = true) const;
   // Where the lid stands against the straight rope: < 0 below it (MODEL.md's branch), 0 along
   // it (the dead centre: the rope would touch the hinge), > 0 on the mirror side. Dimensionless.
-  double lid_side_of_rope(double phi_s, double phi_l) const;
+  double lid_side_of_rope(Vec2 u_s, Vec2 u_l) const;
+  double lid_side_of_rope(double phi_s, double phi_l) const {
+    return lid_side_of_rope(polar(1.0, phi_s), polar(1.0, phi_l));
+  }
   // The paper's transfer coefficient r_H sin(alpha + phiS - phiL) / (2 r_L sin alpha).
   double paper_transfer(double phi_s, double phi_l) const;
 

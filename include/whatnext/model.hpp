@@ -49,7 +49,7 @@ enum ContactIndex : int { kBag = 0, kRope = 1, kLid = 2 };
 // Full kinematics at one instant, whatever the layout of the continuous state.
 struct Kinematics {
   double x = 0, h = 0, vx = 0, vh = 0;
-  double r = 0, dr = 0, phi_s = 0, dphi_s = 0, ddphi_s = 0;
+  double r = 0, dr = 0, ddr = 0, phi_s = 0, dphi_s = 0, ddphi_s = 0;  // ddr: on the arm only
   double phi_l = 0, dphi_l = 0, ddphi_l = 0;
   double balloon_h = 0, balloon_v = 0;  // the balloon's centre from the hinge level
   Transfer transfer;  // valid while the rope is taut
@@ -95,6 +95,9 @@ class Model {
   // Forces of the closed contacts in d (arm on sandbag [N], rope tension [N], box on lid [N m]),
   // from the contact problem; false where d's contacts do not determine them (then all zero).
   bool contact_forces(const Discrete& d, const Kinematics& k, contact::PerContact& force) const;
+  // The accelerations of (x, h, phiS, phiL) in k (from kinematics() with rates): the motion the
+  // flow integrates, from which the contact forces follow (contact::multipliers_for).
+  contact::Coords accelerations(const Discrete& d, const Kinematics& k) const;
   // The machine's energy: sandbag, lid and seesaw.
   double energy(const Kinematics& k) const;
   // The balloon's: (1/2) m_B v^2 - m_B a_B h (its net lift as a potential).
@@ -137,6 +140,8 @@ class Model {
     return d.taut && !d.lid_resting && !d.latched && (d.on_seesaw || d.heavy);
   }
   double lid_free_acceleration(double phi_l, double dphi_l) const;
+  // r'' of the sandbag on the arm (eq. 5): gravity along the arm and the centrifugal term.
+  double along_arm_acceleration(double r, double sin_s, double dphi_s) const { return g_ * sin_s + r * dphi_s * dphi_s; }
   double radio_gap(double balloon_h) const;
   void dissipation(const Discrete& d, const Kinematics& k, State& dy) const;
   // The sandbag's height above the arm's line and its distance along it from the pivot.
