@@ -1030,9 +1030,7 @@ Event Model::make_event(EventType type, HybridState& hs, Mode before, Mode after
   e.t = hs.t;
   e.mode_before = before;
   e.mode_after = after;
-  e.after = snapshot(hs);
-  e.energy_before = e.energy_after = e.after.energy();
-  return e;
+  return e;  // after and the energies: see jump()
 }
 
 void Model::free_balloon(HybridState& hs, const Kinematics& k, double v) const {

@@ -65,8 +65,7 @@ Result simulate(const Scenario& sc, Observer* observer) {
   auto publish = [&](std::vector<Event>& events) {
     if (!events.empty()) {
       const Snapshot final_state = model.snapshot(hs);
-      for (Event& e : events) {
-        if (e.t != hs.t) continue;
+      for (Event& e : events) {  // all of them at hs.t: the jumps' events carry no state of their own
         e.after = final_state;
         e.energy_after = final_state.energy();
         if (!e.impact) e.energy_before = e.energy_after;

@@ -554,7 +554,9 @@ TEST(ContactSolver, InverseDynamicsGivesBackTheForcesOfTheConstrainedMotion) {
       for (double f : force) scale = std::fmax(scale, std::fabs(f));
       for (int i = 0; i < 3; ++i) {
         EXPECT_NEAR(again[i], force[i], 1e-9 * scale) << "trial " << trial << " set " << s << " contact " << i;
-        if (!wn::contact::has(s, i)) EXPECT_EQ(again[i], 0.0);
+        if (!wn::contact::has(s, i)) {
+          EXPECT_EQ(again[i], 0.0);
+        }
       }
       ++compared;
     }

@@ -76,7 +76,9 @@ class Model {
   void guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates = nullptr,
               int only = -1) const;
   // Jump for the guard that fired at hs.t; every resulting event is appended to out in the order
-  // it happens (all at hs.t). Returns true when the run ends.
+  // it happens (all at hs.t). Returns true when the run ends. The events' after, energy_after
+  // and (unless an impact) energy_before are the state the motion goes on with once every event
+  // of the instant is decided: simulate() fills them in then, once for all of them.
   bool jump(Guard fired, HybridState& hs, std::vector<Event>& out) const;
   // The run ends at t_max.
   void timeout(HybridState& hs, std::vector<Event>& out) const;

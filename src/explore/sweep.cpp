@@ -245,6 +245,11 @@ Machines::Machines(const Plan& plan) : plan_(plan) {
     }
     size_ *= r.n;
   }
+  grid_.resize(dims);
+  for (std::size_t d = 0; d < dims; ++d) {
+    if (plan_.ranges[d].n > kCachedValues) continue;
+    for (std::int64_t j = 0; j < plan_.ranges[d].n; ++j) grid_[d].push_back(grid_value(d, j));
+  }
 }
 
 void Machines::point(std::int64_t i, double* out) const {
@@ -254,15 +259,20 @@ void Machines::point(std::int64_t i, double* out) const {
     return;
   }
   for (std::size_t d = dims; d-- > 0;) {  // the last range varies fastest
-    const Range& r = plan_.ranges[d];
-    const std::int64_t j = i % r.n;
-    i /= r.n;
-    // The ends are exactly A and B; a single value is A. Inner values are rounded to 15 digits,
-    // so 0.62:0.9:29 gives 0.82 rather than the 0.8200000000000001 that the arithmetic makes.
-    out[d] = r.n == 1 ? r.lo
-             : j == r.n - 1 ? r.hi
-                            : tidy(between(r.lo, r.hi, static_cast<double>(j) / static_cast<double>(r.n - 1)));
+    const std::int64_t n = plan_.ranges[d].n;
+    const std::int64_t j = i % n;
+    i /= n;
+    out[d] = grid_[d].empty() ? grid_value(d, j) : grid_[d][static_cast<std::size_t>(j)];
   }
+}
+
+double Machines::grid_value(std::size_t d, std::int64_t j) const {
+  // The ends are exactly A and B; a single value is A. Inner values are rounded to 15 digits,
+  // so 0.62:0.9:29 gives 0.82 rather than the 0.8200000000000001 that the arithmetic makes.
+  const Range& r = plan_.ranges[d];
+  return r.n == 1 ? r.lo
+         : j == r.n - 1 ? r.hi
+                        : tidy(between(r.lo, r.hi, static_cast<double>(j) / static_cast<double>(r.n - 1)));
 }
 
 const std::vector<EventType>& event_types() {

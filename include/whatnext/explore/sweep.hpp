@@ -51,6 +51,11 @@ class Machines {
   Plan plan_;
   std::int64_t size_ = 0;
   std::vector<double> lhs_;  // Latin hypercube: size_ x ranges values, row-major
+  // A grid's values per range, made once (tidying a value formats and parses it), for ranges of
+  // up to kCachedValues values; longer ones are computed per machine.
+  static constexpr std::int64_t kCachedValues = 1 << 16;
+  std::vector<std::vector<double>> grid_;
+  double grid_value(std::size_t d, std::int64_t j) const;
 };
 
 // At most this many machines in one sweep (every row is kept in memory until the CSV is written).
