@@ -175,17 +175,14 @@ void register_sweep(CLI::App& app, int& exit_code) {
       stop.store(true);
     });
     ro.csv = &csv->stream();  // written while the machines run
+    ro.keep_rows = heat != nullptr;  // the heat map reads the outcomes; the CSV alone does not
     const explore::SweepResult result = explore::run(in.config, machines, ro);
     bar.finish();
 #if WHATNEXT_FULL
     if (heat) explore::draw_heatmap(heat->temp_path(), machines, result, opts->heatmap_value);
 #endif
     outputs.commit_all();
-    std::int64_t invalid = 0, failed = 0;
-    for (std::int64_t i = 0; i < machines.size(); ++i) {
-      const explore::Outcome& o = result.rows[static_cast<std::size_t>(i)];
-      if (result.done[static_cast<std::size_t>(i)] && !o.valid) ++(o.failed ? failed : invalid);
-    }
+    const std::int64_t invalid = result.invalid, failed = result.failed;
     if (result.interrupted) {
       fmt::print(stderr, "whatnext: sweep interrupted: {} of {} machines written to {}\n", result.completed,
                  machines.size(), printable(opts->out, 96));

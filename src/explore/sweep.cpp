@@ -352,7 +352,7 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   const std::int64_t total = machines.size();
   const std::vector<std::string> keys = machines.plan().keys();
   SweepResult res;
-  res.rows.resize(static_cast<std::size_t>(total));
+  if (options.keep_rows) res.rows.resize(static_cast<std::size_t>(total));
   res.done.assign(static_cast<std::size_t>(total), 0);
   res.lines.resize(static_cast<std::size_t>(total));
 
@@ -360,7 +360,7 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   // CSV) do not depend on which thread ran which machine. A finished block is marked done under
   // the lock, which also hands its lines to the calling thread.
   constexpr std::int64_t kBlock = 8, kWake = 256;
-  std::atomic<std::int64_t> next{0}, completed{0}, written{0};
+  std::atomic<std::int64_t> next{0}, completed{0}, written{0}, invalid{0}, failed_runs{0};
   int running = 0;
   std::mutex m;
   std::condition_variable cv;
@@ -383,8 +383,10 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
         for (; i < end && !stopped(); ++i) {
           machines.point(i, values.data());
           const auto slot = static_cast<std::size_t>(i);
-          res.rows[slot] = evaluate_in(work, keys, values.data(), options.accuracy);
-          res.lines[slot] = csv_row(i, values, res.rows[slot]);  // formatted here, on all cores
+          Outcome o = evaluate_in(work, keys, values.data(), options.accuracy);
+          if (!o.valid) (o.failed ? failed_runs : invalid).fetch_add(1, std::memory_order_relaxed);
+          res.lines[slot] = csv_row(i, values, o);  // formatted here, on all cores
+          if (options.keep_rows) res.rows[slot] = std::move(o);
           completed.fetch_add(1, std::memory_order_relaxed);
         }
         {
@@ -475,6 +477,8 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   }
   if (options.progress) options.progress(completed.load(), total);  // the final count, not the last tick's
   res.completed = completed.load();
+  res.invalid = invalid.load();
+  res.failed = failed_runs.load();
   res.interrupted = res.completed < total;
   return res;
 }

@@ -115,13 +115,18 @@ struct RunOptions {
   // If given, the CSV (write_csv's layout) is written here by the calling thread while the
   // machines run, rows in index order as they are done, and SweepResult::lines is left empty.
   std::ostream* csv = nullptr;
+  // false: SweepResult::rows stays empty, for a caller that wants the CSV alone (with csv given):
+  // every outcome kept is memory touched, and on a virtual machine a fresh page costs as much as
+  // a third of a machine's run (docs/performance.md).
+  bool keep_rows = true;
 };
 
 struct SweepResult {
-  std::vector<Outcome> rows;  // by machine index
+  std::vector<Outcome> rows;  // by machine index (empty unless RunOptions::keep_rows)
   std::vector<std::string> lines;  // rows[i] as its CSV line, formatted by the workers (or empty: RunOptions::csv)
   std::vector<char> done;     // done[i]: rows[i] holds machine i's outcome
   std::int64_t completed = 0;
+  std::int64_t invalid = 0, failed = 0;  // of the completed machines: invalid inputs, failed runs
   bool interrupted = false;
 };
 
