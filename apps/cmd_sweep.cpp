@@ -182,7 +182,6 @@ void register_sweep(CLI::App& app, int& exit_code) {
     if (heat) explore::draw_heatmap(heat->temp_path(), machines, result, opts->heatmap_value);
 #endif
     outputs.commit_all();
-    const std::int64_t invalid = result.invalid, failed = result.failed;
     if (result.interrupted) {
       fmt::print(stderr, "whatnext: sweep interrupted: {} of {} machines written to {}\n", result.completed,
                  machines.size(), printable(opts->out, 96));
@@ -190,7 +189,7 @@ void register_sweep(CLI::App& app, int& exit_code) {
       return;
     }
     fmt::print(text, "sweep: {} machines ({} with invalid inputs, {} failed runs) written to {}{}\n",
-               machines.size(), invalid, failed, printable(opts->out, 96),
+               machines.size(), result.invalid, result.failed, printable(opts->out, 96),
                heat ? fmt::format(", heat map {}", printable(opts->heatmap, 96)) : "");
     exit_code = 0;
   });

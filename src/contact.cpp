@@ -211,15 +211,14 @@ bool multipliers_for(const System& sys, Set active, const Coords& acceleration, 
     const Coords& wa = sys.normal[idx[a]];
     for (int b = 0; b <= a; ++b) {
       const Coords& wb = sys.normal[idx[b]];
-      double s = 0.0;
-      for (int j = 0; j < sys.coords; ++j) s += wa[j] * wb[j];
+      double gram = 0.0;  // W_a . W_b
+      for (int j = 0; j < sys.coords; ++j) gram += wa[j] * wb[j];
+      double s = gram;
       for (int c = 0; c < b; ++c) s -= l[a][c] * l[b][c];
       if (b < a) {
         l[a][b] = s / l[b][b];
       } else {
-        double norm2 = 0.0;  // |W_a|^2: what is left of it must not be rounding
-        for (int j = 0; j < sys.coords; ++j) norm2 += wa[j] * wa[j];
-        if (!(s > 1e-24 * norm2)) return false;
+        if (!(s > 1e-24 * gram)) return false;  // what is left of |W_a|^2 must not be rounding
         l[a][a] = std::sqrt(s);
       }
     }

@@ -60,7 +60,7 @@ double clamp_unit(double c) { return c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c); }
 }  // namespace
 
 RopeGeometry::Linkage RopeGeometry::from_seesaw(double cos_s, double sin_s, bool derivatives) const {
-  const Vec2 r{r_h_ * cos_s, r_h_ * sin_s};
+  const Vec2 r = seesaw_end({cos_s, sin_s});
   const Vec2 hr = r - hinge_;
   const double d = std::sqrt(dot(hr, hr));
   const double cs = clamp_unit((4.0 * r_l_ * r_l_ + d * d - l_r_ * l_r_) / (4.0 * r_l_ * d));
@@ -120,7 +120,7 @@ Transfer RopeGeometry::transfer_at(Vec2 r, Vec2 el) const {
 }
 
 double RopeGeometry::lid_side_of_rope(Vec2 u_s, Vec2 u_l) const {
-  const Vec2 hr = r_h_ * u_s - hinge_;
+  const Vec2 hr = seesaw_end(u_s) - hinge_;
   return cross(hr, u_l) / norm(hr);
 }
 

@@ -22,11 +22,14 @@ class RopeGeometry {
 
   Vec2 hinge() const { return hinge_; }
   double rope_length() const { return l_r_; }
-  Vec2 seesaw_end(double phi_s) const { return polar(r_h_, phi_s); }
-  Vec2 lid_edge(double phi_l) const { return hinge_ + polar(2.0 * r_l_, phi_l); }
-  // Distance |R - E|; from the angles, or from their directions u = (cos, sin) where the caller
-  // has those already (the guards: no trigonometric function computed twice).
-  double span(Vec2 u_s, Vec2 u_l) const { return norm(r_h_ * u_s - (hinge_ + (2.0 * r_l_) * u_l)); }
+  // From the angles, or from their directions u = (cos, sin) where the caller has those already
+  // (the guards: no trigonometric function computed twice); the same bits either way.
+  Vec2 seesaw_end(Vec2 u_s) const { return r_h_ * u_s; }
+  Vec2 seesaw_end(double phi_s) const { return seesaw_end(polar(1.0, phi_s)); }
+  Vec2 lid_edge(Vec2 u_l) const { return hinge_ + (2.0 * r_l_) * u_l; }
+  Vec2 lid_edge(double phi_l) const { return lid_edge(polar(1.0, phi_l)); }
+  // Distance |R - E|.
+  double span(Vec2 u_s, Vec2 u_l) const { return norm(seesaw_end(u_s) - lid_edge(u_l)); }
   double span(double phi_s, double phi_l) const { return span(polar(1.0, phi_s), polar(1.0, phi_l)); }
   // C = |R - E|^2 - l_R^2: negative while the rope is slack, zero when it is straight.
   double gap(double phi_s, double phi_l) const;

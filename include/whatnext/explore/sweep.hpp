@@ -124,7 +124,7 @@ struct RunOptions {
 struct SweepResult {
   std::vector<Outcome> rows;  // by machine index (empty unless RunOptions::keep_rows)
   std::vector<std::string> lines;  // rows[i] as its CSV line, formatted by the workers (or empty: RunOptions::csv)
-  std::vector<char> done;     // done[i]: rows[i] holds machine i's outcome
+  std::vector<char> done;     // done[i]: machine i has run (its outcome in rows[i] where kept)
   std::int64_t completed = 0;
   std::int64_t invalid = 0, failed = 0;  // of the completed machines: invalid inputs, failed runs
   bool interrupted = false;
