@@ -73,21 +73,18 @@ void register_run(CLI::App& app, int& exit_code) {
     Fanout fan;
     std::unique_ptr<CsvWriter> csv;
     std::unique_ptr<DatWriter> dat;
-    // The CSV's text is made and written on a thread of its own while the machine runs (example 3
-    // at the paper's step: 64 ms instead of 81); the .dat's rows are cheap enough that a second
-    // thread cost more than it saved (30 ms instead of 27; docs/performance.md).
+    // Both make their rows on two threads: example 3 at the paper's step writes 80,000 rows, and
+    // their positions and text cost ten times the run (docs/performance.md).
     if (csv_file) {
-      csv = std::make_unique<CsvWriter>(csv_file->stream(), Writing::background);
+      csv = std::make_unique<CsvWriter>(csv_file->stream(), Writing::parallel);
       fan.add(csv.get());
     }
     if (dat_file) {
-      dat = std::make_unique<DatWriter>(dat_file->stream(), Writing::at_once);
+      dat = std::make_unique<DatWriter>(dat_file->stream(), Writing::parallel);
       fan.add(dat.get());
     }
     Observer* observer = csv && dat ? &fan : csv ? static_cast<Observer*>(csv.get()) : dat.get();
     const Result result = simulate(in.scenario, observer);
-    if (csv) csv->finish();
-    if (dat) dat->finish();
     if (events_file) events_file->stream() << events_json(result, in.scenario, in.source);
     outputs.commit_all();
     if (opts->quiet) {

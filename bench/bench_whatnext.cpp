@@ -228,15 +228,16 @@ void samples_only(benchmark::State& state, Observer::Detail detail) {
   }
 }
 
-// The run with its writer, as the command does it (the file itself excluded: see CountingBuf).
+// The run with its writer, as the command does it (the file itself excluded: see CountingBuf):
+// its rows made on one thread, or on two (Writing::parallel, the command's; real time).
 template <class Writer>
-void run_with_writer(benchmark::State& state) {
+void run_with_writer(benchmark::State& state, Writing writing) {
   const Scenario sc = example3_fine();
   std::int64_t bytes = 0;
   for (auto _ : state) {
     CountingBuf buf;
     std::ostream out(&buf);
-    Writer w(out);
+    Writer w(out, writing);
     Result r = simulate(sc, &w);
     benchmark::DoNotOptimize(r.events.data());
     bytes = buf.bytes;
@@ -342,10 +343,16 @@ int main(int argc, char** argv) {
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("output/example3_step0.00025/samples_full", samples_only, Observer::Detail::full)
       ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("output/example3_step0.00025/dat", run_with_writer<DatWriter>)
-      ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("output/example3_step0.00025/csv", run_with_writer<CsvWriter>)
-      ->Unit(benchmark::kMillisecond);
+  for (const auto& [name, writing] : {std::pair{"at_once", Writing::at_once}, std::pair{"parallel", Writing::parallel}}) {
+    benchmark::RegisterBenchmark((std::string("output/example3_step0.00025/dat/") + name).c_str(),
+                                 run_with_writer<DatWriter>, writing)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((std::string("output/example3_step0.00025/csv/") + name).c_str(),
+                                 run_with_writer<CsvWriter>, writing)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  }
   benchmark::RegisterBenchmark("format/dat_numbers/numtext", format_numbers<char* (*)(char*, double)>, dat_values,
                                numtext::put_f8_3)
       ->Unit(benchmark::kMillisecond);

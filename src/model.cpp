@@ -207,8 +207,15 @@ void Model::dissipation(const Discrete& /*d*/, const Kinematics& k, State& dy) c
 
 // --- kinematics --------------------------------------------------------------------------------
 
-Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) const {
+Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool memo) const {
   Kinematics k;
+  // The memos serve one thread's integration; samples made on other threads compute afresh.
+  auto swing_of = [&](bool on, bool taut, double r, double phi_s, double dr, double dphi_s) {
+    return memo ? swing(on, taut, r, phi_s, dr, dphi_s) : compute_swing(on, taut, r, phi_s, dr, dphi_s);
+  };
+  auto lid_swing_of = [&](bool on, double r, double phi_l, double dr, double dphi_l, int side) {
+    return memo ? swing_by_lid(on, r, phi_l, dr, dphi_l, side) : compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side);
+  };
   bool trig_s = false, trig_l = false;  // cos and sin of phiS / phiL already known
   auto free_lid = [&] {
     if (d.lid_resting) {
@@ -256,7 +263,7 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) cons
     if (rates) k.dr = y[slot::dr], k.dphi_s = y[slot::dphi_s];
     if (!d.taut) {  // a heavy seesaw carrying the sandbag, the lid on its own
       if (rates) {
-        const Swing p = swing(true, false, k.r, k.phi_s, k.dr, k.dphi_s);
+        const Swing p = swing_of(true, false, k.r, k.phi_s, k.dr, k.dphi_s);
         k.ddr = p.ddr;
         k.ddphi_s = p.ddphi_s;
         k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
@@ -269,14 +276,14 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) cons
     } else if (d.lid_chart) {
       const double phi_l = y[slot::phi_s];
       if (rates) {
-        const LidSwing p = swing_by_lid(true, k.r, phi_l, k.dr, y[slot::dphi_s], d.side);
+        const LidSwing p = lid_swing_of(true, k.r, phi_l, k.dr, y[slot::dphi_s], d.side);
         k.ddr = p.ddr;
         by_lid(p, phi_l, y[slot::dphi_s]);
       } else {
         placed(true, phi_l);
       }
     } else if (rates) {
-      const Swing p = swing(true, true, k.r, k.phi_s, k.dr, k.dphi_s);
+      const Swing p = swing_of(true, true, k.r, k.phi_s, k.dr, k.dphi_s);
       k.ddr = p.ddr;
       k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
       trig_s = true;
@@ -318,12 +325,12 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates) cons
       } else if (d.lid_chart && d.taut) {
         const double phi_l = y[slot::seesaw_phi];
         if (rates) {
-          by_lid(swing_by_lid(false, 0.0, phi_l, 0.0, y[slot::seesaw_dphi], d.side), phi_l, y[slot::seesaw_dphi]);
+          by_lid(lid_swing_of(false, 0.0, phi_l, 0.0, y[slot::seesaw_dphi], d.side), phi_l, y[slot::seesaw_dphi]);
         } else {
           placed(true, phi_l);
         }
       } else if (rates) {
-        const Swing p = swing(false, d.taut, 0.0, k.phi_s, 0.0, k.dphi_s);
+        const Swing p = swing_of(false, d.taut, 0.0, k.phi_s, 0.0, k.dphi_s);
         k.ddphi_s = p.ddphi_s;
         k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
         trig_s = true;
@@ -462,8 +469,8 @@ double Model::lid_push_now(const Discrete& d, const Kinematics& k, const State& 
          (y[slot::lost_drag] - b.drag_mark);
 }
 
-Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full) const {
-  const Kinematics k = kinematics(d, y, full);
+Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full, bool memo) const {
+  const Kinematics k = kinematics(d, y, full, memo);
   Snapshot s;
   s.t = t;
   s.mode = d.mode();

@@ -8,6 +8,7 @@
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -375,7 +376,13 @@ void AtomicFile::commit() {
   if (::close(fd) != 0) {
     throw OutputError(fmt::format("{} {}: writing failed: {}", option_, printable(path_, 96), std::strerror(errno)));
   }
-  std::lock_guard<std::mutex> hold(interrupts().lock);
+  std::lock_guard<std::mutex> hold(interrupts().lock);  // an interrupt waits for the name
+  // The old file goes first, then the new one takes its name: never a partial file under it, and
+  // for the microseconds between, none. Renamed over the old file, ext4 would write the new one's
+  // delayed blocks out at once (auto_da_alloc, its guard against empty files after a power cut,
+  // a promise this program does not make: it never fsyncs): 2.6 ms of example 3's 5.8 MB .dat,
+  // a fifth of the whole run (docs/performance.md). An unlink that fails leaves it to rename.
+  ::unlink(target_.c_str());
   if (::rename(tmp_.c_str(), target_.c_str()) != 0) {
     throw OutputError(fmt::format("{} {}: writing failed: {}", option_, printable(path_, 96), std::strerror(errno)));
   }
@@ -532,160 +539,169 @@ std::string events_json(const Result& result, const Scenario& sc, const std::str
 
 // --- rows of the CSV and the .dat ------------------------------------------------------------
 
-// A writer's rows as fixed-size records of their numbers, turned into text by `format` (at most
-// max_chars characters a row): at once, or in blocks on a thread of its own (Writing).
-class RowPipe {
+// A batch's rows, made in chunks of kChunkRows on the calling thread and, with Writing::parallel,
+// on a helper thread too; written in order by the calling thread as their chunks are done.
+// Chunks are claimed from one atomic word (round, chunks, next), so a helper that wakes late or
+// never only leaves more chunks to the caller: the caller never waits for a chunk nobody took.
+class RowText {
  public:
-  using Format = char* (*)(const void* record, char* out);
-  RowPipe(std::ostream& out, Writing writing, std::size_t record_size, std::size_t max_chars, Format format)
+  // Writes the text of row i at out (at most max_chars characters) and returns its end. Called
+  // from two threads at once with Writing::parallel.
+  struct Row {
+    const void* context;
+    char* (*make)(const void* context, std::size_t i, char* out);
+  };
+
+  RowText(std::ostream& out, Writing writing, std::size_t max_chars)
       : out_(out),
         buf_(out.rdbuf()),
-        background_(writing == Writing::background),
-        size_(record_size),
-        max_chars_(max_chars),
-        format_(format),
-        block_bytes_(std::max<std::size_t>(1, kBlockBytes / record_size) * record_size) {}
-  ~RowPipe() { finish(); }
-  RowPipe(const RowPipe&) = delete;
-  RowPipe& operator=(const RowPipe&) = delete;
-
-  void add(const void* record) {
-    if (!background_) {
-      if (text_.empty()) text_.resize(max_chars_);
-      const char* end = format_(record, text_.data());
-      const auto n = static_cast<std::streamsize>(end - text_.data());
-      if (!out_.good() || !buf_ || buf_->sputn(text_.data(), n) != n) out_.setstate(std::ios::badbit);
-      return;
+        parallel_(writing == Writing::parallel && std::thread::hardware_concurrency() > 1),
+        max_chars_(max_chars) {}
+  ~RowText() {
+    if (!helper_.joinable()) return;
+    {
+      std::lock_guard<std::mutex> hold(lock_);
+      stop_.store(true, std::memory_order_relaxed);
     }
-    if (block_.data.empty()) block_.data.resize(block_bytes_);
-    std::memcpy(block_.data.data() + block_.used, record, size_);
-    block_.used += size_;
-    if (block_.used == block_bytes_) hand_over();
+    wake_.notify_one();
+    helper_.join();
   }
+  RowText(const RowText&) = delete;
+  RowText& operator=(const RowText&) = delete;
 
-  // Waits for the worker; the rows are all in the stream after it, and any row added later goes
-  // there at once.
-  void finish() {
-    if (!background_) return;
-    background_ = false;
-    if (worker_.joinable()) {
-      if (block_.used > 0) hand_over();
-      {
-        std::lock_guard<std::mutex> hold(lock_);
-        done_ = true;
-      }
-      more_.notify_one();
-      worker_.join();
-    } else if (block_.used > 0) {
-      write_block(block_);  // fewer rows than a block: no thread for them
-    }
-    block_.used = 0;
-    if (failed_) out_.setstate(std::ios::badbit);
+  // Rows 0 .. n-1, in order. A row that throws (a state that is not finite) ends the batch: the
+  // rows before its chunk are written, and the exception is rethrown here.
+  template <class F>
+  void write(std::size_t n, const F& row) {
+    write(n, Row{&row, [](const void* c, std::size_t i, char* out) { return (*static_cast<const F*>(c))(i, out); }});
   }
 
  private:
-  // 32 KiB of records a block, at most kPending of them waiting, so that a slow disk holds back
-  // the run instead of filling the memory: every page touched costs (docs/performance.md), and
-  // so does every hand-over that wakes the other thread.
-  static constexpr std::size_t kBlockBytes = 1 << 15;
-  static constexpr std::size_t kPending = 3;
-  struct Block {
-    std::vector<char> data;  // block_bytes_, once allocated
-    std::size_t used = 0;
-  };
+  static constexpr std::size_t kChunkRows = 128;
+  static constexpr std::size_t kChunks = 16;  // a round: 4096 rows, one simulate() batch
+  enum : int { pending = 0, done = 1, failed = 2 };
 
-  void hand_over() {
-    if (!worker_.joinable() && !failed_) {
-      // Everything the worker uses is allocated here, so that it allocates nothing: a thread's
-      // first allocation would make it a malloc arena of its own.
-      text_.resize(std::max<std::size_t>(kBlockBytes, max_chars_));
-      spare_.reserve(kPending + 2);
-      try {
-        worker_ = std::thread([this] { work(); });
-      } catch (const std::system_error&) {  // no threads here: the rows are written at once
-        write_block(block_);
-        block_.used = 0;
-        background_ = false;
-        return;
+  void write(std::size_t n, Row row) {
+    for (std::size_t base = 0; base < n; base += kChunks * kChunkRows) {
+      const std::size_t rows = std::min(n - base, kChunks * kChunkRows);
+      const std::size_t chunks = (rows + kChunkRows - 1) / kChunkRows;
+      row_ = row;
+      base_ = base;
+      end_row_ = base + rows;
+      for (std::size_t k = 0; k < chunks; ++k) state_[k].store(pending, std::memory_order_relaxed);
+      std::uint32_t round = 0;
+      {
+        std::lock_guard<std::mutex> hold(lock_);
+        round = ++round_;
+        claim_.store(word(round, chunks, 0), std::memory_order_release);
       }
+      if (chunks > 1 && parallel_ && start_helper()) wake_.notify_one();
+      std::size_t written = 0, k = 0;
+      while (claim(round, k)) {
+        make(k);
+        written = write_done(written, chunks);
+      }
+      for (std::size_t j = written; j < chunks; ++j) {  // the helper's last chunks
+        while (state_[j].load(std::memory_order_acquire) == pending) std::this_thread::yield();
+      }
+      written = write_done(written, chunks);
+      if (written < chunks) std::rethrow_exception(error_[written]);
     }
-    Block next;
-    {
-      std::unique_lock<std::mutex> hold(lock_);
-      room_.wait(hold, [this] { return queue_.size() < kPending; });
-      queue_.push_back(std::move(block_));
-      if (!spare_.empty()) {
-        next = std::move(spare_.back());
-        spare_.pop_back();
-      }
-      if (!idle_) {  // the worker looks at the queue before it sleeps: no wake-up needed
-        block_ = std::move(next);
-        block_.used = 0;
-        return;
-      }
-    }
-    more_.notify_one();
-    block_ = std::move(next);
-    block_.used = 0;
   }
 
-  void work() {
-    std::unique_lock<std::mutex> hold(lock_);
+  static std::uint64_t word(std::uint32_t round, std::size_t chunks, std::size_t next) {
+    return (std::uint64_t{round} << 32) | (std::uint64_t{chunks} << 16) | next;
+  }
+  // The next chunk of this round, if any is left.
+  bool claim(std::uint32_t round, std::size_t& k) {
+    std::uint64_t c = claim_.load(std::memory_order_acquire);
     for (;;) {
-      if (queue_.empty()) {
-        if (done_) return;
-        idle_ = true;
-        more_.wait(hold, [this] { return !queue_.empty() || done_; });
-        idle_ = false;
-        continue;
+      const std::size_t chunks = (c >> 16) & 0xffff, next = c & 0xffff;
+      if ((c >> 32) != round || next >= chunks) return false;
+      if (claim_.compare_exchange_weak(c, c + 1, std::memory_order_acq_rel)) {
+        k = next;
+        return true;
       }
-      Block block = std::move(queue_.front());
-      queue_.pop_front();
-      const bool full = queue_.size() + 1 == kPending;
-      hold.unlock();
-      if (full) room_.notify_one();
-      write_block(block);
-      hold.lock();
-      spare_.push_back(std::move(block));
     }
   }
 
-  // The records' text, through a buffer of a block's size, to the stream (one thread at a time).
-  void write_block(const Block& block) {
-    if (failed_) return;
-    if (text_.size() < std::max<std::size_t>(kBlockBytes, max_chars_)) {
-      text_.resize(std::max<std::size_t>(kBlockBytes, max_chars_));
+  void make(std::size_t k) {
+    if (!slot_[k]) slot_[k].reset(new char[kChunkRows * max_chars_]);  // pages touched as used
+    char* p = slot_[k].get();
+    try {
+      const std::size_t from = base_ + k * kChunkRows, to = std::min(end_row_, from + kChunkRows);
+      for (std::size_t i = from; i < to; ++i) p = row_.make(row_.context, i, p);
+      end_[k] = p;
+      state_[k].store(done, std::memory_order_release);
+    } catch (...) {
+      error_[k] = std::current_exception();
+      state_[k].store(failed, std::memory_order_release);
     }
-    char* const begin = text_.data();
-    char* p = begin;
-    const auto flush = [&] {
-      const auto n = static_cast<std::streamsize>(p - begin);
-      if (!buf_ || buf_->sputn(begin, n) != n) failed_ = true;
-      p = begin;
-    };
-    for (std::size_t at = 0; at < block.used && !failed_; at += size_) {
-      if (static_cast<std::size_t>(begin + text_.size() - p) < max_chars_) flush();
-      p = format_(block.data.data() + at, p);
+  }
+
+  // Writes the done chunks from `from` on, in order; returns the first one not written.
+  std::size_t write_done(std::size_t from, std::size_t chunks) {
+    for (; from < chunks && state_[from].load(std::memory_order_acquire) == done; ++from) {
+      const auto bytes = static_cast<std::streamsize>(end_[from] - slot_[from].get());
+      if (!out_.good() || !buf_ || buf_->sputn(slot_[from].get(), bytes) != bytes) out_.setstate(std::ios::badbit);
     }
-    if (!failed_) flush();
+    return from;
+  }
+
+  bool start_helper() {
+    if (helper_.joinable()) return true;
+    for (std::size_t k = 0; k < kChunks; ++k) {  // allocated here: the helper allocates nothing
+      if (!slot_[k]) slot_[k].reset(new char[kChunkRows * max_chars_]);
+    }
+    try {
+      helper_ = std::thread([this] { help(); });
+    } catch (const std::system_error&) {  // no threads here (WebAssembly): all rows on this one
+      parallel_ = false;
+    }
+    return parallel_;
+  }
+
+  void help() {
+    std::uint32_t seen = 0;
+    for (;;) {
+      // The next round comes within tens of microseconds (the run's next samples): look for it a
+      // while before sleeping, for waking a sleeping thread (an idle virtual CPU) takes longer.
+      std::uint32_t round = seen;
+      const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(500);
+      while (!stop_.load(std::memory_order_relaxed) && std::chrono::steady_clock::now() < until) {
+        round = static_cast<std::uint32_t>(claim_.load(std::memory_order_acquire) >> 32);
+        if (round != seen) break;
+        std::this_thread::yield();
+      }
+      if (round == seen) {
+        std::unique_lock<std::mutex> hold(lock_);
+        wake_.wait(hold, [&] { return stop_.load(std::memory_order_relaxed) || round_ != seen; });
+        if (stop_.load(std::memory_order_relaxed)) return;
+        round = round_;
+      }
+      seen = round;
+      std::size_t k = 0;
+      while (claim(round, k)) make(k);
+    }
   }
 
   std::ostream& out_;
   std::streambuf* buf_;
-  bool background_;
-  const std::size_t size_, max_chars_;
-  const Format format_;
-  const std::size_t block_bytes_;
-  Block block_;             // the records not yet handed over (background)
-  std::vector<char> text_;  // at once: one row; background: the worker's, or finish()'s
+  bool parallel_;
+  const std::size_t max_chars_;
+  // The round's job: set by the caller before claim_ opens the round, read after a claim.
+  Row row_{};
+  std::size_t base_ = 0, end_row_ = 0;
+  std::atomic<std::uint64_t> claim_{0};
+  std::array<std::atomic<int>, kChunks> state_{};
+  std::array<char*, kChunks> end_{};
+  std::array<std::exception_ptr, kChunks> error_{};
+  std::array<std::unique_ptr<char[]>, kChunks> slot_{};
   std::mutex lock_;
-  std::condition_variable more_, room_;
-  std::deque<Block> queue_;    // blocks for the worker, in order
-  std::vector<Block> spare_;   // written blocks, for reuse
-  bool done_ = false;
-  bool idle_ = false;  // the worker waits for a block
-  std::atomic<bool> failed_{false};
-  std::thread worker_;
+  std::condition_variable wake_;
+  std::uint32_t round_ = 0;  // under lock_
+  std::atomic<bool> stop_{false};  // set under lock_
+  std::thread helper_;
 };
 
 namespace {
@@ -694,51 +710,51 @@ char* put_text(char* out, std::string_view text) {
   return out + text.size();
 }
 
-// A CSV row's numbers: everything after t, event, mode and rope_taut (CsvWriter::header()).
+// A CSV row's numbers after t, event, mode and rope_taut (CsvWriter::header()).
 constexpr std::size_t kCsvNumbers = 28;
-struct CsvRecord {
-  double t;
-  double values[kCsvNumbers];
-  const char* event;  // to_string(EventType) and to_string(Mode): names that live for good
-  const char* mode;
-  std::uint8_t event_size, mode_size;
-  bool taut;
-};
-// A comma and numtext::kG9Room characters per number, and the names (CsvRecord's sizes).
+// A comma and numtext::kG9Room characters per number (t and the others), and the two names.
 constexpr std::size_t kCsvMaxChars = (1 + kCsvNumbers + 1) * (1 + numtext::kG9Room) + 2 * 255 + 8;
 
-char* format_csv(const void* record, char* out) {
-  CsvRecord r;
-  std::memcpy(&r, record, sizeof r);
-  char* p = numtext::put_g9(out, r.t);
+char* format_csv(const Snapshot& s, std::string_view event, char* out) {
+  require_finite(s);
+  const std::string_view mode = to_string(s.mode);
+  if (event.size() > 255 || mode.size() > 255) throw std::logic_error("CsvWriter: a name is too long");
+  const double values[kCsvNumbers] = {
+      s.x, s.h, s.r, s.dr, s.phi_s * kRadToDeg, s.dphi_s * kRadToDeg, s.phi_l * kRadToDeg,
+      s.dphi_l * kRadToDeg, s.balloon_h, s.balloon_v, s.balloon_limit, s.tension, s.energy(),
+      s.sandbag_kinetic, s.sandbag_potential, s.lid_kinetic, s.lid_potential, s.seesaw_kinetic,
+      s.seesaw_potential, s.balloon_kinetic, s.balloon_potential, s.lost_impacts, s.lost_balloon_catch,
+      s.dissipated_pivot, s.dissipated_hinge, s.dissipated_drag, s.lid_push_work, s.ledger_residual()};
+  char* p = numtext::put_g9(out, s.t);
   *p++ = ',';
-  p = put_text(p, {r.event, r.event_size});
+  p = put_text(p, event);
   *p++ = ',';
-  p = put_text(p, {r.mode, r.mode_size});
+  p = put_text(p, mode);
   *p++ = ',';
-  *p++ = r.taut ? '1' : '0';
-  for (const double v : r.values) {
+  *p++ = s.rope_taut ? '1' : '0';
+  for (const double v : values) {
     *p++ = ',';
-    p = numtext::put_g9(p, v);
+    p = numtext::put_g9(p, clean(v));
   }
   *p++ = '\n';
   return p;
 }
 
 // A .dat row: seven numbers and the two flags (cr, straight), which are 0 or 1.
-struct DatRecord {
-  double values[7];
-  bool slack, taut;
-};
 constexpr std::size_t kDatMaxChars = 9 * 8 + 1;
 
-char* format_dat(const void* record, char* out) {
-  DatRecord r;
-  std::memcpy(&r, record, sizeof r);
+char* format_dat(const Snapshot& s, bool slack, char* out) {
+  const double values[7] = {s.t, s.x, s.h, s.phi_s, s.phi_l, s.balloon_limit, s.balloon_h};
+  // Refused as in every writer, but only the numbers written are looked at: the samples are
+  // positions (sample_detail), and this runs 80,000 times for example 3 at the paper's step.
+  // (x - x is 0 for finite x, NaN otherwise: one test for all seven.)
+  double sum = 0.0;
+  for (const double v : values) sum += v - v;
+  if (sum != 0.0) not_finite(s);
   char* p = out;
-  for (const double v : r.values) p = numtext::put_f8_3(p, v == 0.0 ? 0.0 : v);  // fortran_f(v, 8, 3): no -0.000
-  std::memcpy(p, r.slack ? "   1.000" : "   0.000", 8);
-  std::memcpy(p + 8, r.taut ? "   1.000" : "   0.000", 8);
+  for (const double v : values) p = numtext::put_f8_3(p, v == 0.0 ? 0.0 : v);  // fortran_f(v, 8, 3): no -0.000
+  std::memcpy(p, slack ? "   1.000" : "   0.000", 8);
+  std::memcpy(p + 8, s.rope_taut ? "   1.000" : "   0.000", 8);
   p[16] = '\n';
   return p + 17;
 }
@@ -748,12 +764,10 @@ char* format_dat(const void* record, char* out) {
 
 CsvWriter::CsvWriter(std::ostream& out, Writing writing) {
   out << header() << '\n';
-  pipe_ = std::make_unique<RowPipe>(out, writing, sizeof(CsvRecord), kCsvMaxChars, format_csv);
+  rows_ = std::make_unique<RowText>(out, writing, kCsvMaxChars);
 }
 
 CsvWriter::~CsvWriter() = default;
-
-void CsvWriter::finish() { pipe_->finish(); }
 
 const char* CsvWriter::header() {
   return "t_s,event,mode,rope_taut,x_m,h_m,r_m,dr_m_per_s,phi_s_deg,dphi_s_deg_per_s,phi_l_deg,"
@@ -764,29 +778,19 @@ const char* CsvWriter::header() {
          "lid_push_on_balloon_J,ledger_residual_J";
 }
 
-void CsvWriter::row(const Snapshot& s, std::string_view event) {
-  require_finite(s);
-  const std::string_view mode = to_string(s.mode);
-  if (event.size() > 255 || mode.size() > 255) throw std::logic_error("CsvWriter: a name is too long");
-  CsvRecord r{s.t,
-              {s.x, s.h, s.r, s.dr, s.phi_s * kRadToDeg, s.dphi_s * kRadToDeg, s.phi_l * kRadToDeg,
-               s.dphi_l * kRadToDeg, s.balloon_h, s.balloon_v, s.balloon_limit, s.tension, s.energy(),
-               s.sandbag_kinetic, s.sandbag_potential, s.lid_kinetic, s.lid_potential, s.seesaw_kinetic,
-               s.seesaw_potential, s.balloon_kinetic, s.balloon_potential, s.lost_impacts, s.lost_balloon_catch,
-               s.dissipated_pivot, s.dissipated_hinge, s.dissipated_drag, s.lid_push_work, s.ledger_residual()},
-              event.data(),
-              mode.data(),
-              static_cast<std::uint8_t>(event.size()),
-              static_cast<std::uint8_t>(mode.size()),
-              s.rope_taut};
-  for (double& v : r.values) v = clean(v);
-  pipe_->add(&r);
+void CsvWriter::on_sample(const Snapshot& s) {
+  rows_->write(1, [&](std::size_t, char* out) { return format_csv(s, "", out); });
 }
 
-void CsvWriter::on_sample(const Snapshot& s) { row(s, ""); }
-void CsvWriter::on_event(const Event& e) { row(e.after, to_string(e.type)); }
+void CsvWriter::on_samples(const SampleBatch& batch) {
+  rows_->write(batch.size(), [&](std::size_t i, char* out) { return format_csv(batch.snapshot(i), "", out); });
+}
 
-// --- .dat --------------------------------------------------------------------------------------
+void CsvWriter::on_event(const Event& e) {
+  rows_->write(1, [&](std::size_t, char* out) { return format_csv(e.after, to_string(e.type), out); });
+}
+
+// --- .dat ------------------------------------------------------------------------------------------
 
 std::string fortran_f(double value, int width, int decimals) {
   std::string s = fmt::format("{:>{}.{}f}", clean(value), width, decimals);
@@ -795,22 +799,19 @@ std::string fortran_f(double value, int width, int decimals) {
 }
 
 DatWriter::DatWriter(std::ostream& out, Writing writing)
-    : pipe_(std::make_unique<RowPipe>(out, writing, sizeof(DatRecord), kDatMaxChars, format_dat)) {}
+    : rows_(std::make_unique<RowText>(out, writing, kDatMaxChars)) {}
 
 DatWriter::~DatWriter() = default;
 
-void DatWriter::finish() { pipe_->finish(); }
-
 void DatWriter::on_sample(const Snapshot& s) {
-  const DatRecord r{{s.t, s.x, s.h, s.phi_s, s.phi_l, s.balloon_limit, s.balloon_h}, slack_since_last_row_,
-                    s.rope_taut};
-  // Refused as in every writer, but only the numbers written are looked at: the samples are
-  // positions (sample_detail), and this runs 80,000 times for example 3 at the paper's step.
-  // (x - x is 0 for finite x, NaN otherwise: one test for all seven.)
-  double sum = 0.0;
-  for (const double v : r.values) sum += v - v;
-  if (sum != 0.0) not_finite(s);
-  pipe_->add(&r);
+  rows_->write(1, [&](std::size_t, char* out) { return format_dat(s, slack_since_last_row_, out); });
+  slack_since_last_row_ = false;
+}
+
+void DatWriter::on_samples(const SampleBatch& batch) {
+  const bool slack = slack_since_last_row_;
+  rows_->write(batch.size(),
+               [&](std::size_t i, char* out) { return format_dat(batch.snapshot(i), i == 0 && slack, out); });
   slack_since_last_row_ = false;
 }
 

@@ -41,6 +41,10 @@ constexpr std::int64_t kMaxAdaptiveSteps = 5'000'000;
 
 }  // namespace
 
+Snapshot SampleBatch::snapshot(std::size_t i) const {
+  return model_->snapshot(times_[i], d_, states_[i], full_, /*memo=*/false);
+}
+
 Result simulate(const Scenario& sc, Observer* observer) {
   namespace odeint = boost::numeric::odeint;
   const Model model(sc);
@@ -86,6 +90,15 @@ Result simulate(const Scenario& sc, Observer* observer) {
   if (stopped) return res;
   OutputGrid grid{observer ? sc.run.output_step : 0.0, 0};
   const bool full_samples = observer && observer->sample_detail() == Observer::Detail::full;
+  // Samples are handed over in batches (a piece's, or kBatch of them): an observer may then make
+  // their rows on several threads. 4096 states are 426 KB, allocated once per run.
+  constexpr std::size_t kBatch = 2048;
+  SampleBatch batch(model, full_samples);
+  if (grid.step > 0.0) batch.reserve(kBatch);
+  auto hand_over = [&] {
+    if (batch.size() > 0) observer->on_samples(batch);
+    batch.clear();
+  };
   const double t_end = sc.run.t_max;
   // Pieces in a row that end where they began: the automaton going round at one instant (rk4 with
   // run.step = 1 s on example 4 did so for ever) is stopped instead of hanging.
@@ -94,9 +107,10 @@ Result simulate(const Scenario& sc, Observer* observer) {
   int no_progress = 0;
   for (;;) {
     const MachineSystem sys{&model, hs.d};
+    if (observer) batch.start(hs.d);
     auto sample = [&](double t, const State& y) {
-      const Snapshot s = model.snapshot(t, sys.d, y, full_samples);
-      observer->on_sample(s);
+      batch.add(t, y);
+      if (batch.size() == kBatch) hand_over();
     };
     Crossing c;
     double t = hs.t;
@@ -115,6 +129,7 @@ Result simulate(const Scenario& sc, Observer* observer) {
                                                          sample, res.stats);
         break;
     }
+    if (observer) hand_over();  // the piece's samples, before its events
     if (c.kind == Crossing::non_finite) fail("the motion turned non-finite", c.t, hs.d.mode());
     if (c.kind == Crossing::step_limit) {
       fail("the integrator used its budget of 5e6 steps (loosen run.tolerance or shorten run.t_max)",

@@ -87,9 +87,11 @@ class Model {
 
   // rates = false: where everything is (x, h, r, phiS, phiL with their cos and sin, the balloon's
   // height), the same numbers, without the rates, accelerations and the linkage's k (all zero).
-  Kinematics kinematics(const Discrete& d, const State& y, bool rates = true) const;
+  // memo = false: without the memos of the flow's last swing (below), so that other threads may
+  // call it while this model integrates; the same numbers.
+  Kinematics kinematics(const Discrete& d, const State& y, bool rates = true, bool memo = true) const;
   // full = false: positions only (Observer::Detail::positions), no rates, forces nor energies.
-  Snapshot snapshot(double t, const Discrete& d, const State& y, bool full = true) const;
+  Snapshot snapshot(double t, const Discrete& d, const State& y, bool full = true, bool memo = true) const;
   Snapshot snapshot(const HybridState& hs) const { return snapshot(hs.t, hs.d, hs.y); }
   // The contact problem at this instant: masses, forces, the contacts' gap gradients and
   // curvatures in the coordinates (x, h, phiS, phiL).
@@ -126,7 +128,7 @@ class Model {
   LidSwing compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side) const;
   // The flow's last stage (FSAL) and the guards at the step's end ask for the swing of the same
   // state: the last one computed is kept and handed out again for identical arguments. A Model
-  // belongs to one simulate() call, hence to one thread.
+  // belongs to one simulate() call, hence to one thread (kinematics(memo = false) leaves them be).
   template <class Result>
   struct Memo {
     bool valid = false;
