@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""Is `whatnext sweep` as accurate as its --accuracy says, beyond the issue's grid?
+
+For each family of random machines (a Latin hypercube around one of the paper's examples, with
+an extension or an impact law switched on), the same machines are swept twice: at the default
+accuracy of 1e-8 s, and as a reference at run.tolerance 1e-14 (events located to 1e-14 s).
+Every event column (each event type's first time) and the outcome are compared. Printed per
+family: the worst difference, as a fraction of the accuracy, and the machines whose outcome or
+set of events differs. docs/performance.md ("Sweeps") quotes its output.
+
+Usage: scripts/check-sweep-accuracy.py [WHATNEXT] [MACHINES] [SEED] [FAMILY,...]
+  defaults: build/whatnext, 2000 machines a family, seed 11, every family
+Needs only the Python standard library.
+"""
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+
+ACCURACY = 1e-8
+FAMILIES = {
+    "ex1": ["--example", "1", "--vary", "geometry.rope_length=0.85:1.1", "--vary", "start.sandbag_height=0.3:1.5",
+            "--vary", "masses.lid=0.2:0.8"],
+    "ex1-hinge-drag": ["--example", "1", "--set", "balloon.drag=true", "--vary", "geometry.hinge_distance=0.8:1.2",
+                       "--vary", "start.sandbag_height=0.3:1.5", "--vary", "geometry.seesaw_right_arm=0.5:0.7"],
+    "ex2-angular-law": ["--example", "2", "--set", "run.impact_law=angular-momentum-sum",
+                        "--vary", "geometry.rope_length=0.64:0.8", "--vary", "start.sandbag_height=0.3:1.2",
+                        "--vary", "masses.lid=0.2:0.8"],
+    "ex2-kinetic-law": ["--example", "2", "--set", "run.impact_law=kinetic-energy",
+                        "--vary", "geometry.rope_length=0.64:0.8", "--vary", "start.sandbag_height=0.3:1.2"],
+    "ex2-radio": ["--example", "2", "--set", "radio.enabled=true", "--set", "balloon.drag=true",
+                  "--vary", "radio.string_length=0.75:1.2", "--vary", "start.sandbag_height=0.3:1.2"],
+    "ex2-heavy": ["--example", "2", "--set", "seesaw.mass=0.4", "--set", "seesaw.left_arm=0.5",
+                  "--vary", "seesaw.mass=0.05:0.8", "--vary", "start.sandbag_height=0.3:1.2",
+                  "--vary", "geometry.rope_length=0.64:0.8"],
+    "ex2-heavy-linear-law": ["--example", "2", "--set", "run.impact_law=linear-momentum", "--set", "seesaw.mass=0.3",
+                             "--set", "seesaw.left_arm=0.5", "--vary", "geometry.rope_length=0.64:0.8",
+                             "--vary", "start.sandbag_height=0.3:1.2"],
+    "ex1-heavy-damped": ["--example", "1", "--set", "damping.pivot=0.02", "--set", "damping.lid_hinge=0.01",
+                         "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.5",
+                         "--vary", "damping.pivot=0.0:0.1", "--vary", "start.sandbag_height=0.3:1.2"],
+    "ex3": ["--example", "3", "--vary", "masses.lid=0.3:0.7", "--vary", "geometry.rope_length=0.9:1.1",
+            "--vary", "start.sandbag_height=0.0:0.5"],
+    "ex4": ["--example", "4", "--vary", "masses.sandbag=0.3:1.0", "--vary", "start.sandbag_x=-0.5:-0.1"],
+    "ex4-heavy": ["--example", "4", "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.6",
+                  "--vary", "seesaw.mass=0.05:1.0", "--vary", "start.sandbag_x=-0.5:-0.1"],
+}
+NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
+
+
+def sweep(whatnext, args, out, reference):
+    cmd = [whatnext, "sweep"] + args + ["--out", out]
+    if reference:
+        cmd += ["--accuracy", "1e-12", "--set", "run.tolerance=1e-14"]
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    with open(out, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def main():
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    whatnext = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "build", "whatnext")
+    machines = sys.argv[2] if len(sys.argv) > 2 else "2000"
+    seed = sys.argv[3] if len(sys.argv) > 3 else "11"
+    chosen = sys.argv[4].split(",") if len(sys.argv) > 4 else list(FAMILIES)
+    with tempfile.TemporaryDirectory() as work:
+        for name in chosen:
+            args = FAMILIES[name] + ["--samples", machines, "--seed", seed]
+            got = sweep(whatnext, args, os.path.join(work, "got.csv"), False)
+            ref = sweep(whatnext, args, os.path.join(work, "ref.csv"), True)
+            worst, where, other, valid = 0.0, "-", [], 0
+            for x, y in zip(got, ref):
+                if x["outcome"] != y["outcome"]:
+                    other.append(x["index"])
+                    continue
+                if x["outcome"] == "invalid":
+                    continue
+                valid += 1
+                for k in x:
+                    if k in NOT_TIMES or "." in k:  # the varied keys have a dot
+                        continue
+                    if (x[k] == "") != (y[k] == ""):
+                        other.append(x["index"])
+                        break
+                    if x[k] and abs(float(x[k]) - float(y[k])) > worst:
+                        worst, where = abs(float(x[k]) - float(y[k])), f"{k} of machine {x['index']}"
+            print(f"{name}: {valid} valid machines of {len(got)}; worst {worst:.3g} s = {worst / ACCURACY:.2f} of "
+                  f"the accuracy ({where}); other events or outcome: {len(other)} {other[:5]}", flush=True)
+
+
+if __name__ == "__main__":
+    main()
