@@ -79,15 +79,15 @@ struct Outcome {
 
 // The event-time accuracy a sweep asks for unless told otherwise [s].
 constexpr double kDefaultAccuracy = 1e-8;
-// The accuracies a sweep accepts [s]: the tolerance becomes a tenth of it, which must stay in
-// run.tolerance's range.
+// The accuracies a sweep accepts [s]: the tolerance becomes a fifteenth of it (at least 1e-15,
+// run.tolerance's floor).
 constexpr double kMinAccuracy = 1e-14, kMaxAccuracy = 1e-2;
 // Throws InputError naming `option` ("--accuracy", "accuracy") when accuracy is outside that range.
 void check_accuracy(double accuracy, std::string_view option);
 // Sets the run to locate every event within `accuracy` seconds of the exact time, as cheaply as
-// that allows: the integrator's tolerance accuracy / 10 (measured on example 2's 10^4-machine
-// grid: every event within 0.36 accuracy of a 1e-14 run; docs/performance.md), unless the machine
-// gives run.tolerance itself, and the events located to accuracy / 100.
+// that allows: the integrator's tolerance accuracy / 15, unless the machine gives run.tolerance
+// itself, and the events located to accuracy / 1000. A sweep also runs some machines again
+// (evaluate(); docs/performance.md, "Sweeps").
 void apply_accuracy(Scenario& scenario, double accuracy, bool tolerance_given);
 
 // Builds the machine (base with the given values set) and runs it, to the event-time accuracy
