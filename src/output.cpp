@@ -578,7 +578,7 @@ class RowText {
 
  private:
   static constexpr std::size_t kChunkRows = 128;
-  static constexpr std::size_t kChunks = 16;  // a round: 4096 rows, one simulate() batch
+  static constexpr std::size_t kChunks = 16;  // a round: 2048 rows, one simulate() batch
   enum : int { pending = 0, done = 1, failed = 2 };
 
   void write(std::size_t n, Row row) {

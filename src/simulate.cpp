@@ -91,7 +91,7 @@ Result simulate(const Scenario& sc, Observer* observer) {
   OutputGrid grid{observer ? sc.run.output_step : 0.0, 0};
   const bool full_samples = observer && observer->sample_detail() == Observer::Detail::full;
   // Samples are handed over in batches (a piece's, or kBatch of them): an observer may then make
-  // their rows on several threads. 4096 states are 426 KB, allocated once per run.
+  // their rows on several threads. 2048 states are 213 KB, allocated once per run.
   constexpr std::size_t kBatch = 2048;
   SampleBatch batch(model, full_samples);
   if (grid.step > 0.0) batch.reserve(kBatch);

@@ -121,7 +121,7 @@ class Recorder : public Observer {
 };
 
 // How the CSV and .dat writers make their rows. at_once: on the thread that runs the machine.
-// parallel: a batch of samples (SampleBatch: up to 4096, or a piece's) is made into rows on that
+// parallel: a batch of samples (SampleBatch: up to 2048, or a piece's) is made into rows on that
 // thread and on a helper thread of the writer's own, in chunks, and written in order before
 // on_samples returns (example 3 at the paper's step: the text of 80,000 rows and the positions
 // they need cost ten times the run). The same bytes either way; on one core, or where no thread
