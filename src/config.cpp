@@ -759,7 +759,9 @@ Scenario build_scenario(const Config& cfg) {
       in.fail("geometry.hinge_offset", "and geometry.hinge_distance/hinge_angle both given: use one form");
     }
     const Vec2 v = in.pair("geometry.hinge_offset");
-    if (norm(v) < kMinLength) {
+    // Within rounding of the minimum counts as the minimum: a hinge given as distance and angle
+    // at exactly kMinLength is written back by to_toml as an offset whose norm may be an ulp less.
+    if (norm(v) < kMinLength * (1.0 - 1e-12)) {
       in.fail("geometry.hinge_offset", fmt::format("must put the hinge at least {} m from the pivot (given [{}, {}])",
                                                    fmt_num(kMinLength), fmt_num(v.x), fmt_num(v.h)));
     }
