@@ -180,13 +180,11 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
         }
       }
     }
-    for (const Event& e : res.events) {
-      const auto idx = static_cast<std::size_t>(e.type);
-      if (idx < o.first.size() && std::isnan(o.first[idx])) o.first[idx] = e.t;
-    }
+    Reported r = reported(res);
+    o.first = std::move(r.first);
+    o.outcome = r.outcome;
+    o.outcome_t = r.outcome_t;
     const Event& last = res.outcome();
-    o.outcome = last.type;
-    o.outcome_t = last.t;
     o.final_r = last.after.r;
     o.final_phi_l_deg = last.after.phi_l * kRadToDeg;
     o.valid = true;
