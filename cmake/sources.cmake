@@ -2,11 +2,19 @@
 # build (web/wasm/CMakeLists.txt), relative to the source root.
 # The physics core: no I/O, compiles with Emscripten too.
 set(WHATNEXT_CORE_SOURCES
-  src/contact.cpp
-  src/geometry.cpp
-  src/model.cpp
-  src/names.cpp
-  src/simulate.cpp)
+  src/core/contact.cpp
+  src/core/geometry.cpp
+  src/core/model.cpp
+  src/core/kinematics.cpp
+  src/core/dynamics.cpp
+  src/core/contact_problem.cpp
+  src/core/guards.cpp
+  src/core/contact_decision.cpp
+  src/core/impact_laws.cpp
+  src/core/jumps.cpp
+  src/core/ledger.cpp
+  src/core/names.cpp
+  src/core/simulate.cpp)
 # Inputs and file outputs.
 set(WHATNEXT_IO_SOURCES
   src/config.cpp

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "whatnext/config.hpp"
-#include "whatnext/contact.hpp"
+#include "core/contact.hpp"
 #include "whatnext/geometry.hpp"
-#include "whatnext/model.hpp"
+#include "core/model.hpp"
 #include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
 

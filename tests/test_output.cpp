@@ -15,7 +15,7 @@
 
 #include "number_text.hpp"
 #include "whatnext/config.hpp"
-#include "whatnext/model.hpp"
+#include "core/model.hpp"
 #include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
 

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "whatnext/config.hpp"
-#include "whatnext/model.hpp"
+#include "core/model.hpp"
 #include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
 

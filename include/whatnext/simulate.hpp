@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "whatnext/events.hpp"
-#include "whatnext/integrate.hpp"
 #include "whatnext/params.hpp"
 #include "whatnext/state.hpp"
+#include "whatnext/step_stats.hpp"
 
 namespace whatnext {
 

@@ -1,4 +1,4 @@
-#include "whatnext/contact.hpp"
+#include "contact.hpp"
 
 #include <cmath>
 #include <limits>

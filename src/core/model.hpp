@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "whatnext/contact.hpp"
+#include "contact.hpp"
 #include "whatnext/events.hpp"
 #include "whatnext/geometry.hpp"
 #include "whatnext/params.hpp"

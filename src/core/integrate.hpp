@@ -35,6 +35,8 @@
 #include <boost/math/tools/toms748_solve.hpp>
 #include <boost/numeric/odeint.hpp>
 
+#include "whatnext/step_stats.hpp"
+
 namespace whatnext {
 
 struct Crossing {
@@ -67,10 +69,6 @@ bool finite(const State& y) {
 }
 }  // namespace detail
 
-struct StepStats {
-  std::int64_t steps = 0;
-  std::int64_t root_evaluations = 0;
-};
 
 // Output times n * step; next is the index of the next sample still to be written.
 struct OutputGrid {

@@ -2,7 +2,8 @@
 
 #include <cstdio>
 
-#include "whatnext/model.hpp"
+#include "integrate.hpp"
+#include "model.hpp"
 
 namespace whatnext {
 

@@ -1,0 +1,67 @@
+// The contact problem of one instant, in the coordinates (x, h, phiS, phiL), and the forces of the closed contacts.
+#include "model.hpp"
+
+#include <cmath>
+
+#include "model_internal.hpp"
+
+namespace whatnext {
+
+using namespace model_detail;
+
+// --- the contact problem -------------------------------------------------------------------------
+
+contact::System Model::contact_system(const Discrete& d, const Kinematics& k) const {
+  // Coordinates (x, h, phiS, phiL), diagonal masses (m_S, m_S, I_S, I_L): I_S = 0 is MODEL.md's
+  // massless seesaw, held by whatever contact acts on it. The gaps, each >= 0 when open:
+  //   sandbag: its height above the arm's line, -x sin phiS + h cos phiS (multiplier: the arm's push, N)
+  //   rope:    l_R - |R - E|                                  (multiplier: the tension, N)
+  //   lid:     phiL - phiL0                                   (multiplier: the box's push, N m)
+  contact::System s;
+  s.coords = 4;
+  s.contacts = 3;
+  s.mass = {m_s_, m_s_, i_s_, i_l_};
+  s.velocity = {k.vx, k.vh, k.dphi_s, k.dphi_l};
+  const double cs = k.cos_s, sn = k.sin_s, cl = k.cos_l, sl = k.sin_l;
+  // The pivot's damper needs a seesaw with inertia (validation rejects it on a massless one).
+  s.force = {0.0, -m_s_ * g_, -w_s_ * g_ * cs - c_p_ * k.dphi_s, -m_l_ * g_ * r_l_ * cl - c_l_ * k.dphi_l};
+  (void)d;
+
+  const double height = -k.x * sn + k.h * cs;
+  s.normal[kBag] = {-sn, cs, -k.x * cs - k.h * sn, 0.0};
+  s.curvature[kBag] = -2.0 * k.dphi_s * (k.vx * cs + k.vh * sn) - k.dphi_s * k.dphi_s * height;
+
+  const Vec2 r{sc_.machine.seesaw_right_arm * cs, sc_.machine.seesaw_right_arm * sn};
+  const Vec2 el{2.0 * r_l_ * cl, 2.0 * r_l_ * sl};
+  const Vec2 dv = r - (rope_.hinge() + el);  // D = R - E
+  const double dn = norm(dv);
+  const Vec2 r_s{-r.h, r.x}, e_l{-el.h, el.x};  // dR/dphiS, dE/dphiL
+  s.normal[kRope] = {0.0, 0.0, -dot(dv, r_s) / dn, dot(dv, e_l) / dn};
+  const Vec2 d_rate = k.dphi_s * r_s - k.dphi_l * e_l;
+  const Vec2 d_acc = (k.dphi_l * k.dphi_l) * el - (k.dphi_s * k.dphi_s) * r;  // D'' without phiS'', phiL''
+  const double along = dot(dv, d_rate) / dn;
+  s.curvature[kRope] = -(dot(dv, d_acc) + dot(d_rate, d_rate) - along * along) / dn;
+
+  s.normal[kLid] = {0.0, 0.0, 0.0, 1.0};
+  s.curvature[kLid] = 0.0;
+  return s;
+}
+
+contact::Set Model::active_set(const Discrete& d) {
+  return (d.on_seesaw ? bit(kBag) : 0u) | (d.taut ? bit(kRope) : 0u) | (d.lid_resting ? bit(kLid) : 0u);
+}
+
+contact::Coords Model::accelerations(const Discrete& d, const Kinematics& k) const {
+  if (!d.polar()) return {0.0, -g_, k.ddphi_s, k.ddphi_l};  // the sandbag falls freely
+  // x = -r cos phiS, h = -r sin phiS: along the arm r'' - r phiS'^2, across it 2 r' phiS' + r phiS''.
+  const double along = k.ddr - k.r * k.dphi_s * k.dphi_s, across = 2.0 * k.dr * k.dphi_s + k.r * k.ddphi_s;
+  return {-along * k.cos_s + across * k.sin_s, -along * k.sin_s - across * k.cos_s, k.ddphi_s, k.ddphi_l};
+}
+
+bool Model::contact_forces(const Discrete& d, const Kinematics& k, contact::PerContact& force) const {
+  if (contact::multipliers_for(contact_system(d, k), active_set(d), accelerations(d, k), force)) return true;
+  force.fill(0.0);
+  return false;
+}
+
+}  // namespace whatnext

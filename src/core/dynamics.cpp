@@ -1,0 +1,150 @@
+// Dynamics: the flows of every contact set (what the integrator integrates) and the losses of the dampers.
+#include "model.hpp"
+
+#include <cmath>
+
+#include "model_internal.hpp"
+
+namespace whatnext {
+
+using namespace model_detail;
+
+// --- flows -------------------------------------------------------------------------------------
+
+double Model::lid_free_acceleration(double phi_l, double dphi_l) const {
+  return (-m_l_ * g_ * r_l_ * std::cos(phi_l) - c_l_ * dphi_l) / i_l_;
+}
+
+namespace {
+template <class Memo>
+bool recall(const Memo& m, int flags, double a, double b, double c, double d) {
+  return m.valid && m.flags == flags && m.args[0] == a && m.args[1] == b && m.args[2] == c && m.args[3] == d;
+}
+template <class Memo, class Value>
+const Value& remember(Memo& m, int flags, double a, double b, double c, double d, const Value& v) {
+  m.valid = true, m.flags = flags;
+  m.args[0] = a, m.args[1] = b, m.args[2] = c, m.args[3] = d;
+  m.value = v;
+  return m.value;
+}
+}  // namespace
+
+Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const {
+  const int flags = (on ? 1 : 0) | (taut ? 2 : 0);
+  if (recall(swing_memo_, flags, r, phi_s, dr, dphi_s)) return swing_memo_.value;
+  return remember(swing_memo_, flags, r, phi_s, dr, dphi_s, compute_swing(on, taut, r, phi_s, dr, dphi_s));
+}
+
+Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side) const {
+  const int flags = (on ? 1 : 0) | (side > 0 ? 2 : 0);
+  if (recall(lid_swing_memo_, flags, r, phi_l, dr, dphi_l)) return lid_swing_memo_.value;
+  return remember(lid_swing_memo_, flags, r, phi_l, dr, dphi_l, compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side));
+}
+
+Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, double dr,
+                                  double dphi_s) const {
+  // J phiS'' = Q with J = I_S + [on] m_S r^2 + [taut] I_L k^2. With I_S = 0, no seesaw weight and no
+  // damping (MODEL.md) the extra terms are exact zeros and this is eqs. (3) and (4) of the paper.
+  // This is the flow's hot path: one sincos of phiS serves the weights and the whole linkage.
+  Swing p{};
+  const double cs = std::cos(phi_s), ss = std::sin(phi_s);
+  if (taut) {  // the lid on the rope's closure phiL(phiS), with analytic k, k'
+    p.lk = rope_.from_seesaw(cs, ss);
+  } else {
+    p.lk.cos_s = cs, p.lk.sin_s = ss;
+  }
+  double num = -w_s_ * g_ * cs - c_p_ * dphi_s;
+  double den = i_s_;
+  if (on) {
+    p.ddr = along_arm_acceleration(r, ss, dphi_s);
+    num += m_s_ * g_ * r * cs - 2.0 * m_s_ * r * dr * dphi_s;
+    den += m_s_ * r * r;
+  }
+  if (taut) {
+    const double k = p.lk.transfer.k;
+    num -= (m_l_ * g_ * r_l_ * p.lk.cos_l + i_l_ * p.lk.transfer.dk * dphi_s * dphi_s) * k +
+           c_l_ * k * k * dphi_s;
+    den += i_l_ * k * k;
+  }
+  p.ddphi_s = num / den;
+  return p;
+}
+
+Model::LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l,
+                                            int side) const {
+  // Along the closure phiS = S(phiL): multiply the seesaw's equation by S' and add the lid's, and
+  // the rope's force drops out (its gradient is normal to the closure). With phiS' = S' phiL' and
+  // phiS'' = S' phiL'' + S'' phiL'^2:
+  //   [(I_S + m r^2) S'^2 + I_L] phiL'' = S' Q_S + Q_L - (I_S + m r^2) S' S'' phiL'^2 - 2 m r r' S'^2 phiL'
+  // with Q_S, Q_L the weights' and dampers' torques. Finite where k = 1/S' is not.
+  LidSwing p{};
+  p.lk = rope_.from_lid(std::cos(phi_l), std::sin(phi_l), side);
+  const double ds = p.lk.ds, dphi_s = ds * dphi_l;
+  const double cs = p.lk.cos_s;
+  const double carried = i_s_ + (on ? m_s_ * r * r : 0.0);
+  double q_s = -w_s_ * g_ * cs - c_p_ * dphi_s;
+  if (on) {
+    q_s += m_s_ * g_ * r * cs;
+    p.ddr = along_arm_acceleration(r, p.lk.sin_s, dphi_s);
+  }
+  const double q_l = -m_l_ * g_ * r_l_ * p.lk.cos_l - c_l_ * dphi_l;
+  const double num = ds * q_s + q_l - carried * ds * p.lk.dds * dphi_l * dphi_l -
+                     (on ? 2.0 * m_s_ * r * dr * ds * ds * dphi_l : 0.0);
+  p.ddphi_l = num / (carried * ds * ds + i_l_);
+  return p;
+}
+
+void Model::flow(const Discrete& d, const State& y, State& dy) const {
+  dy.fill(0.0);
+  if (d.polar()) {
+    dy[slot::r] = y[slot::dr];
+    dy[slot::phi_s] = y[slot::dphi_s];
+    if (d.taut && d.lid_resting) {  // M5: seesaw held by the rope, sandbag slides on the fixed arm
+      dy[slot::dr] = along_arm_acceleration(y[slot::r], std::sin(y[slot::phi_s]), 0.0);
+    } else if (d.lid_chart && d.taut) {  // M4 near the lid's dead centre: the lid's angle integrated
+      const LidSwing p = swing_by_lid(true, y[slot::r], y[slot::phi_s], y[slot::dr], y[slot::dphi_s], d.side);
+      dy[slot::dr] = p.ddr;
+      dy[slot::dphi_s] = p.ddphi_l;
+    } else {  // M4, or a heavy seesaw carrying the sandbag
+      const Swing p = swing(true, d.taut, y[slot::r], y[slot::phi_s], y[slot::dr], y[slot::dphi_s]);
+      dy[slot::dr] = p.ddr;
+      dy[slot::dphi_s] = p.ddphi_s;
+    }
+    if (!d.taut && !d.lid_resting) {
+      dy[slot::phi_l] = y[slot::dphi_l];
+      dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l]);
+    }
+  } else {
+    // Sandbag in free fall. On the seesaw with the rope slack (M3) this is the paper's polar free
+    // fall written in Cartesian form: the same motion, regular at r = 0, and exact for any RK method.
+    dy[slot::x] = y[slot::vx];
+    dy[slot::h] = y[slot::vh];
+    dy[slot::vh] = -g_;
+    const bool lid_on_rope = d.heavy && d.taut;  // then the lid follows the heavy seesaw
+    if (!d.lid_resting && !d.latched && !lid_on_rope) {
+      dy[slot::phi_l] = y[slot::dphi_l];
+      dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l]);
+    }
+    if (d.heavy && !(d.taut && d.lid_resting)) {  // the unloaded heavy seesaw swings
+      dy[slot::seesaw_phi] = y[slot::seesaw_dphi];
+      dy[slot::seesaw_dphi] =
+          d.lid_chart && d.taut ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side).ddphi_l
+                      : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi]).ddphi_s;
+    }
+  }
+  if (!d.balloon_stuck) {
+    dy[slot::balloon_h] = y[slot::balloon_v];
+    dy[slot::balloon_v] = balloon_acceleration(y[slot::balloon_v]);
+  }
+  if (c_p_ > 0.0 || c_l_ > 0.0 || drag_ > 0.0) dissipation(d, kinematics(d, y), dy);
+}
+
+void Model::dissipation(const Discrete& /*d*/, const Kinematics& k, State& dy) const {
+  // Power turned into heat (the pivot's damper comes with a seesaw that has inertia).
+  dy[slot::lost_pivot] = c_p_ * k.dphi_s * k.dphi_s;
+  dy[slot::lost_hinge] = c_l_ * k.dphi_l * k.dphi_l;
+  const double v = std::fabs(k.balloon_v);
+  dy[slot::lost_drag] = m_b_ * drag_ * v * v * v;
+}
+
+}  // namespace whatnext

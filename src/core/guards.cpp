@@ -1,0 +1,103 @@
+// Guards: when the smooth motion must stop for an event, and each guard's rounding band.
+#include "model.hpp"
+
+#include <cmath>
+
+#include "model_internal.hpp"
+
+namespace whatnext {
+
+using namespace model_detail;
+
+// --- guards ------------------------------------------------------------------------------------
+
+void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates, int only) const {
+  g.fill(kInactive);
+  if (rates) rates->fill(std::numeric_limits<double>::quiet_NaN());
+  const Kinematics k = kinematics(d, y);
+  if (radio_) g[kGuardRadioOn] = radio_gap(k.balloon_h);
+  if (d.balloon_stuck) {
+    g[kGuardBalloon] =
+        limit_.acceleration_at(k.cos_l, k.sin_l, k.dphi_l, k.ddphi_l) - balloon_acceleration(k.balloon_v);
+  } else if (!d.latched) {
+    g[kGuardBalloon] = y[slot::balloon_h] - limit_.height_at(k.cos_l, k.sin_l);
+  }
+  if (rates && !d.balloon_stuck && !d.latched) {
+    (*rates)[kGuardBalloon] = y[slot::balloon_v] - limit_.rate_at(k.sin_l, k.dphi_l);
+  }
+  if (d.latched) return;  // the radio's wait: only the balloon matters now
+
+  // Open contacts: their gaps, negative while open.
+  if (!d.on_seesaw && !d.fallen_off) g[kGuardBag] = -height_above_arm(k);
+  const Vec2 u_s{k.cos_s, k.sin_s}, u_l{k.cos_l, k.sin_l};
+  if (!d.taut) g[kGuardRope] = rope_.span(u_s, u_l) - rope_.rope_length();
+  if (!d.lid_resting) g[kGuardLid] = phi_l0_ - k.phi_l;
+  // Closed contacts: minus their forces. A massless seesaw held by one contact alone carries no
+  // force through it at all (identically zero: no guard); held by sandbag and rope together, the
+  // arm's push is the tension times the coupling k (torque balance), so the sandbag's guard is
+  // the sign of k and the rope's the tension.
+  const bool loaded = heavy_ || (d.on_seesaw && d.taut);
+  const bool forces = loaded && (d.on_seesaw || d.taut) &&
+                      (only < 0 || only == kGuardBag || only == kGuardRope || only == kGuardLid);
+  const bool open = !(d.on_seesaw && d.taut && d.lid_resting);
+  contact::System sys;
+  if (forces || (rates && open)) sys = contact_system(d, k);
+  if (rates && open) {
+    // An open contact's guard is minus its gap, so its rate is minus the gap's rate W_i . v.
+    if (!d.on_seesaw && !d.fallen_off) (*rates)[kGuardBag] = -sys.rate(kBag, sys.velocity);
+    if (!d.taut) (*rates)[kGuardRope] = -sys.rate(kRope, sys.velocity);
+    if (!d.lid_resting) (*rates)[kGuardLid] = -k.dphi_l;
+  }
+  if (forces) {
+    // The forces that make the flow's own accelerations (k has them).
+    contact::PerContact f;
+    if (contact::multipliers_for(sys, active_set(d), accelerations(d, k), f)) {
+      // The sign of k is that of -W_RS (the rope's gap gradient along phiS), which stays finite
+      // where k passes through infinity at the lid's dead centre.
+      if (d.on_seesaw) g[kGuardBag] = heavy_ ? -f[kBag] : sys.normal[kRope][2];
+      if (d.taut) g[kGuardRope] = -f[kRope];
+      if (d.lid_resting && d.taut) g[kGuardLid] = -f[kLid];
+    }
+  }
+
+  g[kGuardLidOpen] = k.phi_l - vertical_;  // a lid resting at or past it is open from the start
+  if (on_closure(d)) {
+    // The lid's dead centre: it reaches the rope's line (the rope would touch the hinge and then
+    // run through the box). Crossed at a finite rate in the lid chart, so found exactly.
+    if (only < 0 || only == kGuardRopeLocked) g[kGuardRopeLocked] = rope_.lid_side_of_rope(u_s, u_l);
+    // Integrate the angle that moves slower: switch charts at |k| = 2 (seesaw) or 1/2 (lid).
+    g[kGuardChart] = d.lid_chart ? std::fabs(1.0 / k.transfer.k) - 2.0 : std::fabs(k.transfer.k) - 2.0;
+  } else if (d.taut && !d.lid_resting && !d.latched) {
+    // The massless seesaw following the lid: R on the line from the pivot to E, where the seesaw
+    // would have to turn infinitely fast.
+    g[kGuardRopeLocked] = std::fabs(rope_.cos_rho(k.phi_l)) - (1.0 - 1e-9);
+  }
+  if (d.polar()) {
+    g[kGuardAtPivot] = -k.r;
+  } else if (d.on_seesaw) {
+    // A free-falling sandbag can only leave the left arm through the pivot's vertical line.
+    g[kGuardAtPivot] = k.x;
+  }
+  // With the sandbag on it, the seesaw turning vertical ends the model (MODEL.md); an unloaded
+  // seesaw with inertia may swing on past it.
+  if (d.on_seesaw) {
+    g[kGuardSeesawVertical] = k.phi_s - vertical_;
+    if (arm_ < kNoEnd) g[kGuardArmEnd] = k.r - arm_;
+  }
+}
+
+double Model::guard_floor(Guard g, const Discrete& d) const {
+  // A thousand times what rounding leaves in each kind of value, on this machine's scale.
+  const double len = length_scale_, weight = (m_s_ + m_l_ + sc_.machine.seesaw_mass) * g_;
+  switch (g) {
+    case kGuardBag:
+      if (!d.on_seesaw) return 1e-12 * len;
+      return heavy_ ? 1e-10 * weight : 1e-12;  // the arm's push, or the sign of k
+    case kGuardRope: return d.taut ? 1e-10 * weight : 1e-12 * len;
+    case kGuardLid: return d.lid_resting ? 1e-10 * weight * len : 1e-12;
+    case kGuardBalloon: return d.balloon_stuck ? 1e-10 * g_ : 1e-12 * len;
+    default: return 0.0;
+  }
+}
+
+}  // namespace whatnext

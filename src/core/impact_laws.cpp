@@ -1,0 +1,68 @@
+// The paper's four impact laws: the velocities after the rope's jerk under each (docs/model.md, "Impact laws").
+#include "model.hpp"
+
+#include <cmath>
+
+#include "model_internal.hpp"
+
+namespace whatnext {
+
+using namespace model_detail;
+
+bool Model::law_velocity(const Kinematics& k, bool bag, contact::Coords& u) const {
+  // MODEL.md's impact laws fix the seesaw's rate after the rope's jerk; r' keeps the sandbag's
+  // speed along the arm (eq. 5) except under linear-momentum; afterwards phiL' = k phiS'. A heavy
+  // seesaw brings its own angular momentum I_S phiS'- (zero for the massless seesaw).
+  const double c = std::cos(k.phi_s), s = std::sin(k.phi_s);
+  const double r = along_arm(k);
+  const double v_par = -k.vx * c - k.vh * s;
+  const double v_perp = k.vx * s - k.vh * c;
+  const double kk = rope_.transfer(k.phi_s, k.phi_l).k;
+  const double m = bag ? m_s_ : 0.0;
+  const double w0 = k.dphi_l, ws = k.dphi_s;
+  double dr = v_par, dphi_s = 0.0;
+  const double rope_num = m * r * v_perp + kk * i_l_ * w0 + i_s_ * ws;
+  const double rope_den = m * r * r + i_l_ * kk * kk + i_s_;
+  switch (sc_.run.impact_law) {
+    case ImpactLaw::rope:  // eq. (7): inelastic impulse along the rope
+      dphi_s = rope_num / rope_den;
+      break;
+    case ImpactLaw::angular_momentum_sum:
+      dphi_s = (m * r * v_perp + i_l_ * w0 + i_s_ * ws) / (m * r * r + i_l_ * kk + i_s_);
+      break;
+    case ImpactLaw::kinetic_energy: {
+      const double mag = std::sqrt((m * v_perp * v_perp + i_l_ * w0 * w0 + i_s_ * ws * ws) / rope_den);
+      dphi_s = rope_num < 0.0 ? -mag : mag;
+      break;
+    }
+    case ImpactLaw::linear_momentum: {
+      if (!bag) {  // no sandbag in the impact: nothing for this law to say; inelastic instead
+        dphi_s = rope_num / rope_den;
+        break;
+      }
+      // Linear momentum of sandbag and lid centre of mass before = after (2x2 in r', phiS').
+      const double sl = std::sin(k.phi_l), cl = std::cos(k.phi_l);
+      const double px = m_s_ * k.vx - m_l_ * r_l_ * sl * w0;
+      const double ph = m_s_ * k.vh + m_l_ * r_l_ * cl * w0;
+      const double a11 = -m_s_ * c, a12 = m_s_ * r * s - m_l_ * r_l_ * sl * kk;
+      const double a21 = -m_s_ * s, a22 = -m_s_ * r * c + m_l_ * r_l_ * cl * kk;
+      const double det = a11 * a22 - a12 * a21;
+      dr = (px * a22 - a12 * ph) / det;
+      dphi_s = (a11 * ph - a21 * px) / det;
+      break;
+    }
+  }
+  contact::Coords out = u;
+  if (bag) {
+    out[0] = -dr * c + r * s * dphi_s;
+    out[1] = -dr * s - r * c * dphi_s;
+  }
+  out[2] = dphi_s;
+  out[3] = kk * dphi_s;
+  for (double x : out)
+    if (!std::isfinite(x)) return false;
+  u = out;
+  return true;
+}
+
+}  // namespace whatnext

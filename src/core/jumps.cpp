@@ -1,0 +1,248 @@
+// Jumps: the start, every event's change of the discrete state, and the end of a run.
+#include "model.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "model_internal.hpp"
+#include "whatnext/simulate.hpp"
+
+namespace whatnext {
+
+using namespace model_detail;
+
+// --- jumps -------------------------------------------------------------------------------------
+
+HybridState Model::initial(std::vector<Event>& out) const {
+  const Start& st = sc_.start;
+  HybridState hs;
+  hs.t = 0.0;
+  Discrete& d = hs.d;
+  d.parked_seesaw = st.seesaw_angle;
+  d.balloon_stuck = true;
+  d.heavy = heavy_;
+  d.on_seesaw = false;
+  d.taut = false;
+  d.lid_resting = true;
+  Kinematics k;
+  k.x = st.sandbag_x;
+  k.h = st.sandbag_h;
+  k.phi_s = st.seesaw_angle;
+  k.phi_l = phi_l0_;
+  k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s);
+  k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
+  // What touches at t = 0: the sandbag placed on the arm, the rope straight, the lid on the box.
+  Set touch = bit(kLid);
+  const double c = std::cos(st.seesaw_angle), s = std::sin(st.seesaw_angle);
+  if (std::fabs(height_above_arm(k)) <= kContact) {
+    touch |= bit(kBag);
+    // Placed on the arm: the polar and the Cartesian pictures agree exactly on the arm's line.
+    const double r = std::hypot(st.sandbag_x, st.sandbag_h);
+    k.x = -r * c;
+    k.h = -r * s;
+  }
+  if (rope_.span(st.seesaw_angle, phi_l0_) >= rope_.rope_length() - kContact) touch |= bit(kRope);
+  k = with_velocity(k, contact::Coords{});
+  // Everything starts at rest, so only forces decide; what touches is kept where they allow it.
+  Discrete dt = d;
+  dt.on_seesaw = contact::has(touch, kBag), dt.taut = contact::has(touch, kRope);
+  const contact::System sys = contact_system(dt, k);
+  contact::Choice ch = choice(dt, sys, k, -1, Trend::closing);
+  const contact::Motion mot = contact::solve_motion(sys, touch, ch);
+  if (!mot.ok) throw SimulationError("no consistent set of contacts at the start (degenerate contact)");
+  set_contacts(d, mot.active, k);
+  hs.y.fill(0.0);
+  place(hs, k);
+  hs.y[slot::balloon_h] = limit_.height(phi_l0_);
+  for (int i = 0; i < 3; ++i) {
+    if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
+    const Guard gi = guard_of(i);
+    d.armed[gi] = mot.gap_acceleration[i] > ch.accel_tol ? GuardStart{2, -0.5 * mot.gap_acceleration[i]}
+                                                         : GuardStart{3, kUnknownLead};
+    d.armed[gi].floor = guard_floor(gi, d);
+  }
+
+  const Kinematics k1 = kinematics(d, hs.y);
+  Books& b = d.books;
+  b.initial_total = energy(k1) + balloon_energy(k1.balloon_h, k1.balloon_v);
+  b.balloon_e_mark = balloon_energy(k1.balloon_h, k1.balloon_v);  // nothing pushed yet
+  open_books(hs, k1);
+  // A rope or a sandbag that touches at the start but lets go at once is an event at t = 0 (a lid
+  // that lifts at once just starts in M4).
+  Set cur = touch;
+  for (int i : {kBag, kRope}) {
+    if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
+    const Mode from = mode_of(cur);
+    cur &= ~bit(i);
+    out.push_back(make_event(change_event(i, false), hs, from, mode_of(cur)));
+  }
+  return hs;
+}
+
+void Model::place(HybridState& hs, const Kinematics& k) const {
+  // In the lid chart the angle slots hold the lid's angle and rate instead of the seesaw's.
+  const bool by_lid = hs.d.lid_chart && on_closure(hs.d);
+  const double angle = by_lid ? k.phi_l : k.phi_s, rate = by_lid ? k.dphi_l : k.dphi_s;
+  if (hs.d.polar()) {
+    hs.y[slot::r] = k.r;
+    hs.y[slot::phi_s] = angle;
+    hs.y[slot::dr] = k.dr;
+    hs.y[slot::dphi_s] = rate;
+  } else {
+    hs.y[slot::x] = k.x;
+    hs.y[slot::h] = k.h;
+    hs.y[slot::vx] = k.vx;
+    hs.y[slot::vh] = k.vh;
+  }
+  hs.y[slot::phi_l] = k.phi_l;
+  hs.y[slot::dphi_l] = k.dphi_l;
+  hs.y[slot::seesaw_phi] = angle;
+  hs.y[slot::seesaw_dphi] = rate;
+}
+
+
+Event Model::make_event(EventType type, HybridState& hs, Mode before, Mode after) const {
+  book(hs);
+  Event e;
+  e.type = type;
+  e.t = hs.t;
+  e.mode_before = before;
+  e.mode_after = after;
+  return e;  // after and the energies: see jump()
+}
+
+void Model::free_balloon(HybridState& hs, const Kinematics& k, double v) const {
+  hs.d.balloon_stuck = false;
+  hs.y[slot::balloon_h] = limit_.height(k.phi_l);
+  hs.y[slot::balloon_v] = v;
+}
+
+void Model::release_balloon_if_lid_jumped(HybridState& hs, double limit_rate_before,
+                                          const Books& opened, std::vector<Event>& out) const {
+  if (!hs.d.balloon_stuck) return;
+  const Kinematics k = kinematics(hs.d, hs.y);
+  const double rate = limit_.rate(k.phi_l, k.dphi_l);
+  // A jump, not rounding: beyond what the contact decision calls a zero rate.
+  if (rate > limit_rate_before + 1e-7 * std::sqrt(g_ * length_scale_) + 1e-9 * std::fabs(limit_rate_before)) {
+    // The lid jumped away faster than the balloon moves: it keeps its own velocity, so the
+    // balloon's side of the books is as it was before the jump.
+    const Mode m = hs.d.mode();
+    free_balloon(hs, k, limit_rate_before);
+    hs.d.armed[kGuardBalloon] = {1, limit_rate_before - rate, guard_floor(kGuardBalloon, hs.d)};
+    Books& b = hs.d.books;
+    b.balloon_catch = opened.balloon_catch;
+    b.lid_push = opened.lid_push;
+    b.balloon_v_mark = opened.balloon_v_mark;
+    out.push_back(make_event(EventType::balloon_free, hs, m, m));
+  }
+}
+
+bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
+  hs.d.armed = {};
+  const Mode before = hs.d.mode();
+  const Kinematics k0 = kinematics(hs.d, hs.y);
+  const double limit_rate0 = limit_.rate(k0.phi_l, k0.dphi_l);
+  open_books(hs, k0);
+  const Books opened = hs.d.books;
+  auto stop = [&](EventType type) {
+    out.push_back(make_event(type, hs, before, before));
+    return true;
+  };
+  // MODEL.md: the model ends when the sandbag reaches the pivot. As r -> 0 the rope's pull on the
+  // lid vanishes too, so contact changes and sandbag_at_pivot arrive together; the pivot wins.
+  if (hs.d.on_seesaw && k0.r <= kContact && !fires_at_once(fired)) return stop(EventType::sandbag_at_pivot);
+  switch (fired) {
+    case kGuardBag:
+      if (hs.d.on_seesaw) {
+        resolve(hs, k0, kBag, Trend::releasing, out);
+        break;
+      }
+      {
+        // The falling sandbag reaches the arm's line: it lands where the arm is. Beyond a finite
+        // arm's end it has missed it for good; on the pivot's other side the model ends.
+        const double along = along_arm(k0);
+        if (along > arm_) {
+          hs.d.fallen_off = true;
+          out.push_back(make_event(EventType::sandbag_falls_off, hs, before, before));
+          return false;
+        }
+        if (along < 0.0) return stop(EventType::sandbag_at_pivot);
+        resolve(hs, k0, kBag, Trend::closing, out);
+      }
+      break;
+    case kGuardRope:
+      // MODEL.md's linkage: the rope straightens on the lid-below-rope side only; on the other
+      // it would run under the hinge, through the box, and the model cannot go on.
+      if (!hs.d.taut && !rope_.lid_below_rope(k0.phi_s, k0.phi_l)) return stop(EventType::rope_locked);
+      resolve(hs, k0, kRope, hs.d.taut ? Trend::releasing : Trend::closing, out);
+      break;
+    case kGuardLid:
+      resolve(hs, k0, kLid, hs.d.lid_resting ? Trend::releasing : Trend::closing, out);
+      break;
+    case kGuardArmEnd:  // off the end of a finite arm, velocity kept; it never lands again
+      resolve(hs, k0, kBag, Trend::forced_off, out);
+      break;
+    case kGuardBalloon:
+      if (hs.d.balloon_stuck) {  // the lid pulls away faster than the balloon can follow
+        free_balloon(hs, k0, limit_rate0);
+        hs.d.armed[kGuardBalloon] = {3, kUnknownLead, guard_floor(kGuardBalloon, hs.d)};
+        out.push_back(make_event(EventType::balloon_free, hs, before, before));
+        return false;
+      }
+      hs.d.balloon_stuck = true;
+      out.push_back(make_event(EventType::balloon_caught, hs, before, before));
+      {
+        // Caught by a lid that accelerates away faster than the balloon can: it touches and parts.
+        const double ahead = limit_.acceleration(k0.phi_l, k0.dphi_l, k0.ddphi_l) - balloon_acceleration(limit_rate0);
+        if (ahead > 0.0) {
+          free_balloon(hs, k0, limit_rate0);
+          hs.d.armed[kGuardBalloon] = {2, -0.5 * ahead, guard_floor(kGuardBalloon, hs.d)};
+          out.push_back(make_event(EventType::balloon_free, hs, before, before));
+        }
+      }
+      return false;
+    case kGuardLidOpen:
+      if (!radio_) return stop(EventType::lid_open);
+      {
+        // The radio's question goes on: the lid latches open where it is (its kinetic energy is
+        // lost to the latch), the rope is let go for good, the sandbag falls freely off the
+        // story and the balloon rises without a limit.
+        hs.d.latched = true;
+        hs.d.lid_resting = false;
+        hs.d.taut = false;
+        hs.d.on_seesaw = false;
+        hs.d.lid_chart = false;
+        hs.d.parked_seesaw = k0.phi_s;
+        Kinematics k = k0;
+        k.dphi_l = 0.0;
+        place(hs, k);
+        out.push_back(make_event(EventType::lid_open, hs, before, hs.d.mode()));
+        if (hs.d.balloon_stuck) {
+          const Mode m = hs.d.mode();
+          free_balloon(hs, k0, limit_rate0);
+          out.push_back(make_event(EventType::balloon_free, hs, m, m));
+        }
+      }
+      return false;
+    case kGuardSeesawVertical: return stop(EventType::seesaw_vertical);
+    case kGuardAtPivot: return stop(EventType::sandbag_at_pivot);
+    case kGuardRopeLocked: return stop(EventType::rope_locked);
+    case kGuardRadioOn: return stop(EventType::radio_on);
+    case kGuardChart:  // the same state in the other angle: no event
+      hs.d.lid_chart = !hs.d.lid_chart;
+      hs.d.side = RopeGeometry::side_of(rope_.lid_edge(k0.phi_l), rope_.seesaw_end(k0.phi_s));
+      place(hs, k0);
+      return false;
+    case kGuardCount: break;
+  }
+  release_balloon_if_lid_jumped(hs, limit_rate0, opened, out);
+  book(hs);  // a jump may end with a change that no event reports
+  return false;
+}
+
+void Model::timeout(HybridState& hs, std::vector<Event>& out) const {
+  open_books(hs, kinematics(hs.d, hs.y));
+  out.push_back(make_event(EventType::timeout, hs, hs.d.mode(), hs.d.mode()));
+}
+
+}  // namespace whatnext

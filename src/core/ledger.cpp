@@ -1,0 +1,108 @@
+// Energies, the ledger of what jumps lose, and the snapshot observers get.
+#include "model.hpp"
+
+#include <cmath>
+
+#include "model_internal.hpp"
+
+namespace whatnext {
+
+using namespace model_detail;
+
+// --- energies and the snapshot -------------------------------------------------------------------
+
+double Model::radio_gap(double balloon_h) const {
+  // Distance from the switch to the balloon's centre, minus the string: >= 0 when it is straight.
+  const Vec2 b{balloon_x_ - switch_.x, rope_.hinge().h + balloon_h - switch_.h};
+  return std::hypot(b.x, b.h) - string_;
+}
+
+double Model::energy(const Kinematics& k) const {
+  return 0.5 * m_s_ * (k.vx * k.vx + k.vh * k.vh) + m_s_ * g_ * k.h +
+         0.5 * i_l_ * k.dphi_l * k.dphi_l + m_l_ * g_ * r_l_ * std::sin(k.phi_l) +
+         0.5 * i_s_ * k.dphi_s * k.dphi_s + w_s_ * g_ * std::sin(k.phi_s);
+}
+
+double Model::balloon_energy(double h, double v) const {
+  return 0.5 * m_b_ * v * v - m_b_ * a_b_ * h;
+}
+
+double Model::lid_push_now(const Discrete& d, const Kinematics& k, const State& y) const {
+  // While stuck the balloon's energy changes only by the lid's push and the air drag.
+  const Books& b = d.books;
+  if (!d.balloon_stuck) return b.lid_push;
+  return b.lid_push + (balloon_energy(k.balloon_h, k.balloon_v) - b.balloon_e_mark) +
+         (y[slot::lost_drag] - b.drag_mark);
+}
+
+Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full, bool memo) const {
+  const Kinematics k = kinematics(d, y, full, memo);
+  Snapshot s;
+  s.t = t;
+  s.mode = d.mode();
+  s.on_seesaw = d.on_seesaw;
+  s.rope_taut = d.taut;
+  s.lid_resting = d.lid_resting;
+  s.balloon_stuck = d.balloon_stuck;
+  s.x = k.x, s.h = k.h, s.vx = k.vx, s.vh = k.vh, s.r = k.r, s.dr = k.dr;
+  s.phi_s = k.phi_s, s.dphi_s = k.dphi_s;
+  s.phi_l = k.phi_l, s.dphi_l = k.dphi_l, s.ddphi_l = k.ddphi_l;
+  s.balloon_limit = limit_.height_at(k.cos_l, k.sin_l);
+  s.balloon_h = k.balloon_h;
+  if (!full) return s;
+  s.balloon_limit_rate = limit_.rate_at(k.sin_l, k.dphi_l);
+  s.balloon_v = k.balloon_v;
+  if (!d.latched) {
+    contact::PerContact f;
+    contact_forces(d, k, f);
+    s.tension = f[kRope];
+    s.normal_force = f[kBag];
+    s.box_reaction = f[kLid];
+  }
+  s.sandbag_kinetic = 0.5 * m_s_ * (k.vx * k.vx + k.vh * k.vh);
+  s.sandbag_potential = m_s_ * g_ * k.h;
+  s.lid_kinetic = 0.5 * i_l_ * k.dphi_l * k.dphi_l;
+  s.lid_potential = m_l_ * g_ * r_l_ * std::sin(k.phi_l);
+  s.seesaw_kinetic = 0.5 * i_s_ * k.dphi_s * k.dphi_s;
+  s.seesaw_potential = w_s_ * g_ * std::sin(k.phi_s);
+  s.balloon_kinetic = 0.5 * m_b_ * k.balloon_v * k.balloon_v;
+  s.balloon_potential = -m_b_ * a_b_ * k.balloon_h;
+  const Books& b = d.books;
+  s.lost_impacts = b.impacts;
+  s.lost_balloon_catch = b.balloon_catch;
+  s.dissipated_pivot = y[slot::lost_pivot];
+  s.dissipated_hinge = y[slot::lost_hinge];
+  s.dissipated_drag = y[slot::lost_drag];
+  s.lid_push_work = lid_push_now(d, k, y);
+  s.initial_total = b.initial_total;
+  return s;
+}
+
+
+void Model::open_books(HybridState& hs, const Kinematics& k) const {
+  Books& b = hs.d.books;
+  b.lid_push = lid_push_now(hs.d, k, hs.y);
+  b.machine_mark = energy(k);
+  b.balloon_v_mark = k.balloon_v;
+  b.balloon_e_mark = balloon_energy(k.balloon_h, k.balloon_v);
+  b.drag_mark = hs.y[slot::lost_drag];
+}
+
+void Model::book(HybridState& hs) const {
+  // What the jump changed: the machine's energy drop is an impact loss; a forced change of the
+  // balloon's velocity from v to V (the lid's) loses (1/2) m (V - v)^2 and the lid's impulse
+  // m (V - v) does the work m (V - v) V.
+  const Kinematics k = kinematics(hs.d, hs.y);
+  Books& b = hs.d.books;
+  const double e = energy(k);
+  b.impacts += b.machine_mark - e;
+  b.machine_mark = e;
+  const double v = k.balloon_v, dv = v - b.balloon_v_mark;
+  b.balloon_catch += 0.5 * m_b_ * dv * dv;
+  b.lid_push += m_b_ * v * dv;
+  b.balloon_v_mark = v;
+  b.balloon_e_mark = balloon_energy(k.balloon_h, v);
+  b.drag_mark = hs.y[slot::lost_drag];
+}
+
+}  // namespace whatnext

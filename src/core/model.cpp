@@ -1,0 +1,45 @@
+// The model: its constants, taken once from the scenario.
+#include "model.hpp"
+
+#include <cmath>
+
+#include "model_internal.hpp"
+
+namespace whatnext {
+
+using namespace model_detail;
+
+bool fires_at_once(Guard g) {
+  // A contact guard at zero is a contact that touches (decided where the piece starts); the balloon
+  // is decided by the model (Model::jump) since it is both kinds.
+  return !(g == kGuardBag || g == kGuardRope || g == kGuardLid || g == kGuardBalloon);
+}
+
+Model::Model(const Scenario& scenario)
+    : sc_(scenario),
+      rope_(scenario.machine),
+      limit_{scenario.machine.balloon_radius},
+      g_(scenario.machine.gravity),
+      m_s_(scenario.machine.sandbag_mass),
+      m_l_(scenario.machine.lid_mass),
+      i_l_(scenario.machine.lid_inertia()),
+      r_l_(scenario.machine.lid_half_length),
+      a_b_(scenario.machine.balloon_acceleration()),
+      phi_l0_(scenario.start.lid_angle),
+      vertical_(kHalfPi - scenario.run.vertical_margin),
+      drag_(scenario.machine.balloon_drag_rate()),
+      m_b_(scenario.machine.balloon_inertia()),
+      i_s_(scenario.machine.seesaw_inertia),
+      w_s_(scenario.machine.seesaw_mass * scenario.machine.seesaw_com_offset),
+      c_p_(scenario.machine.pivot_damping),
+      c_l_(scenario.machine.lid_hinge_damping),
+      arm_(scenario.machine.seesaw_left_arm),
+      heavy_(scenario.machine.heavy_seesaw()),
+      radio_(scenario.machine.radio),
+      switch_(scenario.machine.radio_switch),
+      string_(scenario.machine.string_length),
+      balloon_x_(scenario.machine.hinge.x + scenario.machine.lid_half_length),
+      length_scale_(scenario.machine.seesaw_right_arm + 2.0 * scenario.machine.lid_half_length +
+                    scenario.machine.rope_length) {}
+
+}  // namespace whatnext

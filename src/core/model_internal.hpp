@@ -1,0 +1,35 @@
+// What the stages of the model share: the contact tolerance, the contacts' bits and the events
+// each contact's change is reported as. Internal to the model's stage files in src/core/.
+#pragma once
+
+#include <limits>
+
+#include "model.hpp"
+
+namespace whatnext::model_detail {
+
+constexpr double kHalfPi = 1.57079632679489661923;
+constexpr double kContact = 1e-9;  // MODEL.md: touching (on the arm, rope straight) within 1e-9 m
+constexpr double kNoEnd = std::numeric_limits<double>::infinity();  // MODEL.md's endless arm
+// Lead of an armed guard whose first non-zero derivative is not known (a force that just reached
+// zero): only its sign matters to the integrators.
+constexpr double kUnknownLead = -1e-300;
+
+using contact::Set;
+constexpr Set bit(int i) { return 1u << i; }
+
+inline Guard guard_of(int contact) {
+  return contact == kBag ? kGuardBag : (contact == kRope ? kGuardRope : kGuardLid);
+}
+
+inline EventType change_event(int contact, bool closes) {
+  switch (contact) {
+    case kBag: return closes ? EventType::sandbag_lands : EventType::sandbag_leaves;
+    case kRope: return closes ? EventType::rope_taut : EventType::rope_slack;
+    default: return closes ? EventType::lid_rests : EventType::lid_lifts;
+  }
+}
+
+inline Mode mode_of(Set s) { return Discrete::mode_of(contact::has(s, kBag), contact::has(s, kRope), contact::has(s, kLid)); }
+
+}  // namespace whatnext::model_detail
