@@ -118,137 +118,172 @@ void Model::set_contacts(Discrete& d, Set s, const Kinematics& k) const {
   d.lid_chart = on_closure(d) && std::fabs(rope_.transfer(k.phi_s, k.phi_l).k) > 1.0;
 }
 
+namespace {
+[[noreturn]] void no_consistent(const char* what, double t, Mode mode) {
+  char msg[200];
+  std::snprintf(msg, sizeof msg, "no consistent %s at t = %.9g s in mode M%d (degenerate contact)", what, t,
+                static_cast<int>(mode));
+  throw SimulationError(msg);
+}
+}  // namespace
+
+// The contact decision in its phases (Pfeiffer & Glocker's event-driven method, docs/model.md
+// "Contacts"): which contacts touch, the impact on velocities, the impact law, which contacts
+// hold after it, the motion on accelerations, then the new state with its released contacts
+// armed, and the report of every change.
 void Model::resolve(HybridState& hs, const Kinematics& k_event, int trigger, Trend trend,
                     std::vector<Event>& out) const {
-  using contact::has;
-  Discrete& d = hs.d;
-  const Set s0 = active_set(d);
-  Set touch = s0 | touching(d, k_event);
-  if (trend == Trend::closing) touch |= bit(trigger);
-  if (trend == Trend::forced_off) touch &= ~bit(trigger);
+  Decision x = decide_touching(hs.d, k_event, trigger, trend);
+  impact_on_velocities(hs.d, x, hs.t);
+  apply_impact_law(x);
+  hold_after_impact(x);
+  motion_on_accelerations(hs.d, x, hs.t);
+  const Mode before = hs.d.mode();
+  enter_contacts(hs, x);
+  report_changes(hs, x, before, out);
+}
 
+Model::Decision Model::decide_touching(const Discrete& d, const Kinematics& k_event, int trigger, Trend trend) const {
+  Decision x;
+  x.trigger = trigger;
+  x.trend = trend;
+  x.s0 = active_set(d);
+  x.touch = x.s0 | touching(d, k_event);
+  if (trend == Trend::closing) x.touch |= bit(trigger);
+  if (trend == Trend::forced_off) x.touch &= ~bit(trigger);
   // The touching contacts are at zero gap by definition: take back the event's overshoot (the
   // event-time tolerance times the closing speed, or a fixed step's interpolation error) before
   // anything is decided, so that the impact happens where the contacts touch and a contact that
   // lets go again starts from exactly zero.
-  const Kinematics k0 = touch_exactly(d, touch, k_event);
+  x.k0 = touch_exactly(d, x.touch, k_event);
+  return x;
+}
 
-  auto fail = [&](const char* what) {
-    char msg[200];
-    std::snprintf(msg, sizeof msg, "no consistent %s at t = %.9g s in mode M%d (degenerate contact)",
-                  what, hs.t, static_cast<int>(d.mode()));
-    throw SimulationError(msg);
-  };
+void Model::impact_on_velocities(const Discrete& d, Decision& x, double t) const {
+  // An impact wherever a touching contact is closing: perfectly inelastic (the rope law, eq. 7).
+  using contact::has;
+  x.sys = contact_system(d, x.k0);
+  x.ch = choice(d, x.sys, x.k0, x.trigger, x.trend);
+  x.imp = contact::solve_impact(x.sys, x.touch, x.ch);
+  if (!x.imp.ok) no_consistent("impact", t, d.mode());
+  x.u = x.imp.velocity;
+  x.rate = x.imp.rate;
+  x.impacted = false;
+  for (int i = 0; i < 3; ++i) x.impacted = x.impacted || x.impulsive(i);
+}
 
-  // Velocities: an impact wherever a touching contact is closing.
-  const contact::System sys = contact_system(d, k0);
-  const contact::Choice ch = choice(d, sys, k0, trigger, trend);
-  const contact::Impact imp = contact::solve_impact(sys, touch, ch);
-  if (!imp.ok) fail("impact");
-  contact::Coords u = imp.velocity;
-  contact::PerContact rate = imp.rate;
-  bool impacted = false;
-  for (int i = 0; i < 3; ++i) impacted = impacted || (has(imp.impulsive, i) && imp.impulse[i] > ch.impulse_tol);
-  const bool rope_jerk = has(imp.impulsive, kRope) && imp.impulse[kRope] > ch.impulse_tol;
-  if (rope_jerk && sc_.run.impact_law != ImpactLaw::rope &&
-      !(has(imp.impulsive, kLid) && imp.impulse[kLid] > ch.impulse_tol)) {
-    // The rope's jerk by the chosen law (the inelastic solution above is the rope law, eq. 7),
-    // provided nothing else it touches is then left closing.
-    contact::Coords ul = u;
-    if (law_velocity(k0, has(imp.impulsive, kBag), ul)) {
-      bool ok = true;
-      contact::PerContact rl = rate;
-      for (int i = 0; i < 3; ++i) {
-        if (!has(touch, i)) continue;
-        rl[i] = has(imp.impulsive, i) ? 0.0 : sys.rate(i, ul);
-        ok = ok && rl[i] >= -ch.closing_tol;
-      }
-      if (ok) u = ul, rate = rl;
-    }
+void Model::apply_impact_law(Decision& x) const {
+  // The rope's jerk by the chosen law (the inelastic solution is the rope law, eq. 7), provided
+  // nothing else it touches is then left closing.
+  using contact::has;
+  if (!x.impulsive(kRope) || sc_.run.impact_law == ImpactLaw::rope || x.impulsive(kLid)) return;
+  contact::Coords ul = x.u;
+  if (!law_velocity(x.k0, has(x.imp.impulsive, kBag), ul)) return;
+  bool ok = true;
+  contact::PerContact rl = x.rate;
+  for (int i = 0; i < 3; ++i) {
+    if (!has(x.touch, i)) continue;
+    rl[i] = has(x.imp.impulsive, i) ? 0.0 : x.sys.rate(i, ul);
+    ok = ok && rl[i] >= -x.ch.closing_tol;
   }
-  Set held = 0;  // touching contacts with zero gap rate after the impact
+  if (ok) x.u = ul, x.rate = rl;
+}
+
+void Model::hold_after_impact(Decision& x) const {
+  // Touching contacts with zero gap rate after the impact.
+  using contact::has;
+  x.held = 0;
   for (int i = 0; i < 3; ++i) {
     // The lid's gap is an angle: its rate compared as the speed of the lid's far edge.
-    const double speed = i == kLid ? 2.0 * r_l_ * rate[i] : rate[i];
-    if (has(touch, i) && (has(imp.impulsive, i) || speed <= ch.rate_tol)) held |= bit(i);
+    const double speed = i == kLid ? 2.0 * r_l_ * x.rate[i] : x.rate[i];
+    if (has(x.touch, i) && (has(x.imp.impulsive, i) || speed <= x.ch.rate_tol)) x.held |= bit(i);
   }
+}
 
-  // Accelerations: which of them carry the motion on.
-  const Kinematics k1 = with_velocity(k0, u);
+void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) const {
+  // Which of the held contacts carry the motion on: forces >= 0, released ones separating.
+  using contact::has;
+  x.k1 = with_velocity(x.k0, x.u);
   Discrete dh = d;
-  dh.on_seesaw = has(held, kBag), dh.taut = has(held, kRope), dh.lid_resting = has(held, kLid);
-  const contact::System sys1 = contact_system(dh, k1);
-  const contact::Motion mot = contact::solve_motion(sys1, held, ch);
-  if (!mot.ok) fail("set of contacts");
-  const Set s2 = mot.active;
+  dh.on_seesaw = has(x.held, kBag), dh.taut = has(x.held, kRope), dh.lid_resting = has(x.held, kLid);
+  const contact::System sys1 = contact_system(dh, x.k1);
+  x.mot = contact::solve_motion(sys1, x.held, x.ch);
+  if (!x.mot.ok) no_consistent("set of contacts", t, d.mode());
+  x.s2 = x.mot.active;
 
   // Released contacts: their gaps start at zero and open, by their rate or their acceleration.
-  d.armed = {};
-  GuardStart released[3];
   for (int i = 0; i < 3; ++i) {
-    if (!has(held, i)) {
-      released[i] = {1, -rate[i]};
-    } else if (mot.gap_acceleration[i] > ch.accel_tol) {
-      released[i] = {2, -0.5 * mot.gap_acceleration[i]};
+    if (!has(x.held, i)) {
+      x.released[i] = {1, -x.rate[i]};
+    } else if (x.mot.gap_acceleration[i] > x.ch.accel_tol) {
+      x.released[i] = {2, -0.5 * x.mot.gap_acceleration[i]};
     } else {
-      released[i] = {3, kUnknownLead};
+      x.released[i] = {3, kUnknownLead};
     }
   }
 
   // The contacts that hold are left with exactly zero gap rate (they may have had a rate within
   // the rounding band): the same projection as an impact, booked like one.
-  Kinematics k2 = k1;
+  x.k2 = x.k1;
   contact::Coords u2;
-  if (s2 != 0 && contact::constrained_velocity(sys1, s2, u2)) k2 = with_velocity(k1, u2);
+  if (x.s2 != 0 && contact::constrained_velocity(sys1, x.s2, u2)) x.k2 = with_velocity(x.k1, u2);
 
   // A touch that changes nothing (no impulse, the same contacts) leaves the state as it was.
-  if (s2 == s0 && !impacted) k2 = k0;
+  if (x.s2 == x.s0 && !x.impacted) x.k2 = x.k0;
+}
 
-  const Mode before = d.mode();
-  set_contacts(d, s2, k2);
+void Model::enter_contacts(HybridState& hs, const Decision& x) const {
+  // The new contact set and state; the released contacts' guards armed for the piece that starts.
+  using contact::has;
+  Discrete& d = hs.d;
+  d.armed = {};
+  set_contacts(d, x.s2, x.k2);
   for (int i = 0; i < 3; ++i) {
     const Guard gi = guard_of(i);
-    if (has(touch, i) && !has(s2, i)) {
-      d.armed[gi] = released[i];
-    } else if (has(s2, i) && !has(s0, i) && mot.force[i] <= ch.force_tol) {
+    if (has(x.touch, i) && !has(x.s2, i)) {
+      d.armed[gi] = x.released[i];
+    } else if (has(x.s2, i) && !has(x.s0, i) && x.mot.force[i] <= x.ch.force_tol) {
       d.armed[gi] = {1, kUnknownLead};  // closed with a force still zero: it can only load up
     } else {
       continue;
     }
     d.armed[gi].floor = guard_floor(gi, d);
   }
-  if (trend == Trend::forced_off) d.fallen_off = true;
-  place(hs, k2);
+  if (x.trend == Trend::forced_off) d.fallen_off = true;
+  place(hs, x.k2);
+}
 
-  // Report the changes as they happen: the one that triggered the event, those decided on the
+void Model::report_changes(HybridState& hs, const Decision& x, Mode before, std::vector<Event>& out) const {
+  // The changes as they happen: the one that triggered the event, those decided on the
   // velocities, then those decided on the accelerations. A lid knocked off the box by an impact
   // is part of that impact (M3 > M4 says it), not an event of its own.
+  using contact::has;
+  const int trigger = x.trigger;
   const bool trigger_changed =
-      trend == Trend::closing ? (has(imp.impulsive, trigger) && imp.impulse[trigger] > ch.impulse_tol) || has(s2, trigger)
-                              : !has(s2, trigger);
-  const bool lid_knocked = impacted && has(s0, kLid) && !has(held, kLid);
-  Set cur = s0;
+      x.trend == Trend::closing ? x.impulsive(trigger) || has(x.s2, trigger) : !has(x.s2, trigger);
+  const bool lid_knocked = x.impacted && has(x.s0, kLid) && !has(x.held, kLid);
+  Set cur = x.s0;
   Mode from = before;
   bool first = true;
   auto emit = [&](EventType type) {
     if (first && lid_knocked) cur &= ~bit(kLid);
     const Mode to = mode_of(cur);
     Event e = make_event(type, hs, from, to);
-    if (first && impacted) {
+    if (first && x.impacted) {
       e.impact = true;
-      e.energy_before = energy(k0);
+      e.energy_before = energy(x.k0);
     }
     out.push_back(e);
     from = to;
     first = false;
   };
   if (trigger_changed) {
-    if (trend == Trend::closing) {
+    if (x.trend == Trend::closing) {
       cur |= bit(trigger);
       emit(change_event(trigger, true));
     } else {
       cur &= ~bit(trigger);
-      emit(trend == Trend::forced_off ? EventType::sandbag_falls_off : change_event(trigger, false));
+      emit(x.trend == Trend::forced_off ? EventType::sandbag_falls_off : change_event(trigger, false));
     }
   }
   // The trigger's own change was reported first; a contact it closed may still let go below.
@@ -264,8 +299,8 @@ void Model::resolve(HybridState& hs, const Kinematics& k_event, int trigger, Tre
       emit(change_event(i, has(target, i)));
     }
   };
-  step_to(held, false);
-  step_to(s2, trigger_changed && trend == Trend::closing);
+  step_to(x.held, false);
+  step_to(x.s2, trigger_changed && x.trend == Trend::closing);
 }
 
 }  // namespace whatnext

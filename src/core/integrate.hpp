@@ -132,6 +132,9 @@ class StepGrowth : public boost::numeric::odeint::default_step_adjuster<double, 
 // Embedded Dormand-Prince 5(4) with error control and dense output (Boost.Odeint). Guards are
 // checked at every step end; a sign change is located on the dense output with TOMS 748 to
 // time_tolerance, and the state is returned at the end of the bracket where the guard has fired.
+// Longer than the rest (about 170 lines) on purpose: one loop whose step, guard scan, peak test and
+// root bracket share the stepper's dense-output state; cut into functions they would pass a dozen
+// references to each other, and this is the hot loop the benchmarks time.
 template <class System, class Sample>
 Crossing integrate_adaptive(const System& sys, typename System::state_type& y, double& t,
                             double t_end, double tolerance, double max_dt, double time_tolerance,

@@ -137,6 +137,47 @@ void Model::release_balloon_if_lid_jumped(HybridState& hs, double limit_rate_bef
   }
 }
 
+void Model::balloon_meets_lid(HybridState& hs, const Kinematics& k0, double limit_rate0, Mode before,
+                              std::vector<Event>& out) const {
+  if (hs.d.balloon_stuck) {  // the lid pulls away faster than the balloon can follow
+    free_balloon(hs, k0, limit_rate0);
+    hs.d.armed[kGuardBalloon] = {3, kUnknownLead, guard_floor(kGuardBalloon, hs.d)};
+    out.push_back(make_event(EventType::balloon_free, hs, before, before));
+    return;
+  }
+  hs.d.balloon_stuck = true;
+  out.push_back(make_event(EventType::balloon_caught, hs, before, before));
+  // Caught by a lid that accelerates away faster than the balloon can: it touches and parts.
+  const double ahead = limit_.acceleration(k0.phi_l, k0.dphi_l, k0.ddphi_l) - balloon_acceleration(limit_rate0);
+  if (ahead > 0.0) {
+    free_balloon(hs, k0, limit_rate0);
+    hs.d.armed[kGuardBalloon] = {2, -0.5 * ahead, guard_floor(kGuardBalloon, hs.d)};
+    out.push_back(make_event(EventType::balloon_free, hs, before, before));
+  }
+}
+
+void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0, Mode before,
+                       std::vector<Event>& out) const {
+  // The radio's question goes on: the lid latches open where it is (its kinetic energy is lost to
+  // the latch), the rope is let go for good, the sandbag falls freely off the story and the
+  // balloon rises without a limit.
+  hs.d.latched = true;
+  hs.d.lid_resting = false;
+  hs.d.taut = false;
+  hs.d.on_seesaw = false;
+  hs.d.lid_chart = false;
+  hs.d.parked_seesaw = k0.phi_s;
+  Kinematics k = k0;
+  k.dphi_l = 0.0;
+  place(hs, k);
+  out.push_back(make_event(EventType::lid_open, hs, before, hs.d.mode()));
+  if (hs.d.balloon_stuck) {
+    const Mode m = hs.d.mode();
+    free_balloon(hs, k0, limit_rate0);
+    out.push_back(make_event(EventType::balloon_free, hs, m, m));
+  }
+}
+
 bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
   hs.d.armed = {};
   const Mode before = hs.d.mode();
@@ -182,47 +223,10 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
     case kGuardArmEnd:  // off the end of a finite arm, velocity kept; it never lands again
       resolve(hs, k0, kBag, Trend::forced_off, out);
       break;
-    case kGuardBalloon:
-      if (hs.d.balloon_stuck) {  // the lid pulls away faster than the balloon can follow
-        free_balloon(hs, k0, limit_rate0);
-        hs.d.armed[kGuardBalloon] = {3, kUnknownLead, guard_floor(kGuardBalloon, hs.d)};
-        out.push_back(make_event(EventType::balloon_free, hs, before, before));
-        return false;
-      }
-      hs.d.balloon_stuck = true;
-      out.push_back(make_event(EventType::balloon_caught, hs, before, before));
-      {
-        // Caught by a lid that accelerates away faster than the balloon can: it touches and parts.
-        const double ahead = limit_.acceleration(k0.phi_l, k0.dphi_l, k0.ddphi_l) - balloon_acceleration(limit_rate0);
-        if (ahead > 0.0) {
-          free_balloon(hs, k0, limit_rate0);
-          hs.d.armed[kGuardBalloon] = {2, -0.5 * ahead, guard_floor(kGuardBalloon, hs.d)};
-          out.push_back(make_event(EventType::balloon_free, hs, before, before));
-        }
-      }
-      return false;
+    case kGuardBalloon: balloon_meets_lid(hs, k0, limit_rate0, before, out); return false;
     case kGuardLidOpen:
       if (!radio_) return stop(EventType::lid_open);
-      {
-        // The radio's question goes on: the lid latches open where it is (its kinetic energy is
-        // lost to the latch), the rope is let go for good, the sandbag falls freely off the
-        // story and the balloon rises without a limit.
-        hs.d.latched = true;
-        hs.d.lid_resting = false;
-        hs.d.taut = false;
-        hs.d.on_seesaw = false;
-        hs.d.lid_chart = false;
-        hs.d.parked_seesaw = k0.phi_s;
-        Kinematics k = k0;
-        k.dphi_l = 0.0;
-        place(hs, k);
-        out.push_back(make_event(EventType::lid_open, hs, before, hs.d.mode()));
-        if (hs.d.balloon_stuck) {
-          const Mode m = hs.d.mode();
-          free_balloon(hs, k0, limit_rate0);
-          out.push_back(make_event(EventType::balloon_free, hs, m, m));
-        }
-      }
+      latch_open(hs, k0, limit_rate0, before, out);
       return false;
     case kGuardSeesawVertical: return stop(EventType::seesaw_vertical);
     case kGuardAtPivot: return stop(EventType::sandbag_at_pivot);

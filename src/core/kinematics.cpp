@@ -9,31 +9,51 @@ namespace whatnext {
 
 using namespace model_detail;
 
-// --- kinematics --------------------------------------------------------------------------------
+// The layout of the continuous state follows from the contacts alone: it is decided once here,
+// and each layout has its own stage below that fills in positions, then (if asked) rates and
+// accelerations. What every layout shares (the trig of both angles, the balloon) comes last.
+Model::Layout Model::layout(const Discrete& d) {
+  if (d.polar()) {
+    if (!d.taut) return Layout::carried_slack;
+    if (d.lid_resting) return Layout::held_by_rope;
+    return d.lid_chart ? Layout::on_rope_by_lid : Layout::on_rope;
+  }
+  if (d.on_seesaw) return Layout::falling_on_seesaw;
+  if (d.heavy) return Layout::unloaded_heavy;
+  return d.taut ? Layout::following_lid : Layout::parked;
+}
 
-Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool memo) const {
+// One evaluation of the kinematics: the state, what is asked for, and what is known so far.
+struct Model::KinematicsPass {
+  const Model& m;
+  const Discrete& d;
+  const State& y;
+  bool rates, memo;
   Kinematics k;
-  // The memos serve one thread's integration; samples made on other threads compute afresh.
-  auto swing_of = [&](bool on, bool taut, double r, double phi_s, double dr, double dphi_s) {
-    return memo ? swing(on, taut, r, phi_s, dr, dphi_s) : compute_swing(on, taut, r, phi_s, dr, dphi_s);
-  };
-  auto lid_swing_of = [&](bool on, double r, double phi_l, double dr, double dphi_l, int side) {
-    return memo ? swing_by_lid(on, r, phi_l, dr, dphi_l, side) : compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side);
-  };
   bool trig_s = false, trig_l = false;  // cos and sin of phiS / phiL already known
-  auto free_lid = [&] {
+
+  // The memos serve one thread's integration; samples made on other threads compute afresh.
+  Swing swing_of(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const {
+    return memo ? m.swing(on, taut, r, phi_s, dr, dphi_s) : m.compute_swing(on, taut, r, phi_s, dr, dphi_s);
+  }
+  LidSwing lid_swing_of(bool on, double r, double phi_l, double dr, double dphi_l, int side) const {
+    return memo ? m.swing_by_lid(on, r, phi_l, dr, dphi_l, side)
+                : m.compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side);
+  }
+  // The lid on its own: resting, latched open, or swinging freely.
+  void free_lid() {
     if (d.lid_resting) {
-      k.phi_l = phi_l0_;
+      k.phi_l = m.phi_l0_;
     } else if (d.latched || !rates) {
       k.phi_l = y[slot::phi_l];
     } else {
       k.phi_l = y[slot::phi_l];
       k.dphi_l = y[slot::dphi_l];
-      k.ddphi_l = lid_free_acceleration(k.phi_l, k.dphi_l);
+      k.ddphi_l = m.lid_free_acceleration(k.phi_l, k.dphi_l);
     }
-  };
-  // The lid on the rope's closure, from the seesaw's swing (chart S) or the lid's (chart L).
-  auto on_rope = [&](const Swing& p) {
+  }
+  // The lid on the rope's closure, from the seesaw's swing (the seesaw's chart).
+  void on_rope(const Swing& p) {
     k.phi_l = p.lk.phi_l();
     k.transfer = p.lk.transfer;
     k.ddphi_s = p.ddphi_s;
@@ -41,17 +61,18 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool
     k.ddphi_l = p.lk.transfer.k * p.ddphi_s + p.lk.transfer.dk * k.dphi_s * k.dphi_s;
     k.cos_l = p.lk.cos_l, k.sin_l = p.lk.sin_l;
     trig_l = true;
-  };
-  auto by_lid = [&](const LidSwing& p, double phi_l, double dphi_l) {
+  }
+  // ... or from the lid's (the lid's chart).
+  void by_lid(const LidSwing& p, double phi_l, double dphi_l) {
     lid_chart(k, p, phi_l, dphi_l);
     trig_s = trig_l = true;
-  };
+  }
   // Positions only: the same linkage the swings start from, without their accelerations, from the
   // lid's angle (its chart) or the seesaw's.
-  auto placed = [&](bool by_lid_angle, double phi) {
+  void placed(bool by_lid_angle, double phi) {
     const double c = std::cos(phi), sn = std::sin(phi);
     const RopeGeometry::Linkage lk =
-        by_lid_angle ? rope_.from_lid(c, sn, d.side, false) : rope_.from_seesaw(c, sn, false);
+        by_lid_angle ? m.rope_.from_lid(c, sn, d.side, false) : m.rope_.from_seesaw(c, sn, false);
     if (by_lid_angle) {
       k.phi_l = phi;
       k.phi_s = lk.phi_s();
@@ -60,109 +81,142 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool
     }
     k.cos_s = lk.cos_s, k.sin_s = lk.sin_s, k.cos_l = lk.cos_l, k.sin_l = lk.sin_l;
     trig_s = trig_l = true;
-  };
-  if (d.polar()) {
+  }
+
+  // --- the sandbag on the seesaw in polar form (r, phiS) ---
+  void polar(Layout layout) {
     k.r = y[slot::r];
     k.phi_s = y[slot::phi_s];
     if (rates) k.dr = y[slot::dr], k.dphi_s = y[slot::dphi_s];
-    if (!d.taut) {  // a heavy seesaw carrying the sandbag, the lid on its own
-      if (rates) {
-        const Swing p = swing_of(true, false, k.r, k.phi_s, k.dr, k.dphi_s);
-        k.ddr = p.ddr;
-        k.ddphi_s = p.ddphi_s;
-        k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
-        trig_s = true;
-      }
-      free_lid();
-    } else if (d.lid_resting) {
-      k.phi_l = phi_l0_;
-      if (rates) k.transfer = rope_.transfer(k.phi_s, k.phi_l);
-    } else if (d.lid_chart) {
-      const double phi_l = y[slot::phi_s];
-      if (rates) {
-        const LidSwing p = lid_swing_of(true, k.r, phi_l, k.dr, y[slot::dphi_s], d.side);
-        k.ddr = p.ddr;
-        by_lid(p, phi_l, y[slot::dphi_s]);
-      } else {
-        placed(true, phi_l);
-      }
-    } else if (rates) {
-      const Swing p = swing_of(true, true, k.r, k.phi_s, k.dr, k.dphi_s);
-      k.ddr = p.ddr;
-      k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
-      trig_s = true;
-      on_rope(p);
-    } else {
-      placed(false, k.phi_s);
+    switch (layout) {
+      case Layout::carried_slack: carried_slack(); break;
+      case Layout::held_by_rope:
+        k.phi_l = m.phi_l0_;
+        if (rates) k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
+        break;
+      case Layout::on_rope_by_lid: on_rope_by_lid(); break;
+      default: carried_on_rope(); break;
     }
     if (!trig_s) k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s), trig_s = true;
     const double c = k.cos_s, s = k.sin_s;
     k.x = -k.r * c;
     k.h = -k.r * s;
-    if (rates && d.taut && d.lid_resting) k.ddr = along_arm_acceleration(k.r, s, 0.0);  // M5: the arm is fixed
+    if (rates && layout == Layout::held_by_rope) k.ddr = m.along_arm_acceleration(k.r, s, 0.0);  // M5: the arm is fixed
     if (rates) {
       k.vx = -k.dr * c + k.r * s * k.dphi_s;
       k.vh = -k.dr * s - k.r * c * k.dphi_s;
     }
-  } else {
+  }
+  // A heavy seesaw carrying the sandbag, the lid on its own.
+  void carried_slack() {
+    if (rates) {
+      const Swing p = swing_of(true, false, k.r, k.phi_s, k.dr, k.dphi_s);
+      k.ddr = p.ddr;
+      k.ddphi_s = p.ddphi_s;
+      k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
+      trig_s = true;
+    }
+    free_lid();
+  }
+  // M4 near the lid's dead centre: the angle slots hold the lid's angle and rate.
+  void on_rope_by_lid() {
+    const double phi_l = y[slot::phi_s];
+    if (!rates) return placed(true, phi_l);
+    const LidSwing p = lid_swing_of(true, k.r, phi_l, k.dr, y[slot::dphi_s], d.side);
+    k.ddr = p.ddr;
+    by_lid(p, phi_l, y[slot::dphi_s]);
+  }
+  // M4: the sandbag on the seesaw, the lid on the straight rope.
+  void carried_on_rope() {
+    if (!rates) return placed(false, k.phi_s);
+    const Swing p = swing_of(true, true, k.r, k.phi_s, k.dr, k.dphi_s);
+    k.ddr = p.ddr;
+    k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
+    trig_s = true;
+    on_rope(p);
+  }
+
+  // --- the sandbag in free fall in Cartesian form (x, h) ---
+  void cartesian(Layout layout) {
     k.x = y[slot::x];
     k.h = y[slot::h];
     if (rates) k.vx = y[slot::vx], k.vh = y[slot::vh];
     k.r = std::sqrt(k.x * k.x + k.h * k.h);
     if (rates) k.dr = k.r > 0.0 ? (k.x * k.vx + k.h * k.vh) / k.r : 0.0;
     if (!(d.heavy && d.taut)) free_lid();
-    if (d.on_seesaw) {  // M3: the massless seesaw turns with the sandbag
-      k.phi_s = std::atan2(-k.h, -k.x);
-      const double c = -k.x / k.r, s = -k.h / k.r;
-      k.cos_s = c, k.sin_s = s;
-      trig_s = k.r > 0.0;
-      if (rates) {
-        k.dphi_s = (k.vx * s - k.vh * c) / k.r;
-        k.ddphi_s = (g_ * c - 2.0 * k.dr * k.dphi_s) / k.r;
-      }
-    } else if (d.heavy) {  // the unloaded heavy seesaw, on its own or with the lid on the rope
-      k.phi_s = y[slot::seesaw_phi];
-      if (rates) k.dphi_s = y[slot::seesaw_dphi];
-      if (d.taut && d.lid_resting) {
-        k.phi_l = phi_l0_;
-        if (rates) k.transfer = rope_.transfer(k.phi_s, k.phi_l);
-      } else if (d.lid_chart && d.taut) {
-        const double phi_l = y[slot::seesaw_phi];
-        if (rates) {
-          by_lid(lid_swing_of(false, 0.0, phi_l, 0.0, y[slot::seesaw_dphi], d.side), phi_l, y[slot::seesaw_dphi]);
-        } else {
-          placed(true, phi_l);
-        }
-      } else if (rates) {
-        const Swing p = swing_of(false, d.taut, 0.0, k.phi_s, 0.0, k.dphi_s);
-        k.ddphi_s = p.ddphi_s;
-        k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
-        trig_s = true;
-        if (d.taut) on_rope(p);
-      } else if (d.taut) {
-        placed(false, k.phi_s);
-      }
-    } else if (d.taut) {  // M2: the unloaded massless seesaw follows the lid, on its side of P-E
-      k.phi_s = d.parked_seesaw;  // exact while the lid rests
-      if (!d.lid_resting) rope_.seesaw_angle_for(k.phi_l, d.side, k.phi_s);
-      if (rates) {
-        k.transfer = rope_.transfer(k.phi_s, k.phi_l);
-        k.dphi_s = d.lid_resting ? 0.0 : k.dphi_l / k.transfer.k;
-      }
-    } else {  // M1: nothing moves the unloaded seesaw
-      k.phi_s = d.parked_seesaw;
+    switch (layout) {
+      case Layout::falling_on_seesaw: falling_on_seesaw(); break;
+      case Layout::unloaded_heavy: unloaded_heavy(); break;
+      case Layout::following_lid: following_lid(); break;
+      default: k.phi_s = d.parked_seesaw; break;  // M1: nothing moves the unloaded seesaw
     }
   }
-  if (!trig_s) k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s);
-  if (!trig_l) k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
-  if (d.balloon_stuck) {
-    k.balloon_h = limit_.height_at(k.cos_l, k.sin_l);
-    if (rates) k.balloon_v = limit_.rate_at(k.sin_l, k.dphi_l);
-  } else {
-    k.balloon_h = y[slot::balloon_h];
-    if (rates) k.balloon_v = y[slot::balloon_v];
+  // M3: the massless seesaw turns with the falling sandbag.
+  void falling_on_seesaw() {
+    k.phi_s = std::atan2(-k.h, -k.x);
+    const double c = -k.x / k.r, s = -k.h / k.r;
+    k.cos_s = c, k.sin_s = s;
+    trig_s = k.r > 0.0;
+    if (rates) {
+      k.dphi_s = (k.vx * s - k.vh * c) / k.r;
+      k.ddphi_s = (m.g_ * c - 2.0 * k.dr * k.dphi_s) / k.r;
+    }
   }
-  return k;
+  // The unloaded heavy seesaw, on its own or with the lid on the rope.
+  void unloaded_heavy() {
+    k.phi_s = y[slot::seesaw_phi];
+    if (rates) k.dphi_s = y[slot::seesaw_dphi];
+    if (d.taut && d.lid_resting) {
+      k.phi_l = m.phi_l0_;
+      if (rates) k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
+    } else if (d.lid_chart && d.taut) {
+      const double phi_l = y[slot::seesaw_phi];
+      if (!rates) return placed(true, phi_l);
+      by_lid(lid_swing_of(false, 0.0, phi_l, 0.0, y[slot::seesaw_dphi], d.side), phi_l, y[slot::seesaw_dphi]);
+    } else if (rates) {
+      const Swing p = swing_of(false, d.taut, 0.0, k.phi_s, 0.0, k.dphi_s);
+      k.ddphi_s = p.ddphi_s;
+      k.cos_s = p.lk.cos_s, k.sin_s = p.lk.sin_s;
+      trig_s = true;
+      if (d.taut) on_rope(p);
+    } else if (d.taut) {
+      placed(false, k.phi_s);
+    }
+  }
+  // M2: the unloaded massless seesaw follows the lid, on its side of the line P-E.
+  void following_lid() {
+    k.phi_s = d.parked_seesaw;  // exact while the lid rests
+    if (!d.lid_resting) m.rope_.seesaw_angle_for(k.phi_l, d.side, k.phi_s);
+    if (rates) {
+      k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
+      k.dphi_s = d.lid_resting ? 0.0 : k.dphi_l / k.transfer.k;
+    }
+  }
+
+  // What every layout shares: both angles' cos and sin, and the balloon.
+  void finish() {
+    if (!trig_s) k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s);
+    if (!trig_l) k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
+    if (d.balloon_stuck) {
+      k.balloon_h = m.limit_.height_at(k.cos_l, k.sin_l);
+      if (rates) k.balloon_v = m.limit_.rate_at(k.sin_l, k.dphi_l);
+    } else {
+      k.balloon_h = y[slot::balloon_h];
+      if (rates) k.balloon_v = y[slot::balloon_v];
+    }
+  }
+};
+
+Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool memo) const {
+  KinematicsPass pass{*this, d, y, rates, memo, Kinematics{}};
+  const Layout layout = Model::layout(d);
+  if (d.polar()) {
+    pass.polar(layout);
+  } else {
+    pass.cartesian(layout);
+  }
+  pass.finish();
+  return pass.k;
 }
 
 void Model::lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l) {

@@ -90,6 +90,19 @@ class Model {
   // memo = false: without the memos of the flow's last swing (below), so that other threads may
   // call it while this model integrates; the same numbers.
   Kinematics kinematics(const Discrete& d, const State& y, bool rates = true, bool memo = true) const;
+  // How the continuous state is laid out, decided by the contacts alone (kinematics.cpp):
+  // polar (r, phiS) while the sandbag rides the seesaw with something to carry it, else Cartesian.
+  enum class Layout {
+    carried_slack,      // a heavy seesaw carries the sandbag, the rope slack
+    held_by_rope,       // M5: the resting lid holds the seesaw through the rope
+    on_rope,            // M4: the lid on the straight rope, the seesaw's angle integrated
+    on_rope_by_lid,     // M4 near the lid's dead centre: the lid's angle integrated
+    falling_on_seesaw,  // M3 on a massless seesaw: free fall, the seesaw turns with the sandbag
+    unloaded_heavy,     // the sandbag off a heavy seesaw, which swings on its own (or on the rope)
+    following_lid,      // M2: the unloaded massless seesaw follows the lid on the rope
+    parked              // M1: nothing moves the unloaded massless seesaw
+  };
+  static Layout layout(const Discrete& d);
   // full = false: positions only (Observer::Detail::positions), no rates, forces nor energies.
   Snapshot snapshot(double t, const Discrete& d, const State& y, bool full = true, bool memo = true) const;
   Snapshot snapshot(const HybridState& hs) const { return snapshot(hs.t, hs.d, hs.y); }
@@ -139,6 +152,7 @@ class Model {
   mutable Memo<Swing> swing_memo_;
   mutable Memo<LidSwing> lid_swing_memo_;
   static void lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l);
+  struct KinematicsPass;  // kinematics.cpp: one evaluation, stage by stage
   // The lid swings on the straight rope, driven through it by something with inertia.
   static bool on_closure(const Discrete& d) {
     return d.taut && !d.lid_resting && !d.latched && (d.on_seesaw || d.heavy);
@@ -159,6 +173,34 @@ class Model {
   // closing, then the contacts that carry the motion on; updates hs and reports the changes.
   void resolve(HybridState& hs, const Kinematics& k_event, int trigger, Trend trend,
                std::vector<Event>& out) const;
+  // What the decision's phases hand on to each other (contact_decision.cpp).
+  struct Decision {
+    int trigger = -1;
+    Trend trend = Trend::closing;
+    contact::Set s0 = 0;       // closed before the event
+    contact::Set touch = 0;    // touching at the event (closed, or open with zero gap)
+    Kinematics k0;             // the event's state, moved onto the touching contacts
+    contact::System sys;       // the contact problem there
+    contact::Choice ch;        // its preferences and tolerances
+    contact::Impact imp;       // the inelastic impact
+    contact::Coords u{};       // velocities after the impact (by the chosen law)
+    contact::PerContact rate{};  // gap rates after it
+    bool impacted = false;     // some impulse beyond rounding
+    contact::Set held = 0;     // touching with zero gap rate after the impact
+    Kinematics k1;             // the state with the impact's velocities
+    contact::Motion mot;       // the motion on accelerations
+    contact::Set s2 = 0;       // the contacts that carry the motion on
+    GuardStart released[3];    // how each contact's gap opens if it is released
+    Kinematics k2;             // the state the motion goes on from
+    bool impulsive(int i) const { return contact::has(imp.impulsive, i) && imp.impulse[i] > ch.impulse_tol; }
+  };
+  Decision decide_touching(const Discrete& d, const Kinematics& k_event, int trigger, Trend trend) const;
+  void impact_on_velocities(const Discrete& d, Decision& x, double t) const;
+  void apply_impact_law(Decision& x) const;
+  void hold_after_impact(Decision& x) const;
+  void motion_on_accelerations(const Discrete& d, Decision& x, double t) const;
+  void enter_contacts(HybridState& hs, const Decision& x) const;
+  void report_changes(HybridState& hs, const Decision& x, Mode before, std::vector<Event>& out) const;
   contact::Set touching(const Discrete& d, const Kinematics& k) const;
   // The positions moved onto the touching contacts (their gaps exactly zero), velocities kept.
   Kinematics touch_exactly(const Discrete& d, contact::Set touch, Kinematics k) const;
@@ -176,6 +218,12 @@ class Model {
   void release_balloon_if_lid_jumped(HybridState& hs, double limit_rate_before,
                                      const Books& opened, std::vector<Event>& out) const;
   void free_balloon(HybridState& hs, const Kinematics& k, double v) const;
+  // The balloon guard fired: a stuck balloon left behind, or a free one caught by the lid.
+  void balloon_meets_lid(HybridState& hs, const Kinematics& k0, double limit_rate0, Mode before,
+                         std::vector<Event>& out) const;
+  // lid_open with the radio on: the lid latches open and the story goes on with the balloon.
+  void latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0, Mode before,
+                  std::vector<Event>& out) const;
   // Ledger: fold the continuous phase into the books, then book what a jump changed.
   void open_books(HybridState& hs, const Kinematics& k) const;
   void book(HybridState& hs) const;
