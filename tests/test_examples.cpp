@@ -1,4 +1,4 @@
-// The paper's four examples against the numbers it prints, with MODEL.md's tolerances:
+// The paper's four examples against the numbers it prints, with the tolerances of docs/model.md §11:
 // +-0.02 s for times below 1 s, +-1 % for example 3's 20 s, +-2 % for its 1949 m, +-0.5 deg for
 // its 74 deg, +-0.5 s for example 4's "about 10 s".
 #include <gtest/gtest.h>
@@ -100,7 +100,7 @@ TEST(PaperExample4, HardHitFallBackAndPullAgain) {
   EXPECT_TRUE(times_of(r, wn::EventType::lid_open).empty());
   ASSERT_EQ(r.outcome().type, wn::EventType::seesaw_vertical);
   EXPECT_NEAR(r.outcome().t, 10.0, 0.5);
-  // MODEL.md: with the lid swinging freely the balloon catches it near 0.56 s.
+  // docs/model.md §11: with the lid swinging freely the balloon catches it near 0.56 s.
   EXPECT_NEAR(times_of(r, wn::EventType::balloon_caught).at(0), 0.56, kPaper);
 }
 

@@ -6,7 +6,7 @@
 
 namespace whatnext {
 
-// MODEL.md's event names. The last group ends a run.
+// The event names of docs/model.md §6. The last group ends a run.
 enum class EventType {
   sandbag_lands,
   rope_taut,

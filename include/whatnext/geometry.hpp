@@ -43,7 +43,7 @@ class RopeGeometry {
   // physical side, since on the other the rope would run under the hinge, through the box.
   bool lid_below_rope(double phi_s, double phi_l) const;
   // Inverse closure phiS(phiL). The rope fixes R on one of two mirror positions about the line
-  // from the pivot to E; side +1 is R turned counterclockwise from E (MODEL.md's "+rho"), -1 the
+  // from the pivot to E; side +1 is R turned counterclockwise from E (docs/model.md §3, "+rho"), -1 the
   // other. A seesaw cannot jump between them, so the caller keeps the side it is on.
   bool seesaw_angle_for(double phi_l, int side, double& phi_s) const;
   static int side_of(Vec2 e, Vec2 r) { return cross(e, r) >= 0.0 ? 1 : -1; }
@@ -71,7 +71,7 @@ class RopeGeometry {
   // From the lid's angle: the seesaw on a side of the line P-E (the chart in which a lid near
   // its dead centre, k -> infinity, moves smoothly). |cos rho| is clamped likewise.
   Linkage from_lid(double cos_l, double sin_l, int side, bool derivatives = true) const;
-  // Where the lid stands against the straight rope: < 0 below it (MODEL.md's branch), 0 along
+  // Where the lid stands against the straight rope: < 0 below it (the physical branch, docs/model.md §3), 0 along
   // it (the dead centre: the rope would touch the hinge), > 0 on the mirror side. Dimensionless.
   double lid_side_of_rope(Vec2 u_s, Vec2 u_l) const;
   double lid_side_of_rope(double phi_s, double phi_l) const {

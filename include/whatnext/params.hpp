@@ -12,8 +12,8 @@ namespace whatnext {
 
 enum class ImpactLaw { rope, angular_momentum_sum, kinetic_energy, linear_momentum };
 enum class IntegratorKind { adaptive, euler, rk4 };
-// How the balloon's upward acceleration follows from the densities (MODEL.md "Balloon").
-// program and lagrangian are MODEL.md's; added_mass also accelerates half the displaced air.
+// How the balloon's upward acceleration follows from the densities (docs/model.md §8).
+// program and lagrangian are the paper's two readings; added_mass also accelerates half the displaced air.
 enum class BalloonModel { program, lagrangian, added_mass };
 
 std::string_view to_string(ImpactLaw law);
@@ -42,7 +42,7 @@ struct Machine {
   Vec2 radio_switch{1.8, -0.36};
   double string_length = 1.0;     // [m]
 
-  // Extensions beyond the paper (docs/extensions.md). Every default is MODEL.md's machine.
+  // Extensions beyond the paper (docs/extensions.md). Every default is the paper's machine.
   bool radio = false;                      // run on after lid_open until the radio switches on
   double balloon_rubber_mass = 0.0;        // [kg]
   double balloon_drag_coefficient = 0.0;   // Cd of quadratic air drag; 0: no drag

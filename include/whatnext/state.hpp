@@ -7,7 +7,7 @@
 
 namespace whatnext {
 
-// MODEL.md's modes. M1/M2: sandbag falling (rope slack/taut); M3: on the seesaw, rope slack;
+// The modes of docs/model.md §4. M1/M2: sandbag falling (rope slack/taut); M3: on the seesaw, rope slack;
 // M4: on the seesaw, rope taut, lid swinging; M5: on the seesaw, rope taut, lid resting.
 enum class Mode { M1 = 1, M2, M3, M4, M5 };
 std::string_view to_string(Mode mode);

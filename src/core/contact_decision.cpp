@@ -34,7 +34,7 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
   contact::Choice c;
   // Where the physics leaves a choice (only a massless seesaw does: contacts with zero force
   // either way), each contact stays as it was, the one that triggered the event goes the way it
-  // tends, and a sandbag on a massless seesaw stays on it (MODEL.md: once landed, it stays; with
+  // tends, and a sandbag on a massless seesaw stays on it (docs/model.md §4: once landed, it stays; with
   // the rope slack that seesaw simply turns with the falling sandbag).
   const Set s0 = active_set(d);
   for (int i = 0; i < 3; ++i) {
@@ -61,7 +61,7 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
   // A contact that would separate slower than a millionth of the machine's speed is held: the
   // end of an inelastic cascade (rope jerks the lid a hair off the box, the lid drops back, the
   // seesaw lets the rope go, ...) whose gaps never open beyond rounding. Without it such a Zeno
-  // cascade never reaches its limit, where both contacts hold (MODEL.md: impacts are inelastic).
+  // cascade never reaches its limit, where both contacts hold (docs/model.md §7: impacts are inelastic).
   c.rate_tol = 1e-6 * v;
   c.closing_tol = 1e-12 * v;
   c.accel_tol = 1e-9 * acc;

@@ -12,7 +12,7 @@ using namespace model_detail;
 // --- the contact problem -------------------------------------------------------------------------
 
 contact::System Model::contact_system(const Discrete& d, const Kinematics& k) const {
-  // Coordinates (x, h, phiS, phiL), diagonal masses (m_S, m_S, I_S, I_L): I_S = 0 is MODEL.md's
+  // Coordinates (x, h, phiS, phiL), diagonal masses (m_S, m_S, I_S, I_L): I_S = 0 is the paper's
   // massless seesaw, held by whatever contact acts on it. The gaps, each >= 0 when open:
   //   sandbag: its height above the arm's line, -x sin phiS + h cos phiS (multiplier: the arm's push, N)
   //   rope:    l_R - |R - E|                                  (multiplier: the tension, N)

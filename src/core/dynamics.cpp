@@ -44,7 +44,7 @@ Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, 
 Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, double dr,
                                   double dphi_s) const {
   // J phiS'' = Q with J = I_S + [on] m_S r^2 + [taut] I_L k^2. With I_S = 0, no seesaw weight and no
-  // damping (MODEL.md) the extra terms are exact zeros and this is eqs. (3) and (4) of the paper.
+  // damping (docs/model.md §1) the extra terms are exact zeros and this is eqs. (3) and (4) of the paper.
   // This is the flow's hot path: one sincos of phiS serves the weights and the whole linkage.
   Swing p{};
   const double cs = std::cos(phi_s), ss = std::sin(phi_s);

@@ -78,7 +78,7 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
     // A free-falling sandbag can only leave the left arm through the pivot's vertical line.
     g[kGuardAtPivot] = k.x;
   }
-  // With the sandbag on it, the seesaw turning vertical ends the model (MODEL.md); an unloaded
+  // With the sandbag on it, the seesaw turning vertical ends the model (docs/model.md §6); an unloaded
   // seesaw with inertia may swing on past it.
   if (d.on_seesaw) {
     g[kGuardSeesawVertical] = k.phi_s - vertical_;

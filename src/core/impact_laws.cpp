@@ -10,7 +10,7 @@ namespace whatnext {
 using namespace model_detail;
 
 bool Model::law_velocity(const Kinematics& k, bool bag, contact::Coords& u) const {
-  // MODEL.md's impact laws fix the seesaw's rate after the rope's jerk; r' keeps the sandbag's
+  // The impact laws (docs/model.md §7) fix the seesaw's rate after the rope's jerk; r' keeps the sandbag's
   // speed along the arm (eq. 5) except under linear-momentum; afterwards phiL' = k phiS'. A heavy
   // seesaw brings its own angular momentum I_S phiS'- (zero for the massless seesaw).
   const double c = std::cos(k.phi_s), s = std::sin(k.phi_s);

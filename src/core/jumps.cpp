@@ -189,7 +189,7 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
     out.push_back(make_event(type, hs, before, before));
     return true;
   };
-  // MODEL.md: the model ends when the sandbag reaches the pivot. As r -> 0 the rope's pull on the
+  // docs/model.md §6: the model ends when the sandbag reaches the pivot. As r -> 0 the rope's pull on the
   // lid vanishes too, so contact changes and sandbag_at_pivot arrive together; the pivot wins.
   if (hs.d.on_seesaw && k0.r <= kContact && !fires_at_once(fired)) return stop(EventType::sandbag_at_pivot);
   switch (fired) {
@@ -212,7 +212,7 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
       }
       break;
     case kGuardRope:
-      // MODEL.md's linkage: the rope straightens on the lid-below-rope side only; on the other
+      // The linkage (docs/model.md §3): the rope straightens on the lid-below-rope side only; on the other
       // it would run under the hinge, through the box, and the model cannot go on.
       if (!hs.d.taut && !rope_.lid_below_rope(k0.phi_s, k0.phi_l)) return stop(EventType::rope_locked);
       resolve(hs, k0, kRope, hs.d.taut ? Trend::releasing : Trend::closing, out);

@@ -206,7 +206,7 @@ class Model {
   Kinematics touch_exactly(const Discrete& d, contact::Set touch, Kinematics k) const;
   contact::Choice choice(const Discrete& d, const contact::System& sys, const Kinematics& k,
                          int trigger, Trend trend) const;
-  // The chosen impact law's velocities for a rope impulse (MODEL.md's laws); false where they are
+  // The chosen impact law's velocities for a rope impulse (docs/model.md §7); false where they are
   // not finite (then the perfectly inelastic ones stand).
   bool law_velocity(const Kinematics& k, bool bag, contact::Coords& u) const;
   void set_contacts(Discrete& d, contact::Set s, const Kinematics& k) const;
@@ -233,7 +233,7 @@ class Model {
   RopeGeometry rope_;
   BalloonLimit limit_;
   double g_, m_s_, m_l_, i_l_, r_l_, a_b_, phi_l0_, vertical_;
-  // Extensions (zero or infinite: MODEL.md's machine).
+  // Extensions (zero or infinite: the paper's machine, docs/model.md §1).
   double drag_, m_b_, i_s_, w_s_, c_p_, c_l_, arm_;
   bool heavy_, radio_;
   Vec2 switch_;

@@ -9,8 +9,8 @@
 namespace whatnext::model_detail {
 
 constexpr double kHalfPi = 1.57079632679489661923;
-constexpr double kContact = 1e-9;  // MODEL.md: touching (on the arm, rope straight) within 1e-9 m
-constexpr double kNoEnd = std::numeric_limits<double>::infinity();  // MODEL.md's endless arm
+constexpr double kContact = 1e-9;  // docs/model.md §4: touching (on the arm, rope straight) within 1e-9 m
+constexpr double kNoEnd = std::numeric_limits<double>::infinity();  // the paper's endless arm (docs/model.md §1)
 // Lead of an armed guard whose first non-zero derivative is not known (a force that just reached
 // zero): only its sign matters to the integrators.
 constexpr double kUnknownLead = -1e-300;

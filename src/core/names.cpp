@@ -117,7 +117,7 @@ double Machine::balloon_volume() const {
 
 double Machine::balloon_acceleration() const {
   // Buoyancy minus the weights of helium and rubber, per unit volume, over the inertia's density.
-  // With no rubber this is exactly MODEL.md's g (rho_air - rho_He) / rho_air (or / rho_He).
+  // With no rubber this is exactly docs/model.md's (§8) g (rho_air - rho_He) / rho_air (or / rho_He).
   const double rubber = balloon_rubber_mass / balloon_volume();
   const double lift = gravity * (air_density - helium_density - rubber);
   return lift / inertia_density(*this, rubber);
