@@ -13,6 +13,7 @@ set(WHATNEXT_CORE_SOURCES
   src/core/impact_laws.cpp
   src/core/jumps.cpp
   src/core/ledger.cpp
+  src/core/columns.cpp
   src/core/names.cpp
   src/core/simulate.cpp)
 # Inputs and file outputs.

@@ -1,0 +1,49 @@
+// One table per fact: the state's columns (whatnext/columns.hpp) and the unit conversions
+// (whatnext/units.hpp) are what every writer uses.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "whatnext/columns.hpp"
+#include "whatnext/output.hpp"
+#include "whatnext/units.hpp"
+
+using namespace whatnext;
+
+TEST(Columns, TheCsvHeaderIsTheTableOfColumns) {
+  std::string header;
+  for (std::string_view name : kLeadingColumns) header += std::string(name) + ",";
+  for (const StateColumn& c : state_columns()) header += std::string(c.name) + ",";
+  header.pop_back();
+  EXPECT_EQ(header, CsvWriter::header());
+}
+
+TEST(Columns, NamesAreUniqueAndEndInTheirUnit) {
+  std::set<std::string_view> seen;
+  for (const StateColumn& c : state_columns()) {
+    EXPECT_TRUE(seen.insert(c.name).second) << c.name;
+    std::string suffix(c.unit);
+    for (char& ch : suffix) ch = ch == '/' ? '_' : ch;
+    if (suffix == "m_s") suffix = "m_per_s";
+    if (suffix == "deg_s") suffix = "deg_per_s";
+    EXPECT_EQ(c.name.substr(c.name.size() - suffix.size()), suffix) << c.name << " [" << c.unit << "]";
+  }
+}
+
+TEST(Columns, AnglesAreReportedInDegrees) {
+  Snapshot s;
+  s.phi_l = units::kPi / 2.0;
+  s.dphi_s = -units::kPi;
+  for (const StateColumn& c : state_columns()) {
+    if (c.name == "phi_l_deg") EXPECT_DOUBLE_EQ(c.value(s), 90.0);
+    if (c.name == "dphi_s_deg_per_s") EXPECT_DOUBLE_EQ(c.value(s), -180.0);
+  }
+}
+
+TEST(Units, DegreesAndRadiansAreInverse) {
+  EXPECT_DOUBLE_EQ(units::degrees(units::kPi), 180.0);
+  EXPECT_DOUBLE_EQ(units::radians(180.0), units::kPi);
+  for (double d : {-89.1, -25.0, 0.0, 5.0, 27.0, 90.0}) EXPECT_NEAR(units::degrees(units::radians(d)), d, 1e-12);
+}
