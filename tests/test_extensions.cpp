@@ -292,3 +292,48 @@ TEST_F(BadInput, EachNewRuleIsOneLineExitTwoAndNoFile) {
     EXPECT_FALSE(fs::exists(out)) << sets;
   }
 }
+
+// --- no somersaults (issue 19) -----------------------------------------------------------------
+
+namespace {
+// Every state a run reports: its samples and events.
+class AngleWatch : public wn::Observer {
+ public:
+  double most = 0.0;  // largest |phiS| seen [rad]
+  void on_sample(const wn::Snapshot& s) override { most = std::max(most, std::fabs(s.phi_s)); }
+  void on_event(const wn::Event& e) override { most = std::max(most, std::fabs(e.after.phi_s)); }
+};
+}  // namespace
+
+TEST(NoSomersaults, AHeavySeesawThatLostItsSandbagStopsAtTheVertical) {
+  // The issue's reproducer: the sandbag leaves a light seesaw with mass, which the rope then swings
+  // up; before, it went on to 107.6 deg and the lid opened.
+  const wn::Scenario sc = example(1, {"seesaw.mass=0.025", "seesaw.left_arm=2.47", "masses.sandbag=3.19",
+                                      "start.sandbag_height=0.32", "start.seesaw_angle=2.29"});
+  AngleWatch w;
+  const wn::Result r = wn::simulate(sc, &w);
+  EXPECT_EQ(r.outcome().type, wn::EventType::seesaw_vertical);
+  const double limit = kPi / 2.0 - sc.run.vertical_margin;
+  EXPECT_NEAR(std::fabs(r.outcome().after.phi_s), limit, 1e-9);
+  EXPECT_LE(w.most, limit + 1e-9);
+}
+
+TEST(NoSomersaults, NoSeesawWithMassEverTurnsPastTheVertical) {
+  // Heavy seesaws of many shapes: whatever they carry, |phiS| stays within 90 deg - margin.
+  int stopped = 0;
+  for (int i = 0; i < 60; ++i) {
+    const double mass = 0.02 + 0.03 * (i % 6), arm = 0.8 + 0.3 * (i % 7), bag = 0.5 + 0.5 * (i % 5);
+    wn::Scenario sc;
+    try {
+      sc = example(1 + i % 2, {"seesaw.mass=" + std::to_string(mass), "seesaw.left_arm=" + std::to_string(arm),
+                               "masses.sandbag=" + std::to_string(bag), "run.t_max=3"});
+    } catch (const wn::InputError&) {
+      continue;
+    }
+    AngleWatch w;
+    const wn::Result r = wn::simulate(sc, &w);
+    EXPECT_LE(w.most, kPi / 2.0 - sc.run.vertical_margin + 1e-9) << "machine " << i;
+    stopped += r.outcome().type == wn::EventType::seesaw_vertical;
+  }
+  EXPECT_GT(stopped, 0);  // the family does reach the vertical
+}

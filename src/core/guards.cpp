@@ -78,12 +78,12 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
     // A free-falling sandbag can only leave the left arm through the pivot's vertical line.
     g[kGuardAtPivot] = k.x;
   }
-  // With the sandbag on it, the seesaw turning vertical ends the model (docs/model.md §6); an unloaded
-  // seesaw with inertia may swing on past it.
-  if (d.on_seesaw) {
-    g[kGuardSeesawVertical] = k.phi_s - vertical_;
-    if (arm_ < kNoEnd) g[kGuardArmEnd] = k.r - arm_;
-  }
+  // No somersaults (the paper allows only |phiS| < 90 deg): a seesaw that turns vertical either way
+  // ends the model, whatever it carries (docs/model.md §6). Only the parked massless seesaw (M1),
+  // which nothing moves, is left out: its angle is the input's.
+  const bool seesaw_moves = d.on_seesaw || d.heavy || d.taut;
+  if (seesaw_moves) g[kGuardSeesawVertical] = std::fabs(k.phi_s) - vertical_;
+  if (d.on_seesaw && arm_ < kNoEnd) g[kGuardArmEnd] = k.r - arm_;
 }
 
 double Model::guard_floor(Guard g, const Discrete& d) const {
