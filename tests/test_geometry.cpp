@@ -115,3 +115,53 @@ TEST(Balloon, LimitMatchesThePapersFormulaAndItsDerivatives) {
 }
 
 }  // namespace
+
+// --- the rope's knot along the lid (issue 19: geometry.rope_on_lid) -----------------------------
+
+TEST(Knot, TransferAtTheLidsMiddleByHand) {
+  // Fig. 3's machine ties the rope at the lid's middle, a = r_L. By hand, with R = r_H (cos phiS,
+  // sin phiS) and E = H + a (cos phiL, sin phiL) on the straight rope, C = |R - E|^2 - l^2 gives
+  //   k = -C_S / C_L = ((R - E) . R') / ((R - E) . E'),  R' = dR/dphiS, E' = dE/dphiL.
+  wn::Machine m = machine_of_example(1);
+  m.rope_on_lid = m.lid_half_length;
+  m.rope_length = 0.8;
+  const double a = m.rope_on_lid;
+  const wn::RopeGeometry rope(m);
+  int checked = 0;
+  for (double deg = -40.0; deg <= 80.0; deg += 2.0) {
+    const double phi_s = deg * kDeg;
+    double phi_l = 0.0;
+    if (!rope.lid_angle_for(phi_s, phi_l)) continue;
+    const double rx = m.seesaw_right_arm * std::cos(phi_s), rh = m.seesaw_right_arm * std::sin(phi_s);
+    const double ex = m.hinge.x + a * std::cos(phi_l), eh = m.hinge.h + a * std::sin(phi_l);
+    EXPECT_NEAR(std::hypot(rx - ex, rh - eh), m.rope_length, 1e-12) << "the knot is on the rope's end";
+    const double dx = rx - ex, dh = rh - eh;
+    const double num = dx * (-rh) + dh * rx;                                       // (R - E) . R'
+    const double den = dx * (-a * std::sin(phi_l)) + dh * (a * std::cos(phi_l));  // (R - E) . E'
+    EXPECT_NEAR(rope.transfer(phi_s, phi_l).k, num / den, 1e-9 * (1.0 + std::fabs(num / den))) << deg;
+    // And against the closure itself: phiL(phiS) differentiated numerically.
+    const double h = 1e-6;
+    double lo = 0.0, hi = 0.0;
+    ASSERT_TRUE(rope.lid_angle_for(phi_s - h, lo) && rope.lid_angle_for(phi_s + h, hi));
+    EXPECT_NEAR(rope.transfer(phi_s, phi_l).k, (hi - lo) / (2.0 * h), 1e-6 * (1.0 + std::fabs(num / den))) << deg;
+    ++checked;
+  }
+  EXPECT_GT(checked, 10);
+}
+
+TEST(Knot, AtTheFreeEdgeItIsThePapersRopeToTheLastBit) {
+  // rope_on_lid = 2 r_L given explicitly is the default: the same closure, bit for bit.
+  const wn::Machine m = machine_of_example(2);
+  wn::Machine tied = m;
+  tied.rope_on_lid = 2.0 * m.lid_half_length;
+  const wn::RopeGeometry a(m), b(tied);
+  for (double deg = -40.0; deg <= 80.0; deg += 7.5) {
+    double pa = 0.0, pb = 0.0;
+    const bool ok = a.lid_angle_for(deg * kDeg, pa);
+    ASSERT_EQ(ok, b.lid_angle_for(deg * kDeg, pb));
+    if (!ok) continue;
+    EXPECT_EQ(pa, pb);
+    EXPECT_EQ(a.transfer(deg * kDeg, pa).k, b.transfer(deg * kDeg, pb).k);
+    EXPECT_EQ(a.transfer(deg * kDeg, pa).dk, b.transfer(deg * kDeg, pb).dk);
+  }
+}

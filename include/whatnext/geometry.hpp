@@ -1,4 +1,5 @@
-// Geometry of the rope between the seesaw's right end R and the lid's free edge E, and of the
+// Geometry of the rope between the seesaw's right end R and its knot E on the lid (the lid's free
+// edge unless geometry.rope_on_lid ties it nearer the hinge, docs/model.md §3), and of the
 // balloon's height limit under the lid. Every geometric formula of the model lives here, once.
 #pragma once
 
@@ -18,7 +19,7 @@ struct Transfer {
 class RopeGeometry {
  public:
   explicit RopeGeometry(const Machine& m)
-      : r_h_(m.seesaw_right_arm), r_l_(m.lid_half_length), l_r_(m.rope_length), hinge_(m.hinge) {}
+      : r_h_(m.seesaw_right_arm), r_l_(0.5 * m.rope_knot()), l_r_(m.rope_length), hinge_(m.hinge) {}
 
   Vec2 hinge() const { return hinge_; }
   double rope_length() const { return l_r_; }
@@ -98,6 +99,8 @@ class RopeGeometry {
   Linkage linkage_at(Vec2 r, Vec2 el, bool derivatives) const;
   // transfer() given the seesaw end R and the lid vector E - H.
   Transfer transfer_at(Vec2 r, Vec2 el) const;
+  // r_l_ is half the knot's distance from the hinge: the lid's half length r_L for a rope tied at
+  // its free edge, as in the paper's formulas (where the knot's distance a is 2 r_L).
   double r_h_, r_l_, l_r_;
   Vec2 hinge_;
 };

@@ -52,6 +52,10 @@ struct Machine {
   double seesaw_mass = 0.0;                // [kg]
   double seesaw_inertia = 0.0;             // about the pivot [kg m^2]; > 0 makes the seesaw "heavy"
   double seesaw_com_offset = 0.0;          // centre of mass along the bar, + towards r_H [m]
+  double rope_on_lid = 0.0;                // the rope's knot, from the hinge along the lid [m]; 0: the free edge
+
+  // Where the rope is tied to the lid, from the hinge: a = 2 r_L at the free edge (the paper's).
+  double rope_knot() const { return rope_on_lid > 0.0 ? rope_on_lid : 2.0 * lid_half_length; }
 
   // Uniform plate hinged at one edge: I = m (2 r_L)^2 / 3.
   double lid_inertia() const { return lid_mass * 4.0 * lid_half_length * lid_half_length / 3.0; }

@@ -32,7 +32,8 @@ contact::System Model::contact_system(const Discrete& d, const Kinematics& k) co
   s.curvature[kBag] = -2.0 * k.dphi_s * (k.vx * cs + k.vh * sn) - k.dphi_s * k.dphi_s * height;
 
   const Vec2 r{sc_.machine.seesaw_right_arm * cs, sc_.machine.seesaw_right_arm * sn};
-  const Vec2 el{2.0 * r_l_ * cl, 2.0 * r_l_ * sl};
+  const double knot = sc_.machine.rope_knot();
+  const Vec2 el{knot * cl, knot * sl};
   const Vec2 dv = r - (rope_.hinge() + el);  // D = R - E
   const double dn = norm(dv);
   const Vec2 r_s{-r.h, r.x}, e_l{-el.h, el.x};  // dR/dphiS, dE/dphiL
