@@ -563,3 +563,58 @@ TEST(ContactSolver, InverseDynamicsGivesBackTheForcesOfTheConstrainedMotion) {
   }
   EXPECT_GT(compared, 10000);
 }
+
+// --- impulses and the law applied (issues 21 and 20) --------------------------------------------
+
+TEST(Impulses, ExampleOnesJerkIsTheLidsAngularMomentumOverTheRopesArm) {
+  // The lid rests until the jerk, so all of its angular momentum after it, I_L phiL', came from
+  // the rope: I_L phiL'+ = p * (the rope's lever arm about the hinge). An independent engine's
+  // ideal jerk gives ~0.727 N s.
+  const wn::Scenario sc = wn::build_scenario(wn::example_config(1));
+  const wn::Result r = wn::simulate(sc);
+  const wn::Event* jerk = nullptr;
+  for (const wn::Event& e : r.events)
+    if (e.type == wn::EventType::rope_taut) jerk = &e;
+  ASSERT_NE(jerk, nullptr);
+  ASSERT_TRUE(jerk->impact);
+  const double p = jerk->impulse[wn::kRope];
+  const wn::RopeGeometry rope(sc.machine);
+  // The lid's angular momentum just after the jerk: the event's state is after the rope went
+  // slack again at the same instant, with the lid's rate the jerk left it.
+  const double arm = rope.lid_arm(jerk->after.phi_s, jerk->after.phi_l);
+  EXPECT_NEAR(p, sc.machine.lid_inertia() * jerk->after.dphi_l / arm, 1e-9);
+  EXPECT_NEAR(p, 0.727, 0.005);
+  EXPECT_GT(p, 0.0);  // a rope only pulls
+  EXPECT_EQ(jerk->impulse[wn::kLid], 0.0);
+  EXPECT_EQ(jerk->law, wn::ImpactLaw::rope);
+  EXPECT_TRUE(jerk->law_note.empty());
+}
+
+TEST(Impulses, NoImpactEverHasAnImpulseOfTheWrongSign) {
+  // Under every law but linear-momentum, which the paper calls unphysical: its jerk needs the rope
+  // to push and the arm to pull (and it creates energy), which its impulses show (next test).
+  for (int n = 1; n <= 4; ++n) {
+    for (const char* law : {"rope", "angular-momentum-sum", "kinetic-energy"}) {
+      wn::Config cfg = wn::example_config(n);
+      wn::apply_set(cfg, std::string("run.impact_law=") + law);
+      const wn::Result r = wn::simulate(wn::build_scenario(cfg));
+      for (const wn::Event& e : r.events) {
+        if (!e.impact) continue;
+        for (double p : e.impulse) EXPECT_GE(p, -1e-9) << "example " << n << " " << law << " t=" << e.t;
+      }
+    }
+  }
+}
+
+TEST(Impulses, TheLinearMomentumLawNeedsARopeThatPushes) {
+  wn::Config cfg = wn::example_config(2);
+  wn::apply_set(cfg, "run.impact_law=linear-momentum");
+  const wn::Result r = wn::simulate(wn::build_scenario(cfg));
+  const wn::Event* jerk = nullptr;
+  for (const wn::Event& e : r.events)
+    if (e.type == wn::EventType::rope_taut && e.impact && !jerk) jerk = &e;
+  ASSERT_NE(jerk, nullptr);
+  EXPECT_EQ(jerk->law, wn::ImpactLaw::linear_momentum);
+  EXPECT_LT(jerk->impulse[wn::kRope], 0.0);
+  EXPECT_GT(jerk->energy_after, jerk->energy_before);
+}

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <array>
 #include <string_view>
+
+#include "whatnext/params.hpp"
 
 #include "whatnext/state.hpp"
 
@@ -41,6 +44,13 @@ struct Event {
   // How far t may be off for the integrator's tolerance alone [s] (adaptive runs; 0 where the
   // event is not found on a crossing): a slow crossing is an uncertain one. See Crossing.
   double time_uncertainty = 0.0;
+  // Impacts only (impact == true): the impulse each contact gave, from the velocity jump
+  // (docs/model.md §7): the arm on the sandbag [N s], the rope [N s], the box on the lid [N m s].
+  std::array<double, 3> impulse{};
+  // The law that set the velocities after a rope's jerk, and why it is not the run's impact_law
+  // where it is not (empty otherwise): a law that cannot be applied is never replaced silently.
+  ImpactLaw law = ImpactLaw::rope;
+  std::string_view law_note;
 };
 
 }  // namespace whatnext

@@ -174,11 +174,21 @@ void Model::impact_on_velocities(const Discrete& d, Decision& x, double t) const
 
 void Model::apply_impact_law(Decision& x) const {
   // The rope's jerk by the chosen law (the inelastic solution is the rope law, eq. 7), provided
-  // nothing else it touches is then left closing.
+  // nothing else it touches is then left closing. Where the law cannot be applied, the rope law
+  // stands and the event says why (docs/model.md §7).
   using contact::has;
-  if (!x.impulsive(kRope) || sc_.run.impact_law == ImpactLaw::rope || x.impulsive(kLid)) return;
+  const ImpactLaw chosen = sc_.run.impact_law;
+  if (!x.impulsive(kRope) || chosen == ImpactLaw::rope) return;
+  if (x.impulsive(kLid)) {
+    x.law_note = "the jerk also presses the lid onto the box, which no single law covers: perfectly inelastic (rope law)";
+    return;
+  }
   contact::Coords ul = x.u;
-  if (!law_velocity(x.k0, has(x.imp.impulsive, kBag), ul)) return;
+  std::string_view note;
+  if (!law_velocity(x.k0, has(x.imp.impulsive, kBag), ul, &note)) {
+    x.law_note = "the law has no finite solution at this state: perfectly inelastic (rope law)";
+    return;
+  }
   bool ok = true;
   contact::PerContact rl = x.rate;
   for (int i = 0; i < 3; ++i) {
@@ -186,7 +196,14 @@ void Model::apply_impact_law(Decision& x) const {
     rl[i] = has(x.imp.impulsive, i) ? 0.0 : x.sys.rate(i, ul);
     ok = ok && rl[i] >= -x.ch.closing_tol;
   }
-  if (ok) x.u = ul, x.rate = rl;
+  if (!ok) {
+    x.law_note = "the law would drive a touching contact (the lid into the box, or the sandbag into the arm): "
+                 "perfectly inelastic (rope law)";
+    return;
+  }
+  x.u = ul, x.rate = rl;
+  x.law = note.empty() ? chosen : ImpactLaw::rope;
+  x.law_note = note;
 }
 
 void Model::hold_after_impact(Decision& x) const {
@@ -253,6 +270,23 @@ void Model::enter_contacts(HybridState& hs, const Decision& x) const {
   place(hs, x.k2);
 }
 
+std::array<double, 3> Model::impulses(const Decision& x) const {
+  // The impulses that make the velocity jump, M (u+ - u-) = sum_i W_i p_i: the inelastic impact's
+  // own under the rope law, else the contacts' share of the chosen law's jump (least squares where
+  // the law moves the machine in a way no contact impulse could: linear momentum).
+  contact::PerContact p = x.imp.impulse;
+  if (x.law != ImpactLaw::rope) {
+    contact::System jump = x.sys;
+    jump.force = {};
+    contact::Coords dv{};
+    for (int j = 0; j < jump.coords; ++j) dv[j] = x.u[j] - x.sys.velocity[j];
+    if (!contact::multipliers_for(jump, x.imp.impulsive, dv, p)) p = x.imp.impulse;
+  }
+  std::array<double, 3> out{};
+  for (int i = 0; i < 3; ++i) out[i] = contact::has(x.imp.impulsive, i) ? p[i] : 0.0;
+  return out;
+}
+
 void Model::report_changes(HybridState& hs, const Decision& x, Mode before, std::vector<Event>& out) const {
   // The changes as they happen: the one that triggered the event, those decided on the
   // velocities, then those decided on the accelerations. A lid knocked off the box by an impact
@@ -272,6 +306,9 @@ void Model::report_changes(HybridState& hs, const Decision& x, Mode before, std:
     if (first && x.impacted) {
       e.impact = true;
       e.energy_before = energy(x.k0);
+      e.impulse = impulses(x);
+      e.law = x.law;
+      e.law_note = x.law_note;
     }
     out.push_back(e);
     from = to;

@@ -9,7 +9,7 @@ namespace whatnext {
 
 using namespace model_detail;
 
-bool Model::law_velocity(const Kinematics& k, bool bag, contact::Coords& u) const {
+bool Model::law_velocity(const Kinematics& k, bool bag, contact::Coords& u, std::string_view* note) const {
   // The impact laws (docs/model.md §7) fix the seesaw's rate after the rope's jerk; r' keeps the sandbag's
   // speed along the arm (eq. 5) except under linear-momentum; afterwards phiL' = k phiS'. A heavy
   // seesaw brings its own angular momentum I_S phiS'- (zero for the massless seesaw).
@@ -38,6 +38,7 @@ bool Model::law_velocity(const Kinematics& k, bool bag, contact::Coords& u) cons
     case ImpactLaw::linear_momentum: {
       if (!bag) {  // no sandbag in the impact: nothing for this law to say; inelastic instead
         dphi_s = rope_num / rope_den;
+        if (note) *note = "no sandbag takes part in this jerk, so linear momentum says nothing: perfectly inelastic (rope law)";
         break;
       }
       // Linear momentum of sandbag and lid centre of mass before = after (2x2 in r', phiS').

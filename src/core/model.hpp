@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string_view>
 #include <vector>
 
 #include "contact.hpp"
@@ -186,6 +187,8 @@ class Model {
     contact::Coords u{};       // velocities after the impact (by the chosen law)
     contact::PerContact rate{};  // gap rates after it
     bool impacted = false;     // some impulse beyond rounding
+    ImpactLaw law = ImpactLaw::rope;  // the law the velocities follow
+    std::string_view law_note;        // why that is not the run's impact_law, where it is not
     contact::Set held = 0;     // touching with zero gap rate after the impact
     Kinematics k1;             // the state with the impact's velocities
     contact::Motion mot;       // the motion on accelerations
@@ -201,6 +204,7 @@ class Model {
   void motion_on_accelerations(const Discrete& d, Decision& x, double t) const;
   void enter_contacts(HybridState& hs, const Decision& x) const;
   void report_changes(HybridState& hs, const Decision& x, Mode before, std::vector<Event>& out) const;
+  std::array<double, 3> impulses(const Decision& x) const;
   contact::Set touching(const Discrete& d, const Kinematics& k) const;
   // The positions moved onto the touching contacts (their gaps exactly zero), velocities kept.
   Kinematics touch_exactly(const Discrete& d, contact::Set touch, Kinematics k) const;
@@ -208,7 +212,8 @@ class Model {
                          int trigger, Trend trend) const;
   // The chosen impact law's velocities for a rope impulse (docs/model.md §7); false where they are
   // not finite (then the perfectly inelastic ones stand).
-  bool law_velocity(const Kinematics& k, bool bag, contact::Coords& u) const;
+  // note: set where the law itself falls back to the rope law.
+  bool law_velocity(const Kinematics& k, bool bag, contact::Coords& u, std::string_view* note = nullptr) const;
   void set_contacts(Discrete& d, contact::Set s, const Kinematics& k) const;
   static contact::Set active_set(const Discrete& d);
   // Writes the continuous state for hs.d's layout from full kinematics.
