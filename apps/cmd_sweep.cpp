@@ -19,7 +19,7 @@
 
 #include "cli_common.hpp"
 #if WHATNEXT_FULL
-#include "whatnext/explore/heatmap.hpp"
+#include "whatnext/viz/heatmap.hpp"
 #endif
 #include "whatnext/explore/sweep.hpp"
 #include "whatnext/output.hpp"
@@ -261,7 +261,7 @@ void register_sweep(CLI::App& app, int& exit_code) {
     check_large(machines.size());
     if (given(*cmd, "--heatmap")) {
 #if WHATNEXT_FULL
-      explore::check_heatmap_plan(plan, "--heatmap");
+      viz::check_heatmap_plan(plan, "--heatmap");
 #endif
       if (!ends_with(opts->heatmap, ".png") && !ends_with(opts->heatmap, ".PNG")) {
         throw InputError(fmt::format("--heatmap {}: the heat map is a PNG; give a name ending in .png",
@@ -398,7 +398,7 @@ void register_sweep(CLI::App& app, int& exit_code) {
       }
     }
 #if WHATNEXT_FULL
-    if (heat) explore::draw_heatmap(heat->temp_path(), machines, result, opts->heatmap_value);
+    if (heat) viz::draw_heatmap(heat->temp_path(), machines, result, opts->heatmap_value);
     if (hist) {
       viz::HistogramText t;
       t.title = fmt::format("{}: {} machines around {}", value, result.completed, printable(in.source, 60));
