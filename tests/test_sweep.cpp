@@ -222,23 +222,33 @@ TEST_F(SweepCli, ResumedSweepsEndWithTheBytesOfAnUninterruptedOne) {
 
   // Kills at random points of the sweep: when the .part file has grown past a random size.
   std::mt19937 rng(std::random_device{}());
-  const auto kill_when_grown = [&](std::vector<std::string> a, int sig) {
+  const auto kill_when_grown = [&](std::vector<std::string> a, int sig) -> bool {
     const std::size_t at = std::uniform_int_distribution<std::size_t>(1, want.size() * 3 / 4)(rng);
     const pid_t pid = whatnext::test_support::spawn_whatnext(a);
     for (int i = 0; i < 20000; ++i) {
       std::error_code ec;
       const auto size = fs::file_size(part, ec);
       if (!ec && size >= at) break;
-      if (waitpid(pid, nullptr, WNOHANG) == pid) return;  // it finished first
+      if (waitpid(pid, nullptr, WNOHANG) == pid) return false;  // it finished first
       std::this_thread::sleep_for(std::chrono::microseconds(500));
     }
     kill(pid, sig);
-    waitpid(pid, nullptr, 0);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) == 128 + sig);
   };
-  kill_when_grown(with({"--out", csv.string()}), SIGKILL);
-  EXPECT_FALSE(fs::exists(csv));  // killed: only the .part holds the rows
+  // A file the user had under that name stays as it was until a sweep ends or is stopped.
+  const std::string old = "the user's previous file\n";
+  std::ofstream(csv, std::ios::binary) << old;
+  if (kill_when_grown(with({"--out", csv.string()}), SIGKILL)) {
+    EXPECT_EQ(slurp(csv), old);  // killed: only the .part holds the rows
+  }
   kill_when_grown(with({"--out", csv.string(), "--resume"}), SIGKILL);
   kill_when_grown(with({"--out", csv.string(), "--resume"}), SIGKILL);
+  if (fs::exists(part)) {  // still at work: the old file, or one a finished resume wrote
+    const std::string now = slurp(csv);
+    EXPECT_TRUE(now == old || now == want);
+  }
   kill_when_grown(with({"--out", csv.string(), "--resume"}), SIGINT);  // stopped: the CSV may have gaps
   // A power cut can leave zeros or half a line at the end.
   if (fs::exists(part)) {
