@@ -209,7 +209,7 @@ TEST_F(SweepCli, InterruptKeepsAValidFileOfFinishedRows) {
 // stopped by Ctrl-C or cut off mid-line, then resumed, ends with the bytes of an uninterrupted run.
 TEST_F(SweepCli, ResumedSweepsEndWithTheBytesOfAnUninterruptedOne) {
   const std::vector<std::string> args{"sweep", "--example", "3", "--vary", "geometry.rope_length=0.9:1.1:30",
-                                      "--vary", "masses.lid=0.3:0.7:30", "--threads", "2"};
+                                      "--vary", "masses.lid=0.3:0.7:31", "--threads", "2"};
   const auto with = [&](std::vector<std::string> extra) {
     std::vector<std::string> a = args;
     a.insert(a.end(), extra.begin(), extra.end());
@@ -218,15 +218,18 @@ TEST_F(SweepCli, ResumedSweepsEndWithTheBytesOfAnUninterruptedOne) {
   const fs::path ref = dir_ / "ref.csv", csv = dir_ / "s.csv", part = dir_ / "s.csv.part";
   ASSERT_EQ(whatnext_argv(with({"--out", ref.string()})).code, 0);
   const std::string want = slurp(ref);
-  ASSERT_EQ(std::count(want.begin(), want.end(), '\n'), 1 + 30 * 30);
+  ASSERT_EQ(std::count(want.begin(), want.end(), '\n'), 1 + 30 * 31);
 
   // Kills at random points of the sweep: when the .part file has grown past a random size.
   std::mt19937 rng(std::random_device{}());
   const auto kill_when_grown = [&](std::vector<std::string> a, int sig) -> bool {
-    const std::size_t at = std::uniform_int_distribution<std::size_t>(1, want.size() * 3 / 4)(rng);
+    // Beyond what the .part holds already (a resumed sweep starts from it), so that each run gets on.
+    std::error_code ec;
+    const std::size_t before = fs::exists(part) ? static_cast<std::size_t>(fs::file_size(part, ec)) : 0;
+    const std::size_t at =
+        before + std::uniform_int_distribution<std::size_t>(1, (want.size() - std::min(want.size(), before)) * 3 / 4 + 1)(rng);
     const pid_t pid = whatnext::test_support::spawn_whatnext(a);
     for (int i = 0; i < 20000; ++i) {
-      std::error_code ec;
       const auto size = fs::file_size(part, ec);
       if (!ec && size >= at) break;
       if (waitpid(pid, nullptr, WNOHANG) == pid) return false;  // it finished first
@@ -254,7 +257,7 @@ TEST_F(SweepCli, ResumedSweepsEndWithTheBytesOfAnUninterruptedOne) {
   if (fs::exists(part)) {
     std::ofstream(part, std::ios::app | std::ios::binary) << std::string(100, '\0');
   } else {
-    std::ofstream(csv, std::ios::app | std::ios::binary) << "899,1.1,0.7,lid_op";
+    std::ofstream(csv, std::ios::app | std::ios::binary) << "929,1.1,0.7,lid_op";
   }
   const CliResult r = whatnext_argv(with({"--out", csv.string(), "--resume"}));
   ASSERT_EQ(r.code, 0) << r.err;
