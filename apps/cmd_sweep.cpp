@@ -1,21 +1,31 @@
 // `whatnext sweep`: many machines over a grid or a Latin hypercube, one CSV row each.
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <exception>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <thread>
 
 #include <fmt/format.h>
 
 #include "cli_common.hpp"
 #if WHATNEXT_FULL
-#include "whatnext/explore/heatmap.hpp"
+#include "whatnext/viz/heatmap.hpp"
 #endif
 #include "whatnext/explore/sweep.hpp"
 #include "whatnext/output.hpp"
+#if WHATNEXT_FULL
+#include "whatnext/viz/histogram.hpp"
+#endif
 
 namespace whatnext::cli {
 
@@ -23,13 +33,15 @@ namespace {
 
 struct SweepOptions {
   InputOptions input;
-  std::vector<std::string> vary;
+  std::vector<std::string> vary, spread;
+  std::string spread_dist = "normal", histogram;
   std::int64_t samples = 0;
   std::uint64_t seed = 1;
   int threads = 0;
   double accuracy = explore::kDefaultAccuracy;
   std::string out, heatmap, heatmap_value = "lid_open";
   bool force_large = false;
+  bool resume = false;
 };
 
 // Sweeps bigger than this need --force-large: every row is kept in memory until the CSV is
@@ -76,6 +88,72 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
+// The CSV of a resumed sweep (docs/explore.md, "Resuming a sweep"). Its rows go to TARGET.part:
+// continued in place when a killed sweep left one (cut back to its last complete row), otherwise
+// a new one that starts with the rows kept from TARGET. It is renamed over TARGET when the sweep
+// ends or is stopped, synced first; until then TARGET stays as it was. It is never removed, not
+// even on an interrupt: it holds the sweep's progress for the next --resume.
+class ResumedCsv {
+ public:
+  ResumedCsv(const std::string& target, const std::string& part, bool from_part, std::string_view kept,
+             std::string_view given)
+      : target_(target), part_(part), given_(given) {
+    fd_ = from_part ? ::open(part_.c_str(), O_WRONLY | O_CLOEXEC)
+                    : ::open(part_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd_ < 0) fail("cannot write its .part file");
+    struct stat st {};
+    if (!from_part && ::stat(target_.c_str(), &st) == 0) (void)::fchmod(fd_, st.st_mode & 07777);
+    if (::ftruncate(fd_, static_cast<off_t>(from_part ? kept.size() : 0)) != 0) fail("cannot cut its .part file");
+    if (!from_part) {
+      for (std::size_t done = 0; done < kept.size();) {
+        const ssize_t n = ::write(fd_, kept.data() + done, kept.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) fail("cannot write its .part file");
+        done += static_cast<std::size_t>(n);
+      }
+    }
+    if (::fdatasync(fd_) != 0) fail("cannot sync its .part file");
+    out_.open(part_, std::ios::binary | std::ios::app);
+    if (!out_) fail("cannot write its .part file");
+  }
+  ~ResumedCsv() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  ResumedCsv(const ResumedCsv&) = delete;
+  ResumedCsv& operator=(const ResumedCsv&) = delete;
+  std::ostream& stream() { return out_; }
+  // The rows written so far on disk: a kill or a power cut after this keeps them.
+  void sync() {
+    out_.flush();
+    if (!out_ || ::fdatasync(fd_) != 0) fail("writing failed", true);
+  }
+  void commit() {
+    sync();
+    out_.close();
+    if (!out_ || ::close(fd_) != 0) fail("writing failed", true);
+    fd_ = -1;
+    if (::rename(part_.c_str(), target_.c_str()) != 0) fail("writing failed", true);
+  }
+
+ private:
+  std::string target_, part_, given_;
+  int fd_ = -1;
+  std::ofstream out_;
+  [[noreturn]] void fail(const std::string& why, bool output = false) const {
+    const std::string line = fmt::format("--out {}: {}: {}", printable(given_, 96), why, std::strerror(errno ? errno : EIO));
+    if (output) throw OutputError(line);
+    throw InputError(line);
+  }
+};
+
+std::string read_file(const std::string& path, const std::string& given) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) throw InputError(fmt::format("--resume {}: cannot read it", printable(given, 96)));
+  return text.str();
+}
+
 }  // namespace
 
 void register_sweep(CLI::App& app, int& exit_code) {
@@ -84,35 +162,77 @@ void register_sweep(CLI::App& app, int& exit_code) {
   add_input_options(*cmd, opts->input);
   cmd->add_option("--vary", opts->vary,
                   "KEY=A:B:N: N values of KEY from A to B (KEY=A:B with --samples); repeat for more keys")
-      ->required()
       ->take_all()
       ->allow_extra_args(false);
-  cmd->add_option("--samples", opts->samples, "a Latin hypercube of this many machines instead of the grid")
+  cmd->add_option("--spread", opts->spread,
+                  "KEY=±X (or KEY=+-X): a Monte Carlo around the machine, KEY off by a random amount of spread X "
+                  "in its unit; repeat for more keys")
+      ->take_all()
+      ->allow_extra_args(false);
+  cmd->add_option("--spread-dist", opts->spread_dist,
+                  "normal (X is the standard deviation, the default) or uniform (X is the half-width)");
+  cmd->add_option("--histogram", opts->histogram,
+                  "with --spread: a PNG histogram of the lid's opening time (the radio's, if it is on)");
+  cmd->add_option("--samples", opts->samples,
+                  "a Latin hypercube of this many machines instead of the grid; with --spread, the machines drawn "
+                  "(default 1000)")
       ->check(CLI::Range(std::int64_t{1}, explore::kMaxMachines));
-  cmd->add_option("--seed", opts->seed, "seed of the Latin hypercube (same seed, same machines)");
+  cmd->add_option("--seed", opts->seed, "seed of the Latin hypercube or the --spread draws (same seed, same machines)");
   cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--accuracy", opts->accuracy,
                   fmt::format("event times to this many seconds (default {:g}); sets the integrator's "
                               "tolerance unless run.tolerance is given",
                               explore::kDefaultAccuracy));
-  cmd->add_option("--out", opts->out, "CSV file to write, one row per machine ('-': standard output)")->required();
+  cmd->add_option("--out", opts->out, "CSV file to write, one row per machine ('-': standard output)");
   cmd->add_option("--heatmap", opts->heatmap, "also draw a PNG heat map (needs exactly two --vary keys)");
   cmd->add_option("--heatmap-value", opts->heatmap_value,
                   "value drawn: an event name (its first time, e.g. lid_open), outcome_t, final_r or "
                   "final_phi_l_deg");
+  cmd->add_flag("--resume", opts->resume,
+                "continue the sweep an interrupted run left in --out (its .part file or the CSV itself); "
+                "the file ends the same as an uninterrupted run's");
   cmd->add_flag("--force-large", opts->force_large,
                 fmt::format("run sweeps of more than {} machines", kLargeSweep));
   cmd->callback([opts, cmd, &exit_code] {
 #if !WHATNEXT_FULL
-    if (given(*cmd, "--heatmap")) hand_over_to_full();
+    if (given(*cmd, "--heatmap") || given(*cmd, "--histogram")) hand_over_to_full();
 #endif
     check_leftovers(*cmd);
     explore::check_accuracy(opts->accuracy, "--accuracy");
     // Everything about the input is checked before any machine runs or any file appears.
+    const bool monte_carlo = !opts->spread.empty();
+    if (opts->vary.empty() && !monte_carlo) {
+      throw InputError("sweep: give --vary KEY=A:B:N for a grid (or --spread KEY=±X for a Monte Carlo)");
+    }
+    if (!opts->vary.empty() && monte_carlo) {
+      throw InputError("sweep: --vary and --spread do not mix: a grid, or a Monte Carlo around one machine");
+    }
+    if (!monte_carlo) {
+      for (const char* o : {"--spread-dist", "--histogram"}) {
+        if (given(*cmd, o)) throw InputError(fmt::format("{}: goes with --spread KEY=±X (a Monte Carlo)", o));
+      }
+      if (!given(*cmd, "--out")) throw InputError("--out: give the CSV file to write ('-': standard output)");
+    } else {
+      for (const char* o : {"--heatmap", "--heatmap-value", "--resume"}) {
+        if (given(*cmd, o)) {
+          throw InputError(fmt::format("{}: goes with a grid (--vary), not with a Monte Carlo (--spread)", o));
+        }
+      }
+      if (given(*cmd, "--histogram") && !ends_with(opts->histogram, ".png") && !ends_with(opts->histogram, ".PNG")) {
+        throw InputError(fmt::format("--histogram {}: the histogram is a PNG; give a name ending in .png",
+                                     printable(opts->histogram, 96)));
+      }
+    }
     explore::Plan plan;
     plan.samples = opts->samples;
     plan.seed = opts->seed;
+    std::vector<explore::Spread> spreads;
+    if (monte_carlo) {
+      plan.spread_kind = explore::parse_spread_kind(opts->spread_dist, "--spread-dist");
+      for (const std::string& v : opts->spread) spreads.push_back(explore::parse_spread(v, "--spread"));
+      if (plan.samples == 0) plan.samples = 1000;
+    }
     for (const std::string& v : opts->vary) {
       plan.ranges.push_back(explore::parse_range(v, "--vary", plan.samples == 0));
       if (plan.samples > 0 && plan.ranges.back().n != 0) {
@@ -129,12 +249,19 @@ void register_sweep(CLI::App& app, int& exit_code) {
       }
     };
     check_large(plan.samples);
+    const LoadedInput in = load_input(opts->input);
+    for (const explore::Spread& sp : spreads) {  // around the machine's own values
+      explore::Range r;
+      r.key = sp.key;
+      r.lo = r.hi = explore::base_value(in.config, sp.key, "--spread");
+      plan.ranges.push_back(r);
+      plan.spread.push_back(sp.x);
+    }
     const explore::Machines machines(plan);
     check_large(machines.size());
-    const LoadedInput in = load_input(opts->input);
     if (given(*cmd, "--heatmap")) {
 #if WHATNEXT_FULL
-      explore::check_heatmap_plan(plan, "--heatmap");
+      viz::check_heatmap_plan(plan, "--heatmap");
 #endif
       if (!ends_with(opts->heatmap, ".png") && !ends_with(opts->heatmap, ".PNG")) {
         throw InputError(fmt::format("--heatmap {}: the heat map is a PNG; give a name ending in .png",
@@ -150,10 +277,40 @@ void register_sweep(CLI::App& app, int& exit_code) {
                          "grey (add --set radio.enabled=true)");
       }
     }
+    if (opts->resume && given(*cmd, "--heatmap")) {
+      throw InputError("--resume: draw the heat map from the finished CSV with a sweep of its own; --resume does "
+                       "not take --heatmap");
+    }
+    // A resumed sweep: what the interrupted one left is read (and checked to be this sweep's)
+    // before anything is written.
+    std::unique_ptr<ResumedCsv> resumed;
+    explore::Resumable kept;
+    if (opts->resume) {
+      const std::string target = regular_output_target(opts->out, "--out");
+      check_unclaimed("--out", opts->out);
+      const std::string part = target + ".part";
+      struct stat st {};
+      const bool from_part = ::lstat(part.c_str(), &st) == 0;
+      if (from_part && !S_ISREG(st.st_mode)) {
+        throw InputError(fmt::format("--resume {}: {} is not a regular file", printable(opts->out, 96),
+                                     printable(part, 96)));
+      }
+      const bool from_target = !from_part && ::stat(target.c_str(), &st) == 0;
+      const std::string given_source = from_part ? opts->out + ".part" : opts->out;
+      const std::string text = from_part ? read_file(part, given_source) : from_target ? read_file(target, given_source) : "";
+      kept = explore::read_resumable(text, machines, in.config, opts->accuracy,
+                                     fmt::format("--resume {}", printable(given_source, 96)));
+      resumed = std::make_unique<ResumedCsv>(target, part, from_part, std::string_view(text).substr(0, kept.prefix_bytes),
+                                             opts->out);
+    }
     Outputs outputs;
-    AtomicFile* csv = outputs.add(*cmd, "--out", opts->out);
+    AtomicFile* csv = resumed ? nullptr : outputs.add(*cmd, "--out", opts->out);
     AtomicFile* heat = outputs.add(*cmd, "--heatmap", opts->heatmap);
+    AtomicFile* hist = outputs.add(*cmd, "--histogram", opts->histogram);
     outputs.check_distinct();
+    if (hist && hist->temp_path().empty()) {
+      throw InputError(fmt::format("--histogram {}: must be a regular file", printable(opts->histogram, 96)));
+    }
     if (heat && heat->temp_path().empty()) {
       throw InputError(fmt::format("--heatmap {}: must be a regular file", printable(opts->heatmap, 96)));
     }
@@ -174,13 +331,89 @@ void register_sweep(CLI::App& app, int& exit_code) {
       signal.store(sig);
       stop.store(true);
     });
-    ro.csv = &csv->stream();  // written while the machines run
-    ro.keep_rows = heat != nullptr;  // the heat map reads the outcomes; the CSV alone does not
+    // Rows are made durable as they go (about once a second), so that a kill or a power cut
+    // leaves a .part file that --resume continues.
+    std::exception_ptr write_failure;
+    int sync_fd = -1;
+    if (csv && !csv->to_stdout() && !csv->temp_path().empty()) sync_fd = ::open(csv->temp_path().c_str(), O_RDONLY | O_CLOEXEC);
+    ro.checkpoint = [&] {
+      try {
+        if (resumed) {
+          resumed->sync();
+        } else if (csv) {
+          csv->flush();
+          if (sync_fd >= 0) (void)::fdatasync(sync_fd);
+        }
+      } catch (...) {  // thrown here it would end the workers' threads: they stop, it is thrown after
+        if (!write_failure) write_failure = std::current_exception();
+        stop.store(true);
+      }
+    };
+    if (resumed) {
+      ro.header_written = kept.header;
+      ro.rows_written = kept.prefix_rows;
+      ro.known = std::move(kept.later);
+    }
+    ro.csv = resumed ? &resumed->stream() : csv ? &csv->stream() : nullptr;  // written while the machines run
+    ro.keep_rows = heat != nullptr || monte_carlo;  // the heat map and the summary read the outcomes
     const explore::SweepResult result = explore::run(in.config, machines, ro);
     bar.finish();
+    // A Monte Carlo's summary: how often the machine works, and when.
+    std::string summary;
+    std::string value = "lid_open";
+    explore::Distribution dist;
+    double designed = 0.0;
+    if (monte_carlo) {
+      const bool radio = in.scenario.machine.radio;
+      value = radio ? "radio_on" : "lid_open";
+      std::vector<double> centre;
+      for (const explore::Range& r : plan.ranges) centre.push_back(r.lo);
+      const explore::Outcome own = explore::evaluate(in.config, plan.keys(), centre.data(), opts->accuracy);
+      designed = explore::value_of(own, value);
+      summary = fmt::format("monte carlo: {} machines around {}, {} key{} off by {} spreads (seed {})\n",
+                            result.completed, in.source, spreads.size(), spreads.size() == 1 ? "" : "s",
+                            opts->spread_dist, opts->seed);
+      summary += fmt::format("  the machine as given: {}\n",
+                             own.valid ? fmt::format("{} at {:.4f} s", to_string(own.outcome), own.outcome_t)
+                                       : fmt::format("{} ({})", own.failed ? "failed" : "invalid", own.error));
+      const auto line = [&](const std::string& name, const char* what) {
+        const explore::Distribution d = explore::distribution(result, name);
+        const double n = static_cast<double>(std::max<std::int64_t>(1, result.completed));
+        std::string out = fmt::format("  {} in {} of {} machines ({:.1f} %)", what, d.happened, result.completed,
+                                      100.0 * static_cast<double>(d.happened) / n);
+        if (d.happened > 0) {
+          out += fmt::format("; {} [s]: 5 % {:.4f}, 25 % {:.4f}, median {:.4f}, 75 % {:.4f}, 95 % {:.4f} "
+                             "(min {:.4f}, max {:.4f})",
+                             name, d.quantile(0.05), d.quantile(0.25), d.quantile(0.5), d.quantile(0.75),
+                             d.quantile(0.95), d.values.front(), d.values.back());
+        }
+        summary += out + "\n";
+        return d;
+      };
+      dist = line("lid_open", "the lid opens");
+      if (radio) dist = line("radio_on", "the radio turns on");
+      if (result.invalid + result.failed > 0) {
+        summary += fmt::format("  {} machines with invalid inputs, {} failed runs (counted as not working)\n",
+                               result.invalid, result.failed);
+      }
+    }
 #if WHATNEXT_FULL
-    if (heat) explore::draw_heatmap(heat->temp_path(), machines, result, opts->heatmap_value);
+    if (heat) viz::draw_heatmap(heat->temp_path(), machines, result, opts->heatmap_value);
+    if (hist) {
+      viz::HistogramText t;
+      t.title = fmt::format("{}: {} machines around {}", value, result.completed, printable(in.source, 60));
+      t.x_label = value + " [s]";
+      const std::int64_t never = result.completed - dist.happened;
+      t.note = fmt::format("{} of {} machines{}; red line: the machine as given", dist.happened, result.completed,
+                           never > 0 ? fmt::format(" ({} invalid or without {})", never, value) : std::string());
+      viz::draw_histogram(hist->temp_path(), dist.values, designed, t);
+    }
+#else
+    (void)designed;
 #endif
+    if (sync_fd >= 0) ::close(sync_fd);
+    if (write_failure) std::rethrow_exception(write_failure);
+    if (resumed) resumed->commit();
     outputs.commit_all();
     if (result.interrupted) {
       fmt::print(stderr, "whatnext: sweep interrupted: {} of {} machines written to {}\n", result.completed,
@@ -188,9 +421,23 @@ void register_sweep(CLI::App& app, int& exit_code) {
       exit_code = 128 + (signal.load() > 0 ? signal.load() : SIGINT);
       return;
     }
-    fmt::print(text, "sweep: {} machines ({} with invalid inputs, {} failed runs) written to {}{}\n",
-               machines.size(), result.invalid, result.failed, printable(opts->out, 96),
-               heat ? fmt::format(", heat map {}", printable(opts->heatmap, 96)) : "");
+    if (monte_carlo) {
+      fmt::print(text, "{}", summary);
+      if (!csv && !hist) {
+        exit_code = 0;
+        return;
+      }
+      fmt::print(text, "written to {}\n",
+                 csv && hist ? fmt::format("{} and {}", printable(opts->out, 96), printable(opts->histogram, 96))
+                 : csv       ? printable(opts->out, 96)
+                             : printable(opts->histogram, 96));
+      exit_code = 0;
+      return;
+    }
+    fmt::print(text, "sweep: {} machines ({} with invalid inputs, {} failed runs) written to {}{}{}\n",
+               machines.size(), result.invalid + kept.invalid, result.failed + kept.failed, printable(opts->out, 96),
+               heat ? fmt::format(", heat map {}", printable(opts->heatmap, 96)) : "",
+               resumed ? fmt::format(" ({} rows kept from the interrupted sweep)", kept.kept) : "");
     exit_code = 0;
   });
 }

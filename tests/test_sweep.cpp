@@ -14,11 +14,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "cli_runner.hpp"
 #include "whatnext/explore/optimize.hpp"
@@ -200,6 +203,170 @@ TEST_F(SweepCli, InterruptKeepsAValidFileOfFinishedRows) {
     previous = index;
   }
   EXPECT_LT(lines.size() - 2, 40000u);  // it really stopped early
+}
+
+// Issue 23: a sweep killed (SIGKILL, like a power cut but without losing what was written),
+// stopped by Ctrl-C or cut off mid-line, then resumed, ends with the bytes of an uninterrupted run.
+TEST_F(SweepCli, ResumedSweepsEndWithTheBytesOfAnUninterruptedOne) {
+  const std::vector<std::string> args{"sweep", "--example", "3", "--vary", "geometry.rope_length=0.9:1.1:30",
+                                      "--vary", "masses.lid=0.3:0.7:31", "--threads", "2"};
+  const auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  const fs::path ref = dir_ / "ref.csv", csv = dir_ / "s.csv", part = dir_ / "s.csv.part";
+  ASSERT_EQ(whatnext_argv(with({"--out", ref.string()})).code, 0);
+  const std::string want = slurp(ref);
+  ASSERT_EQ(std::count(want.begin(), want.end(), '\n'), 1 + 30 * 31);
+
+  // Kills at random points of the sweep: when the .part file has grown past a random size.
+  std::mt19937 rng(std::random_device{}());
+  const auto kill_when_grown = [&](std::vector<std::string> a, int sig) -> bool {
+    // Beyond what the .part holds already (a resumed sweep starts from it), so that each run gets on.
+    std::error_code ec;
+    const std::size_t before = fs::exists(part) ? static_cast<std::size_t>(fs::file_size(part, ec)) : 0;
+    const std::size_t at =
+        before + std::uniform_int_distribution<std::size_t>(1, (want.size() - std::min(want.size(), before)) * 3 / 4 + 1)(rng);
+    const pid_t pid = whatnext::test_support::spawn_whatnext(a);
+    for (int i = 0; i < 20000; ++i) {
+      const auto size = fs::file_size(part, ec);
+      if (!ec && size >= at) break;
+      if (waitpid(pid, nullptr, WNOHANG) == pid) return false;  // it finished first
+      std::this_thread::sleep_for(std::chrono::microseconds(500));
+    }
+    kill(pid, sig);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) == 128 + sig);
+  };
+  // A file the user had under that name stays as it was until a sweep ends or is stopped.
+  const std::string old = "the user's previous file\n";
+  std::ofstream(csv, std::ios::binary) << old;
+  if (kill_when_grown(with({"--out", csv.string()}), SIGKILL)) {
+    EXPECT_EQ(slurp(csv), old);  // killed: only the .part holds the rows
+  }
+  kill_when_grown(with({"--out", csv.string(), "--resume"}), SIGKILL);
+  kill_when_grown(with({"--out", csv.string(), "--resume"}), SIGKILL);
+  if (fs::exists(part)) {  // still at work: the old file, or one a finished resume wrote
+    const std::string now = slurp(csv);
+    EXPECT_TRUE(now == old || now == want);
+  }
+  kill_when_grown(with({"--out", csv.string(), "--resume"}), SIGINT);  // stopped: the CSV may have gaps
+  // A power cut can leave zeros or half a line at the end.
+  if (fs::exists(part)) {
+    std::ofstream(part, std::ios::app | std::ios::binary) << std::string(100, '\0');
+  } else {
+    std::ofstream(csv, std::ios::app | std::ios::binary) << "929,1.1,0.7,lid_op";
+  }
+  const CliResult r = whatnext_argv(with({"--out", csv.string(), "--resume"}));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("rows kept from the interrupted sweep"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(part));
+  EXPECT_TRUE(slurp(csv) == want) << "the resumed CSV differs from the uninterrupted one";
+  // Resuming a finished sweep changes nothing.
+  ASSERT_EQ(whatnext_argv(with({"--out", csv.string(), "--resume"})).code, 0);
+  EXPECT_TRUE(slurp(csv) == want);
+}
+
+TEST_F(SweepCli, ResumeRefusesAnotherSweepsFile) {
+  const std::string base = "sweep --example 2 --vary geometry.rope_length=0.64:0.8:7 --vary masses.lid=0.3:0.5:3";
+  const fs::path csv = dir_ / "s.csv";
+  ASSERT_EQ(whatnext(base + " --out " + csv.string()).code, 0);
+  // Cut to half, as a stopped sweep would have left it.
+  std::string text = slurp(csv);
+  text.resize(text.size() / 2);
+  text.resize(text.rfind('\n') + 1);
+  std::ofstream(csv, std::ios::binary | std::ios::trunc) << text;
+  const auto refused = [&](const std::string& args, const std::string& mention) {
+    const CliResult r = whatnext(args + " --resume --out " + csv.string());
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(mention), std::string::npos) << r.err;
+    EXPECT_EQ(slurp(csv), text) << args;  // the file is left as it was
+    EXPECT_FALSE(fs::exists(csv.string() + ".part")) << args;
+  };
+  refused("sweep --example 2 --vary geometry.rope_length=0.64:0.8:7 --vary masses.sandbag=0.3:0.5:3",
+          "other columns");
+  refused("sweep --example 2 --vary geometry.rope_length=0.64:0.8:8 --vary masses.lid=0.3:0.5:3", "other values");
+  refused(base + " --accuracy 1e-4", "gives another row");
+  refused("sweep --example 1 --vary geometry.rope_length=0.64:0.8:7 --vary masses.lid=0.3:0.5:3",
+          "gives another row");
+  refused(base + " --heatmap " + (dir_ / "h.png").string(), "--resume");
+  const CliResult ok = whatnext(base + " --resume --out " + csv.string());
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  // With nothing to resume, --resume runs the whole sweep.
+  ASSERT_EQ(whatnext(base + " --resume --out " + (dir_ / "new.csv").string()).code, 0);
+  EXPECT_EQ(slurp(dir_ / "new.csv"), slurp(csv));
+}
+
+// Issue 23: a Monte Carlo over building tolerances.
+TEST_F(SweepCli, SpreadDrawsAroundTheMachineTheSameForAnyThreadCount) {
+  const std::string base = "sweep --example 1 --spread masses.lid=+-0.05 --spread geometry.rope_length=±0.004 "
+                           "--samples 2000 --seed 5";
+  const CliResult one = whatnext(base + " --spread-dist uniform --threads 1 --out " + (dir_ / "u1.csv").string());
+  const CliResult two = whatnext(base + " --spread-dist uniform --threads 2 --out " + (dir_ / "u2.csv").string() +
+                                 " --histogram " + (dir_ / "h.png").string());
+  ASSERT_EQ(one.code, 0) << one.err;
+  ASSERT_EQ(two.code, 0) << two.err;
+  EXPECT_EQ(slurp(dir_ / "u1.csv"), slurp(dir_ / "u2.csv"));
+  EXPECT_EQ(slurp(dir_ / "h.png").substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_NE(one.out.find("the lid opens in"), std::string::npos) << one.out;
+  // Uniform: every value within the half-width of the machine's own (example 1's lid is 0.5 kg,
+  // checked from its file), and the draws fill it: the extremes come within 1 % of the ends.
+  const Config c = example_config(1);
+  const double lid = c.values.at("masses.lid").number;
+  const auto lines = split(slurp(dir_ / "u1.csv"), '\n');
+  ASSERT_EQ(lines.size(), 2002u);
+  double lo = 1e9, hi = -1e9;
+  std::size_t opened = 0;
+  for (std::size_t i = 1; i + 1 < lines.size(); ++i) {
+    const auto cells = split(lines[i], ',');
+    const double v = std::stod(cells[1]);
+    lo = std::min(lo, v), hi = std::max(hi, v);
+    opened += cells[3] == "lid_open" ? 1 : 0;
+  }
+  EXPECT_GE(lo, lid - 0.05);
+  EXPECT_LE(hi, lid + 0.05);
+  EXPECT_LT(lo, lid - 0.049);
+  EXPECT_GT(hi, lid + 0.049);
+  // The summary counts what the CSV holds.
+  EXPECT_NE(one.out.find(fmt::format("the lid opens in {} of 2000 machines", opened)), std::string::npos) << one.out;
+
+  // Normal: the sample's standard deviation is the X given (2000 draws: within 5 %).
+  ASSERT_EQ(whatnext(base + " --out " + (dir_ / "n.csv").string()).code, 0);
+  const auto nl = split(slurp(dir_ / "n.csv"), '\n');
+  double sum = 0, sum2 = 0;
+  for (std::size_t i = 1; i + 1 < nl.size(); ++i) {
+    const double v = std::stod(split(nl[i], ',')[1]) - lid;
+    sum += v, sum2 += v * v;
+  }
+  const double n = static_cast<double>(nl.size() - 2);
+  EXPECT_NEAR(std::sqrt(sum2 / n - (sum / n) * (sum / n)), 0.05, 0.05 * 0.05);
+  EXPECT_NEAR(sum / n, 0.0, 4 * 0.05 / std::sqrt(n));
+}
+
+TEST_F(SweepCli, ATinySpreadGivesTheMachinesOwnTime) {
+  // Machines a nanometre apart open their lid when the machine itself does (continuity).
+  const CliResult r = whatnext("sweep --example 2 --spread start.sandbag_height=+-1e-9 --samples 50");
+  ASSERT_EQ(r.code, 0) << r.err;
+  Config c = example_config(2);
+  const Result own = simulate(build_scenario(c));
+  ASSERT_EQ(own.outcome().type, EventType::lid_open);
+  EXPECT_NE(r.out.find("the lid opens in 50 of 50 machines (100.0 %)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(fmt::format("median {:.4f}", own.outcome().t)), std::string::npos) << r.out;
+}
+
+TEST_F(SweepCli, BadSpreadsAreRejectedWithOneLine) {
+  const std::string base = "sweep --example 2 ";
+  expect_rejected(base + "--spread geometry.rope_lenght=+-0.01", "did you mean 'geometry.rope_length'");
+  expect_rejected(base + "--spread geometry.rope_length=0.01", "±");
+  expect_rejected(base + "--spread geometry.rope_length=+-0", "X must be > 0");
+  expect_rejected(base + "--spread geometry.rope_length=±-0.01", "X must be > 0");
+  expect_rejected(base + "--spread geometry.rope_length=+-abc", "X must be a finite number");
+  expect_rejected(base + "--spread geometry.rope_length=+-0.01 --spread-dist gauss", "normal or uniform");
+  expect_rejected(base + "--spread geometry.rope_length=+-0.01 --vary masses.lid=1:2:3", "do not mix");
+  expect_rejected(base + "--spread run.integrator=+-1", "cannot be varied");
 }
 
 TEST(Sweep, EventColumnsFollowTheEventTypes) {

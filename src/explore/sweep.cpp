@@ -1,5 +1,6 @@
 #include "whatnext/explore/sweep.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -201,6 +202,72 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
 
 }  // namespace
 
+namespace {
+void check_numeric_key(const std::string& key, const std::string& where) {
+  if (!find_key(key)) {
+    const std::string near = nearest_key(key);
+    throw InputError(near.empty()
+                         ? fmt::format("{}: unknown key '{}'", where, printable(key))
+                         : fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, printable(key), near));
+  }
+  try {  // set_number knows which kinds of key hold one number (text, pairs and flags do not)
+    Config probe;
+    set_number(probe, key, 0.0);
+  } catch (const InputError&) {
+    throw InputError(fmt::format("{}: {} is not a single number and cannot be varied", where, key));
+  }
+}
+
+// A standard normal draw from two raw outputs (Box-Muller; no library distribution, whose
+// sequence the standard leaves open).
+double normal(std::mt19937_64& rng) {
+  const double u1 = 1.0 - unit(rng);  // (0, 1]: the logarithm stays finite
+  const double u2 = unit(rng);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2);
+}
+}  // namespace
+
+Spread parse_spread(std::string_view spec, std::string_view option) {
+  const std::string where = fmt::format("{} {}", option, printable(spec));
+  const auto eq = spec.find('=');
+  if (eq == std::string_view::npos) throw InputError(fmt::format("{}: expected KEY=±X (given no '=')", where));
+  Spread s;
+  s.key = std::string(trim(spec.substr(0, eq)));
+  check_numeric_key(s.key, where);
+  std::string_view rest = trim(spec.substr(eq + 1));
+  constexpr std::string_view kPlusMinus = "\u00b1";
+  if (rest.substr(0, kPlusMinus.size()) == kPlusMinus) {
+    rest.remove_prefix(kPlusMinus.size());
+  } else if (rest.substr(0, 2) == "+-") {
+    rest.remove_prefix(2);
+  } else {
+    throw InputError(fmt::format("{}: expected KEY=±X (or KEY=+-X): ± before the spread X (given '{}')", where,
+                                 printable(rest)));
+  }
+  if (!parse_double(rest, s.x)) {
+    throw InputError(fmt::format("{}: X must be a finite number (given '{}')", where, printable(trim(rest))));
+  }
+  if (!(s.x > 0.0)) throw InputError(fmt::format("{}: X must be > 0 (given {})", where, num(s.x)));
+  return s;
+}
+
+SpreadKind parse_spread_kind(std::string_view kind, std::string_view option) {
+  if (kind == "normal") return SpreadKind::normal;
+  if (kind == "uniform") return SpreadKind::uniform;
+  throw InputError(fmt::format("{}: normal or uniform (given '{}')", option, printable(kind)));
+}
+
+double base_value(const Config& config, const std::string& key, std::string_view option) {
+  const auto it = config.values.find(key);
+  if (it != config.values.end() && it->second.type == ConfigValue::Type::number) return it->second.number;
+  const KeySpec* spec = find_key(key);
+  double v = 0.0;
+  if (it == config.values.end() && spec && parse_double(spec->default_text, v)) return v;
+  throw InputError(fmt::format("{} {}: the machine does not give {} as a number (its default is '{}'); give it "
+                               "with --set {}=VALUE",
+                               option, key, key, spec ? spec->default_text : "?", key));
+}
+
 Range parse_range(std::string_view spec, std::string_view option, bool need_count) {
   const std::string where = fmt::format("{} {}", option, printable(spec));
   const std::string_view form = need_count ? "KEY=A:B:N" : "KEY=A:B";
@@ -210,18 +277,7 @@ Range parse_range(std::string_view spec, std::string_view option, bool need_coun
   }
   Range r;
   r.key = std::string(trim(spec.substr(0, eq)));
-  if (!find_key(r.key)) {
-    const std::string near = nearest_key(r.key);
-    throw InputError(near.empty()
-                         ? fmt::format("{}: unknown key '{}'", where, printable(r.key))
-                         : fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, printable(r.key), near));
-  }
-  try {  // set_number knows which kinds of key hold one number (text, pairs and flags do not)
-    Config probe;
-    set_number(probe, r.key, 0.0);
-  } catch (const InputError&) {
-    throw InputError(fmt::format("{}: {} is not a single number and cannot be varied", where, r.key));
-  }
+  check_numeric_key(r.key, where);
   std::vector<std::string_view> parts;
   std::string_view rest = spec.substr(eq + 1);
   for (;;) {
@@ -273,6 +329,24 @@ Machines::Machines(const Plan& plan) : plan_(plan) {
     }
   }
   const auto dims = plan_.ranges.size();
+  if (!plan_.spread.empty()) {
+    if (plan_.spread.size() != dims || plan_.samples < 1) {
+      throw InputError("--spread: a Monte Carlo needs one spread per key and --samples >= 1");
+    }
+    if (plan_.samples > kMaxMachines) {
+      throw InputError(fmt::format("--samples: at most {} machines (given {})", kMaxMachines, plan_.samples));
+    }
+    size_ = plan_.samples;
+    std::mt19937_64 rng(plan_.seed);
+    lhs_.assign(static_cast<std::size_t>(size_) * dims, 0.0);
+    for (std::int64_t i = 0; i < size_; ++i) {
+      for (std::size_t d = 0; d < dims; ++d) {
+        const double z = plan_.spread_kind == SpreadKind::normal ? normal(rng) : 2.0 * unit(rng) - 1.0;
+        lhs_[static_cast<std::size_t>(i) * dims + d] = plan_.ranges[d].lo + plan_.spread[d] * z;
+      }
+    }
+    return;
+  }
   if (plan_.samples > 0) {
     if (plan_.samples > kMaxMachines) {
       throw InputError(fmt::format("--samples: at most {} machines (given {})", kMaxMachines, plan_.samples));
@@ -398,8 +472,7 @@ double value_of(const Outcome& o, std::string_view name) {
   return kNaN;
 }
 
-namespace {
-void write_header(std::ostream& out, const Plan& plan) {
+std::string csv_header(const Plan& plan) {
   fmt::memory_buffer line;
   auto put = [&line](std::string_view text) { line.append(text.data(), text.data() + text.size()); };
   put("index");
@@ -407,9 +480,36 @@ void write_header(std::ostream& out, const Plan& plan) {
   put(",outcome,outcome_t,final_r,final_phi_l_deg");
   for (EventType t : event_types()) fmt::format_to(std::back_inserter(line), ",{}", to_string(t));
   put(",error\n");
+  return std::string(line.data(), line.size());
+}
+
+namespace {
+void write_header(std::ostream& out, const Plan& plan) {
+  const std::string line = csv_header(plan);
   out.write(line.data(), static_cast<std::streamsize>(line.size()));
 }
 }  // namespace
+
+double Distribution::quantile(double p) const {
+  if (values.empty()) return kNaN;
+  const double h = std::clamp(p, 0.0, 1.0) * static_cast<double>(values.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const std::size_t hi = std::min(lo + 1, values.size() - 1);
+  return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
+}
+
+Distribution distribution(const SweepResult& result, std::string_view value) {
+  Distribution d;
+  for (std::size_t i = 0; i < result.rows.size(); ++i) {
+    if (i >= result.done.size() || !result.done[i] || !result.rows[i].valid) continue;
+    ++d.run;
+    const double v = value_of(result.rows[i], value);
+    if (!std::isnan(v)) d.values.push_back(v);
+  }
+  d.happened = static_cast<std::int64_t>(d.values.size());
+  std::sort(d.values.begin(), d.values.end());
+  return d;
+}
 
 SweepResult run(const Config& base, const Machines& machines, const RunOptions& options) {
   const std::int64_t total = machines.size();
@@ -418,12 +518,23 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   if (options.keep_rows) res.rows.resize(static_cast<std::size_t>(total));
   res.done.assign(static_cast<std::size_t>(total), 0);
   res.lines.resize(static_cast<std::size_t>(total));
+  // A resumed sweep: the rows already in the file and the known ones are done before any worker
+  // starts (workers skip them; nothing else writes their slots).
+  const std::int64_t already = std::clamp<std::int64_t>(options.rows_written, 0, total);
+  std::int64_t known = 0;
+  for (std::int64_t i = 0; i < already; ++i) res.done[static_cast<std::size_t>(i)] = 1;
+  for (const auto& [index, line] : options.known) {
+    if (index < already || index >= total || res.done[static_cast<std::size_t>(index)]) continue;
+    res.done[static_cast<std::size_t>(index)] = 1;
+    res.lines[static_cast<std::size_t>(index)] = line;
+    ++known;
+  }
 
   // Workers claim small blocks of indices; each row lands in its own slot, so the rows (and the
   // CSV) do not depend on which thread ran which machine. A finished block is marked done under
   // the lock, which also hands its lines to the calling thread.
   constexpr std::int64_t kBlock = 8, kWake = 256;
-  std::atomic<std::int64_t> next{0}, completed{0}, written{0}, invalid{0}, failed_runs{0};
+  std::atomic<std::int64_t> next{already}, completed{already + known}, written{already}, invalid{0}, failed_runs{0};
   int running = 0;
   std::mutex m;
   std::condition_variable cv;
@@ -444,8 +555,9 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
         const std::int64_t end = std::min(total, start + kBlock);
         std::int64_t i = start;
         for (; i < end && !stopped(); ++i) {
-          machines.point(i, values.data());
           const auto slot = static_cast<std::size_t>(i);
+          if (known > 0 && res.done[slot]) continue;  // a known row of a resumed sweep
+          machines.point(i, values.data());
           Outcome o = evaluate_in(work, keys, values.data(), options.accuracy);
           if (!o.valid) (o.failed ? failed_runs : invalid).fetch_add(1, std::memory_order_relaxed);
           res.lines[slot] = csv_row(i, values, o);  // formatted here, on all cores
@@ -486,7 +598,7 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   // Meanwhile this thread writes the rows that are done, in index order, and lets their lines go
   // (their memory is used again: every page a sweep touches costs), every kWake rows (waking it
   // for every block cost more than it saved), and reports progress about ten times a second.
-  if (options.csv) write_header(*options.csv, machines.plan());
+  if (options.csv && !options.header_written) write_header(*options.csv, machines.plan());
   std::vector<std::string> ready;
   auto write_ready = [&] {
     for (std::string& line : ready) {
@@ -498,6 +610,7 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   {
     std::unique_lock<std::mutex> lock(m);
     auto last_progress = std::chrono::steady_clock::now();
+    auto last_checkpoint = last_progress;
     for (;;) {
       if (options.csv) {
         std::int64_t w = written.load(std::memory_order_relaxed);
@@ -515,13 +628,19 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
       }
       if (finished) break;
       const auto now = std::chrono::steady_clock::now();
+      if (options.checkpoint && now - last_checkpoint >= std::chrono::seconds(1)) {
+        last_checkpoint = now;
+        lock.unlock();
+        options.checkpoint();
+        lock.lock();
+      }
       if (options.progress && now - last_progress >= std::chrono::milliseconds(100)) {
         last_progress = now;
         lock.unlock();
         options.progress(completed.load(), total);
         lock.lock();
       }
-      if (options.progress || options.csv) {
+      if (options.progress || options.csv || options.checkpoint) {
         cv.wait_for(lock, std::chrono::milliseconds(100));
       } else {
         cv.wait(lock);  // until a worker ends
@@ -561,6 +680,109 @@ void write_csv(std::ostream& out, const Machines& machines, const SweepResult& r
     const std::string row = csv_row(i, values, result.rows[slot]);
     out.write(row.data(), static_cast<std::streamsize>(row.size()));
   }
+}
+
+namespace {
+// The start of machine i's row: its index and values, and the comma before its outcome.
+std::string row_start(const Machines& machines, std::int64_t i, std::vector<double>& values) {
+  machines.point(i, values.data());
+  std::string out = fmt::format(FMT_COMPILE("{}"), i);
+  for (double v : values) fmt::format_to(std::back_inserter(out), FMT_COMPILE(",{}"), v);
+  return out + ",";
+}
+
+// The varied keys of a header line, for a message: "a, b" of "index,a,b,outcome,...".
+std::string header_keys(std::string_view line) {
+  const auto a = line.find(',');
+  const auto b = line.find(",outcome,");
+  if (line.rfind("index,", 0) != 0 || a == std::string_view::npos || b == std::string_view::npos || b <= a) {
+    return fmt::format("'{}'", printable(line, 60));
+  }
+  std::string keys(line.substr(a + 1, b - a - 1));
+  for (std::size_t p = 0; (p = keys.find(',', p)) != std::string::npos; p += 2) keys.replace(p, 1, ", ");
+  return printable(keys, 120);
+}
+}  // namespace
+
+Resumable read_resumable(std::string_view text, const Machines& machines, const Config& base, double accuracy,
+                         std::string_view what) {
+  Resumable r;
+  const std::string header = csv_header(machines.plan());
+  const auto eol = text.find('\n');
+  if (eol == std::string_view::npos) {  // killed before the header was complete: nothing to keep
+    if (header.compare(0, text.size(), text) != 0 && text.find('\0') == std::string_view::npos) {
+      throw InputError(fmt::format("{}: is not a CSV of this sweep (its first line is '{}'); give another --out "
+                                   "or drop --resume", what, printable(text, 60)));
+    }
+    return r;
+  }
+  const std::string_view first = text.substr(0, eol + 1);
+  if (first != header) {
+    throw InputError(fmt::format("{}: was written by a sweep over other columns (it varies {}; this sweep varies {}); "
+                                 "give another --out or drop --resume",
+                                 what, header_keys(first.substr(0, first.size() - 1)),
+                                 header_keys(std::string_view(header).substr(0, header.size() - 1))));
+  }
+  r.header = true;
+  r.prefix_bytes = first.size();
+  std::vector<double> values(machines.plan().ranges.size());
+  std::int64_t previous = -1;
+  std::int64_t check_first = -1, check_last = -1;
+  std::string_view check_first_line, check_last_line;
+  for (std::size_t pos = first.size(); pos < text.size();) {
+    const auto end = text.find('\n', pos);
+    if (end == std::string_view::npos) break;  // a partial last line
+    const std::string_view line = text.substr(pos, end + 1 - pos);
+    // A damaged line (the zeros a power cut can leave, a line cut short): it and all after it are run again.
+    if (line.find('\0') != std::string_view::npos) break;
+    std::int64_t index = 0;
+    std::size_t k = 0;
+    while (k < line.size() && line[k] >= '0' && line[k] <= '9' && k < 12) index = index * 10 + (line[k++] - '0');
+    if (k == 0 || k >= line.size() || line[k] != ',') break;
+    if (index <= previous || index >= machines.size()) {
+      throw InputError(fmt::format("{}: holds a row for machine {}{}, which this sweep does not have there; the "
+                                   "file is another sweep's (other --vary, --samples or --seed): give another "
+                                   "--out or drop --resume",
+                                   what, index, index <= previous ? " out of order" : ""));
+    }
+    const std::string start = row_start(machines, index, values);
+    if (line.compare(0, start.size(), start) != 0) {
+      throw InputError(fmt::format("{}: its row for machine {} has other values than this sweep's ({}); the file "
+                                   "is another sweep's (other --vary, --samples or --seed): give another --out or "
+                                   "drop --resume",
+                                   what, index, printable(start.substr(0, start.size() - 1), 80)));
+    }
+    const std::string_view rest = line.substr(start.size());
+    if (rest.rfind("invalid,", 0) == 0) ++r.invalid;
+    if (rest.rfind("failed,", 0) == 0) ++r.failed;
+    if (index == r.prefix_rows && r.later.empty()) {
+      ++r.prefix_rows;
+      r.prefix_bytes = end + 1;
+    } else {
+      r.later.emplace_back(index, std::string(line));
+    }
+    if (check_first < 0) check_first = index, check_first_line = line;
+    check_last = index, check_last_line = line;
+    previous = index;
+    ++r.kept;
+    pos = end + 1;
+  }
+  if (check_last >= 0) {
+    // Running the first and the last kept machine again checks what the rows do not show: the
+    // machine the values were set on and the accuracy.
+    const std::vector<std::string> keys = machines.plan().keys();
+    for (const auto& [index, line] : {std::pair(check_first, check_first_line), std::pair(check_last, check_last_line)}) {
+      machines.point(index, values.data());
+      const std::string again = csv_row(index, values, evaluate(base, keys, values.data(), accuracy));
+      if (again != line) {
+        throw InputError(fmt::format("{}: machine {} gives another row now than in the file; the file is another "
+                                     "sweep's (another machine, --set or --accuracy): give another --out or drop "
+                                     "--resume",
+                                     what, index));
+      }
+    }
+  }
+  return r;
 }
 
 std::string csv_row(std::int64_t index, const std::vector<double>& values, const Outcome& o) {

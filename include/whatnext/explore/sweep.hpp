@@ -8,6 +8,7 @@
 #include <iosfwd>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "whatnext/config.hpp"
@@ -27,6 +28,22 @@ struct Range {
 // Throws InputError with one line naming the option, the rule and the value.
 Range parse_range(std::string_view spec, std::string_view option, bool need_count);
 
+// Monte Carlo over building tolerances (docs/explore.md, "Would the built machine work?"):
+// each machine is the base machine with every spread key off by a random amount.
+enum class SpreadKind { normal, uniform };
+struct Spread {
+  std::string key;
+  double x = 0.0;  // normal: standard deviation; uniform: half-width (in the key's input unit)
+};
+// Parses "KEY=±X" (or KEY=+-X) as given to option ("--spread"): a numeric input key and X > 0.
+// Throws InputError with one line naming the option, the rule and the value.
+Spread parse_spread(std::string_view spec, std::string_view option);
+// Throws InputError naming option unless kind is "normal" or "uniform".
+SpreadKind parse_spread_kind(std::string_view kind, std::string_view option);
+// The value a machine gives a numeric key (in its input unit): its own, or the documented default.
+// Throws InputError naming option when the default is not a number (it follows from other keys).
+double base_value(const Config& config, const std::string& key, std::string_view option);
+
 // What to sweep: the full grid (samples == 0; the last range varies fastest) or a Latin
 // hypercube of `samples` points drawn from `seed` (the same seed gives the same points everywhere:
 // only mt19937_64's standardised output is used, no library distribution).
@@ -34,6 +51,11 @@ struct Plan {
   std::vector<Range> ranges;
   std::int64_t samples = 0;
   std::uint64_t seed = 1;
+  // Monte Carlo (when not empty: one per range): `samples` machines, ranges[d] centred on
+  // ranges[d].lo (= hi) and off by spread[d] times a draw from spread_kind, drawn from `seed`
+  // machine by machine (so the first N machines of a bigger sample are the same).
+  std::vector<double> spread;
+  SpreadKind spread_kind = SpreadKind::normal;
   std::vector<std::string> keys() const;
 };
 
@@ -119,6 +141,16 @@ struct RunOptions {
   // every outcome kept is memory touched, and on a virtual machine a fresh page costs as much as
   // a third of a machine's run (docs/performance.md).
   bool keep_rows = true;
+  // A resumed sweep (docs/explore.md, "Resuming a sweep"): csv already holds the header (when
+  // header_written) and the rows of machines 0..rows_written-1, and `known` holds finished rows
+  // further on as (index, CSV line), in increasing index order. None of them runs again; the
+  // known lines are written in their places. rows_written > 0 needs header_written.
+  bool header_written = false;
+  std::int64_t rows_written = 0;
+  std::vector<std::pair<std::int64_t, std::string>> known;
+  // Called on the calling thread, after it wrote rows, about once a second: where the CSV is
+  // made durable as it goes (flushed and synced), so that a kill or a power cut keeps those rows.
+  std::function<void()> checkpoint;
 };
 
 struct SweepResult {
@@ -130,6 +162,16 @@ struct SweepResult {
   bool interrupted = false;
 };
 
+// The quantiles of a value over a sweep's machines where it happened.
+struct Distribution {
+  std::int64_t run = 0;        // machines that ran (valid)
+  std::int64_t happened = 0;   // of them, where the value happened
+  std::vector<double> values;  // those values, sorted
+  // The p-quantile (0 <= p <= 1) by linear interpolation between order statistics; NaN if none.
+  double quantile(double p) const;
+};
+Distribution distribution(const SweepResult& result, std::string_view value);
+
 // Runs every machine.
 SweepResult run(const Config& base, const Machines& machines, const RunOptions& options);
 
@@ -138,5 +180,25 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
 // per event type (first time, empty if none), error. Numbers in the shortest form that reads back
 // as the same double.
 void write_csv(std::ostream& out, const Machines& machines, const SweepResult& result);
+
+// The header line of a sweep's CSV (with its newline).
+std::string csv_header(const Plan& plan);
+
+// What an interrupted sweep's CSV holds that a resumed sweep can keep (RunOptions).
+struct Resumable {
+  std::size_t prefix_bytes = 0;  // text[0, prefix_bytes): the header and the rows of 0..prefix_rows-1
+  bool header = false;           // the header is complete (else nothing is kept)
+  std::int64_t prefix_rows = 0;
+  std::vector<std::pair<std::int64_t, std::string>> later;  // complete rows after a gap
+  std::int64_t kept = 0, invalid = 0, failed = 0;           // rows kept, and of them invalid / failed
+};
+// Reads the text of a CSV written by a sweep that was stopped (Ctrl-C), killed or cut off by a
+// power cut: every complete row (ending in a newline) up to the first damaged one (a partial or
+// garbled line, say the zeros a power cut leaves) is kept, the rest is run again. Throws InputError
+// naming `what` (the option and file) when the file is another sweep's: other columns, a row
+// whose index or values are not this plan's, or a kept row that running its machine again (with
+// base and accuracy) does not reproduce byte for byte (another machine or --accuracy).
+Resumable read_resumable(std::string_view text, const Machines& machines, const Config& base, double accuracy,
+                         std::string_view what);
 
 }  // namespace whatnext::explore

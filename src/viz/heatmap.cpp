@@ -1,4 +1,4 @@
-#include "whatnext/explore/heatmap.hpp"
+#include "whatnext/viz/heatmap.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -11,7 +11,14 @@
 
 #include "whatnext/config.hpp"
 
-namespace whatnext::explore {
+namespace whatnext::viz {
+
+using explore::Machines;
+using explore::Outcome;
+using explore::Plan;
+using explore::Range;
+using explore::SweepResult;
+using explore::value_of;
 
 namespace {
 // Colour map 0 slots used here (0 is the background).
@@ -163,4 +170,4 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
   plend();
 }
 
-}  // namespace whatnext::explore
+}  // namespace whatnext::viz
