@@ -286,3 +286,67 @@ def test_sweeps_pickle():
     for again in (pickle.loads(pickle.dumps(s)), copy.deepcopy(s)):
         assert again.to_csv() == s.to_csv() and again.shape == s.shape
         assert all(not c.flags.writeable for c in again.values())
+
+
+# --- on a Dask cluster (issue 23) ------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def dask_client():
+    # Two worker processes of one thread each, as a small cluster would have: the machines, the
+    # module and the results cross process boundaries by pickle, as over a network.
+    import logging
+
+    from distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                      silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
+        yield client
+
+
+def test_a_dask_sweep_equals_the_local_one(dask_client, tmp_path):
+    m = whatnext.example(2)
+    grid_values = {k: whatnext.grid(*r) for k, r in RANGES.items()}
+    lhs_values = {"start.sandbag_height": (0.3, 1.5), "geometry.rope_length": (0.3, 0.9)}
+    for values, kwargs in ((grid_values, {}), (lhs_values, {"samples": 101, "seed": 9}),
+                           (grid_values, {"accuracy": None})):
+        local = whatnext.sweep(m, values, **kwargs)
+        seen = []
+        remote = whatnext.sweep(m, values, client=dask_client, chunk=7,
+                                progress=lambda done, total: seen.append((done, total)), **kwargs)
+        assert remote.shape == local.shape and list(remote) == list(local)
+        for name in local:
+            assert remote[name].dtype == local[name].dtype, name
+            assert np.array_equal(remote[name], local[name], equal_nan=local[name].dtype.kind == "f"), name
+            assert not remote[name].flags.writeable
+        local.to_csv(tmp_path / "local.csv")
+        remote.to_csv(tmp_path / "remote.csv")
+        assert (tmp_path / "remote.csv").read_bytes() == (tmp_path / "local.csv").read_bytes()
+        n = len(local["index"])
+        assert len(seen) == -(-n // 7) and seen[-1] == (n, n)
+        assert [d for d, _ in seen] == sorted(d for d, _ in seen)
+    # The default chunk, and the same messages as a local sweep for bad arguments.
+    assert whatnext.sweep(m, grid_values, client=dask_client).to_csv() == whatnext.sweep(m, grid_values).to_csv()
+    with pytest.raises(whatnext.InputError, match="sweep: chunk must be from 1 to 45"):
+        whatnext.sweep(m, grid_values, client=dask_client, chunk=0)
+
+
+def test_a_lost_worker_s_chunks_run_again(dask_client):
+    # One worker process is killed while the sweep runs (as a machine of a cluster may die): Dask
+    # runs its chunks again on the other, and the result is still every machine's, exactly.
+    import os as os_
+
+    m = whatnext.example(2)
+    values = {"geometry.rope_length": whatnext.grid(0.62, 1.0, 120), "masses.sandbag": whatnext.grid(0.2, 2.0, 100)}
+    pids = dask_client.run(os_.getpid)
+    victim = max(pids.values())
+    killed = []
+
+    def progress(done, total):
+        if not killed:
+            os_.kill(victim, signal.SIGKILL)
+            killed.append(done)
+
+    remote = whatnext.sweep(m, values, client=dask_client, chunk=400, progress=progress)
+    assert killed and killed[0] < 12_000  # the kill came while chunks were still to run
+    assert victim not in dask_client.run(os_.getpid).values()
+    assert remote.to_csv() == whatnext.sweep(m, values).to_csv()
