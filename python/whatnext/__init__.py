@@ -478,6 +478,9 @@ class Sweep(Mapping[str, np.ndarray]):
         target = pathlib.Path(os.fspath(path))
         fd, part = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=target.parent or ".")
         try:
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(part, 0o666 & ~umask)  # as open() would make it, not mkstemp's private 0600
             with os.fdopen(fd, "wb") as f:
                 f.write(data)
                 f.flush()

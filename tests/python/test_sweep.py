@@ -207,6 +207,10 @@ def test_to_csv_replaces_a_file_only_when_complete(tmp_path):
     s.to_csv(out)
     assert out.read_text().startswith("index,geometry.rope_length,outcome,")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.csv"]
+    plain = tmp_path / "plain"
+    plain.write_text("")  # the permissions any new file gets here
+    s.to_csv(tmp_path / "new.csv")
+    assert (tmp_path / "new.csv").stat().st_mode == plain.stat().st_mode
 
 
 def test_sweep_columns_are_read_only():
