@@ -170,6 +170,42 @@ def test_ctrl_c_stops_a_sweep():
     assert time.perf_counter() - t0 < 0.5 * n / rate
 
 
+SLOW_SWEEP = """
+import sys
+import numpy as np
+import whatnext
+print("running", flush=True)
+try:
+    whatnext.sweep(whatnext.example(2), {"geometry.rope_length": np.linspace(0.62, 0.9, 1_000),
+                                         "masses.sandbag": np.linspace(0.2, 2.0, 200)}, threads=2)
+except KeyboardInterrupt:
+    print("KeyboardInterrupt", flush=True)
+    sys.exit(3)
+print("finished", flush=True)
+"""
+
+
+def test_ctrl_c_ends_a_sweep_at_once():
+    # 200,000 machines (several seconds or more); SIGINT must end the process with KeyboardInterrupt
+    # within half a second: the sweep checks twenty times a second and each machine takes about a
+    # millisecond. The time is from the signal to the process's exit.
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-c", SLOW_SWEEP], stdout=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "running"
+        time.sleep(1.0)
+        t0 = time.perf_counter()
+        proc.send_signal(signal.SIGINT)
+        out, _ = proc.communicate(timeout=30)
+        elapsed = time.perf_counter() - t0
+    finally:
+        proc.kill()
+    assert out.strip() == "KeyboardInterrupt" and proc.returncode == 3
+    assert elapsed < 0.5, f"the sweep took {elapsed:.2f} s to stop after Ctrl-C"
+
+
 # --- the CSV, the size guard, read-only columns, messages (issue 22) -------------------------------
 
 def test_to_csv_is_the_cli_csv_byte_for_byte(tmp_path):
