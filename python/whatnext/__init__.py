@@ -82,6 +82,8 @@ def _plain(key: str, value: Any) -> Plain:
     if isinstance(value, (bool, np.bool_)):
         return bool(value)
     if isinstance(value, str):
+        if any(ord(c) < 0x20 and c != "\t" or ord(c) == 0x7F for c in value):
+            raise InputError(f"{key}: the text must be one line without control characters (given {value!r})")
         return str(value)
     if isinstance(value, numbers.Integral):
         return int(value)

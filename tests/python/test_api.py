@@ -379,6 +379,8 @@ def test_messages_in_python_words():
     assert m.set("geometry.rope_length", np.float32(0.75)).inputs["geometry.rope_length"] == float(np.float32(0.75))
     python_words(lambda: m.set("geometry.rope_length", np.array(0.1)), "set('geometry.rope_length', 0.1): ")
     python_words(lambda: m.set("geometry.rope_length", 2**70), "set('geometry.rope_length', 1180591620717411303424): ")
+    python_words(lambda: m.set("masses.lid", float("nan")), "set('masses.lid', nan): masses.lid must be a finite number")
+    python_words(lambda: m.set("run.impact_law", "rope\nx"), "run.impact_law: the text must be one line")
 
 
 @pytest.mark.parametrize("call,words", [
