@@ -5,6 +5,7 @@
 #   ./run.sh test     install what is missing, build, run every test; then again under the
 #                     sanitizers with the fuzz harnesses (build-asan/)
 #   ./run.sh web      install what is missing, build, serve the page (build/web) on localhost
+#   ./run.sh notebook install what is missing (Debian's Jupyter too), build, open examples/whatnext.ipynb
 set -euo pipefail
 cd "$(dirname "$0")"
 job="${1:-example}"
@@ -55,6 +56,18 @@ try:
 except KeyboardInterrupt:
     pass
 PY
+    ;;
+  notebook)
+    # Debian's Jupyter (jupyter-notebook, installed above from scripts/debian-packages.txt) on the
+    # notebooks of examples/, with the module just built. It prints the address to open (with its
+    # token) and serves until Ctrl-C. Root (CI, containers) needs --allow-root.
+    export PYTHONPATH="$PWD/build/python${PYTHONPATH:+:$PYTHONPATH}"
+    # Without a display (a server, a container) no browser is started: open the printed address.
+    flags=()
+    [ "$(id -u)" = 0 ] && flags+=(--allow-root)
+    [ -z "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ] && flags+=(--no-browser)
+    echo "whatnext: opening examples/whatnext.ipynb (the students' exercises: examples/students.ipynb)"
+    exec jupyter notebook "${flags[@]}" --notebook-dir="$PWD/examples" "$PWD/examples/whatnext.ipynb"
     ;;
   *)
     echo "usage: ./run.sh [example|test|web]" >&2

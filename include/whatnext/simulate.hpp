@@ -19,6 +19,12 @@ class SimulationError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A run ended early because its observer's keep_going() returned false (Ctrl-C in Python).
+class Cancelled : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 class Model;  // model.hpp
 
 // Samples of one smooth piece of a run, in time order, as the integrator left them: each becomes
@@ -74,6 +80,8 @@ class Observer {
     for (std::size_t i = 0; i < batch.size(); ++i) on_sample(batch.snapshot(i));
   }
   virtual void on_event(const Event& e) { (void)e; }
+  // Polled every 256 integration steps: false ends the run with Cancelled. Keep it cheap.
+  virtual bool keep_going() { return true; }
 };
 
 struct Result {

@@ -54,13 +54,66 @@ MachineHandle make_machine(Config config, std::string origin, std::vector<std::s
   return m;
 }
 
+// A message of the library's --set (apply_set names "--set KEY=VALUE", or "--set" alone for an
+// unknown key) in the Python call's words: `label` ("set('masses.lid', -0.5)").
+std::string relabel(const std::string& message, const std::string& assignment, const std::string& label) {
+  for (const std::string& prefix : {"--set " + printable(assignment) + ":", std::string("--set:")}) {
+    if (message.compare(0, prefix.size(), prefix) == 0) return label + ":" + message.substr(prefix.size());
+  }
+  return message;
+}
+
 // Applies "KEY=VALUE" overrides (VALUE as TOML, bare words as text) to a copy: the CLI's --set.
-MachineHandle with_set(const MachineHandle& base, const std::vector<std::string>& assignments) {
+// Each value is then known by its label, the Python call that gave it, so that a rule it breaks
+// (build_scenario's messages name a value's origin) is told in Python's words, never as a --set.
+MachineHandle with_set(const MachineHandle& base, const std::vector<std::string>& assignments,
+                       const std::vector<std::string>& labels) {
+  if (labels.size() != assignments.size()) throw std::invalid_argument("set: one label per assignment");
   Config config = base.config;
-  for (const std::string& a : assignments) apply_set(config, a);
+  for (std::size_t i = 0; i < assignments.size(); ++i) {
+    const std::string& a = assignments[i];
+    try {
+      apply_set(config, a);
+    } catch (const InputError& e) {
+      throw InputError(relabel(e.what(), a, labels[i]));
+    }
+    std::string key = a.substr(0, a.find('='));
+    key.erase(0, key.find_first_not_of(" \t"));
+    key.erase(key.find_last_not_of(" \t") + 1);
+    if (auto it = config.values.find(key); it != config.values.end()) it->second.origin = labels[i];
+  }
   std::vector<std::string> sets = base.sets;
   sets.insert(sets.end(), assignments.begin(), assignments.end());
   return make_machine(std::move(config), base.origin, std::move(sets));
+}
+
+// A machine as plain values, for pickle (Dask ships machines to its workers this way): the
+// input's every value with its origin, so that the machine rebuilt from it is the same to the
+// last bit and names its values in messages as before.
+py::tuple machine_state(const MachineHandle& m) {
+  py::list values;
+  for (const auto& [key, v] : m.config.values) {
+    values.append(py::make_tuple(key, static_cast<int>(v.type), v.number, v.text, v.pair[0], v.pair[1], v.origin));
+  }
+  return py::make_tuple(1, m.config.source, values, m.origin, m.sets);
+}
+
+MachineHandle machine_from_state(const py::tuple& state) {
+  if (state.size() != 5 || state[0].cast<int>() != 1) throw std::runtime_error("whatnext: not a pickled Machine");
+  Config config;
+  config.source = state[1].cast<std::string>();
+  for (const py::handle item : state[2].cast<py::list>()) {
+    const auto t = item.cast<py::tuple>();
+    ConfigValue v;
+    v.type = static_cast<ConfigValue::Type>(t[1].cast<int>());
+    v.number = t[2].cast<double>();
+    v.text = t[3].cast<std::string>();
+    v.pair[0] = t[4].cast<double>();
+    v.pair[1] = t[5].cast<double>();
+    v.origin = t[6].cast<std::string>();
+    config.values[t[0].cast<std::string>()] = std::move(v);
+  }
+  return make_machine(std::move(config), state[3].cast<std::string>(), state[4].cast<std::vector<std::string>>());
 }
 
 // The keys the input gives, in inputs.md's units (degrees for angles), as Python values.
@@ -191,8 +244,32 @@ py::array text_array(const std::vector<std::string>& texts) {
   return a;
 }
 
+// An observer that lets Ctrl-C end the run: simulate() asks keep_going() every 256 steps, and
+// at most every 20 ms this takes the GIL and runs Python's signal handlers. An exception they
+// raise (KeyboardInterrupt) stays set and ends the run; run_machine raises it.
+class Interruptible : public Observer {
+ public:
+  bool keep_going() override {
+    const auto now = std::chrono::steady_clock::now();
+    if (now < next_check_) return true;
+    next_check_ = now + std::chrono::milliseconds(20);
+    py::gil_scoped_acquire gil;
+    return PyErr_CheckSignals() == 0;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point next_check_ = std::chrono::steady_clock::now();
+};
+
+// For runs without samples: only the checks above (run_machine samples it at most twice).
+class EventsOnly : public Interruptible {
+ public:
+  Detail sample_detail() const override { return Detail::positions; }
+  void on_samples(const SampleBatch&) override {}
+};
+
 // Keeps the run's CSV rows as columns: a row per output sample and one right after each event.
-class ColumnRecorder : public Observer {
+class ColumnRecorder : public Interruptible {
  public:
   ColumnRecorder() : numeric_(kNumericCount) {}
   void reserve(std::size_t rows) {
@@ -246,13 +323,22 @@ py::dict state_of(const Snapshot& s) {
 py::dict run_machine(const MachineHandle& m, bool samples) {
   Result result;
   ColumnRecorder rec;
-  {
+  EventsOnly events_only;
+  try {
     py::gil_scoped_release nogil;
     if (samples) {  // the rows up to t_max, but not gigabytes for a run that may stop early
       const RunSettings& r = m.scenario.run;
       rec.reserve(static_cast<std::size_t>(std::min(1e5, r.t_max / r.output_step)) + 64);
+      result = simulate(m.scenario, &rec);
+    } else {
+      // An observer (for Ctrl-C) is sampled on the output grid; one sample at the start and one
+      // at t_max cost nothing, and the grid changes no step or event (simulate.cpp).
+      Scenario sc = m.scenario;
+      sc.run.output_step = sc.run.t_max;
+      result = simulate(sc, &events_only);
     }
-    result = simulate(m.scenario, samples ? &rec : nullptr);
+  } catch (const Cancelled&) {
+    throw py::error_already_set();  // the KeyboardInterrupt that keep_going() found
   }
   py::list events;
   for (const Event& e : result.events) {
@@ -286,21 +372,33 @@ using PointFn = std::function<void(std::int64_t, double*)>;
 // --vary): one line naming the key otherwise.
 void check_sweep_keys(const std::vector<std::string>& keys) {
   if (keys.empty()) throw InputError("sweep: give at least one key to vary");
-  Config probe;
-  for (const std::string& k : keys) set_number(probe, k, 0.0);
+  for (const std::string& k : keys) {
+    if (!find_key(k)) {
+      const std::string near = nearest_key(k);
+      throw InputError(near.empty() ? fmt::format("sweep: unknown key '{}'", printable(k))
+                                    : fmt::format("sweep: unknown key '{}' (did you mean '{}'?)", printable(k), near));
+    }
+    try {
+      Config probe;
+      set_number(probe, k, 0.0);
+    } catch (const InputError&) {
+      throw InputError(fmt::format("sweep: {} is not a single number and cannot be varied", k));
+    }
+  }
 }
 
-// Runs machines 0..n-1 on `threads` threads with explore::evaluate, the GIL released; Ctrl-C
-// (checked ten times a second on the calling thread) stops the workers and raises KeyboardInterrupt.
-// Rows land in their own slots, so they do not depend on the thread count.
-// Each machine runs to the event-time accuracy given (explore::apply_accuracy; none: the machine's
-// own run settings).
+// Runs machines first..first+n-1 on `threads` threads with explore::evaluate, the GIL released;
+// Ctrl-C (checked twenty times a second on the calling thread) stops the workers after the
+// machines they are running and raises KeyboardInterrupt. Rows land in their own slots, so they do
+// not depend on the thread count. Each machine runs to the event-time accuracy given
+// (explore::apply_accuracy; none: the machine's own run settings).
 std::vector<explore::Outcome> run_points(const MachineHandle& m, const std::vector<std::string>& keys,
-                                         std::int64_t n, const PointFn& point, int threads,
+                                         std::int64_t first, std::int64_t n, const PointFn& point, int threads,
                                          std::optional<double> accuracy_given) {
   if (accuracy_given) explore::check_accuracy(*accuracy_given, "sweep: accuracy");
   const double accuracy = accuracy_given.value_or(0.0);
   std::vector<explore::Outcome> rows(static_cast<std::size_t>(n));
+  if (n == 0) return rows;
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>(threads, n)));
   std::atomic<std::int64_t> next{0};
@@ -315,7 +413,7 @@ std::vector<explore::Outcome> run_points(const MachineHandle& m, const std::vect
       std::vector<double> values(keys.size());
       for (std::int64_t i = next.fetch_add(1); i < n && !stop.load(std::memory_order_relaxed);
            i = next.fetch_add(1)) {
-        point(i, values.data());
+        point(first + i, values.data());
         rows[static_cast<std::size_t>(i)] = explore::evaluate(m.config, keys, values.data(), accuracy);
       }
       std::lock_guard<std::mutex> lock(mu);
@@ -326,7 +424,7 @@ std::vector<explore::Outcome> run_points(const MachineHandle& m, const std::vect
     for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
     std::unique_lock<std::mutex> lock(mu);
     while (running > 0) {
-      if (cv.wait_for(lock, std::chrono::milliseconds(100), [&] { return running == 0; })) break;
+      if (cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return running == 0; })) break;
       if (!interrupted) {
         lock.unlock();
         {
@@ -346,28 +444,29 @@ std::vector<explore::Outcome> run_points(const MachineHandle& m, const std::vect
 
 // The sweep CSV's columns (explore::write_csv) as numpy arrays: index, the varied keys, outcome,
 // outcome_t, final_r, final_phi_l_deg, an event column per event type (first time, NaN if none)
-// and error. An invalid machine has outcome "invalid", NaN times and its one-line reason.
-py::dict sweep_columns(const std::vector<std::string>& keys, std::int64_t n, const PointFn& point,
-                       const std::vector<explore::Outcome>& rows) {
+// and error. An invalid machine has outcome "invalid", a run that failed "failed" (as in the CSV),
+// NaN times and its one-line reason.
+py::dict sweep_columns(const std::vector<std::string>& keys, std::int64_t first, std::int64_t n,
+                       const PointFn& point, const std::vector<explore::Outcome>& rows) {
   const auto& types = explore::event_types();
   const auto un = static_cast<std::size_t>(n);
   std::vector<std::int64_t> index(un);
   std::vector<std::vector<double>> values(keys.size(), std::vector<double>(un));
   std::vector<std::string_view> outcome(un);
   std::vector<double> outcome_t(un), final_r(un), final_phi(un);
-  std::vector<std::vector<double>> first(types.size(), std::vector<double>(un));
+  std::vector<std::vector<double>> first_t(types.size(), std::vector<double>(un));
   std::vector<std::string> error(un);
   std::vector<double> v(keys.size());
   for (std::size_t i = 0; i < un; ++i) {
     const explore::Outcome& o = rows[i];
-    index[i] = static_cast<std::int64_t>(i);
-    point(static_cast<std::int64_t>(i), v.data());
+    index[i] = first + static_cast<std::int64_t>(i);
+    point(index[i], v.data());
     for (std::size_t k = 0; k < keys.size(); ++k) values[k][i] = v[k];
-    outcome[i] = o.valid ? to_string(o.outcome) : std::string_view("invalid");
+    outcome[i] = o.valid ? to_string(o.outcome) : std::string_view(o.failed ? "failed" : "invalid");
     outcome_t[i] = o.valid ? o.outcome_t : kNaN;
     final_r[i] = o.valid ? o.final_r : kNaN;
     final_phi[i] = o.valid ? o.final_phi_l_deg : kNaN;
-    for (std::size_t e = 0; e < types.size(); ++e) first[e][i] = o.valid ? o.first[e] : kNaN;
+    for (std::size_t e = 0; e < types.size(); ++e) first_t[e][i] = o.valid ? o.first[e] : kNaN;
     error[i] = o.error;
   }
   py::dict out;
@@ -378,7 +477,7 @@ py::dict sweep_columns(const std::vector<std::string>& keys, std::int64_t n, con
   out["final_r"] = adopt(std::move(final_r), py::dtype::of<double>());
   out["final_phi_l_deg"] = adopt(std::move(final_phi), py::dtype::of<double>());
   for (std::size_t e = 0; e < types.size(); ++e) {
-    out[py::str(std::string(to_string(types[e])))] = adopt(std::move(first[e]), py::dtype::of<double>());
+    out[py::str(std::string(to_string(types[e])))] = adopt(std::move(first_t[e]), py::dtype::of<double>());
   }
   out["error"] = text_array(error);
   return out;
@@ -387,8 +486,10 @@ py::dict sweep_columns(const std::vector<std::string>& keys, std::int64_t n, con
 using Axis = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // The full grid over explicit values per key; the last key varies fastest (as the CLI's grid).
+// Only machines start..stop-1 of it run (stop < 0: to the end): a chunk of a distributed sweep.
 py::dict sweep_grid(const MachineHandle& m, const std::vector<std::string>& keys,
-                    const std::vector<Axis>& axes, int threads, std::optional<double> accuracy) {
+                    const std::vector<Axis>& axes, int threads, std::optional<double> accuracy,
+                    std::int64_t start, std::int64_t stop) {
   check_sweep_keys(keys);
   if (axes.size() != keys.size()) throw std::invalid_argument("sweep: one array of values per key");
   std::vector<std::vector<double>> grid(keys.size());
@@ -404,6 +505,10 @@ py::dict sweep_grid(const MachineHandle& m, const std::vector<std::string>& keys
     }
     n *= size;
   }
+  if (stop < 0) stop = n;
+  if (start < 0 || start > stop || stop > n) {
+    throw std::invalid_argument(fmt::format("sweep: machines {}..{} are not within the grid's {}", start, stop, n));
+  }
   const PointFn point = [&grid](std::int64_t i, double* out) {
     for (std::size_t d = grid.size(); d-- > 0;) {
       const auto size = static_cast<std::int64_t>(grid[d].size());
@@ -411,23 +516,89 @@ py::dict sweep_grid(const MachineHandle& m, const std::vector<std::string>& keys
       i /= size;
     }
   };
-  const auto rows = run_points(m, keys, n, point, threads, accuracy);
-  return sweep_columns(keys, n, point, rows);
+  const auto rows = run_points(m, keys, start, stop - start, point, threads, accuracy);
+  return sweep_columns(keys, start, stop - start, point, rows);
 }
 
-// A Latin hypercube of `samples` machines over "KEY=A:B" ranges (the CLI's --samples/--seed).
-py::dict sweep_lhs(const MachineHandle& m, const std::vector<std::string>& specs, std::int64_t samples,
-                   std::uint64_t seed, int threads, std::optional<double> accuracy) {
+using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// Machines given by their values, a row of `points` each (one column per key), numbered from
+// `first`: the Latin hypercube's machines, or a chunk of them.
+py::dict sweep_points(const MachineHandle& m, const std::vector<std::string>& keys, const Points& points,
+                      std::int64_t first, int threads, std::optional<double> accuracy) {
+  check_sweep_keys(keys);
+  if (points.ndim() != 2 || points.shape(1) != static_cast<py::ssize_t>(keys.size())) {
+    throw std::invalid_argument("sweep: points need one column per key");
+  }
+  const std::int64_t n = points.shape(0);
+  const double* data = points.data();
+  const std::size_t k = keys.size();
+  const PointFn point = [data, first, k](std::int64_t i, double* out) {
+    std::copy_n(data + static_cast<std::size_t>(i - first) * k, k, out);
+  };
+  const auto rows = run_points(m, keys, first, n, point, threads, accuracy);
+  return sweep_columns(keys, first, n, point, rows);
+}
+
+// The machines of a Latin hypercube over [lo, hi] per key (the CLI's --samples N --seed S), as an
+// N x keys array: the same doubles as `whatnext sweep` draws.
+py::array lhs_points(const std::vector<std::string>& keys, const std::vector<double>& lo,
+                     const std::vector<double>& hi, std::int64_t samples, std::uint64_t seed) {
   explore::Plan plan;
   plan.samples = samples;
   plan.seed = seed;
-  if (samples < 1) throw InputError(fmt::format("--samples: needs at least 1 machine (given {})", samples));
-  for (const std::string& s : specs) plan.ranges.push_back(explore::parse_range(s, "--vary", false));
+  for (std::size_t k = 0; k < keys.size(); ++k) plan.ranges.push_back(explore::Range{keys[k], lo[k], hi[k], 0});
   const explore::Machines machines(plan);
-  const PointFn point = [&machines](std::int64_t i, double* out) { machines.point(i, out); };
-  const auto keys = plan.keys();
-  const auto rows = run_points(m, keys, machines.size(), point, threads, accuracy);
-  return sweep_columns(keys, machines.size(), point, rows);
+  py::array_t<double> out({static_cast<py::ssize_t>(samples), static_cast<py::ssize_t>(keys.size())});
+  double* p = out.mutable_data();
+  for (std::int64_t i = 0; i < samples; ++i) machines.point(i, p + static_cast<std::size_t>(i) * keys.size());
+  return out;
+}
+
+// A sweep's columns as `whatnext sweep --out` writes them: the same header and, through the
+// library's csv_row, the same bytes for every row.
+py::bytes sweep_csv(const std::vector<std::string>& keys, const py::dict& columns) {
+  const auto& types = explore::event_types();
+  auto column = [&](const std::string& name) {
+    if (!columns.contains(name)) throw std::invalid_argument("to_csv: no column " + name);
+    return py::array(columns[py::str(name)]);
+  };
+  auto numbers = [&](const std::string& name) {
+    return Axis::ensure(column(name));
+  };
+  const auto index = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(column("index"));
+  const std::int64_t n = index.size();
+  std::vector<Axis> values;
+  for (const std::string& k : keys) values.push_back(numbers(k));
+  const Axis outcome_t = numbers("outcome_t"), final_r = numbers("final_r"), final_phi = numbers("final_phi_l_deg");
+  std::vector<Axis> first;
+  for (EventType t : types) first.push_back(numbers(std::string(to_string(t))));
+  const py::list outcome = column("outcome").attr("tolist")();
+  const py::list error = column("error").attr("tolist")();
+  std::string text = "index";
+  for (const std::string& k : keys) text += "," + k;
+  text += ",outcome,outcome_t,final_r,final_phi_l_deg";
+  for (EventType t : types) text += "," + std::string(to_string(t));
+  text += ",error\n";
+  explore::Outcome o;
+  std::vector<double> v(keys.size());
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto name = outcome[static_cast<std::size_t>(i)].cast<std::string>();
+    o.valid = name != "invalid" && name != "failed";
+    o.failed = name == "failed";
+    o.error = error[static_cast<std::size_t>(i)].cast<std::string>();
+    o.first.assign(types.size(), kNaN);
+    if (o.valid) {
+      const auto it = std::find_if(types.begin(), types.end(), [&](EventType t) { return to_string(t) == name; });
+      if (it == types.end()) throw std::invalid_argument("to_csv: unknown outcome " + name);
+      o.outcome = *it;
+      o.outcome_t = outcome_t.at(i), o.final_r = final_r.at(i), o.final_phi_l_deg = final_phi.at(i);
+      for (std::size_t e = 0; e < types.size(); ++e) o.first[e] = first[e].at(i);
+    }
+    for (std::size_t k = 0; k < keys.size(); ++k) v[k] = values[k].at(i);
+    text += explore::csv_row(index.at(i), v, o);
+  }
+  return py::bytes(text);
 }
 
 // The n values of the CLI's --vary KEY=a:b:n grid, computed by the library (the same doubles).
@@ -457,17 +628,21 @@ PYBIND11_MODULE(_core, mod) {
   py::register_exception<SimulationError>(mod, "SimulationError", PyExc_RuntimeError);
 
   py::class_<MachineHandle>(mod, "MachineHandle")
-      .def("set", &with_set, py::arg("assignments"))
+      .def("set", &with_set, py::arg("assignments"), py::arg("labels"))
       .def("to_toml", [](const MachineHandle& m) { return to_toml(m.scenario); })
       .def("inputs", &inputs_of)
       .def_readonly("source", &MachineHandle::source)
       .def_property_readonly("seesaw_right_arm",
-                             [](const MachineHandle& m) { return m.scenario.machine.seesaw_right_arm; });
+                             [](const MachineHandle& m) { return m.scenario.machine.seesaw_right_arm; })
+      .def(py::pickle(&machine_state, &machine_from_state));
 
   mod.def("example", [](int n) { return make_machine(example_config(n), fmt::format("example {}", n)); },
           py::arg("n"));
   mod.def("load", [](const std::string& path) { return make_machine(load_config_file(path), path); },
           py::arg("path"));
+  mod.def("parse", [](const std::string& text, const std::string& source) {
+    return make_machine(parse_toml(text, source), source);
+  }, py::arg("text"), py::arg("source"));
   mod.def("defaults", [](const std::string& source) { return make_machine(parse_toml("", source), source); },
           py::arg("source"));
   mod.def("known_keys", [] {
@@ -479,10 +654,19 @@ PYBIND11_MODULE(_core, mod) {
   });
   mod.def("simulate", &run_machine, py::arg("machine"), py::arg("samples"));
   mod.def("sweep_grid", &sweep_grid, py::arg("machine"), py::arg("keys"), py::arg("axes"), py::arg("threads"),
-          py::arg("accuracy"));
-  mod.def("sweep_lhs", &sweep_lhs, py::arg("machine"), py::arg("specs"), py::arg("samples"), py::arg("seed"),
+          py::arg("accuracy"), py::arg("start"), py::arg("stop"));
+  mod.def("sweep_points", &sweep_points, py::arg("machine"), py::arg("keys"), py::arg("points"), py::arg("first"),
           py::arg("threads"), py::arg("accuracy"));
+  mod.def("lhs_points", &lhs_points, py::arg("keys"), py::arg("lo"), py::arg("hi"), py::arg("samples"),
+          py::arg("seed"));
+  mod.def("sweep_csv", &sweep_csv, py::arg("keys"), py::arg("columns"));
   mod.attr("DEFAULT_ACCURACY") = explore::kDefaultAccuracy;
+  mod.attr("MAX_MACHINES") = explore::kMaxMachines;
   mod.def("grid_values", &grid_values, py::arg("a"), py::arg("b"), py::arg("n"));
   mod.def("csv_columns", [] { return column_names(); });
+  mod.def("event_names", [] {
+    std::vector<std::string> out;
+    for (EventType t : explore::event_types()) out.emplace_back(to_string(t));
+    return out;
+  });
 }

@@ -17,9 +17,16 @@ Input keys are those of docs/inputs.md (``whatnext.input_keys()`` lists them): a
 everything else SI. Bad input raises :class:`InputError` with the command's one-line message.
 """
 
+import builtins
 import dataclasses
+import difflib
+import numbers
 import os
-from typing import Any, Dict, Iterator, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
+import pathlib
+import sys
+import tempfile
+from typing import (Any, Callable, Dict, Iterator, List, Mapping, NamedTuple, Optional, Sequence, Tuple,
+                    Union)
 
 import numpy as np
 
@@ -27,37 +34,86 @@ from . import _core
 from ._core import InputError, SimulationError
 
 __all__ = [
-    "InputError", "SimulationError", "Machine", "example", "load", "machine", "input_keys",
-    "simulate", "Run", "Event", "Outcome", "sweep", "grid", "Sweep", "plot",
+    "InputError", "SimulationError", "Machine", "example", "examples", "example_path", "load", "machine",
+    "input_keys", "simulate", "Run", "Event", "Outcome", "sweep", "grid", "Sweep", "plot",
 ]
 
 InputError.__module__ = SimulationError.__module__ = "whatnext"  # as users import them
-InputError.__doc__ = """Bad input: the message is the command line's one line, naming the input
-(file and line, or the set() as a --set), the rule and the value given. A ValueError."""
+InputError.__doc__ = """Bad input: one line naming the input (the Python call and its key, or a
+file and its line), the rule and the value given. A ValueError."""
 SimulationError.__doc__ = """A run that cannot go on (its state turned non-finite, or the
 integrator ran out of steps); the message names the time and the mode. A RuntimeError."""
 
 Value = Union[float, int, bool, str, Sequence[float]]
+Plain = Union[bool, int, float, str, Tuple[Any, ...]]
+
+# The machine files of examples/ ship inside the package (python/CMakeLists.txt copies them).
+_MACHINES = pathlib.Path(__file__).resolve().with_name("machines")
+_ALIASES = {"radio": "example1-radio"}
 
 
-def _toml_value(key: str, value: Any) -> str:
-    """value as the text of a --set KEY=VALUE, so that the library checks (and words) it as the CLI."""
+def _whole(what: str, value: Any, lo: int, hi: int) -> int:
+    """value as a whole number in [lo, hi]; a TypeError or InputError naming ``what`` otherwise."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value.item()
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{what} must be a whole number, not {type(value).__name__} {value!r}")
+    v = int(value)
+    if not lo <= v <= hi:
+        raise InputError(f"{what} must be from {lo} to {hi} (given {v})")
+    return v
+
+
+def _real(what: str, value: Any) -> float:
+    """value as a float; a TypeError naming ``what`` for anything that is not a real number."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value.item()
+    if isinstance(value, (bool, np.bool_, str)) or not isinstance(value, numbers.Real):
+        kind = "a complex number" if isinstance(value, numbers.Complex) else type(value).__name__
+        raise TypeError(f"{what} must be a real number, not {kind} {value!r}")
+    return float(value)
+
+
+def _plain(key: str, value: Any) -> Plain:
+    """A value given for ``key`` as plain Python (bool, int, float, text, or a tuple of numbers for
+    a pair); a TypeError in Python's words naming the key for any other kind of value."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value.item()  # np.array(0.7): a number
     if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, str):
+        if any(ord(c) < 0x20 and c != "\t" or ord(c) == 0x7F for c in value):
+            raise InputError(f"{key}: the text must be one line without control characters (given {value!r})")
+        return str(value)
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    if isinstance(value, numbers.Real):
+        return float(value)
+    if isinstance(value, numbers.Complex):
+        raise TypeError(f"{key}: a real number is expected, not the complex number {value!r}")
+    if isinstance(value, (Sequence, np.ndarray)) and not isinstance(value, (bytes, bytearray)):
+        return tuple(_real(f"{key}: each entry of a pair [dx, dh]", v) for v in value)
+    raise TypeError(f"{key}: a number, text, True/False or a pair (dx, dh) is expected, not "
+                    f"{type(value).__name__} {value!r}")
+
+
+def _toml_text(value: Plain) -> str:
+    """A plain value as the text of a --set KEY=VALUE, so that the library checks it as the CLI does."""
+    if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, str):
         return value  # a bare word, as typed after --set KEY=
-    if isinstance(value, (int, np.integer)):
-        return str(int(value))
-    if isinstance(value, (float, np.floating)):
-        return repr(float(value))  # the shortest text that reads back as the same double
-    if isinstance(value, (Sequence, np.ndarray)):
-        return "[" + ", ".join(_toml_value(key, v) for v in value) + "]"
-    raise TypeError(f"{key}: a number, text, true/false or a pair [dx, dh] is expected, not "
-                    f"{type(value).__name__}")
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return repr(value)  # the shortest text that reads back as the same double
+    return "[" + ", ".join(_toml_text(v) for v in value) + "]"
 
 
-def _assignments(values: Mapping[str, Value]) -> List[str]:
-    return [f"{k}={_toml_value(k, v)}" for k, v in values.items()]
+def _check_key(call: str, key: Any) -> str:
+    if not isinstance(key, str):
+        raise TypeError(f"{call}: a key is text such as 'geometry.rope_length', not {type(key).__name__} {key!r}")
+    return key
 
 
 class Machine:
@@ -79,21 +135,42 @@ class Machine:
 
         ``m.set("geometry.rope_length", 0.7)`` or, for several keys at once,
         ``m.set({"geometry.rope_length": 0.7, "run.impact_law": "kinetic-energy"})``.
-        Keys and units are docs/inputs.md's (angles in degrees). Values: numbers, text
-        (``"kinetic-energy"``), ``True``/``False`` for switches such as ``"radio.enabled"``, and
-        pairs ``(dx, dh)`` for ``"geometry.hinge_offset"`` and ``"radio.switch_offset"``.
-        The new machine is validated at once: a bad value raises :class:`InputError` with the
-        command line's message for the same ``--set``.
+        Keys and units are docs/inputs.md's (angles in degrees). Values: numbers (numpy scalars
+        and 0-d arrays too), text (``"kinetic-energy"``), ``True``/``False`` for switches such as
+        ``"radio.enabled"``, and pairs ``(dx, dh)`` for ``"geometry.hinge_offset"`` and
+        ``"radio.switch_offset"``. The new machine is validated at once: a bad value raises
+        :class:`InputError` (a wrong kind of value :class:`TypeError`) naming the call and the key,
+        e.g. ``set('masses.lid', -0.5): masses.lid must be > 0 kg (given -0.5)``.
         """
         if isinstance(key, Mapping):
             if value is not None:
                 raise TypeError("set(mapping) takes no second argument")
-            values = key
-        else:
-            if value is None:
-                raise TypeError(f"set({key!r}, value): the value is missing")
-            values = {key: value}
-        return Machine(self._handle.set(_assignments(values)))
+            return self._set(key, "set(mapping)", lambda k, v: f"set({k!r}, {v!r})")
+        _check_key("set(key, value)", key)
+        if value is None:
+            raise TypeError(f"set({key!r}, value): the value is missing")
+        return self._set({key: value}, "set(key, value)", lambda k, v: f"set({k!r}, {v!r})")
+
+    def _set(self, values: Mapping[str, Value], call: str, label: Callable[[str, Plain], str]) -> "Machine":
+        """set() with the message prefix of each value: the call that gave it, in Python's words."""
+        assignments, labels = [], []
+        for k, v in values.items():
+            _check_key(call, k)
+            plain = _plain(k, v)
+            assignments.append(f"{k}={_toml_text(plain)}")
+            labels.append(label(k, plain))
+        return Machine(self._handle.set(assignments, labels))
+
+    def __reduce__(self) -> Tuple[Any, ...]:
+        # pickle and copy: the input's every value and where it came from (bindings.cpp), so the
+        # copy is the same machine to the last bit and to_toml() gives the same text.
+        return (Machine, (self._handle,))
+
+    def __copy__(self) -> "Machine":
+        return self  # immutable
+
+    def __deepcopy__(self, memo: Dict[int, Any]) -> "Machine":
+        return self
 
     @property
     def source(self) -> str:
@@ -116,22 +193,60 @@ class Machine:
         return f"<whatnext.Machine {self.source}>"
 
 
-def example(n: int) -> Machine:
-    """The paper's example ``n`` (1-4), as in examples/exampleN.toml and ``whatnext run --example N``.
+def example(n: Union[int, str]) -> Machine:
+    """The paper's example ``n`` (1-4), as in examples/exampleN.toml and ``whatnext run --example N``,
+    or a machine file of examples/ by name, shipped with the package: ``example("radio")``
+    (example 1 with Kermit's radio, examples/example1-radio.toml); :func:`examples` lists the names.
 
     1: the rope tightens with one hard pull and the lid flies open at 0.82 s.
     2: the rope stays taut while it pulls the lid open (the paper's Fig. 9).
     3: the seesaw turns vertical after 20 s; the lid never opens.
     4: a hard hit, the rope slack at once, taut again, the seesaw vertical after 10 s.
     """
+    if isinstance(n, str):
+        path = example_path(n)
+        return Machine(_core.parse(path.read_text(encoding="utf-8"), path.name))
+    if isinstance(n, np.ndarray) and n.ndim == 0:
+        n = n.item()
+    if isinstance(n, (bool, np.bool_)) or not isinstance(n, numbers.Integral):
+        raise TypeError(f"example(n): n is a whole number 1-4 or a name ({', '.join(map(repr, examples()))}), "
+                        f"not {type(n).__name__} {n!r}")
+    if not 1 <= int(n) <= 4:
+        raise InputError(f"example({int(n)}): the paper has examples 1 to 4; the other shipped machines are "
+                         f"named: {', '.join(map(repr, examples()))}")
     return Machine(_core.example(int(n)))
+
+
+def examples() -> List[str]:
+    """The names :func:`example` takes besides 1-4: every machine file of examples/ (shipped in the
+    package), without ``.toml``, and ``"radio"`` for ``"example1-radio"``."""
+    names = sorted(p.stem for p in _MACHINES.glob("*.toml")) if _MACHINES.is_dir() else []
+    return [alias for alias, name in _ALIASES.items() if name in names] + names
+
+
+def example_path(name: Union[int, str]) -> pathlib.Path:
+    """Where the package keeps a shipped machine file (``"radio"``, ``"example2"``, or 1-4), to read
+    or copy it: ``shutil.copy(whatnext.example_path("radio"), "my-machine.toml")``."""
+    if not isinstance(name, str):
+        name = f"example{_whole('example_path(name)', name, 1, 4)}"
+    stem = _ALIASES.get(name, name[:-5] if name.endswith(".toml") else name)
+    names = examples()
+    if stem not in names or "/" in stem or os.sep in stem:
+        near = difflib.get_close_matches(name, names, n=1)
+        hint = f" (did you mean {near[0]!r}?)" if near else ""
+        raise InputError(f"example({name!r}): no shipped machine of that name{hint}; the names are: "
+                         f"{', '.join(map(repr, names))}")
+    return _MACHINES / f"{stem}.toml"
 
 
 def load(path: Union[str, "os.PathLike[str]"]) -> Machine:
     """A machine from a TOML file or the paper's 15-line ``whatnext.inp`` (docs/inputs.md).
 
     Raises :class:`InputError` (file and line, the rule, the value) for anything wrong in it.
+    The machines of examples/ are also shipped with the package: see :func:`example`.
     """
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"load(path): a file name is expected, not {type(path).__name__} {path!r}")
     return Machine(_core.load(os.fspath(path)))
 
 
@@ -148,6 +263,9 @@ def machine(keys: Optional[Mapping[str, Value]] = None, /, **sections: Mapping[s
 
     Values are checked as :meth:`Machine.set` checks them.
     """
+    if keys is not None and not isinstance(keys, Mapping):
+        raise TypeError(f"machine(keys): a dict of input keys is expected, e.g. "
+                        f"{{'geometry.rope_length': 0.62}}, not {type(keys).__name__}")
     values: Dict[str, Value] = dict(keys or {})
     for section, table in sections.items():
         if not isinstance(table, Mapping):
@@ -156,7 +274,7 @@ def machine(keys: Optional[Mapping[str, Value]] = None, /, **sections: Mapping[s
         for name, v in table.items():
             values[f"{section}.{name}"] = v
     base = Machine(_core.defaults("whatnext.machine()"))
-    return base.set(values) if values else base
+    return base._set(values, "machine(keys)", lambda k, v: f"machine({{{k!r}: {v!r}}})") if values else base
 
 
 def input_keys() -> Dict[str, Tuple[str, str]]:
@@ -208,9 +326,29 @@ class Run:
         self.samples: Optional[Dict[str, np.ndarray]] = raw["samples"]
         self._timeline: str = raw["timeline"]
         self._events_json: str = raw["events_json"]
+        self._freeze()
+
+    def _freeze(self) -> None:
+        # The samples are the run's record: read-only, so that no plot or analysis changes them
+        # for the next reader by accident (np.array(run.samples[...]) gives a copy to change).
+        for column in (self.samples or {}).values():
+            column.flags.writeable = False
+
+    def __setstate__(self, state: Dict[str, Any]) -> None:  # pickle and deepcopy: read-only again
+        self.__dict__.update(state)
+        self._freeze()
 
     def event(self, type: str) -> Optional[Event]:
-        """The first event of this type (``"lid_open"``, ``"rope_taut"``, ...), or None."""
+        """The first event of this type (``"lid_open"``, ``"rope_taut"``, ...), or None if the run
+        had none. A name that is no event at all raises :class:`InputError` (did you mean ...?)."""
+        names = _core.event_names()
+        if not isinstance(type, str) or type not in names:
+            if not isinstance(type, str):
+                raise TypeError(f"event(name): a name such as 'lid_open' is expected, not "
+                                f"{builtins.type(type).__name__} {type!r}")
+            near = difflib.get_close_matches(type, names, n=1)
+            hint = f" (did you mean {near[0]!r}?)" if near else ""
+            raise InputError(f"event({type!r}): no event is called that{hint}; the events are: {', '.join(names)}")
         return next((e for e in self.events if e.type == type), None)
 
     def timeline(self) -> str:
@@ -257,7 +395,8 @@ def simulate(machine: Machine, *, output_step: Optional[float] = None, t_max: Op
 
     Event times and states are exactly those of the command line for the same input. Raises
     :class:`InputError` for a bad ``output_step``/``t_max`` and :class:`SimulationError` if the run
-    cannot go on. The GIL is released while the machine runs.
+    cannot go on. The GIL is released while the machine runs, and Ctrl-C stops it within a few
+    hundredths of a second (KeyboardInterrupt).
 
     Example::
 
@@ -272,18 +411,20 @@ def simulate(machine: Machine, *, output_step: Optional[float] = None, t_max: Op
         overrides["run.output_step"] = output_step
     if t_max is not None:
         overrides["run.t_max"] = t_max
-    m = machine.set(overrides) if overrides else machine
+    keyword = {"run.output_step": "output_step", "run.t_max": "t_max"}
+    m = machine._set(overrides, "simulate()", lambda k, v: f"simulate({keyword.get(k, k)}={v!r})") if overrides else machine
     return Run(m, _core.simulate(m._handle, bool(samples)))
 
 
 class Sweep(Mapping[str, np.ndarray]):
-    """The outcome of every machine of a sweep, as columns (a read-only dict of numpy arrays).
+    """The outcome of every machine of a sweep, as columns (a read-only dict of read-only numpy arrays).
 
     The columns are those of ``whatnext sweep --out``'s CSV: ``index``; the varied keys;
-    ``outcome`` (an event name, or ``"invalid"``); ``outcome_t``, ``final_r`` [m] and
-    ``final_phi_l_deg``; one column per event type with the time of its first occurrence [s]
-    (NaN if it never happened); and ``error``, the one-line reason of an invalid machine (empty
-    otherwise). Invalid machines have NaN in every number column.
+    ``outcome`` (an event name, ``"invalid"`` for inputs that break a rule, ``"failed"`` for a run
+    that could not go on); ``outcome_t``, ``final_r`` [m] and ``final_phi_l_deg``; one column per
+    event type with the time of its first occurrence [s] (NaN if it never happened); and ``error``,
+    the one-line reason of an invalid or failed machine (empty otherwise). Those have NaN in every
+    number column. :meth:`to_csv` writes the command's CSV, byte for byte.
 
     For a grid, ``shape`` is the number of values per key and :meth:`grid` reshapes a column to
     it (axis k is the k-th key, whose values are ``axes[key]``).
@@ -296,6 +437,15 @@ class Sweep(Mapping[str, np.ndarray]):
         self.axes: Optional[Dict[str, np.ndarray]] = axes
         self.shape: Tuple[int, ...] = (tuple(len(a) for a in axes.values()) if axes is not None
                                        else (len(columns["index"]),))
+        self._freeze()
+
+    def _freeze(self) -> None:
+        for column in [*self.columns.values(), *(self.axes or {}).values()]:
+            column.flags.writeable = False
+
+    def __setstate__(self, state: Dict[str, Any]) -> None:  # pickle and deepcopy: read-only again
+        self.__dict__.update(state)
+        self._freeze()
 
     def __getitem__(self, name: str) -> np.ndarray:
         return self.columns[name]
@@ -308,8 +458,8 @@ class Sweep(Mapping[str, np.ndarray]):
 
     @property
     def valid(self) -> np.ndarray:
-        """True where the machine's inputs passed validation (False: see the ``error`` column)."""
-        return self.columns["outcome"] != "invalid"
+        """True where the machine ran (False: its inputs broke a rule or its run failed; see ``error``)."""
+        return (self.columns["outcome"] != "invalid") & (self.columns["outcome"] != "failed")
 
     def grid(self, name: str) -> np.ndarray:
         """Column ``name`` (e.g. ``"lid_open"``) shaped as the grid: ``grid(name)[i, j]`` belongs to
@@ -317,6 +467,31 @@ class Sweep(Mapping[str, np.ndarray]):
         if self.axes is None:
             raise ValueError("grid(): a Latin hypercube sweep has no grid; use the columns")
         return self.columns[name].reshape(self.shape)
+
+    def to_csv(self, path: Union[None, str, "os.PathLike[str]"] = None) -> Optional[str]:
+        """The sweep as the CSV of ``whatnext sweep --out`` (the same bytes for the same sweep).
+
+        With a path, the file is written through a temporary file in its folder and renamed over
+        the old one only when complete, so an existing file is never left half-written. Without
+        one, the text is returned."""
+        data = _core.sweep_csv(self.keys_varied, self.columns)
+        if path is None:
+            return data.decode("utf-8")
+        target = pathlib.Path(os.fspath(path))
+        fd, part = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=target.parent or ".")
+        try:
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(part, 0o666 & ~umask)  # as open() would make it, not mkstemp's private 0600
+            with os.fdopen(fd, "wb") as f:
+                f.write(data)
+                f.flush()
+                os.fsync(f.fileno())
+            os.replace(part, target)
+        except BaseException:
+            os.unlink(part)
+            raise
+        return None
 
     def plot(self, value: str = "lid_open", **kwargs: Any) -> Any:
         """A heat map of ``value`` over the two varied keys (see :func:`whatnext.plot.heatmap`)."""
@@ -333,11 +508,107 @@ def grid(a: float, b: float, n: int) -> np.ndarray:
     Like ``np.linspace(a, b, n)``, which may differ in the last bit; use this one to compare a
     sweep with the CSV of ``whatnext sweep``.
     """
-    return _core.grid_values(float(a), float(b), int(n))
+    return _core.grid_values(_real("grid(a, b, n): a", a), _real("grid(a, b, n): b", b),
+                             _whole("grid(a, b, n): n", n, 1, _core.MAX_MACHINES))
+
+
+# Sweeps larger than this need force_large=True, as the command's --force-large: every row is
+# kept in memory (a few hundred bytes each).
+LARGE_SWEEP = 1_000_000
+
+
+@dataclasses.dataclass(frozen=True)
+class _Plan:
+    """A checked sweep: what every chunk of it needs to run (pickled to Dask's workers)."""
+
+    machine: Machine
+    keys: List[str]
+    axes: Optional[Dict[str, np.ndarray]]  # a grid's values per key
+    points: Optional[np.ndarray]           # or a Latin hypercube's machines, one row each
+    size: int
+    accuracy: Optional[float]
+    first: int = 0  # points[0] is machine `first`: a chunk of a Latin hypercube carries its rows only
+
+    def run(self, start: int, stop: int, threads: int) -> Dict[str, np.ndarray]:
+        """Machines start..stop-1 of the sweep: their columns (index start..stop-1)."""
+        if self.points is None:
+            assert self.axes is not None
+            return _core.sweep_grid(self.machine._handle, self.keys, list(self.axes.values()), threads,
+                                    self.accuracy, start, stop)
+        return _core.sweep_points(self.machine._handle, self.keys,
+                                  self.points[start - self.first:stop - self.first], start, threads, self.accuracy)
+
+    def part(self, start: int, stop: int) -> "_Plan":
+        """What machines start..stop-1 need: the whole plan for a grid (its values per key are
+        small), only their own rows of a Latin hypercube."""
+        if self.points is None:
+            return self
+        return dataclasses.replace(self, points=np.array(self.points[start - self.first:stop - self.first]),
+                                   first=start)
+
+
+def _plan(machine: Machine, values: Mapping[str, Any], samples: Optional[int], seed: int,
+          accuracy: Optional[float], force_large: bool) -> _Plan:
+    """Checks a sweep's arguments, each wrong one named in Python's words."""
+    if not isinstance(machine, Machine):
+        raise TypeError("sweep(machine, values): make the machine with whatnext.example(), load() or machine()")
+    if not isinstance(values, Mapping):
+        raise TypeError(f"sweep(machine, values): values is a dict of key -> values, e.g. "
+                        f"{{'geometry.rope_length': np.linspace(0.62, 0.9, 29)}}, not {type(values).__name__}")
+    if not values:
+        raise InputError("sweep: give at least one key to vary")
+    keys = [_check_key("sweep(machine, values)", k) for k in values]
+    accuracy_s = None if accuracy is None else _real("sweep: accuracy", accuracy)
+    axes: Optional[Dict[str, np.ndarray]] = None
+    points: Optional[np.ndarray] = None
+    if samples is not None:
+        n = _whole("sweep: samples", samples, 1, _core.MAX_MACHINES)
+        seed_n = _whole("sweep: seed", seed, 0, 2**64 - 1)
+        lo, hi = [], []
+        for k, v in values.items():
+            if isinstance(v, (str, bytes)) or not (isinstance(v, (Sequence, np.ndarray)) and len(v) == 2):
+                raise TypeError(f"sweep(samples=...): {k} needs a pair (a, b), not {v!r}")
+            a, b = _real(f"sweep: {k}: a", v[0]), _real(f"sweep: {k}: b", v[1])
+            if not (np.isfinite(a) and np.isfinite(b) and a <= b):
+                raise InputError(f"sweep: {k} needs finite a <= b (given ({a!r}, {b!r}))")
+            lo.append(a)
+            hi.append(b)
+        size = n
+    else:
+        axes = {}
+        size = 1
+        for k, v in values.items():
+            given = np.asarray(v)
+            if given.dtype.kind == "c":
+                raise TypeError(f"sweep: {k} needs real numbers, not complex ones")
+            if given.dtype.kind not in "iuf":
+                try:
+                    if given.dtype.kind in "bSUV":
+                        raise TypeError
+                    given = np.array(given, dtype=np.float64)
+                except (TypeError, ValueError):
+                    raise TypeError(f"sweep: {k} needs numbers (a sequence or numpy array), not {v!r:.60}") from None
+            axis = np.array(np.atleast_1d(given), dtype=np.float64, order="C")  # a copy: ours to freeze
+            if axis.ndim != 1 or axis.size == 0:
+                raise InputError(f"sweep: {k} needs a one-dimensional sequence of at least one value")
+            axes[k] = axis
+            size *= axis.size
+        if size > _core.MAX_MACHINES:
+            raise InputError(f"sweep: the grid has {size} machines, more than {_core.MAX_MACHINES}; use fewer values")
+    if size > LARGE_SWEEP and not force_large:
+        row_bytes = 8 * (4 + len(keys) + len(_core.event_names())) + 4 * 16
+        raise InputError(f"sweep: {size} machines would hold at least {size * row_bytes / 1e9:.1f} GB in memory; "
+                         f"use fewer, or pass force_large=True")
+    if samples is not None:
+        points = _core.lhs_points(keys, lo, hi, size, seed_n)
+        points.flags.writeable = False
+    return _Plan(machine, keys, axes, points, size, accuracy_s)
 
 
 def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int] = None, seed: int = 1,
-          threads: Optional[int] = None, accuracy: Optional[float] = _core.DEFAULT_ACCURACY) -> Sweep:
+          threads: Optional[int] = None, accuracy: Optional[float] = _core.DEFAULT_ACCURACY,
+          force_large: bool = False, client: Any = None, chunk: Optional[int] = None,
+          progress: Union[bool, Callable[[int, int], None]] = False) -> Sweep:
     """Run many variants of a machine on all cores; the Python form of ``whatnext sweep``.
 
     ``values`` maps input keys (any numeric key of docs/inputs.md, angles in degrees) to the
@@ -351,7 +622,8 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
     Each machine is ``machine`` with those values set; a machine whose inputs break a rule is
     not an error: its ``outcome`` is ``"invalid"`` and ``error`` says why. The machines run in
     C++ on ``threads`` threads (default: all cores) with the GIL released; the results do not
-    depend on the thread count. Ctrl-C stops the sweep (KeyboardInterrupt).
+    depend on the thread count. Ctrl-C stops the sweep (KeyboardInterrupt) once the machines
+    running finish, normally within a tenth of a second.
 
     ``accuracy`` is the event-time accuracy in seconds (default 1e-8, as ``--accuracy`` of
     ``whatnext sweep``): every event time is then within it of the exact time, and the machines run
@@ -359,8 +631,17 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
     ``run.tolerance`` itself). ``accuracy=None`` runs each machine with its own run settings,
     exactly as :func:`simulate` would.
 
+    More than a million machines need ``force_large=True`` (as the command's ``--force-large``):
+    every row is kept in memory.
+
+    ``client=`` a ``dask.distributed.Client`` runs the sweep on that cluster's workers instead,
+    in chunks of ``chunk`` machines, with the same result to the last bit (see
+    :func:`whatnext.dask.sweep`); ``progress=True`` then prints the machines done, or a function
+    ``progress(done, total)`` is called as chunks finish.
+
     Returns a :class:`Sweep`: columns named like the sweep CSV (``outcome``, ``outcome_t``,
-    ``lid_open``, ``rope_taut``, ..., ``error``), each a numpy array with a row per machine.
+    ``lid_open``, ``rope_taut``, ..., ``error``), each a read-only numpy array with a row per
+    machine; ``to_csv(path)`` writes that CSV.
 
     Example::
 
@@ -368,25 +649,14 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
                                                  "masses.sandbag": np.linspace(0.2, 2.0, 37)})
         s.grid("lid_open")        # 29 x 37, NaN where the lid never opens
     """
-    if not isinstance(machine, Machine):
-        raise TypeError("sweep(machine, values): make the machine with whatnext.example(), load() or machine()")
-    if not values:
-        raise InputError("sweep: give at least one key to vary")
-    n_threads = 0 if threads is None else int(threads)
-    accuracy_s = None if accuracy is None else float(accuracy)
-    if threads is not None and n_threads < 1:
-        raise ValueError(f"sweep: threads must be >= 1 (given {threads})")
-    keys = list(values)
-    if samples is not None:
-        specs = []
-        for k, v in values.items():
-            if not (isinstance(v, Sequence) and len(v) == 2):
-                raise TypeError(f"sweep(samples=...): {k} needs a pair (a, b), not {v!r}")
-            specs.append(f"{k}={_toml_value(k, v[0])}:{_toml_value(k, v[1])}")
-        return Sweep(keys, _core.sweep_lhs(machine._handle, specs, int(samples), int(seed), n_threads, accuracy_s), None)
-    axes = {k: np.ascontiguousarray(np.atleast_1d(np.asarray(v, dtype=np.float64))) for k, v in values.items()}
-    columns = _core.sweep_grid(machine._handle, keys, list(axes.values()), n_threads, accuracy_s)
-    return Sweep(keys, columns, axes)
+    plan = _plan(machine, values, samples, seed, accuracy, force_large)
+    if client is None and (chunk is not None or progress is not False):
+        raise TypeError("sweep: chunk= and progress= belong to a sweep on a Dask cluster (client=...)")
+    if client is not None:
+        from . import dask as _dask
+        return _dask.run(plan, client, chunk=chunk, threads=threads, progress=progress)
+    n_threads = 0 if threads is None else _whole("sweep: threads", threads, 1, 4096)
+    return Sweep(plan.keys, plan.run(0, plan.size, n_threads), plan.axes)
 
 
 from . import plot  # noqa: E402  (matplotlib itself is imported only when a figure is drawn)

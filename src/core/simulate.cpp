@@ -1,5 +1,6 @@
 #include "whatnext/simulate.hpp"
 
+#include <cstdint>
 #include <cstdio>
 
 #include "integrate.hpp"
@@ -15,8 +16,11 @@ struct MachineSystem {
   using guard_type = GuardValues;
   const Model* model;
   Discrete d;
+  Observer* observer = nullptr;       // asked to keep going every 256 steps (guards() runs once a step)
+  std::uint32_t* steps = nullptr;
   void operator()(const State& y, State& dy, double /*t*/) const { model->flow(d, y, dy); }
   void guards(const State& y, GuardValues& g, GuardValues* rates = nullptr) const {
+    if (observer && (++*steps & 255u) == 0 && !observer->keep_going()) throw Cancelled("the run was stopped");
     model->guards(d, y, g, rates);
   }
   double guard(const State& y, int i) const {
@@ -106,8 +110,9 @@ Result simulate(const Scenario& sc, Observer* observer) {
   constexpr int kMaxPiecesWithoutProgress = 10'000;
   double last_t = hs.t;
   int no_progress = 0;
+  std::uint32_t steps = 0;
   for (;;) {
-    const MachineSystem sys{&model, hs.d};
+    const MachineSystem sys{&model, hs.d, observer, &steps};
     if (observer) batch.start(hs.d);
     auto sample = [&](double t, const State& y) {
       batch.add(t, y);

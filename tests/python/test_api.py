@@ -3,6 +3,7 @@ bit), the same samples (the CSV's columns at the CSV's precision), the same time
 and the same one-line error messages."""
 
 import json
+import signal
 
 import numpy as np
 import pytest
@@ -147,29 +148,42 @@ def test_sample_columns_are_numpy_arrays():
     assert whatnext.simulate(whatnext.example(1), samples=False).samples is None
 
 
-# Bad input: each Python call and the command line given the same input say the same line.
+# Bad input: each Python call and the command line given the same input say the same line, but
+# where the command names its --set, Python names the call that gave the value.
 ERROR_CASES = [
-    (lambda: whatnext.example(1).set("geometry.rope_length", 0.1), ["--example", 1, "--set", "geometry.rope_length=0.1"]),
-    (lambda: whatnext.example(1).set("geometry.rope_lenght", 1), ["--example", 1, "--set", "geometry.rope_lenght=1"]),
-    (lambda: whatnext.example(2).set("run.impact_law", "elastic"), ["--example", 2, "--set", "run.impact_law=elastic"]),
-    (lambda: whatnext.example(1).set("start.lid_angle", 95), ["--example", 1, "--set", "start.lid_angle=95"]),
-    (lambda: whatnext.example(1).set("masses.lid", -0.5), ["--example", 1, "--set", "masses.lid=-0.5"]),
-    (lambda: whatnext.example(1).set("run.t_max", float("inf")), ["--example", 1, "--set", "run.t_max=inf"]),
-    (lambda: whatnext.example(1).set("radio.enabled", "yes"), ["--example", 1, "--set", "radio.enabled=yes"]),
-    (lambda: whatnext.example(1).set("radio.switch_offset", [0.5]), ["--example", 1, "--set", "radio.switch_offset=[0.5]"]),
-    (lambda: whatnext.simulate(whatnext.example(3), output_step=1e-9), ["--example", 3, "--set", "run.output_step=1e-09"]),
-    (lambda: whatnext.example(5), ["--example", 5]),
-    (lambda: whatnext.load("no/such/machine.toml"), ["no/such/machine.toml"]),
+    (lambda: whatnext.example(1).set("geometry.rope_length", 0.1), ["--example", 1, "--set", "geometry.rope_length=0.1"],
+     "set('geometry.rope_length', 0.1)"),
+    (lambda: whatnext.example(1).set("geometry.rope_lenght", 1), ["--example", 1, "--set", "geometry.rope_lenght=1"],
+     "set('geometry.rope_lenght', 1)"),
+    (lambda: whatnext.example(2).set("run.impact_law", "elastic"), ["--example", 2, "--set", "run.impact_law=elastic"],
+     "set('run.impact_law', 'elastic')"),
+    (lambda: whatnext.example(1).set("start.lid_angle", 95), ["--example", 1, "--set", "start.lid_angle=95"],
+     "set('start.lid_angle', 95)"),
+    (lambda: whatnext.example(1).set("masses.lid", -0.5), ["--example", 1, "--set", "masses.lid=-0.5"],
+     "set('masses.lid', -0.5)"),
+    (lambda: whatnext.example(1).set("run.t_max", float("inf")), ["--example", 1, "--set", "run.t_max=inf"],
+     "set('run.t_max', inf)"),
+    (lambda: whatnext.example(1).set("radio.enabled", "yes"), ["--example", 1, "--set", "radio.enabled=yes"],
+     "set('radio.enabled', 'yes')"),
+    (lambda: whatnext.example(1).set("radio.switch_offset", [0.5]), ["--example", 1, "--set", "radio.switch_offset=[0.5]"],
+     "set('radio.switch_offset', (0.5,))"),
+    (lambda: whatnext.simulate(whatnext.example(3), output_step=1e-9), ["--example", 3, "--set", "run.output_step=1e-09"],
+     "simulate(output_step=1e-09)"),
+    (lambda: whatnext.load("no/such/machine.toml"), ["no/such/machine.toml"], None),
 ]
 
 
-@pytest.mark.parametrize("call,args", ERROR_CASES)
-def test_errors_raise_the_cli_message(call, args):
+@pytest.mark.parametrize("call,args,python_call", ERROR_CASES)
+def test_errors_raise_the_cli_message(call, args, python_call):
     proc = run_cli(["run", *args], check=False)
     assert proc.returncode == 2 and proc.stdout == ""
     with pytest.raises(whatnext.InputError) as err:
         call()
-    assert proc.stderr == f"whatnext: error: {err.value}\n"
+    cli = proc.stderr.removeprefix("whatnext: error: ").removesuffix("\n")
+    if python_call is not None:
+        assert cli.startswith("--set")
+        cli = python_call + cli[cli.index(":"):]
+    assert str(err.value) == cli
     assert isinstance(err.value, ValueError)
 
 
@@ -248,3 +262,177 @@ def test_the_documented_python_runs(page, tmp_path, monkeypatch):
             continue
         exec(compile(block, page, "exec"), space)
     assert space["run"].outcome.sentence == "lid open at 0.820 s"  # as the comments say
+
+
+# --- Ctrl-C, pickle and copy, read-only columns, messages in Python's words (issue 22) ----------
+
+SLOW_RUN = """
+import sys, time
+import whatnext
+# About 10^8 Euler steps: half a minute of work, ended by SIGINT long before.
+m = whatnext.example(3).set({"run.integrator": "euler", "run.step": 1e-7, "run.t_max": 10.0, "run.output_step": 0.01})
+print("running", flush=True)
+try:
+    whatnext.simulate(m, samples=sys.argv[1] == "samples")
+except KeyboardInterrupt:
+    print("KeyboardInterrupt", flush=True)
+    sys.exit(3)
+print("finished", flush=True)
+"""
+
+
+@pytest.mark.parametrize("samples", ["samples", "events-only"])
+def test_ctrl_c_stops_simulate(samples):
+    # SIGINT to a process in a long simulate(): it must end with KeyboardInterrupt at once, not when
+    # the run is done. The time is from the signal to the process's exit (interpreter shutdown too).
+    import subprocess
+    import sys
+    import time
+
+    proc = subprocess.Popen([sys.executable, "-c", SLOW_RUN, samples], stdout=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "running"
+        time.sleep(0.5)  # well inside the run
+        t0 = time.perf_counter()
+        proc.send_signal(signal.SIGINT)
+        out, _ = proc.communicate(timeout=20)
+        elapsed = time.perf_counter() - t0
+    finally:
+        proc.kill()
+    assert out.strip() == "KeyboardInterrupt" and proc.returncode == 3
+    assert elapsed < 0.5, f"simulate() took {elapsed:.2f} s to stop after Ctrl-C"
+
+
+def test_runs_without_samples_have_the_same_events():
+    # samples=False runs with an observer (for Ctrl-C) sampled only at the start and the end: the
+    # events must be those of the run with samples, to the last bit.
+    for m in (whatnext.example(1), whatnext.example(4), whatnext.example(3).set("run.integrator", "rk4")):
+        a, b = whatnext.simulate(m), whatnext.simulate(m, samples=False)
+        assert a.events == b.events and a.outcome == b.outcome and a.timeline() == b.timeline()
+
+
+def test_machines_and_runs_pickle_and_copy(tmp_path):
+    import copy
+    import pickle
+
+    path = tmp_path / "mäschine.toml"
+    path.write_text((EXAMPLES / "example2.toml").read_text())
+    machines = [whatnext.example(1), whatnext.load(path).set({"masses.sandbag": 0.9, "radio.enabled": True}),
+                whatnext.machine(geometry={"hinge_offset": (0.713, 0.363)}), whatnext.example("radio")]
+    for m in machines:
+        for again in (pickle.loads(pickle.dumps(m)), copy.copy(m), copy.deepcopy(m)):
+            assert isinstance(again, whatnext.Machine)
+            assert (again.to_toml(), again.source, again.inputs) == (m.to_toml(), m.source, m.inputs)
+        # The unpickled machine names its values as before: a rule broken later says where it came from.
+        with pytest.raises(whatnext.InputError) as a:
+            m.set("geometry.rope_length", 0.1)
+        with pytest.raises(whatnext.InputError) as b:
+            pickle.loads(pickle.dumps(m)).set("geometry.rope_length", 0.1)
+        assert str(a.value) == str(b.value)
+    run = whatnext.simulate(machines[1].set("run.t_max", 2.0))
+    for again in (pickle.loads(pickle.dumps(run)), copy.copy(run), copy.deepcopy(run)):
+        assert again.events == run.events and again.outcome == run.outcome
+        assert again.timeline() == run.timeline() and again.to_toml() == run.to_toml()
+        assert list(again.samples) == list(run.samples)
+        for name, column in run.samples.items():
+            assert np.array_equal(again.samples[name], column), name
+            assert not again.samples[name].flags.writeable, name
+    # A file that no longer exists is no matter: the machine carries its values.
+    blob = pickle.dumps(machines[1])
+    path.unlink()
+    assert pickle.loads(blob).to_toml() == machines[1].to_toml()
+
+
+def test_sample_columns_are_read_only():
+    run = whatnext.simulate(whatnext.example(1))
+    for name, column in run.samples.items():
+        with pytest.raises(ValueError, match="read-only"):
+            column[0] = column[1]
+    mine = np.array(run.samples["x_m"])  # a copy is the user's to change
+    mine[0] = 1.0
+
+
+def python_words(call, expected_start):
+    """The InputError of call(): one line, in Python's words (never the command line's)."""
+    with pytest.raises(whatnext.InputError) as err:
+        call()
+    text = str(err.value)
+    assert text.startswith(expected_start), text
+    assert "--set" not in text and "Invoked with" not in text and "\n" not in text
+    return text
+
+
+def test_messages_in_python_words():
+    m = whatnext.example(1)
+    python_words(lambda: m.set("geometry.rope_length", 0.1),
+                 "set('geometry.rope_length', 0.1): geometry.rope_length is shorter than")
+    python_words(lambda: m.set("geometry.rope_lenght", 1),
+                 "set('geometry.rope_lenght', 1): unknown key 'geometry.rope_lenght' (did you mean 'geometry.rope_length'?)")
+    python_words(lambda: m.set({"masses.lid": -0.5}), "set('masses.lid', -0.5): masses.lid")
+    python_words(lambda: m.set("radio.enabled", "yes"), "set('radio.enabled', 'yes'): radio.enabled must be true or false")
+    python_words(lambda: m.set("run.impact_law", "elastic"), "set('run.impact_law', 'elastic'): ")
+    python_words(lambda: whatnext.simulate(whatnext.example(3), output_step=1e-9), "simulate(output_step=1e-09): ")
+    python_words(lambda: whatnext.machine({"start.lid_angle": 95}), "machine({'start.lid_angle': 95}): start.lid_angle")
+    python_words(lambda: whatnext.machine(masses={"lid": 0}), "machine({'masses.lid': 0}): masses.lid")
+    # numpy values: a 0-d array is a number, numpy scalars are numbers, named as plain Python.
+    assert m.set("geometry.rope_length", np.array(0.7)).inputs["geometry.rope_length"] == 0.7
+    assert m.set("geometry.rope_length", np.float32(0.75)).inputs["geometry.rope_length"] == float(np.float32(0.75))
+    python_words(lambda: m.set("geometry.rope_length", np.array(0.1)), "set('geometry.rope_length', 0.1): ")
+    python_words(lambda: m.set("geometry.rope_length", 2**70), "set('geometry.rope_length', 1180591620717411303424): ")
+    python_words(lambda: m.set("masses.lid", float("nan")), "set('masses.lid', nan): masses.lid must be a finite number")
+    python_words(lambda: m.set("run.impact_law", "rope\nx"), "run.impact_law: the text must be one line")
+
+
+@pytest.mark.parametrize("call,words", [
+    (lambda: whatnext.example(1).set("geometry.rope_length", 0.7 + 0.1j), "geometry.rope_length: a real number"),
+    (lambda: whatnext.example(1).set("geometry.rope_length", np.complex128(0.7)), "geometry.rope_length: a real number"),
+    (lambda: whatnext.example(1).set("geometry.hinge_offset", (0.7, 1j)), "geometry.hinge_offset"),
+    (lambda: whatnext.example(1).set("geometry.rope_length", object()), "geometry.rope_length: a number"),
+    (lambda: whatnext.example(1).set("geometry.rope_length", b"0.7"), "geometry.rope_length: a number"),
+    (lambda: whatnext.example(1).set(7, 0.7), "set(key, value): a key is text"),
+    (lambda: whatnext.example(1).set({("a", "b"): 0.7}), "set(mapping): a key is text"),
+    (lambda: whatnext.example(1).set("geometry.rope_length"), "set('geometry.rope_length', value): the value is missing"),
+    (lambda: whatnext.example(1.9), "example(n): n is a whole number 1-4 or a name"),
+    (lambda: whatnext.example(True), "example(n): n is a whole number"),
+    (lambda: whatnext.example(None), "example(n): n is a whole number"),
+    (lambda: whatnext.machine([("geometry.rope_length", 0.7)]), "machine(keys): a dict"),
+    (lambda: whatnext.load(3), "load(path): a file name"),
+    (lambda: whatnext.simulate(whatnext.example(1), t_max="long"), None),
+    (lambda: whatnext.simulate(whatnext.example(1), t_max=1j), "run.t_max: a real number"),
+])
+def test_wrong_types_raise_type_error_naming_the_input(call, words):
+    with pytest.raises(TypeError) if words else pytest.raises(whatnext.InputError) as err:
+        call()
+    text = str(err.value)
+    if words:
+        assert text.startswith(words), text
+    else:
+        assert text.startswith("simulate(t_max='long'): run.t_max must be a number"), text
+    assert "Invoked with" not in text and "--set" not in text
+
+
+def test_examples_by_number_and_by_name():
+    python_words(lambda: whatnext.example(2**70), "example(1180591620717411303424): the paper has examples 1 to 4")
+    python_words(lambda: whatnext.example(5), "example(5): the paper has examples 1 to 4")
+    python_words(lambda: whatnext.example(0), "example(0): ")
+    python_words(lambda: whatnext.example("radoi"), "example('radoi'): no shipped machine of that name (did you mean 'radio'?)")
+    assert whatnext.example(np.int64(2)).to_toml() == whatnext.example(2).to_toml()
+    # Every machine file of examples/ ships with the module, by name; "radio" is example1-radio.
+    names = whatnext.examples()
+    assert {"radio", "example1", "example2", "example3", "example4", "example1-radio"} <= set(names)
+    assert {p.stem for p in EXAMPLES.glob("*.toml")} <= set(names)
+    for p in EXAMPLES.glob("*.toml"):
+        assert whatnext.example_path(p.stem).read_bytes() == p.read_bytes()
+        assert whatnext.example(p.stem).to_toml() == whatnext.load(p).to_toml()
+    assert whatnext.example("example2").to_toml() == whatnext.example(2).to_toml()
+    radio = whatnext.example("radio")
+    assert radio.source == "example1-radio.toml"
+    assert whatnext.simulate(radio, samples=False).outcome.type == "radio_on"
+
+
+def test_event_of_an_unknown_name_raises():
+    run = whatnext.simulate(whatnext.example(1), samples=False)
+    assert run.event("radio_on") is None  # a real event this run did not have
+    python_words(lambda: run.event("lid_opn"), "event('lid_opn'): no event is called that (did you mean 'lid_open'?)")
+    with pytest.raises(TypeError):
+        run.event(3)

@@ -168,3 +168,225 @@ def test_ctrl_c_stops_a_sweep():
     finally:
         timer.cancel()
     assert time.perf_counter() - t0 < 0.5 * n / rate
+
+
+SLOW_SWEEP = """
+import sys
+import numpy as np
+import whatnext
+print("running", flush=True)
+try:
+    whatnext.sweep(whatnext.example(2), {"geometry.rope_length": np.linspace(0.62, 0.9, 1_000),
+                                         "masses.sandbag": np.linspace(0.2, 2.0, 200)}, threads=2)
+except KeyboardInterrupt:
+    print("KeyboardInterrupt", flush=True)
+    sys.exit(3)
+print("finished", flush=True)
+"""
+
+
+def test_ctrl_c_ends_a_sweep_at_once():
+    # 200,000 machines (several seconds or more); SIGINT must end the process with KeyboardInterrupt
+    # within half a second: the sweep checks twenty times a second and each machine takes about a
+    # millisecond. The time is from the signal to the process's exit.
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-c", SLOW_SWEEP], stdout=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "running"
+        time.sleep(1.0)
+        t0 = time.perf_counter()
+        proc.send_signal(signal.SIGINT)
+        out, _ = proc.communicate(timeout=30)
+        elapsed = time.perf_counter() - t0
+    finally:
+        proc.kill()
+    assert out.strip() == "KeyboardInterrupt" and proc.returncode == 3
+    assert elapsed < 0.5, f"the sweep took {elapsed:.2f} s to stop after Ctrl-C"
+
+
+# --- the CSV, the size guard, read-only columns, messages (issue 22) -------------------------------
+
+def test_to_csv_is_the_cli_csv_byte_for_byte(tmp_path):
+    # A grid with invalid machines, a Latin hypercube, and errors quoting a non-ASCII file name.
+    machine = tmp_path / "mäschine.toml"
+    machine.write_text((EXAMPLES / "example2.toml").read_text())
+    cases = [
+        (["--example", 2, *[a for k, (lo, hi, n) in RANGES.items() for a in ("--vary", f"{k}={lo}:{hi}:{n}")]],
+         lambda: whatnext.sweep(whatnext.example(2), {k: whatnext.grid(*r) for k, r in RANGES.items()})),
+        (["--example", 1, "--samples", 30, "--seed", 5, "--vary", "start.sandbag_height=0.3:1.5",
+          "--vary", "geometry.rope_length=0.3:0.9"],
+         lambda: whatnext.sweep(whatnext.example(1), {"start.sandbag_height": (0.3, 1.5),
+                                                      "geometry.rope_length": (0.3, 0.9)}, samples=30, seed=5)),
+        ([machine, "--vary", "geometry.hinge_distance=0.8:1.2:3"],
+         lambda: whatnext.sweep(whatnext.load(machine), {"geometry.hinge_distance": whatnext.grid(0.8, 1.2, 3)})),
+    ]
+    for i, (args, call) in enumerate(cases):
+        out = tmp_path / f"cli{i}.csv"
+        run_cli(["sweep", *args, "--out", out])
+        mine = tmp_path / f"py{i}.csv"
+        result = call()
+        assert result.to_csv(mine) is None
+        assert mine.read_bytes() == out.read_bytes(), args
+        assert result.to_csv() == out.read_text(encoding="utf-8")
+    assert not [p for p in tmp_path.iterdir() if p.name.endswith(".part")]
+
+
+def test_to_csv_replaces_a_file_only_when_complete(tmp_path):
+    out = tmp_path / "s.csv"
+    out.write_text("the user's old file\n")
+    s = whatnext.sweep(whatnext.example(2), {"geometry.rope_length": [0.7, 0.8]})
+    with pytest.raises(OSError):
+        s.to_csv(tmp_path / "no" / "such" / "dir.csv")
+    assert out.read_text() == "the user's old file\n"
+    s.to_csv(out)
+    assert out.read_text().startswith("index,geometry.rope_length,outcome,")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.csv"]
+    plain = tmp_path / "plain"
+    plain.write_text("")  # the permissions any new file gets here
+    s.to_csv(tmp_path / "new.csv")
+    assert (tmp_path / "new.csv").stat().st_mode == plain.stat().st_mode
+
+
+def test_sweep_columns_are_read_only():
+    axis = np.linspace(0.62, 0.9, 4)
+    s = whatnext.sweep(whatnext.example(2), {"geometry.rope_length": axis})
+    for name, column in s.items():
+        assert not column.flags.writeable, name
+        with pytest.raises(ValueError, match="read-only"):
+            column[0] = column[-1]
+    assert not s.axes["geometry.rope_length"].flags.writeable
+    axis[0] = 0.5  # the caller's own array is neither frozen nor shared
+    assert s.axes["geometry.rope_length"][0] == 0.62
+
+
+def test_large_sweeps_need_force_large():
+    m = whatnext.example(2)
+    with pytest.raises(whatnext.InputError, match=r"^sweep: 1001000 machines would hold at least .* GB in memory; "
+                                                  r"use fewer, or pass force_large=True$"):
+        whatnext.sweep(m, {"geometry.rope_length": np.linspace(0.62, 0.9, 1001), "masses.sandbag": np.linspace(0.2, 2, 1000)})
+    with pytest.raises(whatnext.InputError, match="force_large=True"):
+        whatnext.sweep(m, {"geometry.rope_length": (0.62, 0.9)}, samples=4_000_000)
+    with pytest.raises(whatnext.InputError, match="more than 20000000"):
+        whatnext.sweep(m, {"geometry.rope_length": np.zeros(5000), "masses.sandbag": np.zeros(5000)}, force_large=True)
+
+
+@pytest.mark.parametrize("kwargs,error,words", [
+    ({"threads": 2**40}, whatnext.InputError, "sweep: threads must be from 1 to 4096 (given 1099511627776)"),
+    ({"threads": 0}, whatnext.InputError, "sweep: threads must be from 1 to 4096 (given 0)"),
+    ({"threads": 1.5}, TypeError, "sweep: threads must be a whole number, not float 1.5"),
+    ({"samples": 10, "seed": -1}, whatnext.InputError, "sweep: seed must be from 0 to 18446744073709551615 (given -1)"),
+    ({"samples": 10, "seed": 2**70}, whatnext.InputError, "sweep: seed must be from 0"),
+    ({"samples": 0}, whatnext.InputError, "sweep: samples must be from 1 to 20000000 (given 0)"),
+    ({"samples": 2.5}, TypeError, "sweep: samples must be a whole number"),
+    ({"accuracy": "fine"}, TypeError, "sweep: accuracy must be a real number, not str 'fine'"),
+    ({"accuracy": 1e-8j}, TypeError, "sweep: accuracy must be a real number, not a complex number"),
+    ({"chunk": 10}, TypeError, "sweep: chunk= and progress= belong to a sweep on a Dask cluster"),
+])
+def test_bad_sweep_arguments_are_named(kwargs, error, words):
+    values = {"geometry.rope_length": (0.62, 0.9) if "samples" in kwargs else [0.7, 0.8]}
+    with pytest.raises(error) as err:
+        whatnext.sweep(whatnext.example(2), values, **kwargs)
+    assert str(err.value).startswith(words), str(err.value)
+    assert "Invoked with" not in str(err.value) and "--" not in str(err.value)
+
+
+@pytest.mark.parametrize("values,error,words", [
+    ({"geometry.rope_length": [0.7, 0.8 + 1j]}, TypeError, "sweep: geometry.rope_length needs real numbers"),
+    ({"geometry.rope_length": ["a", "b"]}, TypeError, "sweep: geometry.rope_length needs numbers"),
+    ({"geometry.rope_length": [True, False]}, TypeError, "sweep: geometry.rope_length needs numbers"),
+    ({"geometry.rope_length": [[0.7, 0.8]]}, whatnext.InputError, "sweep: geometry.rope_length needs a one-dimensional"),
+    ({"geometry.rope_lenght": [0.7]}, whatnext.InputError,
+     "sweep: unknown key 'geometry.rope_lenght' (did you mean 'geometry.rope_length'?)"),
+    ({"run.impact_law": [1.0]}, whatnext.InputError, "sweep: run.impact_law is not a single number"),
+    ({3: [0.7]}, TypeError, "sweep(machine, values): a key is text"),
+])
+def test_bad_sweep_values_are_named(values, error, words):
+    with pytest.raises(error) as err:
+        whatnext.sweep(whatnext.example(2), values)
+    assert str(err.value).startswith(words), str(err.value)
+
+
+def test_latin_hypercube_pairs_are_checked():
+    m = whatnext.example(1)
+    with pytest.raises(TypeError, match=r"^sweep\(samples=...\): masses.lid needs a pair \(a, b\)"):
+        whatnext.sweep(m, {"masses.lid": [0.2, 0.5, 1.0]}, samples=5)
+    with pytest.raises(whatnext.InputError, match=r"^sweep: masses.lid needs finite a <= b \(given \(1.0, 0.2\)\)"):
+        whatnext.sweep(m, {"masses.lid": (1.0, 0.2)}, samples=5)
+    with pytest.raises(TypeError, match=r"^sweep: masses.lid: a must be a real number, not a complex number"):
+        whatnext.sweep(m, {"masses.lid": (0.2j, 1.0)}, samples=5)
+
+
+def test_sweeps_pickle():
+    import copy
+    import pickle
+
+    s = whatnext.sweep(whatnext.example(2), {"geometry.rope_length": [0.6, 0.7, 0.8], "masses.sandbag": [0.5, 1.0]})
+    for again in (pickle.loads(pickle.dumps(s)), copy.deepcopy(s)):
+        assert again.to_csv() == s.to_csv() and again.shape == s.shape
+        assert all(not c.flags.writeable for c in again.values())
+
+
+# --- on a Dask cluster (issue 23) ------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def dask_client():
+    # Two worker processes of one thread each, as a small cluster would have: the machines, the
+    # module and the results cross process boundaries by pickle, as over a network.
+    import logging
+
+    from distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                      silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
+        yield client
+
+
+def test_a_dask_sweep_equals_the_local_one(dask_client, tmp_path):
+    m = whatnext.example(2)
+    grid_values = {k: whatnext.grid(*r) for k, r in RANGES.items()}
+    lhs_values = {"start.sandbag_height": (0.3, 1.5), "geometry.rope_length": (0.3, 0.9)}
+    for values, kwargs in ((grid_values, {}), (lhs_values, {"samples": 101, "seed": 9}),
+                           (grid_values, {"accuracy": None})):
+        local = whatnext.sweep(m, values, **kwargs)
+        seen = []
+        remote = whatnext.sweep(m, values, client=dask_client, chunk=7,
+                                progress=lambda done, total: seen.append((done, total)), **kwargs)
+        assert remote.shape == local.shape and list(remote) == list(local)
+        for name in local:
+            assert remote[name].dtype == local[name].dtype, name
+            assert np.array_equal(remote[name], local[name], equal_nan=local[name].dtype.kind == "f"), name
+            assert not remote[name].flags.writeable
+        local.to_csv(tmp_path / "local.csv")
+        remote.to_csv(tmp_path / "remote.csv")
+        assert (tmp_path / "remote.csv").read_bytes() == (tmp_path / "local.csv").read_bytes()
+        n = len(local["index"])
+        assert len(seen) == -(-n // 7) and seen[-1] == (n, n)
+        assert [d for d, _ in seen] == sorted(d for d, _ in seen)
+    # The default chunk, and the same messages as a local sweep for bad arguments.
+    assert whatnext.sweep(m, grid_values, client=dask_client).to_csv() == whatnext.sweep(m, grid_values).to_csv()
+    with pytest.raises(whatnext.InputError, match="sweep: chunk must be from 1 to 45"):
+        whatnext.sweep(m, grid_values, client=dask_client, chunk=0)
+
+
+def test_a_lost_worker_s_chunks_run_again(dask_client):
+    # One worker process is killed while the sweep runs (as a machine of a cluster may die): Dask
+    # runs its chunks again on the other, and the result is still every machine's, exactly.
+    import os as os_
+
+    m = whatnext.example(2)
+    values = {"geometry.rope_length": whatnext.grid(0.62, 1.0, 120), "masses.sandbag": whatnext.grid(0.2, 2.0, 100)}
+    pids = dask_client.run(os_.getpid)
+    victim = max(pids.values())
+    killed = []
+
+    def progress(done, total):
+        if not killed:
+            os_.kill(victim, signal.SIGKILL)
+            killed.append(done)
+
+    remote = whatnext.sweep(m, values, client=dask_client, chunk=400, progress=progress)
+    assert killed and killed[0] < 12_000  # the kill came while chunks were still to run
+    assert victim not in dask_client.run(os_.getpid).values()
+    assert remote.to_csv() == whatnext.sweep(m, values).to_csv()

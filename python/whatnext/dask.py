@@ -1,0 +1,90 @@
+"""Sweeps on a Dask cluster: the same sweep as :func:`whatnext.sweep`, run in chunks on the workers.
+
+Use it through ``whatnext.sweep(machine, values, client=client)``, with a
+``dask.distributed.Client`` (Debian's ``python3-distributed``)::
+
+    from dask.distributed import Client, LocalCluster
+    import whatnext
+
+    with LocalCluster(n_workers=2, threads_per_worker=1) as cluster, Client(cluster) as client:
+        s = whatnext.sweep(whatnext.example(2), {"geometry.rope_length": whatnext.grid(0.62, 1.0, 400),
+                                                 "masses.sandbag": whatnext.grid(0.2, 2.0, 300)},
+                           client=client, progress=True)
+    s.to_csv("sweep.csv")        # the same bytes as the same sweep run locally, or by `whatnext sweep`
+
+The sweep is cut into chunks of consecutive machines. Each chunk is one Dask task: it carries the
+machine (its input values, a few kB), the values per key (a grid) or its own rows of a Latin
+hypercube, runs its machines in C++ on the worker with the GIL released, and sends back their
+columns (about 200 bytes per machine). Each machine's row depends only on the machine, never on
+where or with what it ran, so the result equals the local sweep's to the last bit. A chunk lost
+with its worker is run again by Dask on another worker; one that raises is retried twice. The
+workers must be able to ``import whatnext``: the same build of the module on every machine of the
+cluster (PYTHONPATH), as docs/explore.md says.
+"""
+
+import math
+import sys
+from typing import Any, Callable, Dict, List, Optional, Union
+
+import numpy as np
+
+from . import Sweep, _Plan, _whole
+
+__all__ = ["run", "chunk_size"]
+
+
+def _run_chunk(plan: _Plan, start: int, stop: int, threads: int) -> Dict[str, np.ndarray]:
+    """One task: machines start..stop-1, on the worker; their columns go back to the client."""
+    return plan.run(start, stop, threads)
+
+
+def chunk_size(machines: int, worker_threads: int) -> int:
+    """The default chunk: about eight chunks per worker thread (so that a slow chunk or a lost
+    worker delays the end by little), at least 200 machines (a task's own cost, a few milliseconds,
+    stays below a tenth of its run) and at most 50,000 (about 10 MB of results per task)."""
+    return int(min(50_000, max(2_000, math.ceil(machines / (8 * max(1, worker_threads))))))
+
+
+def run(plan: _Plan, client: Any, *, chunk: Optional[int] = None, threads: Optional[int] = None,
+        progress: Union[bool, Callable[[int, int], None]] = False) -> Sweep:
+    """Runs a checked sweep (whatnext.sweep's plan) on the client's cluster; see the module's help."""
+    from distributed import as_completed  # only here: Dask is needed only for sweeps on a cluster
+
+    n = plan.size
+    worker_threads = sum(client.nthreads().values())
+    size = chunk_size(n, worker_threads) if chunk is None else _whole("sweep: chunk", chunk, 1, n)
+    # Threads per chunk: one by default, as every worker thread runs a chunk of its own.
+    per_chunk = 1 if threads is None else _whole("sweep: threads", threads, 1, 4096)
+    bounds = [(a, min(n, a + size)) for a in range(0, n, size)]
+    futures = [client.submit(_run_chunk, plan.part(a, b), a, b, per_chunk, pure=False, retries=2)
+               for a, b in bounds]
+    where = {f.key: i for i, f in enumerate(futures)}
+    parts: List[Optional[Dict[str, np.ndarray]]] = [None] * len(bounds)
+    done = 0
+    report = _reporter(progress)
+    try:
+        for future, columns in as_completed(futures, with_results=True):
+            i = where[future.key]
+            parts[i] = columns
+            done += bounds[i][1] - bounds[i][0]
+            report(done, n)
+            future.release()
+    except BaseException:
+        client.cancel(futures)  # Ctrl-C or a chunk that failed for good: the others stop too
+        raise
+    names = list(parts[0]) if parts else []
+    columns = {name: np.concatenate([p[name] for p in parts]) for name in names}  # type: ignore[index]
+    return Sweep(plan.keys, columns, plan.axes)
+
+
+def _reporter(progress: Union[bool, Callable[[int, int], None]]) -> Callable[[int, int], None]:
+    if callable(progress):
+        return progress
+    if not progress:
+        return lambda done, total: None
+
+    def show(done: int, total: int) -> None:
+        end = "\n" if done == total else ""
+        print(f"\rsweep: {done} of {total} machines ({100 * done / total:.0f} %)", end=end, file=sys.stderr,
+              flush=True)
+    return show
