@@ -39,8 +39,11 @@
   const kSliderSteps = 1000;
 
   const number = (x) => String(Number(x.toPrecision(12)));
+  // A decimal comma, as German and most of Europe write numbers ("0,7"), is a point to the library.
+  const point = (text) => (/^\s*[-+]?\d*,\d+([eE][-+]?\d+)?\s*$/.test(text) ? text.replace(',', '.') : text);
   const rounded = (x) => String(Number(x.toPrecision(6)));  // for values the page works out
-  const words = (key) => key.slice(key.indexOf('.') + 1).replace(/_/g, ' ');
+  const S = window.whatnextStrings;
+  const words = (key) => S.keyName(key, key.slice(key.indexOf('.') + 1).replace(/_/g, ' '));
 
   function element(tag, attrs, ...children) {
     const e = document.createElement(tag);
@@ -57,7 +60,7 @@
     const groups = kGroups.map((g) => {
       const details = element('details', { class: 'group' });
       if (!g.closed) details.open = true;
-      details.append(element('summary', { text: g.title }));
+      details.append(element('summary', { text: S.t(g.title) }));
       form.append(details);
       return { ...g, details };
     });
@@ -66,7 +69,7 @@
       const group = groups.find((g) => g.match(spec.key));
       const section = spec.key.slice(0, spec.key.indexOf('.'));
       if (group.closed && group.section !== section) {  // the extensions, by the part they change
-        group.details.append(element('h3', { text: kSections[section] || section }));
+        group.details.append(element('h3', { text: S.t(kSections[section] || section) }));
         group.section = section;
       }
       group.details.append(makeField(spec));
@@ -78,7 +81,7 @@
       const label = element('label', { for: id },
                             element('span', { class: 'name', text: words(key) }),
                             spec.unit ? element('span', { class: 'unit', text: spec.unit.replace('^2', '²').replace('^3', '³') }) : null);
-      const reset = element('button', { type: 'button', class: 'reset', title: 'back to the machine as loaded',
+      const reset = element('button', { type: 'button', class: 'reset', title: S.t('back to the machine as loaded'),
                                         'aria-label': `reset ${key}` });
       reset.textContent = '↺';
       const row = element('div', { class: 'inputs' });
@@ -95,7 +98,7 @@
         const box = element('input', { id, type: 'checkbox' });
         box.addEventListener('change', () => send(box.checked ? 'true' : 'false', true));
         field.inputs.push(box);
-        row.append(box, element('span', { class: 'flag-words', text: 'on' }));
+        row.append(box, element('span', { class: 'flag-words', text: S.t('on') }));
       } else if (spec.kind === 'pair') {
         for (const [i, part] of ['dx', 'dh'].entries()) {
           const input = element('input', { id: i ? `${id}-dh` : id, type: 'text', inputmode: 'decimal',
@@ -104,7 +107,7 @@
           row.append(element('span', { class: 'part', text: part }), input);
         }
         const pairText = () => {
-          const [a, b] = field.inputs.map((inp) => inp.value.trim() || inp.placeholder);
+          const [a, b] = field.inputs.map((inp) => point(inp.value.trim()) || inp.placeholder);
           return field.inputs.every((inp) => !inp.value.trim()) ? null : `[${a}, ${b}]`;
         };
         for (const input of field.inputs) {
@@ -114,11 +117,11 @@
       } else {
         const input = element('input', { id, type: 'text', inputmode: 'decimal', size: 9 });
         const moveSlider = () => {
-          const v = Number(input.value.trim() || input.placeholder);
+          const v = Number(point(input.value.trim()) || input.placeholder);
           if (field.slider && input.value.trim() !== '' && Number.isFinite(v)) field.slider.value = String(Math.round(field.toSlider(v)));
         };
-        input.addEventListener('input', () => { moveSlider(); send(input.value.trim() || null, false); });
-        input.addEventListener('change', () => send(input.value.trim() || null, true));
+        input.addEventListener('input', () => { moveSlider(); send(point(input.value.trim()) || null, false); });
+        input.addEventListener('change', () => send(point(input.value.trim()) || null, true));
         field.inputs.push(input);
         row.append(input);
         if (kNumberKinds.includes(spec.kind) && kRanges[key]) {
@@ -138,7 +141,7 @@
       field.error.hidden = true;
       root.append(label, row, reset);
       if (field.slider) root.append(field.slider);
-      root.append(element('p', { class: 'help' }, spec.help + ' ', element('code', { text: key })), field.error);
+      root.append(element('p', { class: 'help' }, S.keyHelp(key, spec.help) + ' ', element('code', { text: key })), field.error);
       fields.set(key, field);
       return root;
     }
