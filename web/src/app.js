@@ -20,10 +20,14 @@
   const waiting = new Map();  // id -> resolve
   const progress = { since: 0, t: null, tMax: null, timer: null };
 
-  function startWorker() {
+  function makeWorker() {
     const inlined = document.getElementById('worker-source');  // the single-file page
-    worker = inlined ? new Worker(URL.createObjectURL(new Blob([inlined.textContent], { type: 'text/javascript' })))
-                     : new Worker('worker.js');
+    return inlined ? new Worker(URL.createObjectURL(new Blob([inlined.textContent], { type: 'text/javascript' })))
+                   : new Worker('worker.js');
+  }
+
+  function startWorker() {
+    worker = makeWorker();
     return new Promise((resolve, reject) => {
       worker.onmessage = (e) => {
         const d = e.data;
@@ -45,7 +49,7 @@
     });
   }
 
-  function ask(fn, input, tMax = null) {
+  function ask(fn, input, tMax = null, quiet = false) {
     return new Promise((resolve) => {
       const id = nextId++;
       waiting.set(id, (r) => {
@@ -55,7 +59,7 @@
         resolve(r);
       });
       worker.postMessage({ id, fn, input });
-      showProgressSoon(tMax);
+      if (!quiet) showProgressSoon(tMax);
     });
   }
 
@@ -109,7 +113,15 @@
   // Longest first, so that a message naming balloon.drag_coefficient is not read as balloon.drag.
   const keyNames = keys.map((k) => k.key).sort((a, b) => b.length - a.length);
   const kHoldMs = 1000;
-  const kMaxFileBytes = 1 << 20;  // the command line reads machine files of at most 1 MiB  // an event's frame stays this long when playing
+  const kMaxFileBytes = 1 << 20;
+  // What each shipped machine shows (its comment in examples/), for the machine choice.
+  const kPresetWhat = {
+    example1: 'one hard pull of the rope opens the lid',
+    example2: 'the taut rope pulls the lid open',
+    example3: 'sandbag on the level seesaw: the lid never opens',
+    example4: 'a hard hit throws the lid up; it never opens',
+    radio: 'the balloon switches the radio on',
+  };  // the command line reads machine files of at most 1 MiB  // an event's frame stays this long when playing
   const icon = (d) => `<svg viewBox="0 0 24 24" aria-hidden="true"><path d="${d}"/></svg>`;
   const kPlayIcon = `${icon('M7 4v16l13-8z')} ${T('Play')}`, kPauseIcon = `${icon('M6 4h4v16H6zM14 4h4v16h-4z')} ${T('Pause')}`;
 
@@ -139,17 +151,45 @@
   }
   async function pump() {
     queue.busy = true;
-    while (queue.next) {
-      const job = queue.next;
-      queue.next = null;
-      try {
-        await job();
-      } catch (e) {
-        console.error(e);
+    for (;;) {
+      while (queue.next) {
+        const job = queue.next;
+        queue.next = null;
+        try {
+          await job();
+        } catch (e) {
+          console.error(e);
+        }
       }
+      if (!queue.next) break;
     }
     queue.busy = false;
     document.body.dataset.busy = 'false';
+    checkSliders();
+  }
+
+  // Where the sliders reach values the library refuses, for the machine as it now stands: a
+  // second worker checks ~1,200 inputs (no runs, most of a second), so that the runs never wait.
+  let checker = null, checkedFor = null, checking = false;
+  function checkSliders() {
+    const machine = JSON.stringify([st.base.id, st.base.toml, [...st.good]]);
+    if (!st.run || checkedFor === machine || checking) return;
+    checkedFor = machine;
+    checking = true;
+    if (!checker) checker = makeWorker();
+    const t0 = performance.now();
+    checker.onmessage = (e) => {
+      if (e.data.id !== 'validity') return;
+      checking = false;
+      document.body.dataset.validityMs = String(Math.round(performance.now() - t0));
+      const valid = e.data.result;
+      if (valid && valid.ok !== false && checkedFor === machine) {
+        panel.showValidity(valid);
+        document.body.dataset.checked = machine;
+      }
+      checkSliders();  // the machine changed meanwhile
+    };
+    checker.postMessage({ id: 'validity', fn: 'validity', input: { input: inputFor(st.base, st.good), probes: panel.probes() } });
   }
 
   // ---- running the library --------------------------------------------------------------------
@@ -402,6 +442,13 @@
         const cell = note.insertCell();
         cell.colSpan = 6;
         cell.textContent = cells.slice(6).join(' ');
+        // A negative energy is no error: the potential's zero is at the pivot's height.
+        if (/-\d/.test(cell.textContent)) {
+          const why = document.createElement('span');
+          why.className = 'why';
+          why.textContent = ` (${T('Energy from the pivot\'s height: below it, potential energy is negative.')})`;
+          cell.append(why);
+        }
         note.addEventListener('click', go);
       }
     });
@@ -620,7 +667,7 @@
   function showPresetChoice() {
     const select = $('preset');
     select.textContent = '';
-    for (const p of presets) select.append(new Option(T(p.title), p.id));
+    for (const p of presets) select.append(new Option(kPresetWhat[p.id] ? `${T(p.title)}: ${T(kPresetWhat[p.id])}` : T(p.title), p.id));
     if (st.base.id === 'file') select.append(new Option(T('file: {name}', { name: st.base.title }), 'file'));
     select.value = st.base.id;
   }
@@ -941,8 +988,7 @@
   markStale(false);
   fitCanvas();
   commitChange();
-  queue.busy = false;
-  if (queue.next) pump(); else document.body.dataset.busy = 'false';
+  pump();  // what came meanwhile, and the sliders' valid ranges
   requestAnimationFrame(tick);
 
   // For the tests and the curious: the page's state and its mapping to the canvas.
@@ -950,6 +996,8 @@
     get time() { return st.t; },
     get run() { return st.run; },
     get sounds() { return sound.log; },
+    validity: (key) => panel.field(key).validity,
+    probes: (key) => panel.probes().find((p) => p.key === key).values,
     play: () => play(),
     seek: (t) => { pause(); seek(t); },
     stateAt: (t) => Machine.stateAt(st.run.samples, t),

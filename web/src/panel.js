@@ -37,6 +37,7 @@
   const kSections = { balloon: 'Balloon', radio: 'Radio', damping: 'Damping', seesaw: 'A seesaw with mass' };
   const kNumberKinds = ['length', 'mass', 'density', 'angle', 'time', 'acceleration', 'positive'];
   const kSliderSteps = 1000;
+  const kProbes = 40;  // slider positions checked for validity
 
   const number = (x) => String(Number(x.toPrecision(12)));
   // A decimal comma, as German and most of Europe write numbers ("0,7"), is a point to the library.
@@ -161,6 +162,49 @@
       return rounded(v.number);
     }
 
+    // The help of the field under the pointer or with the focus, in one box beside the panel
+    // where there is room (over the drawing, never over another field); on a narrow screen in the
+    // field itself, below its input, while it has the focus (a phone has no pointer to hover).
+    const tip = element('div', { class: 'help-tip', role: 'tooltip' });
+    tip.hidden = true;
+    document.body.append(tip);
+    let tipFor = null;
+    function showTip(field) {
+      const help = field.root.querySelector('.help');
+      const panelBox = form.getBoundingClientRect();
+      const room = window.innerWidth - panelBox.right;
+      field.root.classList.remove('help-inline');
+      if (room < 220) {  // no room beside the panel: inline, in the flow, with the focus only
+        tip.hidden = true;
+        tipFor = null;
+        if (field.root.contains(document.activeElement)) field.root.classList.add('help-inline');
+        return;
+      }
+      tip.textContent = '';
+      for (const n of help.childNodes) tip.append(n.cloneNode(true));
+      const r = field.root.getBoundingClientRect();
+      tip.style.left = `${panelBox.right + 12}px`;
+      tip.style.top = `${Math.max(4, r.top)}px`;
+      tip.style.maxWidth = `${Math.min(360, room - 24)}px`;
+      tip.hidden = false;
+      tipFor = field;
+    }
+    function hideTip(field) {
+      field.root.classList.remove('help-inline');
+      if (tipFor !== field) return;
+      const focused = field.root.contains(document.activeElement);
+      if (focused || field.root.matches(':hover')) return;
+      tip.hidden = true;
+      tipFor = null;
+    }
+    for (const field of fields.values()) {
+      field.root.addEventListener('mouseenter', () => showTip(field));
+      field.root.addEventListener('mouseleave', () => { hideTip(field); const f = [...fields.values()].find((x) => x.root.contains(document.activeElement)); if (f && tip.hidden) showTip(f); });
+      field.root.addEventListener('focusin', () => showTip(field));
+      field.root.addEventListener('focusout', () => setTimeout(() => hideTip(field), 0));
+    }
+    form.closest('section').addEventListener('scroll', () => { if (tipFor) showTip(tipFor); }, { passive: true });
+
     return {
       // Shows the run's inputs: what the machine file and the changes give, blank (with the
       // value it stands for in grey) where nothing is given. The field being typed in is left alone.
@@ -213,6 +257,34 @@
         }
       },
       field(key) { return fields.get(key); },
+      // The slider positions to ask the library about: kProbes values across each slider.
+      probes() {
+        const out = [];
+        for (const [key, field] of fields) {
+          if (!field.slider) continue;
+          const values = [];
+          for (let i = 0; i < kProbes; ++i) values.push(number(field.fromSlider((i + 0.5) * kSliderSteps / kProbes)));
+          out.push({ key, values });
+        }
+        return out;
+      },
+      // Where on its slider a value is refused (red hatching, with its range named in the help).
+      showValidity(valid) {
+        for (const [key, ok] of Object.entries(valid)) {
+          const field = fields.get(key);
+          if (!field || !field.slider) continue;
+          field.validity = ok;
+          const stops = [];
+          ok.forEach((good, i) => {
+            const a = (100 * i) / ok.length, b = (100 * (i + 1)) / ok.length;
+            const c = good ? 'transparent' : 'rgba(210,0,0,0.75)';
+            stops.push(`${c} ${a}%`, `${c} ${b}%`);
+          });
+          field.slider.style.setProperty('--refused', ok.every(Boolean) ? 'none' : `linear-gradient(to right, ${stops.join(', ')})`);
+          field.slider.classList.toggle('partly-invalid', !ok.every(Boolean));
+          field.slider.title = ok.every(Boolean) ? '' : S.t('red: values this machine refuses');
+        }
+      },
     };
   }
 

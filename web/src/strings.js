@@ -161,6 +161,12 @@
     'Example 1': 'Beispiel 1', 'Example 2': 'Beispiel 2', 'Example 3': 'Beispiel 3', 'Example 4': 'Beispiel 4',
     'Example 1 with the radio': 'Beispiel 1 mit dem Radio',
     'file: {name}': 'Datei: {name}',
+    'one hard pull of the rope opens the lid': 'ein harter Ruck am Seil öffnet den Deckel',
+    'the taut rope pulls the lid open': 'das straffe Seil zieht den Deckel auf',
+    'sandbag on the level seesaw: the lid never opens': 'Sandsack auf der waagrechten Wippe: der Deckel öffnet nie',
+    'a hard hit throws the lid up; it never opens': 'ein harter Schlag wirft den Deckel hoch; er öffnet nie',
+    'the balloon switches the radio on': 'der Ballon schaltet das Radio ein',
+    'Energy from the pivot\'s height: below it, potential energy is negative.': 'Energie ab der Höhe der Wippenachse: darunter ist die Lageenergie negativ.',
 
     // panel.js
     Geometry: 'Geometrie',
@@ -172,6 +178,7 @@
     Balloon: 'Ballon', Radio: 'Radio', Damping: 'Dämpfung', 'A seesaw with mass': 'Eine Wippe mit Masse',
     'back to the machine as loaded': 'zurück zur Maschine, wie sie geladen wurde',
     on: 'an',
+    'red: values this machine refuses': 'rot: Werte, die diese Maschine nicht annimmt',
     'valid from {lo} to {hi}': 'gültig von {lo} bis {hi}',
 
     // plots.js

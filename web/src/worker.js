@@ -41,6 +41,13 @@ function answer(wasm, fn, input) {
     }
     return times.sort((a, b) => a - b);
   }
+  if (fn === 'validity') {  // which slider positions the library accepts: {key: [true|false, ...]}
+    const out = {};
+    for (const { key, values } of input.probes) {
+      out[key] = values.map((v) => wasm.plan({ ...input.input, sets: [...input.input.sets, `${key}=${v}`] }).ok);
+    }
+    return out;
+  }
   if (!['run', 'toml', 'events', 'csv'].includes(fn)) return { ok: false, kind: 'error', message: `no function ${fn}` };
   return wasm[fn](input);
 }

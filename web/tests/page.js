@@ -144,7 +144,8 @@ function pageTimeline(page) {
     const out = [];
     for (const r of rows) {
       const cells = [...r.cells].map((c) => c.textContent);
-      if (r.classList.contains('note')) out[out.length - 1].push(...cells[0].split(' '));
+      // An impact's energy line, without the page's note on negative energies.
+      if (r.classList.contains('note')) out[out.length - 1].push(...r.cells[0].firstChild.textContent.split(' '));
       else out.push(cells);
     }
     return out;
@@ -1026,6 +1027,55 @@ const checks = {
       await page.waitForFunction(() => document.documentElement.lang === 'en' && document.body.dataset.ready);
       assert.match(await outcomeText(page), /^Outcome: lid open at /);
     }, { locale: 'de-DE', viewport: { width: 1366, height: 768 } });
+  },
+
+  // The sliders show where the machine is refused (asked of the library for the machine as it
+  // stands, checked here against the command line); a slider moved there marks the drawing as
+  // stale until a value runs again; a field's help never covers another field.
+  async sliders() {
+    await withPage(async (page) => {
+      await page.waitForSelector('body[data-checked]');
+      const key = 'geometry.rope_length';
+      const [valid, values] = await page.evaluate((k) => {
+        const probe = document.querySelector(`[data-key="${k}"] input.slider`);
+        return [window.whatnext.validity(k), window.whatnext.probes(k), probe];
+      }, key);
+      const bad = valid.indexOf(false), good = valid.indexOf(true);
+      assert.ok(bad >= 0 && good >= 0, `rope length: ${valid}`);
+      assert.equal(cli('run', '--example', '1', '--set', `${key}=${values[bad]}`, '-q').status, 2, `${values[bad]} m is refused`);
+      assert.equal(cli('run', '--example', '1', '--set', `${key}=${values[good]}`, '-q').status, 0, `${values[good]} m runs`);
+      const track = await page.evaluate((k) => getComputedStyle(document.querySelector(`[data-key="${k}"] input.slider`)).getPropertyValue('--refused'), key);
+      assert.match(track, /linear-gradient/);
+
+      // Into the refused range and back.
+      const slide = (p) => page.evaluate(([k, pos]) => {
+        const slider = document.querySelector(`[data-key="${k}"] input.slider`);
+        slider.value = String(pos);
+        slider.dispatchEvent(new Event('input', { bubbles: true }));
+        slider.dispatchEvent(new Event('change', { bubbles: true }));
+      }, [key, p]);
+      await slide(Math.round(1000 * (bad + 0.5) / valid.length));
+      await idle(page);
+      assert.ok(await page.evaluate(() => document.getElementById('layout').classList.contains('stale')), 'the drawing is marked stale');
+      assert.ok(await page.isVisible('#stale-note'));
+      await slide(Math.round(1000 * (good + 0.5) / valid.length));
+      await idle(page);
+      assert.equal(await page.evaluate(() => document.getElementById('layout').classList.contains('stale')), false);
+      assert.equal(await page.isVisible('#stale-note'), false);
+
+      // The help beside the panel, over no field.
+      await page.hover(fieldId('geometry.lid_half_length'));
+      await page.waitForSelector('.help-tip', { state: 'visible' });
+      const overlaps = await page.evaluate(() => {
+        const t = document.querySelector('.help-tip').getBoundingClientRect();
+        return [...document.querySelectorAll('.field')].filter((f) => {
+          const r = f.getBoundingClientRect();
+          return r.height > 0 && r.left < t.right && t.left < r.right && r.top < t.bottom && t.top < r.bottom;
+        }).map((f) => f.dataset.key);
+      });
+      assert.deepEqual(overlaps, [], 'the help covers fields');
+      assert.match(await page.textContent('.help-tip'), /geometry\.lid_half_length/);
+    }, { viewport: { width: 1366, height: 768 } });
   },
 
   // Not a test: how long one run of example 2 takes in the page, and a whole change (a rope
