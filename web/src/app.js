@@ -382,6 +382,7 @@
     st.view = null;
     showTimeline();
     $('outcome').textContent = T('Outcome: {sentence}.', { sentence: S.sentence(run.outcome.sentence) });
+    $('stage-outcome').textContent = $('outcome').textContent;  // on a phone, above the drawing
     const c = st.compare;
     $('compare-outcome').hidden = c.mode === 'none';
     if (c.mode === 'laws') {
@@ -395,7 +396,7 @@
         p.textContent = text;
         box.append(p);
       };
-      line('inherit', `${run.machine.run.impact_law}: ${S.sentence(run.outcome.sentence)}`);
+      line('var(--ink)', `${run.machine.run.impact_law}: ${S.sentence(run.outcome.sentence)}`);
       for (const o of c.runs) line(o.colour, `${o.label}: ${S.sentence(o.run.outcome.sentence)}`);
       if (c.message) line('var(--red)', c.message);
     } else {
@@ -441,7 +442,7 @@
         note.dataset.index = String(i);
         const cell = note.insertCell();
         cell.colSpan = 6;
-        cell.textContent = cells.slice(6).join(' ');
+        cell.textContent = cells.slice(6).join(' ').replace(/^energy /, `${T('energy')} `);
         // A negative energy is no error: the potential's zero is at the pivot's height.
         if (/-\d/.test(cell.textContent)) {
           const why = document.createElement('span');

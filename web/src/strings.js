@@ -186,6 +186,7 @@
     'φS seesaw': 'φS Wippe', 'φL lid': 'φL Deckel', sandbag: 'Sandsack', 'balloon centre': 'Ballonmitte', 'lid limit': 'Grenze durch den Deckel',
     'machine E': 'Maschine E', 'lost (impacts, damping)': 'verloren (Stöße, Dämpfung)', 'E + lost': 'E + verloren', 'rope tension': 'Seilkraft',
     dashed: 'gestrichelt',
+    energy: 'Energie',
     'each law in its colour: outlines in the drawing, dashes in the plots': 'jedes Gesetz in seiner Farbe: Umrisse in der Zeichnung, Striche in den Diagrammen',
   };
 

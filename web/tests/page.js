@@ -703,9 +703,9 @@ const checks = {
   // screenshots for the README (build/web-test/).
   async layout() {
     fs.mkdirSync(outDir, { recursive: true });
-    for (const [name, viewport, scale] of [['phone', { width: 390, height: 844 }, 3], ['projector', { width: 1920, height: 1080 }, 1],
+    for (const [name, viewport, scale] of [['phone-390', { width: 390, height: 844 }, 3], ['wide', { width: 1920, height: 1080 }, 1],
                                            ['small-projector', { width: 1280, height: 720 }, 1],
-                                           ['desktop', { width: 1400, height: 900 }, 1]]) {
+                                           ['desktop', { width: 1400, height: 900 }, 1], ['desktop-1366', { width: 1366, height: 768 }, 1]]) {
       await withPage(async (page) => {
         // The timeline's columns whole, even with example 3's sandbag 1929.5922 m out.
         const before = await runs(page);
@@ -721,7 +721,7 @@ const checks = {
         const fits = await page.evaluate(() => document.documentElement.scrollWidth <= window.innerWidth);
         assert.ok(fits, `${name}: the page is wider than the window`);
         const box = await page.locator('#machine').boundingBox();
-        const least = name === 'phone' ? viewport.width - 60 : 500;
+        const least = name === 'phone-390' ? viewport.width - 60 : 500;
         assert.ok(box.width >= least, `${name}: the drawing is ${box.width} px wide`);
         assert.ok(await page.locator('#outcome').isVisible());
         await page.keyboard.press(']');
@@ -732,7 +732,12 @@ const checks = {
           await idle(page);
           await page.evaluate(() => window.whatnext.seek(0.6));
         }
-        await page.screenshot({ path: path.join(outDir, `web-${name}.png`), fullPage: name === 'phone' || name === 'desktop' });
+        if (name === 'desktop-1366') {  // all four laws after the hard pull
+          await page.selectOption('#compare', 'laws');
+          await idle(page);
+          await page.evaluate(() => window.whatnext.seek(0.7));
+        }
+        await page.screenshot({ path: path.join(outDir, `web-${name}.png`), fullPage: name === 'desktop' });
       }, { viewport, scale });
     }
   },
@@ -988,6 +993,8 @@ const checks = {
         }, sel);
         assert.ok(await inView('#machine'), `${name}: the drawing is out of view`);
         assert.ok(await inView(field), `${name}: the field is out of view`);
+        assert.ok(await inView('#stage-outcome'), `${name}: the outcome is out of view`);
+        assert.equal(await page.textContent('#stage-outcome'), `Outcome: ${cliOutcome(['--example', '1', '--set', 'masses.lid=0.45'])}.`);
         const box = await page.locator('#machine').boundingBox();
         assert.ok(box.height >= 150, `${name}: the drawing is ${box.height} px high`);
         const text = await page.evaluate(() => document.body.innerText);
