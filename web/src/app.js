@@ -612,7 +612,8 @@
   // The player: simulated time runs at the chosen speed and stops for a moment at each event.
   function tick(now) {
     if (st.playing && st.run) {
-      const dt = Math.min(0.1, (now - st.last) / 1000);
+      // A frame's time stamp may be a little before the moment play() was pressed.
+      const dt = Math.min(0.1, Math.max(0, now - st.last) / 1000);
       st.last = now;
       if (now >= st.holdUntil) {
         let t = st.t + dt * speedAt(st.t);

@@ -221,7 +221,7 @@ const checks = {
         await page.keyboard.press('Space');
         await page.waitForTimeout(250);
         await page.keyboard.press('Space');
-        for (const mode of ['law', 'euler', 'previous', 'none']) {
+        for (const mode of ['law', 'laws', 'euler', 'previous', 'none']) {
           await page.selectOption('#compare', mode);
           await idle(page);
         }
@@ -737,6 +737,7 @@ const checks = {
           await idle(page);
           await page.evaluate(() => window.whatnext.seek(0.7));
         }
+        await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
         await page.screenshot({ path: path.join(outDir, `web-${name}.png`), fullPage: name === 'desktop' });
       }, { viewport, scale });
     }
@@ -956,6 +957,7 @@ const checks = {
       assert.ok(Math.abs(await page.evaluate(() => window.whatnext.time) - events[0].t) < 1e-9);
       assert.ok(await page.locator('#timeline tr.now').isVisible());
       await checkTimelineWhole(page, 'projector');
+      await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
       await page.screenshot({ path: path.join(outDir, 'web-projector.png') });
       await page.click('#projector');
       assert.equal(await page.evaluate(() => document.body.classList.contains('projector')), false);
@@ -1001,6 +1003,7 @@ const checks = {
         assert.doesNotMatch(text, /Space|double-click|click one/, `${name}: a hint about keys or a mouse`);
         assert.equal(await page.isVisible('#help'), false);
         await page.evaluate(() => window.scrollTo(0, 0));
+        await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
         await page.screenshot({ path: path.join(outDir, `web-${name}.png`) });
       }, { viewport, scale: 2, touch: true });
     }
@@ -1029,6 +1032,7 @@ const checks = {
       assert.match(await outcomeText(page), /^Ergebnis: Deckel offen bei \d,\d{3} s\.$/);
       await setField(page, 'geometry.rope_length', '-1');
       assert.match(await page.textContent('#problem'), /^Nicht gerechnet: geometry\.rope_length muss > 0 m sein \(gegeben: -1\)\./);
+      await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
       await page.screenshot({ path: path.join(outDir, 'web-german.png') });
       await page.selectOption('#lang', 'en');
       await page.waitForFunction(() => document.documentElement.lang === 'en' && document.body.dataset.ready);
