@@ -165,8 +165,12 @@
     }
     queue.busy = false;
     document.body.dataset.busy = 'false';
-    checkSliders();
+    // Once the machine has stood still a moment (not at every step of a slider: each check is
+    // most of a second of work).
+    clearTimeout(checkTimer);
+    checkTimer = setTimeout(checkSliders, 400);
   }
+  let checkTimer = null;
 
   // Where the sliders reach values the library refuses, for the machine as it now stands: a
   // second worker checks ~1,200 inputs (no runs, most of a second), so that the runs never wait.
@@ -431,6 +435,11 @@
         const cell = row.insertCell();
         cell.textContent = text;
         if (k === 1) cell.title = e.words;
+        // In another language the event's name in its words (the command line's name in the title).
+        if (k === 1 && S.lang !== 'en') {
+          cell.textContent = S.eventWords(text.replace(/_/g, ' '));
+          cell.title = text;
+        }
       });
       if (e.stop) row.classList.add('stop');
       const go = () => { pause(); seek(e.t); };

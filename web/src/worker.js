@@ -62,5 +62,7 @@ self.onmessage = async (e) => {
   } catch (err) {  // a wasm abort or out of memory: one message, not a dead page
     result = { ok: false, kind: 'error', message: `the WebAssembly module failed (${err.message || err})` };
   }
-  self.postMessage({ id, result });
+  // The sample columns are handed over, not copied.
+  const buffers = result && result.samples ? Object.values(result.samples).filter((c) => c instanceof Float64Array).map((c) => c.buffer) : [];
+  self.postMessage({ id, result }, buffers);
 };
