@@ -4,7 +4,8 @@
 #                     timeline, plots and animation (into out/)
 #   ./run.sh test     install what is missing, build, run every test; then again under the
 #                     sanitizers with the fuzz harnesses (build-asan/)
-#   ./run.sh web      install what is missing, build, serve the page (build/web) on localhost
+#   ./run.sh web      install what is missing, build, serve the page (build/web) on localhost;
+#                     with --lan on the local network too, with its address as text and QR code
 #   ./run.sh notebook install what is missing (Debian's Jupyter too), build, open examples/whatnext.ipynb
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -33,29 +34,10 @@ case "$job" in
     exit "$failed"
     ;;
   web)
-    # The page is static files: any web server does. This one takes the first free port from 8000.
-    exec /usr/bin/python3 - build/web <<'PY'
-import functools, http.server, sys
-
-class Quiet(http.server.SimpleHTTPRequestHandler):
-    def log_message(self, *args):
-        pass
-
-handler = functools.partial(Quiet, directory=sys.argv[1])
-for port in range(8000, 8100):
-    try:
-        server = http.server.ThreadingHTTPServer(("127.0.0.1", port), handler)
-        break
-    except OSError:
-        continue
-else:
-    sys.exit("whatnext: no free port between 8000 and 8099")
-print(f"whatnext: the page is at http://localhost:{port}/ (Ctrl-C stops the server)", flush=True)
-try:
-    server.serve_forever()
-except KeyboardInterrupt:
-    pass
-PY
+    # The page is static files: any web server does. web/serve.py takes the first free port from
+    # 8000 and listens on this computer only, unless --lan asks for the local network (a class's
+    # phones): then it prints the address to type and a QR code of it.
+    exec /usr/bin/python3 web/serve.py build/web "${@:2}"
     ;;
   notebook)
     # Debian's Jupyter (jupyter-notebook, installed above from scripts/debian-packages.txt) on the
@@ -70,7 +52,7 @@ PY
     exec jupyter notebook "${flags[@]}" --notebook-dir="$PWD/examples" "$PWD/examples/whatnext.ipynb"
     ;;
   *)
-    echo "usage: ./run.sh [example|test|web]" >&2
+    echo "usage: ./run.sh [example|test|web [--lan]|notebook]" >&2
     exit 2
     ;;
 esac

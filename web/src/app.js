@@ -1,27 +1,130 @@
 // The page: one machine (a shipped example or a file, plus `--set` changes), run by the library in
 // WebAssembly at every change; the drawing, the timeline, the plots and a second run to compare,
-// all at one time that the player, the scrubber, the keyboard and the plots move.
+// all at one time that the player, the scrubber, the keyboard and the plots move. The library runs
+// in a Web Worker (worker.js), so that the page stays responsive while it works.
 (async function () {
   'use strict';
 
   const $ = (id) => document.getElementById(id);
+  // The page's words (one table per language: strings.js).
+  const S = window.whatnextStrings;
+  const T = (english, args) => S.t(english, args);
+  S.translatePage(document.body);
+  document.title = S.t(document.title);
   const Machine = window.whatnextMachine;
-  const wasm = await createWhatnext();
-  const presets = wasm.presets(), keys = wasm.keys(), names = wasm.names();
+
+  // ---- the worker -----------------------------------------------------------------------------
+  // One request at a time goes to it; a run that takes long shows its progress and can be
+  // stopped, which ends the worker and starts a new one.
+  let worker = null, nextId = 1;
+  const waiting = new Map();  // id -> resolve
+  const progress = { since: 0, t: null, tMax: null, timer: null };
+
+  function makeWorker() {
+    const inlined = document.getElementById('worker-source');  // the single-file page
+    return inlined ? new Worker(URL.createObjectURL(new Blob([inlined.textContent], { type: 'text/javascript' })))
+                   : new Worker('worker.js');
+  }
+
+  function startWorker() {
+    worker = makeWorker();
+    return new Promise((resolve, reject) => {
+      worker.onmessage = (e) => {
+        const d = e.data;
+        if (d.hello) resolve(d.hello);
+        else if (d.progress !== undefined) progress.t = d.progress;
+        else {
+          const done = waiting.get(d.id);
+          waiting.delete(d.id);
+          if (done) done(d.result);
+        }
+      };
+      worker.onerror = (e) => {
+        e.preventDefault();
+        reject(new Error(e.message || 'the worker did not start'));
+        // A worker that dies while working: every open request gets a message instead of a hang.
+        for (const done of waiting.values()) done({ ok: false, kind: 'error', message: `the WebAssembly module failed (${e.message})` });
+        waiting.clear();
+      };
+    });
+  }
+
+  function ask(fn, input, tMax = null, quiet = false) {
+    return new Promise((resolve) => {
+      const id = nextId++;
+      waiting.set(id, (r) => {
+        hideProgress();
+        // A failed module is not used again: a fresh worker for the next request.
+        if (r && r.kind === 'error' && /WebAssembly module failed/.test(r.message || '')) restartWorker();
+        resolve(r);
+      });
+      worker.postMessage({ id, fn, input });
+      if (!quiet) showProgressSoon(tMax);
+    });
+  }
+
+  function restartWorker() {
+    worker.terminate();
+    for (const done of waiting.values()) done({ ok: false, kind: 'stopped' });
+    waiting.clear();
+    return startWorker();
+  }
+
+  // The progress box appears when a request has taken 300 ms; it says how far the run is (the
+  // samples' time as the worker reports it) and how long it has taken, and holds the Stop button.
+  function showProgressSoon(tMax) {
+    progress.since = performance.now();
+    progress.t = null;
+    progress.tMax = tMax;
+    clearInterval(progress.timer);
+    progress.timer = setInterval(() => {
+      const ms = performance.now() - progress.since;
+      if (ms < 300) return;
+      const box = $('progress');
+      box.hidden = false;
+      const tMaxNow = progress.tMax;
+      const share = progress.t !== null && tMaxNow ? Math.min(1, progress.t / tMaxNow) : null;
+      $('progress-bar').value = share === null ? 0 : share;
+      if (share === null) $('progress-bar').removeAttribute('value');
+      $('progress-text').textContent = T('Running… {where}{secs} s so far.', {
+        secs: (ms / 1000).toFixed(1),
+        where: progress.t !== null && tMaxNow ? T('t = {t} s of {tMax} s; ', { t: progress.t.toFixed(3), tMax: tMaxNow }) : '',
+      });
+    }, 100);
+  }
+
+  function hideProgress() {
+    clearInterval(progress.timer);
+    progress.timer = null;
+    $('progress').hidden = true;
+  }
+
+
+  let hello;
+  try {
+    hello = await startWorker();
+  } catch (e) {
+    // index.html opened from the disk: browsers do not start a worker from a file:// folder.
+    $('outcome').textContent = T('This page cannot start its worker here ({why}). Opened from a folder on the disk, use whatnext.html (the page in one file); or serve the folder (./run.sh web).', { why: e.message || String(e) });
+    document.body.dataset.failed = 'true';
+    return;
+  }
+  const { presets, keys, names } = hello;
   // Longest first, so that a message naming balloon.drag_coefficient is not read as balloon.drag.
   const keyNames = keys.map((k) => k.key).sort((a, b) => b.length - a.length);
-  const kHoldMs = 1000;  // an event's frame stays this long when playing
+  const kHoldMs = 1000;
+  const kMaxFileBytes = 1 << 20;
+  // What each shipped machine shows (its comment in examples/), for the machine choice.
+  const kPresetWhat = {
+    example1: 'one hard pull of the rope opens the lid',
+    example2: 'the taut rope pulls the lid open',
+    example3: 'sandbag on the level seesaw: the lid never opens',
+    example4: 'a hard hit throws the lid up; it never opens',
+    radio: 'the balloon switches the radio on',
+  };  // the command line reads machine files of at most 1 MiB  // an event's frame stays this long when playing
   const icon = (d) => `<svg viewBox="0 0 24 24" aria-hidden="true"><path d="${d}"/></svg>`;
-  const kPlayIcon = `${icon('M7 4v16l13-8z')} Play`, kPauseIcon = `${icon('M6 4h4v16H6zM14 4h4v16h-4z')} Pause`;
+  const kPlayIcon = `${icon('M7 4v16l13-8z')} ${T('Play')}`, kPauseIcon = `${icon('M6 4h4v16H6zM14 4h4v16h-4z')} ${T('Pause')}`;
 
-  // The library's answer, or its failure as one (a wasm abort, out of memory) instead of an exception.
-  function call(fn, input) {
-    try {
-      return fn(input);
-    } catch (e) {
-      return { ok: false, kind: 'error', message: `the WebAssembly module failed (${e.message || e}); reload the page` };
-    }
-  }
 
   const st = {
     base: presets[0],     // {id, title, toml, source, label, cli, format}
@@ -29,10 +132,69 @@
     good: new Map(),      // the sets of the run shown (the last one that ran)
     run: null,
     committed: null, previous: null,  // machines before and after the last finished change
-    compare: { mode: 'none', law: 'kinetic-energy', step: '0.001', run: null, label: '', message: '' },
+    compare: { mode: 'none', law: 'kinetic-energy', step: '0.001', run: null, runs: [], label: '', message: '' },
     t: 0, playing: false, speed: 'auto', holdUntil: 0, last: 0,
-    view: null, dpr: 1, font: 16, lines: 1, band: 46, aspect: 0.7, runMs: 0, runs: 0, problem: '',
+    view: null, dpr: 1, font: 16, lines: 1, band: 46, aspect: 0.7, runMs: 0, runs: 0, answers: 0, problem: '',
   };
+
+  // Changes come faster than a slow run: the newest change waits while one runs, and replaces any
+  // change waiting before it (which would be shown only to be overwritten). A machine chosen is
+  // never dropped. body[data-busy] is "true" while anything is running or waiting (for the tests).
+  const queue = { busy: false, next: null, commit: false };
+  function schedule(job, keep = false) {
+    const before = queue.next;
+    const wrapped = before && before.keep ? async () => { await before(); await job(); } : job;
+    wrapped.keep = keep || Boolean(before && before.keep);
+    queue.next = wrapped;
+    document.body.dataset.busy = 'true';
+    if (!queue.busy) pump();
+  }
+  async function pump() {
+    queue.busy = true;
+    for (;;) {
+      while (queue.next) {
+        const job = queue.next;
+        queue.next = null;
+        try {
+          await job();
+        } catch (e) {
+          console.error(e);
+        }
+      }
+      if (!queue.next) break;
+    }
+    queue.busy = false;
+    document.body.dataset.busy = 'false';
+    // Once the machine has stood still a moment (not at every step of a slider: each check is
+    // most of a second of work).
+    clearTimeout(checkTimer);
+    checkTimer = setTimeout(checkSliders, 400);
+  }
+  let checkTimer = null;
+
+  // Where the sliders reach values the library refuses, for the machine as it now stands: a
+  // second worker checks ~1,200 inputs (no runs, most of a second), so that the runs never wait.
+  let checker = null, checkedFor = null, checking = false;
+  function checkSliders() {
+    const machine = JSON.stringify([st.base.id, st.base.toml, [...st.good]]);
+    if (!st.run || checkedFor === machine || checking) return;
+    checkedFor = machine;
+    checking = true;
+    if (!checker) checker = makeWorker();
+    const t0 = performance.now();
+    checker.onmessage = (e) => {
+      if (e.data.id !== 'validity') return;
+      checking = false;
+      document.body.dataset.validityMs = String(Math.round(performance.now() - t0));
+      const valid = e.data.result;
+      if (valid && valid.ok !== false && checkedFor === machine) {
+        panel.showValidity(valid);
+        document.body.dataset.checked = machine;
+      }
+      checkSliders();  // the machine changed meanwhile
+    };
+    checker.postMessage({ id: 'validity', fn: 'validity', input: { input: inputFor(st.base, st.good), probes: panel.probes() } });
+  }
 
   // ---- running the library --------------------------------------------------------------------
 
@@ -50,25 +212,71 @@
     return r;
   }
 
+  // A run in the worker. A fixed-step run of millions of steps is asked about first (the
+  // question box); one that takes long shows its progress and can be stopped.
+  async function runAsked(input, what) {
+    const tMax = st.run ? st.run.machine.run.t_max : null;
+    let r = await ask('run', input, tMax);
+    if (r.ok || r.kind !== 'budget') return r;
+    const go = await askBudget(r, what);
+    if (!go) return { ok: false, kind: 'declined', message: T('not started ({steps} steps)', { steps: r.steps.toExponential(1) }) };
+    return ask('run', { ...input, force: true }, r.t_max);
+  }
+
+  // The question before a long fixed-step run: resolves true to run it, false not to.
+  function askBudget(r, what) {
+    return new Promise((resolve) => {
+      const box = $('budget');
+      $('budget-text').textContent = T('{what} takes {steps} steps of the {integrator} method (t_max {tMax} s at a step of {step} s): the page may work on it for minutes. Run it anyway? (It can be stopped.)', {
+        what, steps: r.steps.toExponential(1), integrator: r.integrator, tMax: r.t_max, step: r.step,
+      });
+      const done = (yes) => {
+        $('budget-run').onclick = $('budget-cancel').onclick = null;
+        box.onclose = null;
+        if (box.open) box.close();
+        resolve(yes);
+      };
+      $('budget-run').onclick = () => done(true);
+      $('budget-cancel').onclick = () => done(false);
+      box.onclose = () => done(false);  // Escape
+      box.showModal();
+    });
+  }
+
+  function answered() {
+    st.answers += 1;
+    document.body.dataset.answers = String(st.answers);
+  }
+
   // Runs the machine as it stands. A bad input leaves the last good run on screen and says why.
-  function simulate(editedKey) {
+  async function simulate(editedKey) {
     const t0 = performance.now();
-    const r = call(wasm.run, inputFor(st.base, st.sets));
+    const r = await runAsked(inputFor(st.base, st.sets), T('This run'));
     const ms = performance.now() - t0;
     panel.clearErrors();
     if (!r.ok) {
       showProblem(r, editedKey);
+      answered();
       return false;
     }
     $('problem').hidden = true;
+    markStale(false);
     st.run = prepare(r);
     st.good = new Map(st.sets);
     st.runMs = ms;
     st.runs += 1;
     st.t = Math.min(st.t, st.run.tEnd);
-    runCompare();
+    await runCompare();
     showRun();
+    answered();
     return true;
+  }
+
+  // The drawing, the timeline and the plots belong to the last run that worked; when the panel
+  // holds values that did not run, they say so instead of passing for the panel's machine.
+  function markStale(stale) {
+    $('layout').classList.toggle('stale', stale);
+    $('stale-note').hidden = !stale;
   }
 
   // The key a message is about: the first known key it names.
@@ -82,14 +290,28 @@
     return best;
   }
 
+  // The library's message without the command line's "--set KEY=VALUE: " in front: in the page
+  // the value is in its field, and the message stands next to it.
+  function pageWords(message) {
+    for (const [k, v] of st.sets) {
+      const prefix = `--set ${k}=${v}: `;
+      if (message.startsWith(prefix)) return message.slice(prefix.length);
+    }
+    return message.replace(/^--set [\w.]+=[^:]*: /, '');  // the comparison's own settings
+  }
+
   function showProblem(r, editedKey) {
-    st.problem = r.message;
-    const key = keyIn(r.message);
-    if (key) panel.showError(key, r.message);
-    if (editedKey && editedKey !== key) panel.showError(editedKey, r.message);
-    const what = r.kind === 'simulation' ? 'This machine cannot be run' : 'Not run';
-    $('problem').textContent = `${what}: ${r.message}. The drawing and plots still show the last run that worked.`;
+    if (r.message) r = { ...r, message: pageWords(r.message) };
+    st.problem = r.kind === 'stopped' ? T('Stopped before the run was done') : r.message;
+    const key = r.kind === 'stopped' ? null : keyIn(r.message);
+    if (key) panel.showError(key, S.sentence(r.message));
+    if (editedKey && editedKey !== key) panel.showError(editedKey, S.sentence(r.message));
+    const what = r.kind === 'simulation' ? T('This machine cannot be run') : r.kind === 'stopped' ? T('Stopped before the run was done')
+               : r.kind === 'declined' ? T('Not started') : T('Not run');
+    const message = r.kind === 'stopped' ? '' : `: ${S.sentence(r.message)}`;
+    $('problem').textContent = `${what}${message}. ${st.run ? T('The drawing and plots still show the last run that worked.') : ''}`;
     $('problem').hidden = false;
+    if (st.run) markStale(true);
   }
 
   const sameMachine = (a, b) => a && b && a.base === b.base && JSON.stringify([...a.sets]) === JSON.stringify([...b.sets]);
@@ -101,36 +323,56 @@
     if (st.committed && !sameMachine(st.committed, now)) st.previous = st.committed;
     st.committed = now;
     if (st.compare.mode === 'previous') {
-      runCompare();
-      showRun();
+      schedule(async () => { await runCompare(); showRun(); });
     }
     writeUrl();
   }
 
-  function runCompare() {
+  // The other runs' colours in the drawing and their dashes in the plots ("all four laws": one
+  // each for the three laws the machine does not use).
+  const kGhosts = [{ colour: 'rgb(60,90,200)', dash: [8, 5] }, { colour: 'rgb(20,140,60)', dash: [2, 3] },
+                   { colour: 'rgb(150,40,170)', dash: [12, 4, 2, 4] }];
+
+  async function runCompare() {
     const c = st.compare;
     c.run = null;
+    c.runs = [];
     c.message = '';
     let input = null;
+    if (c.mode === 'laws') {
+      // The machine's own law is the main run; the other three beside it.
+      const own = st.run ? st.run.machine.run.impact_law : null;
+      const messages = [];
+      for (const law of names['run.impact_law'].filter((x) => x !== own)) {
+        const r = await runAsked(inputFor(st.base, st.good, [`run.impact_law=${law}`]), T('The run to compare with'));
+        if (r.ok) c.runs.push({ run: prepare(r), label: law, ...kGhosts[c.runs.length] });
+        else messages.push(`${law}: ${r.kind === 'stopped' ? T('Stopped before the run was done') : S.sentence(pageWords(r.message))}`);
+      }
+      if (messages.length) c.message = T('Nothing to compare with: {message}', { message: messages.join('; ') });
+      c.label = T('all four impact laws');
+      return;
+    }
     if (c.mode === 'law') {
       input = inputFor(st.base, st.good, [`run.impact_law=${c.law}`]);
-      c.label = `impact law ${c.law}`;
+      c.label = T('impact law {law}', { law: c.law });
     } else if (c.mode === 'euler') {
       input = inputFor(st.base, st.good, ['run.integrator=euler', `run.step=${c.step}`]);
-      c.label = `Euler, step ${c.step} s`;
+      c.label = T('Euler, step {step} s', { step: S.decimals(c.step) });
     } else if (c.mode === 'previous') {
       // While a change is under way (a slider moving) the machine before it; after it, the one
       // before the last change.
       const shown = { base: st.base, sets: st.good };
       const before = st.committed && !sameMachine(st.committed, shown) ? st.committed : st.previous;
       if (before) input = inputFor(before.base, before.sets);
-      else c.message = 'Change a parameter: the run before the change is then drawn dashed.';
-      c.label = 'previous parameters';
+      else c.message = T('Change a parameter: the run before the change is then drawn dashed.');
+      c.label = T('previous parameters');
     }
     if (!input) return;
-    const r = call(wasm.run, input);
-    if (r.ok) c.run = prepare(r);
-    else c.message = `Nothing to compare with: ${r.message}`;
+    const r = await runAsked(input, T('The run to compare with'));
+    if (r.ok) {
+      c.run = prepare(r);
+      c.runs = [{ run: c.run, label: T('dashed'), ...kGhosts[0] }];
+    } else c.message = r.kind === 'stopped' ? T('Nothing to compare with: that run was stopped.') : T('Nothing to compare with: {message}', { message: S.sentence(pageWords(r.message)) });
   }
 
   // ---- showing a run ----------------------------------------------------------------------------
@@ -143,17 +385,35 @@
     const run = st.run;
     st.view = null;
     showTimeline();
-    $('outcome').textContent = `Outcome: ${run.outcome.sentence}.`;
+    $('outcome').textContent = T('Outcome: {sentence}.', { sentence: S.sentence(run.outcome.sentence) });
+    $('stage-outcome').textContent = $('outcome').textContent;  // on a phone, above the drawing
     const c = st.compare;
     $('compare-outcome').hidden = c.mode === 'none';
-    $('compare-outcome').textContent = c.run ? `Dashed, ${c.label}: ${c.run.outcome.sentence}.` : c.message;
-    $('compare-note').textContent = c.run ? 'dashed in the plots, blue outline in the drawing' : '';
-    plots.show(run, c.run);
+    if (c.mode === 'laws') {
+      // One line per law, in its colour: the main run's law first.
+      const box = $('compare-outcome');
+      box.textContent = '';
+      const line = (colour, text) => {
+        const p = document.createElement('span');
+        p.className = 'law-line';
+        p.style.color = colour;
+        p.textContent = text;
+        box.append(p);
+      };
+      line('var(--ink)', `${run.machine.run.impact_law}: ${S.sentence(run.outcome.sentence)}`);
+      for (const o of c.runs) line(o.colour, `${o.label}: ${S.sentence(o.run.outcome.sentence)}`);
+      if (c.message) line('var(--red)', c.message);
+    } else {
+      $('compare-outcome').textContent = c.run ? T('Dashed, {label}: {sentence}.', { label: c.label, sentence: S.sentence(c.run.outcome.sentence) }) : c.message;
+    }
+    $('compare-note').textContent = c.mode === 'laws' ? T('each law in its colour: outlines in the drawing, dashes in the plots')
+                                   : c.run ? T('dashed in the plots, blue outline in the drawing') : '';
+    plots.show(run, c.runs);
     panel.show(run.values, st.sets);
     showTicks();
     showCommandLine();
-    $('perf').textContent = `Last run: ${st.runMs.toFixed(1)} ms in WebAssembly, ${run.events.length} events, ` +
-                            `${run.samples.t.length} states.`;
+    $('perf').textContent = T('Last run: {ms} ms in WebAssembly, {events} events, {states} states.',
+                              { ms: S.decimals(st.runMs.toFixed(1)), events: run.events.length, states: run.samples.t.length });
     document.body.dataset.runs = String(st.runs);
     writeUrlSoon();
     render();
@@ -175,6 +435,11 @@
         const cell = row.insertCell();
         cell.textContent = text;
         if (k === 1) cell.title = e.words;
+        // In another language the event's name in its words (the command line's name in the title).
+        if (k === 1 && S.lang !== 'en') {
+          cell.textContent = S.eventWords(text.replace(/_/g, ' '));
+          cell.title = text;
+        }
       });
       if (e.stop) row.classList.add('stop');
       const go = () => { pause(); seek(e.t); };
@@ -186,7 +451,14 @@
         note.dataset.index = String(i);
         const cell = note.insertCell();
         cell.colSpan = 6;
-        cell.textContent = cells.slice(6).join(' ');
+        cell.textContent = cells.slice(6).join(' ').replace(/^energy /, `${T('energy')} `);
+        // A negative energy is no error: the potential's zero is at the pivot's height.
+        if (/-\d/.test(cell.textContent)) {
+          const why = document.createElement('span');
+          why.className = 'why';
+          why.textContent = ` (${T('Energy from the pivot\'s height: below it, potential energy is negative.')})`;
+          cell.append(why);
+        }
         note.addEventListener('click', go);
       }
     });
@@ -227,9 +499,11 @@
     st.font = Math.min(Math.max(width / 42, 13), 24);
     st.lines = width < 600 ? 2 : 1;  // a narrow caption wraps the event's words
     st.band = (1.8 + 1.1 * st.lines) * st.font;
-    // At most three quarters of the window's height, but never less than the caption and a
-    // picture below it (a short window, or one not laid out yet, has almost no height).
-    const height = Math.round(Math.max(Math.min(Math.max(st.aspect * width + st.band, 240), 0.75 * window.innerHeight),
+    // At most a share of the window's height (style.css: three quarters, less on a phone where
+    // the parameters share the screen with it), but never less than the caption and a picture
+    // below it (a short window, or one not laid out yet, has almost no height).
+    const share = Number(getComputedStyle($('canvas-box')).getPropertyValue('--canvas-max')) || 0.75;
+    const height = Math.round(Math.max(Math.min(Math.max(st.aspect * width + st.band, 240), share * window.innerHeight),
                                        st.band + 150));
     st.dpr = window.devicePixelRatio || 1;
     canvas.style.height = `${height}px`;
@@ -257,12 +531,18 @@
     return Math.max(kSlow, (b - a - 2 * kPad) / 2);
   }
 
+  // A touch screen has no Space bar to mention.
+  const touch = window.matchMedia('(pointer: coarse)').matches;
   function speedWords() {
-    if (!st.playing) return st.t >= st.run.tEnd ? 'end of the run (Space plays it again)' : 'paused (Space plays)';
+    if (!st.playing) {
+      if (st.t >= st.run.tEnd) return T(touch ? 'end of the run (▶ plays it again)' : 'end of the run (Space plays it again)');
+      return T(touch ? 'paused (▶ plays)' : 'paused (Space plays)');
+    }
     const v = speedAt(st.t);
-    if (Math.abs(v - 1) < 1e-9) return 'real time';
-    const words = v < 1 ? `slow motion ×${Number((1 / v).toPrecision(2))}` : `fast forward ×${Number(v.toPrecision(2))}`;
-    return st.speed === 'auto' && v > kSlow ? `quiet stretch: ${words}` : words;
+    if (Math.abs(v - 1) < 1e-9) return T('real time');
+    const words = v < 1 ? T('slow motion ×{x}', { x: S.decimals(String(Number((1 / v).toPrecision(2)))) })
+                        : T('fast forward ×{x}', { x: S.decimals(String(Number(v.toPrecision(2)))) });
+    return st.speed === 'auto' && v > kSlow ? T('quiet stretch: {words}', { words }) : words;
   }
 
   function render() {
@@ -274,15 +554,15 @@
     const s = Machine.stateAt(run.samples, st.t);
     const group = groupAt(run, st.t);
     const caption = [
-      `t = ${st.t.toFixed(3)} s    ${names.modes[s.mode]}`,
-      group ? `event at ${group.t.toFixed(3)} s: ${group.events.map((i) => run.events[i].words).join(' + ')}` : speedWords(),
+      `t = ${S.decimals(st.t.toFixed(3))} s    ${S.sentence(names.modes[s.mode])}`,
+      group ? T('event at {t} s: {words}', { t: S.decimals(group.t.toFixed(3)), words: group.events.map((i) => S.eventWords(run.events[i].words)).join(' + ') })
+            : speedWords(),
     ];
-    const other = st.compare.run;
-    const ghost = other ? { run: other, state: Machine.stateAt(other.samples, Math.min(st.t, other.tEnd)) } : null;
+    const ghosts = (st.compare.runs || []).map((o) => ({ run: o.run, colour: o.colour, state: Machine.stateAt(o.run.samples, Math.min(st.t, o.run.tEnd)) }));
     ctx.setTransform(st.dpr, 0, 0, st.dpr, 0, 0);
-    Machine.draw(ctx, st.view, { run, state: s, ghost, caption, event: group, font: st.font, lines: st.lines });
+    Machine.draw(ctx, st.view, { run, state: s, ghosts, caption, event: group, font: st.font, lines: st.lines });
 
-    $('clock').textContent = `t = ${st.t.toFixed(6)} s`;
+    $('clock').textContent = `t = ${S.decimals(st.t.toFixed(6))} s`;
     const scrub = $('scrub');
     if (document.activeElement !== scrub || st.playing) scrub.value = String(st.t);
     if ($('play').dataset.playing !== String(st.playing)) {
@@ -322,12 +602,27 @@
     const groups = st.run.groups;
     const g = direction > 0 ? groups.find((x) => x.t > st.t + eps) : [...groups].reverse().find((x) => x.t < st.t - eps);
     seek(g ? g.t : direction > 0 ? st.run.tEnd : 0);
+    if (g) soundOf(g);
+  }
+
+  // The sound of the events at one instant: the tune when the radio comes on, else a click when
+  // one of them is an impact.
+  const sound = window.whatnextSound.create();
+  function soundOf(group) {
+    const events = group.events.map((i) => st.run.events[i]);
+    if (events.some((e) => e.type === 'radio_on')) sound.radio();
+    else if (events.some((e) => e.impact)) sound.impact();
+  }
+  function showSound() {
+    $('sound').setAttribute('aria-pressed', String(!sound.muted));
+    $('sound').textContent = T(sound.muted ? 'Sound: off' : 'Sound: on');
   }
 
   // The player: simulated time runs at the chosen speed and stops for a moment at each event.
   function tick(now) {
     if (st.playing && st.run) {
-      const dt = Math.min(0.1, (now - st.last) / 1000);
+      // A frame's time stamp may be a little before the moment play() was pressed.
+      const dt = Math.min(0.1, Math.max(0, now - st.last) / 1000);
       st.last = now;
       if (now >= st.holdUntil) {
         let t = st.t + dt * speedAt(st.t);
@@ -335,6 +630,7 @@
         if (next && next.t <= t) {
           t = next.t;
           st.holdUntil = now + kHoldMs;
+          soundOf(next);
         }
         if (t >= st.run.tEnd) {
           t = st.run.tEnd;
@@ -352,33 +648,38 @@
   function onField(key, text, commit) {
     st.sets.delete(key);  // a changed key moves to the end: later --set wins, as on the command line
     if (text !== null) st.sets.set(key, text);
-    if (simulate(key) && commit) commitChange();
+    if (commit) queue.commit = true;
+    schedule(async () => {
+      const c = queue.commit;
+      queue.commit = false;
+      if (await simulate(key) && c) commitChange();
+    });
   }
 
   function choose(base, sets) {
-    const old = { base: st.base, sets: st.sets };
-    st.base = base;
-    st.sets = new Map(sets);
-    st.t = 0;
-    pause();
-    if (!simulate(null)) {
-      if (!st.run) return false;
-      st.base = old.base;  // a file that does not load: stay with the machine shown
-      st.sets = old.sets;
+    schedule(async () => {
+      const old = { base: st.base, sets: st.sets };
+      st.base = base;
+      st.sets = new Map(sets);
+      st.t = 0;
+      pause();
+      if (!await simulate(null)) {
+        st.base = old.base;  // a file that does not load: stay with the machine shown
+        st.sets = old.sets;
+        showPresetChoice();
+        return;
+      }
       showPresetChoice();
-      return false;
-    }
-    showPresetChoice();
-    fitCanvas();
-    commitChange();
-    return true;
+      fitCanvas();
+      commitChange();
+    }, true);
   }
 
   function showPresetChoice() {
     const select = $('preset');
     select.textContent = '';
-    for (const p of presets) select.append(new Option(p.title, p.id));
-    if (st.base.id === 'file') select.append(new Option(`file: ${st.base.title}`, 'file'));
+    for (const p of presets) select.append(new Option(kPresetWhat[p.id] ? `${T(p.title)}: ${T(kPresetWhat[p.id])}` : T(p.title), p.id));
+    if (st.base.id === 'file') select.append(new Option(T('file: {name}', { name: st.base.title }), 'file'));
     select.value = st.base.id;
   }
 
@@ -389,10 +690,21 @@
 
   // ---- the URL: the machine, the comparison and the time ------------------------------------------
 
-  const toBase64 = (text) => btoa(String.fromCharCode(...new TextEncoder().encode(text)))
-    .replace(/\+/g, '-').replace(/\//g, '_').replace(/=+$/, '');
-  const fromBase64 = (b64) => new TextDecoder().decode(
-    Uint8Array.from(atob(b64.replace(/-/g, '+').replace(/_/g, '/')), (c) => c.charCodeAt(0)));
+  // URL-safe base64 of UTF-8 text, in slices (spreading a whole file's bytes into one call
+  // overflows the stack beyond ~300 KB); and back, refusing what is not base64 or not UTF-8.
+  function toBase64(text) {
+    const bytes = new TextEncoder().encode(text);
+    let binary = '';
+    for (let i = 0; i < bytes.length; i += 0x8000) binary += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+    return btoa(binary).replace(/\+/g, '-').replace(/\//g, '_').replace(/=+$/, '');
+  }
+  function fromBase64(b64) {
+    if (!/^[A-Za-z0-9_-]*$/.test(b64)) throw new Error(T('it holds characters that are not URL-safe base64'));
+    const binary = atob(b64.replace(/-/g, '+').replace(/_/g, '/'));  // throws on a bad length
+    const bytes = new Uint8Array(binary.length);
+    for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
+    return new TextDecoder('utf-8', { fatal: true }).decode(bytes);
+  }
 
   // The link follows the machine on screen. Browsers limit how often a page may rewrite it (Safari
   // refuses more than 100 times in 30 s, Chromium ignores calls beyond 200 in 10 s) and each write
@@ -419,42 +731,69 @@
     for (const [k, v] of st.good) p.append(k, v);
     const c = st.compare;
     if (c.mode === 'law') p.set('compare', `law:${c.law}`);
-    if (c.mode === 'euler') p.set('compare', `euler:${c.step}`);
+    if (c.mode === 'laws') p.set('compare', 'laws:');
+    // A step that does not run is not passed on in the link.
+    if (c.mode === 'euler' && validStep(c.step) && c.run) p.set('compare', `euler:${c.step}`);
     history.replaceState(null, '', `#${p.toString()}`);
   }
 
+  // The link's machine, changes and comparison; every part that cannot be used is named in
+  // `problems` (the page then shows what it can, and says what it left out).
   function readUrl() {
     const p = new URLSearchParams(location.hash.slice(1));
-    let base = presets.find((x) => x.id === p.get('machine')) || presets[0];
+    const problems = [];
+    let base = presets[0];
+    if (p.has('machine')) {
+      const found = presets.find((x) => x.id === p.get('machine'));
+      if (found) base = found;
+      else problems.push(T('The link\'s machine={given} is not one of this page\'s machines ({ids}).', { given: p.get('machine'), ids: presets.map((x) => x.id).join(', ') }));
+    }
     if (p.has('text')) {
       try {
-        base = fileBase(p.get('file') || 'machine.toml', fromBase64(p.get('text')));
+        const text = fromBase64(p.get('text'));
+        const bytes = new TextEncoder().encode(text).length;
+        if (bytes > kMaxFileBytes) throw new Error(T('it holds {bytes} bytes, more than the {most} a machine file may have', { bytes, most: kMaxFileBytes }));
+        base = fileBase(p.get('file') || 'machine.toml', text);
       } catch (e) {
-        base = presets[0];
+        problems.push(T('The link\'s file (text=) cannot be read: {why}.', { why: e.message }));
       }
+    } else if (p.has('file')) {
+      problems.push(T('The link names a file ({given}) but does not hold it (no text=).', { given: p.get('file') }));
     }
     const sets = [];
-    for (const [k, v] of p) if (k.includes('.')) sets.push([k, v]);
-    const compare = (p.get('compare') || '').split(':');
-    return { base, sets, compare };
+    for (const [k, v] of p) {
+      if (k.includes('.')) sets.push([k, v]);
+      else if (!['machine', 'file', 'text', 'compare', 'lang'].includes(k)) problems.push(T('The link\'s part "{given}" is not a key (keys look like geometry.rope_length) and was left out.', { given: k }));
+    }
+    let compare = null;
+    if (p.has('compare')) {
+      const [kind, ...rest] = p.get('compare').split(':');
+      const what = rest.join(':');
+      if (kind === 'law' && names['run.impact_law'].includes(what)) compare = { mode: 'law', law: what };
+      else if (kind === 'laws' && what === '') compare = { mode: 'laws' };
+      else if (kind === 'euler' && validStep(what)) compare = { mode: 'euler', step: what };
+      else problems.push(T('The link\'s compare={given} is not a comparison (law:NAME with NAME one of {laws}; laws:; euler:STEP with a step in seconds above 0) and was left out.', { given: p.get('compare'), laws: names['run.impact_law'].join(', ') }));
+    }
+    return { base, sets, compare, problems };
   }
+  const validStep = (text) => /^\s*[0-9.eE+-]+\s*$/.test(text) && Number(text) > 0 && Number.isFinite(Number(text));
 
   // ---- downloads --------------------------------------------------------------------------------
 
-  function download(kind) {
+  async function download(kind) {
     const input = inputFor(st.base, st.good);
     const stem = (st.base.id === 'file' ? st.base.title.replace(/\.[^.]*$/, '') : st.base.id) + (st.good.size ? '-changed' : '');
     if (kind === 'csv') {
       const rows = st.run.machine.run.t_max / st.run.machine.run.output_step;
       if (rows > 2e6) {
-        alert(`That CSV would have ${Math.round(rows)} rows: too many for a browser. Raise run.output_step, or use ` +
-              `the command line (see "The same run on the command line").`);
+        alert(T('That CSV would have {rows} rows: too many for a browser. Raise run.output_step, or use the command line (see "The same run on the command line").', { rows: Math.round(rows) }));
         return;
       }
     }
-    const r = call(kind === 'toml' ? wasm.toml : kind === 'json' ? wasm.events : wasm.csv, input);
+    const r = await ask(kind === 'toml' ? 'toml' : kind === 'json' ? 'events' : 'csv', input);
+    if (r.kind === 'stopped') return;
     if (!r.ok) {
-      alert(r.message);
+      alert(S.sentence(pageWords(r.message)));
       return;
     }
     const name = kind === 'toml' ? `${stem}.toml` : kind === 'json' ? `${stem}-events.json` : `${stem}.csv`;
@@ -468,10 +807,11 @@
     setTimeout(() => URL.revokeObjectURL(a.href), 10000);
   }
 
-  function toast(text) {
+  function toast(text, link = '') {
     const t = document.createElement('div');
     t.className = 'toast';
     t.textContent = text;
+    if (link) t.append(document.createElement('br'), Object.assign(document.createElement('code'), { textContent: link.length > 120 ? `${link.slice(0, 117)}…` : link }));
     document.body.append(t);
     setTimeout(() => t.remove(), 2500);
   }
@@ -486,18 +826,68 @@
   $('file').addEventListener('change', async (e) => {
     const f = e.target.files[0];
     if (!f) return;
+    if (f.size > kMaxFileBytes) {  // the command line's limit (docs/inputs.md)
+      $('problem').textContent = T('{name} is not opened: it has {bytes} bytes, more than the {most} bytes a machine file may have.', { name: f.name, bytes: f.size, most: kMaxFileBytes });
+      $('problem').hidden = false;
+      e.target.value = '';
+      return;
+    }
     choose(fileBase(f.name, await f.text()), []);
     e.target.value = '';
   });
   $('reset-all').addEventListener('click', () => choose(st.base, []));
+  $('stop').addEventListener('click', () => restartWorker());
+  $('sound').addEventListener('click', () => { sound.muted = !sound.muted; showSound(); });
+  showSound();
+
+  // The language: the page is made again in the one chosen (the link keeps the machine).
+  for (const [code, name] of Object.entries(S.languages)) $('lang').append(new Option(name, code));
+  $('lang').value = S.lang;
+  $('lang').addEventListener('change', (e) => {
+    S.set(e.target.value);
+    writeUrl();
+    location.reload();
+  });
+  if (touch) $('timeline').caption.textContent = T('Events (tap one to go there)');
+
+  // Projector mode: full screen (where the browser allows it), the machine large beside the
+  // timeline, big type; Space, PageUp/PageDown (a presenter's remote) and the arrows drive it.
+  function setProjector(on) {
+    document.body.classList.toggle('projector', on);
+    $('projector').setAttribute('aria-pressed', String(on));
+    if (on && !document.fullscreenElement && document.documentElement.requestFullscreen) {
+      document.documentElement.requestFullscreen().catch(() => {});
+    } else if (!on && document.fullscreenElement) {
+      document.exitFullscreen().catch(() => {});
+    }
+    requestAnimationFrame(() => { sizeCanvas(); fitCanvas(); plots.resize(); });
+  }
+  $('projector').addEventListener('click', () => setProjector(!document.body.classList.contains('projector')));
+  // Leaving full screen (Escape) leaves projector mode.
+  document.addEventListener('fullscreenchange', () => { if (!document.fullscreenElement) setProjector(false); });
+  // The link is the page's own address, wherever it is served (a school server, the LAN address
+  // of ./run.sh web --lan, any static host). The clipboard API exists only on https and
+  // localhost; on a LAN address over http the older copy command does it.
   $('share').addEventListener('click', async () => {
     writeUrl();
+    const link = location.href;
+    let copied = false;
     try {
-      await navigator.clipboard.writeText(location.href);
-      toast('Link copied: it opens this machine.');
+      await navigator.clipboard.writeText(link);
+      copied = true;
     } catch (e) {
-      prompt('Copy this link; it opens this machine:', location.href);
+      const area = document.createElement('textarea');
+      area.value = link;
+      area.style.position = 'fixed';
+      area.style.opacity = '0';
+      document.body.append(area);
+      area.select();
+      try { copied = document.execCommand('copy'); } catch (e2) { copied = false; }
+      area.remove();
     }
+    if (!copied) { prompt(T('Copy this link; it opens this machine:'), link); return; }
+    const local = location.protocol === 'file:' || /^(localhost|127\.|\[::1\])/.test(location.hostname);
+    toast(`${T('Link copied: it opens this machine.')} ${local ? T('This address works on this computer only: serve the page (./run.sh web --lan, or any web server) to share it.') : ''}`, link);
   });
   $('dl-toml').addEventListener('click', () => download('toml'));
   $('dl-json').addEventListener('click', () => download('json'));
@@ -523,9 +913,11 @@
   for (const law of names['run.impact_law']) $('compare-law').append(new Option(law, law));
   const compareChanged = () => {
     showCompareControls();
-    runCompare();
-    showRun();
-    writeUrl();
+    schedule(async () => {
+      await runCompare();
+      showRun();
+      writeUrl();
+    });
   };
   $('compare').addEventListener('change', (e) => { st.compare.mode = e.target.value; compareChanged(); });
   $('compare-law').addEventListener('change', (e) => { st.compare.law = e.target.value; compareChanged(); });
@@ -557,6 +949,11 @@
       st.speed = speeds[Math.min(Math.max(i, 0), speeds.length - 1)];
       $('speed').value = String(st.speed);
       render();
+    } else if (e.key === 'm' || e.key === 'M') {
+      sound.muted = !sound.muted;
+      showSound();
+    } else if (e.key === 'f' || e.key === 'F') {
+      setProjector(!document.body.classList.contains('projector'));
     } else if (e.key === '?') {
       $('keys-help').showModal();
     } else {
@@ -575,53 +972,53 @@
   // ---- start: the machine of the link, or example 1 -----------------------------------------------
 
   const start = readUrl();
-  if (start.compare[0] === 'law' && names['run.impact_law'].includes(start.compare[1])) {
-    Object.assign(st.compare, { mode: 'law', law: start.compare[1] });
-  } else if (start.compare[0] === 'euler' && start.compare[1]) {
-    Object.assign(st.compare, { mode: 'euler', step: start.compare[1] });
-  }
+  if (start.compare) Object.assign(st.compare, start.compare);
   showCompareControls();
   sizeCanvas();
   st.base = start.base;
   st.sets = new Map(start.sets);
   showPresetChoice();
-  if (!simulate(null)) {
+  document.body.dataset.busy = 'true';
+  queue.busy = true;  // the first run before any change
+  const problems = [...start.problems];
+  if (!await simulate(null)) {
     // A link whose changes do not run: its machine without them, and why.
-    const problem = st.problem;
+    problems.push(T('The link\'s machine does not run ({problem}).', { problem: st.problem }));
     st.sets = new Map();
-    if (!simulate(null)) {
+    if (!await simulate(null)) {
       st.base = presets[0];
-      simulate(null);
+      await simulate(null);
     }
-    $('problem').textContent = `The link's machine does not run (${problem}); this is ${st.base.title} without its changes.`;
-    $('problem').hidden = false;
+    problems.push(T('This is {title} without the link\'s changes.', { title: T(st.base.title) }));
     showPresetChoice();
   }
+  if (problems.length) {
+    $('problem').textContent = problems.join(' ');
+    $('problem').hidden = false;
+  }
+  markStale(false);
   fitCanvas();
   commitChange();
+  pump();  // what came meanwhile, and the sliders' valid ranges
   requestAnimationFrame(tick);
 
   // For the tests and the curious: the page's state and its mapping to the canvas.
   window.whatnext = {
     get time() { return st.t; },
     get run() { return st.run; },
+    get sounds() { return sound.log; },
+    validity: (key) => panel.field(key).validity,
+    probes: (key) => panel.probes().find((p) => p.key === key).values,
+    play: () => play(),
     seek: (t) => { pause(); seek(t); },
     stateAt: (t) => Machine.stateAt(st.run.samples, t),
     canvasPixel: (x, h) => {
       const p = Machine.toPixel(st.view, { x, h });
       return { x: p.x * st.dpr, y: p.y * st.dpr };
     },
-    // Milliseconds for one run of a shipped machine (as the page runs it at every change).
-    timeRun: (id, repeat) => {
-      const input = inputFor(presets.find((x) => x.id === id), []);
-      const times = [];
-      for (let i = 0; i < repeat; ++i) {
-        const t0 = performance.now();
-        wasm.run(input);
-        times.push(performance.now() - t0);
-      }
-      return times.sort((a, b) => a - b);
-    },
+    // Milliseconds for one run of a shipped machine (as the page runs it at every change), timed
+    // in the worker.
+    timeRun: (id, repeat) => ask('timeRun', { input: inputFor(presets.find((x) => x.id === id), []), repeat }),
   };
   document.body.dataset.ready = 'true';
 })();

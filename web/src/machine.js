@@ -436,7 +436,15 @@
   // One picture: the main run at its state, the other run as a ghost, and the caption band
   // (time and mode; the event in red on an event's frame, on frame.lines lines at most).
   function draw(ctx, v, frame) {
-    const { run, state: s, ghost, caption, event, font } = frame;
+    const { run, state: s, caption, event, font } = frame;
+    // Other runs drawn as outlines, each in its colour (frame.ghost: one, in the ghost colour).
+    const ghosts = frame.ghosts || (frame.ghost ? [frame.ghost] : []);
+    const inColour = (g, fn) => {
+      const was = colour.ghost;
+      colour.ghost = g.colour || was;
+      fn();
+      colour.ghost = was;
+    };
     const m = run.machine;
     ctx.save();
     ctx.fillStyle = 'white';
@@ -446,13 +454,13 @@
     ctx.clip();
     const radioPlaying = run.radioOnAt !== null && s.t >= run.radioOnAt;
     drawStill(ctx, v, m, m.radio, radioPlaying);
-    if (ghost) drawBalloon(ctx, v, ghost.run.machine, ghost.state, true, ghost.run.machine.radio);
+    for (const g of ghosts) inColour(g, () => drawBalloon(ctx, v, g.run.machine, g.state, true, g.run.machine.radio));
     drawBalloon(ctx, v, m, s, false, m.radio);
     drawWalls(ctx, v, m);
-    if (ghost) {
+    for (const g of ghosts) {
       ctx.save();
       ctx.globalAlpha = 0.6;
-      drawMoving(ctx, v, ghost.run, ghost.state, true);
+      inColour(g, () => drawMoving(ctx, v, g.run, g.state, true));
       ctx.restore();
     }
     const bag = drawMoving(ctx, v, run, s, false);

@@ -37,10 +37,14 @@
   const kSections = { balloon: 'Balloon', radio: 'Radio', damping: 'Damping', seesaw: 'A seesaw with mass' };
   const kNumberKinds = ['length', 'mass', 'density', 'angle', 'time', 'acceleration', 'positive'];
   const kSliderSteps = 1000;
+  const kProbes = 40;  // slider positions checked for validity
 
   const number = (x) => String(Number(x.toPrecision(12)));
+  // A decimal comma, as German and most of Europe write numbers ("0,7"), is a point to the library.
+  const point = (text) => (/^\s*[-+]?\d*,\d+([eE][-+]?\d+)?\s*$/.test(text) ? text.replace(',', '.') : text);
   const rounded = (x) => String(Number(x.toPrecision(6)));  // for values the page works out
-  const words = (key) => key.slice(key.indexOf('.') + 1).replace(/_/g, ' ');
+  const S = window.whatnextStrings;
+  const words = (key) => S.keyName(key, key.slice(key.indexOf('.') + 1).replace(/_/g, ' '));
 
   function element(tag, attrs, ...children) {
     const e = document.createElement(tag);
@@ -57,7 +61,7 @@
     const groups = kGroups.map((g) => {
       const details = element('details', { class: 'group' });
       if (!g.closed) details.open = true;
-      details.append(element('summary', { text: g.title }));
+      details.append(element('summary', { text: S.t(g.title) }));
       form.append(details);
       return { ...g, details };
     });
@@ -66,7 +70,7 @@
       const group = groups.find((g) => g.match(spec.key));
       const section = spec.key.slice(0, spec.key.indexOf('.'));
       if (group.closed && group.section !== section) {  // the extensions, by the part they change
-        group.details.append(element('h3', { text: kSections[section] || section }));
+        group.details.append(element('h3', { text: S.t(kSections[section] || section) }));
         group.section = section;
       }
       group.details.append(makeField(spec));
@@ -78,7 +82,7 @@
       const label = element('label', { for: id },
                             element('span', { class: 'name', text: words(key) }),
                             spec.unit ? element('span', { class: 'unit', text: spec.unit.replace('^2', '²').replace('^3', '³') }) : null);
-      const reset = element('button', { type: 'button', class: 'reset', title: 'back to the machine as loaded',
+      const reset = element('button', { type: 'button', class: 'reset', title: S.t('back to the machine as loaded'),
                                         'aria-label': `reset ${key}` });
       reset.textContent = '↺';
       const row = element('div', { class: 'inputs' });
@@ -95,7 +99,7 @@
         const box = element('input', { id, type: 'checkbox' });
         box.addEventListener('change', () => send(box.checked ? 'true' : 'false', true));
         field.inputs.push(box);
-        row.append(box, element('span', { class: 'flag-words', text: 'on' }));
+        row.append(box, element('span', { class: 'flag-words', text: S.t('on') }));
       } else if (spec.kind === 'pair') {
         for (const [i, part] of ['dx', 'dh'].entries()) {
           const input = element('input', { id: i ? `${id}-dh` : id, type: 'text', inputmode: 'decimal',
@@ -104,7 +108,7 @@
           row.append(element('span', { class: 'part', text: part }), input);
         }
         const pairText = () => {
-          const [a, b] = field.inputs.map((inp) => inp.value.trim() || inp.placeholder);
+          const [a, b] = field.inputs.map((inp) => point(inp.value.trim()) || inp.placeholder);
           return field.inputs.every((inp) => !inp.value.trim()) ? null : `[${a}, ${b}]`;
         };
         for (const input of field.inputs) {
@@ -114,11 +118,11 @@
       } else {
         const input = element('input', { id, type: 'text', inputmode: 'decimal', size: 9 });
         const moveSlider = () => {
-          const v = Number(input.value.trim() || input.placeholder);
+          const v = Number(point(input.value.trim()) || input.placeholder);
           if (field.slider && input.value.trim() !== '' && Number.isFinite(v)) field.slider.value = String(Math.round(field.toSlider(v)));
         };
-        input.addEventListener('input', () => { moveSlider(); send(input.value.trim() || null, false); });
-        input.addEventListener('change', () => send(input.value.trim() || null, true));
+        input.addEventListener('input', () => { moveSlider(); send(point(input.value.trim()) || null, false); });
+        input.addEventListener('change', () => send(point(input.value.trim()) || null, true));
         field.inputs.push(input);
         row.append(input);
         if (kNumberKinds.includes(spec.kind) && kRanges[key]) {
@@ -138,7 +142,7 @@
       field.error.hidden = true;
       root.append(label, row, reset);
       if (field.slider) root.append(field.slider);
-      root.append(element('p', { class: 'help' }, spec.help + ' ', element('code', { text: key })), field.error);
+      root.append(element('p', { class: 'help' }, S.keyHelp(key, spec.help) + ' ', element('code', { text: key })), field.error);
       fields.set(key, field);
       return root;
     }
@@ -157,6 +161,49 @@
       if (v.text !== undefined) return v.text;
       return rounded(v.number);
     }
+
+    // The help of the field under the pointer or with the focus, in one box beside the panel
+    // where there is room (over the drawing, never over another field); on a narrow screen in the
+    // field itself, below its input, while it has the focus (a phone has no pointer to hover).
+    const tip = element('div', { class: 'help-tip', role: 'tooltip' });
+    tip.hidden = true;
+    document.body.append(tip);
+    let tipFor = null;
+    function showTip(field) {
+      const help = field.root.querySelector('.help');
+      const panelBox = form.getBoundingClientRect();
+      const room = window.innerWidth - panelBox.right;
+      field.root.classList.remove('help-inline');
+      if (room < 220) {  // no room beside the panel: inline, in the flow, with the focus only
+        tip.hidden = true;
+        tipFor = null;
+        if (field.root.contains(document.activeElement)) field.root.classList.add('help-inline');
+        return;
+      }
+      tip.textContent = '';
+      for (const n of help.childNodes) tip.append(n.cloneNode(true));
+      const r = field.root.getBoundingClientRect();
+      tip.style.left = `${panelBox.right + 12}px`;
+      tip.style.top = `${Math.max(4, r.top)}px`;
+      tip.style.maxWidth = `${Math.min(360, room - 24)}px`;
+      tip.hidden = false;
+      tipFor = field;
+    }
+    function hideTip(field) {
+      field.root.classList.remove('help-inline');
+      if (tipFor !== field) return;
+      const focused = field.root.contains(document.activeElement);
+      if (focused || field.root.matches(':hover')) return;
+      tip.hidden = true;
+      tipFor = null;
+    }
+    for (const field of fields.values()) {
+      field.root.addEventListener('mouseenter', () => showTip(field));
+      field.root.addEventListener('mouseleave', () => { hideTip(field); const f = [...fields.values()].find((x) => x.root.contains(document.activeElement)); if (f && tip.hidden) showTip(f); });
+      field.root.addEventListener('focusin', () => showTip(field));
+      field.root.addEventListener('focusout', () => setTimeout(() => hideTip(field), 0));
+    }
+    form.closest('section').addEventListener('scroll', () => { if (tipFor) showTip(tipFor); }, { passive: true });
 
     return {
       // Shows the run's inputs: what the machine file and the changes give, blank (with the
@@ -210,6 +257,34 @@
         }
       },
       field(key) { return fields.get(key); },
+      // The slider positions to ask the library about: kProbes values across each slider.
+      probes() {
+        const out = [];
+        for (const [key, field] of fields) {
+          if (!field.slider) continue;
+          const values = [];
+          for (let i = 0; i < kProbes; ++i) values.push(number(field.fromSlider((i + 0.5) * kSliderSteps / kProbes)));
+          out.push({ key, values });
+        }
+        return out;
+      },
+      // Where on its slider a value is refused (red hatching, with its range named in the help).
+      showValidity(valid) {
+        for (const [key, ok] of Object.entries(valid)) {
+          const field = fields.get(key);
+          if (!field || !field.slider) continue;
+          field.validity = ok;
+          const stops = [];
+          ok.forEach((good, i) => {
+            const a = (100 * i) / ok.length, b = (100 * (i + 1)) / ok.length;
+            const c = good ? 'transparent' : 'rgba(210,0,0,0.75)';
+            stops.push(`${c} ${a}%`, `${c} ${b}%`);
+          });
+          field.slider.style.setProperty('--refused', ok.every(Boolean) ? 'none' : `linear-gradient(to right, ${stops.join(', ')})`);
+          field.slider.classList.toggle('partly-invalid', !ok.every(Boolean));
+          field.slider.title = ok.every(Boolean) ? '' : S.t('red: values this machine refuses');
+        }
+      },
     };
   }
 

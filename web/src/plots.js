@@ -5,34 +5,35 @@
   'use strict';
 
   const deg = 180 / Math.PI;
+  const S = window.whatnextStrings;
   // Each plot: its figure, the y axis and its curves (value of row i of a run's samples).
   const kPlots = [
     {
-      id: 'plot-angles', axis: 'angle [°]', guide: 90,
+      id: 'plot-angles', axis: S.t('angle [°]'), guide: 90,
       curves: [
-        { label: 'φS seesaw', stroke: '#995533', value: (s, i) => s.phi_s[i] * deg },
-        { label: 'φL lid', stroke: '#335599', value: (s, i) => s.phi_l[i] * deg },
+        { label: S.t('φS seesaw'), stroke: '#995533', value: (s, i) => s.phi_s[i] * deg },
+        { label: S.t('φL lid'), stroke: '#335599', value: (s, i) => s.phi_l[i] * deg },
       ],
     },
     {
-      id: 'plot-heights', axis: 'height [m]',
+      id: 'plot-heights', axis: S.t('height [m]'),
       curves: [
-        { label: 'sandbag', stroke: '#cc7f00', value: (s, i) => s.h[i] },
-        { label: 'balloon centre', stroke: '#e0202a', value: (s, i, m) => m.hinge.h + s.balloon_h[i] },
-        { label: 'lid limit', stroke: '#f29a9e', dash: [5, 4], value: (s, i, m) => m.hinge.h + s.balloon_limit[i] },
+        { label: S.t('sandbag'), stroke: '#cc7f00', value: (s, i) => s.h[i] },
+        { label: S.t('balloon centre'), stroke: '#e0202a', value: (s, i, m) => m.hinge.h + s.balloon_h[i] },
+        { label: S.t('lid limit'), stroke: '#f29a9e', dash: [5, 4], value: (s, i, m) => m.hinge.h + s.balloon_limit[i] },
       ],
     },
     {
-      id: 'plot-energy', axis: 'energy [J]', impacts: true,
+      id: 'plot-energy', axis: S.t('energy [J]'), impacts: true,
       curves: [
-        { label: 'machine E', stroke: '#222222', value: (s, i) => s.energy[i] },
-        { label: 'lost (impacts, damping)', stroke: '#c0392b', value: (s, i) => losses(s, i) },
-        { label: 'E + lost', stroke: '#2e8b57', dash: [2, 3], value: (s, i) => s.energy[i] + losses(s, i) },
+        { label: S.t('machine E'), stroke: '#222222', value: (s, i) => s.energy[i] },
+        { label: S.t('lost (impacts, damping)'), stroke: '#c0392b', value: (s, i) => losses(s, i) },
+        { label: S.t('E + lost'), stroke: '#2e8b57', dash: [2, 3], value: (s, i) => s.energy[i] + losses(s, i) },
       ],
     },
     {
-      id: 'plot-tension', axis: 'tension [N]',
-      curves: [{ label: 'rope tension', stroke: '#6a3d9a', value: (s, i) => s.tension[i] }],
+      id: 'plot-tension', axis: S.t('tension [N]'),
+      curves: [{ label: S.t('rope tension'), stroke: '#6a3d9a', value: (s, i) => s.tension[i] }],
     },
   ];
 
@@ -87,7 +88,7 @@
       charts.push(chart);
     }
 
-    function seriesFor(plot, withCompare) {
+    function seriesFor(plot, others) {
       const series = [{ label: 't [s]', value: (u, v) => (v == null ? '' : v.toFixed(4)) }];
       // Rounding noise (an energy-keeping impact's loss of -1.8e-15 J) reads as the zero it is.
       const format = (v) => (v == null ? '—' : Math.abs(v) < 1e-9 ? '0' : Number(v.toPrecision(5)).toString());
@@ -105,10 +106,12 @@
       for (const c of plot.curves) {
         series.push({ label: c.label, stroke: c.stroke, width: 2, dash: c.dash, value, spanGaps: true, points: { show: false } });
       }
-      if (withCompare) {
+      // Each other run: its curves dashed in their colours (with several runs, in the run's
+      // colour and dash, so that the laws can be told apart).
+      for (const o of others) {
         for (const c of plot.curves) {
-          series.push({ label: `${c.label}, dashed`, stroke: c.stroke, width: 1.5, dash: [8, 5], alpha: 0.8,
-                        value, spanGaps: true, points: { show: false } });
+          series.push({ label: `${c.label}, ${o.label}`, stroke: others.length > 1 ? o.colour : c.stroke, width: 1.5,
+                        dash: o.dash, alpha: 0.8, value, spanGaps: true, points: { show: false } });
         }
       }
       return series;
@@ -137,7 +140,7 @@
       ctx.restore();
     }
 
-    function build(chart, data, withCompare) {
+    function build(chart, data, others) {
       const { plot, figure } = chart;
       if (chart.u) chart.u.destroy();
       const width = Math.max(200, figure.clientWidth);
@@ -148,7 +151,7 @@
           { label: 't [s]', labelSize: 20, size: 36 },
           { label: plot.axis, labelSize: 20, size: 56 },
         ],
-        series: seriesFor(plot, withCompare),
+        series: seriesFor(plot, others),
         cursor: { y: false, sync: { key: 'whatnext' }, drag: { x: true, y: false }, points: { size: 6 } },
         legend: { live: true },
         hooks: {
@@ -207,15 +210,16 @@
 
     return {
       // A new run (and maybe a second run to compare): rebuild the data, keeping any zoom.
-      show(run, other) {
+      // others: [{run, label, colour, dash}], drawn dashed.
+      show(run, others = []) {
         groups = run.groups;
-        const withCompare = Boolean(other);
+        const key = others.map((o) => o.label).join('|');
         for (const chart of charts) {
           let data = table(chart.plot, run);
-          if (withCompare) data = merge(data, table(chart.plot, other));
-          if (!chart.u || chart.withCompare !== withCompare) {
-            build(chart, data, withCompare);
-            chart.withCompare = withCompare;
+          for (const o of others) data = merge(data, table(chart.plot, o.run));
+          if (!chart.u || chart.compareKey !== key) {
+            build(chart, data, others);
+            chart.compareKey = key;
           } else {
             chart.settingData = true;
             chart.u.setData(data);

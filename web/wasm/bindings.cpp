@@ -3,6 +3,7 @@
 // samples as Float64Array columns. Bad input gives the CLI's one-line message instead of a result.
 // Nothing here computes physics or formats numbers: that is the library's (config, simulate, output).
 #include <emscripten/bind.h>
+#include <emscripten/emscripten.h>
 #include <emscripten/val.h>
 
 #include <cmath>
@@ -124,6 +125,13 @@ class Columns : public Observer {
   explicit Columns(long stride) : stride_(stride) {}
   void on_sample(const Snapshot& s) override {
     if (samples_++ % stride_ == 0) add(s, -1.0);
+    // The worker (web/src/worker.js) tells the page how far the run is, at most every few tenths
+    // of a second; asking the clock costs next to nothing beside a sample.
+    if (emscripten_get_now() - reported_ > 150.0) {
+      reported_ = emscripten_get_now();
+      const val progress = val::global("whatnextProgress");
+      if (progress.typeOf().as<std::string>() == "function") progress(s.t);
+    }
   }
   void on_event(const Event& e) override { add(e.after, static_cast<double>(events_++)); }
 
@@ -145,6 +153,7 @@ class Columns : public Observer {
   }
   long stride_;
   long samples_ = 0, events_ = 0;
+  double reported_ = emscripten_get_now();
   std::vector<double> data_[std::size(kColumns)];
   std::vector<double> event_;
 };
@@ -275,6 +284,22 @@ val run(val input) {
   });
 }
 
+// What a run will cost before it is started: the machine's run settings, {ok, integrator, step,
+// t_max, output_step}, or the input's message. The worker asks before a fixed-step run of
+// millions of steps.
+val plan(val input) {
+  return guarded([&] {
+    const Input in = load(input);
+    val r = val::object();
+    r.set("ok", true);
+    r.set("integrator", std::string(to_string(in.scenario.run.integrator)));
+    r.set("step", in.scenario.run.step);
+    r.set("t_max", in.scenario.run.t_max);
+    r.set("output_step", in.scenario.run.output_step);
+    return r;
+  });
+}
+
 // The downloads, as `whatnext run` writes them: TOML (to_toml), --events JSON, --csv.
 val toml(val input) {
   return guarded([&] { return text_result(to_toml(load(input).scenario)); });
@@ -361,6 +386,7 @@ val presets() {
 
 EMSCRIPTEN_BINDINGS(whatnext) {
   emscripten::function("run", &run);
+  emscripten::function("plan", &plan);
   emscripten::function("toml", &toml);
   emscripten::function("events", &events);
   emscripten::function("csv", &csv);

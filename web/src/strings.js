@@ -1,0 +1,341 @@
+// The page's words in more than one language. The page is written in English; each other
+// language is one table below from the English words (as they stand in index.html and the scripts,
+// whitespace collapsed) to its own, plus patterns for the library's sentences (the outcome, the
+// events and modes, the messages) that hold numbers. A word missing from a table stays English.
+// Another language: one more entry in kLanguages with its name, table, patterns and decimal sign.
+(function () {
+  'use strict';
+
+  const de = {
+    // index.html
+    "whatnext: Kermit's What-Happens-Next machine": 'whatnext: Kermits Was-passiert-dann-Maschine',
+    "Kermit's What-Happens-Next machine simulated exactly, in the browser: the same C++ core as the whatnext command line, compiled to WebAssembly.":
+      'Kermits Was-passiert-dann-Maschine exakt simuliert, im Browser: derselbe C++-Kern wie das Kommandozeilenprogramm whatnext, nach WebAssembly übersetzt.',
+    "Kermit's What-Happens-Next machine, simulated exactly": 'Kermits Was-passiert-dann-Maschine, exakt simuliert',
+    Machine: 'Maschine',
+    "Open a machine file (TOML or the paper's whatnext.inp)": 'Eine Maschinendatei öffnen (TOML oder whatnext.inp aus dem Artikel)',
+    'Open file…': 'Datei öffnen…',
+    'Copy a link that reopens this machine': 'Einen Link kopieren, der diese Maschine wieder öffnet',
+    'Copy link': 'Link kopieren',
+    Downloads: 'Herunterladen',
+    Download: 'Herunterladen',
+    'The machine as TOML, for whatnext run': 'Die Maschine als TOML, für whatnext run',
+    'The events, as whatnext run --events writes them': 'Die Ereignisse, wie whatnext run --events sie schreibt',
+    'events JSON': 'Ereignisse JSON',
+    'The sampled run, as whatnext run --csv writes it': 'Der Lauf in Zeitschritten, wie whatnext run --csv ihn schreibt',
+    'Projector mode: full screen, the machine large (F)': 'Beamer-Modus: Vollbild, die Maschine groß (F)',
+    Projector: 'Beamer',
+    'Keyboard controls (?)': 'Tastatur (?)',
+    'Keyboard controls': 'Tastatur',
+    'Sound on or off': 'Ton an oder aus',
+    'Sound: on': 'Ton: an',
+    'Sound: off': 'Ton: aus',
+    Language: 'Sprache',
+    'The machine': 'Die Maschine',
+    'The machine drawn to scale': 'Die Maschine, maßstabsgetreu gezeichnet',
+    'Not the values in the panel: the last run that worked.': 'Nicht die Werte der Eingabefelder: der letzte Lauf, der ging.',
+    'Back to the start (Home)': 'Zurück zum Anfang (Pos1)',
+    'Back to the start': 'Zurück zum Anfang',
+    'Previous event (PageUp or [)': 'Voriges Ereignis (Bild↑ oder [)',
+    'Previous event': 'Voriges Ereignis',
+    'Play or pause (Space)': 'Abspielen oder anhalten (Leertaste)',
+    Play: 'Abspielen',
+    Pause: 'Anhalten',
+    'Next event (PageDown or ])': 'Nächstes Ereignis (Bild↓ oder ])',
+    'Next event': 'Nächstes Ereignis',
+    speed: 'Tempo',
+    'Slow motion (+ and −)': 'Zeitlupe (+ und −)',
+    'slow motion ×10 near the events, fast through the quiet stretches': 'Zeitlupe ×10 bei den Ereignissen, schnell durch die ruhigen Strecken',
+    'real time': 'Echtzeit',
+    Time: 'Zeit',
+    'What happens': 'Was passiert',
+    'Loading the machine…': 'Die Maschine wird geladen…',
+    Stop: 'Anhalten',
+    'Events (click one to go there)': 'Ereignisse (eines anklicken, um dorthin zu gehen)',
+    'Events (tap one to go there)': 'Ereignisse (eines antippen, um dorthin zu gehen)',
+    event: 'Ereignis',
+    mode: 'Phase',
+    'The same run on the command line': 'Derselbe Lauf auf der Kommandozeile',
+    Plots: 'Diagramme',
+    'Compare with': 'Vergleichen mit',
+    nothing: 'nichts',
+    'another impact law': 'einem anderen Stoßgesetz',
+    'all four impact laws': 'allen vier Stoßgesetzen',
+    "the paper's Euler method": 'dem Euler-Verfahren des Artikels',
+    'the previous parameters': 'den vorigen Parametern',
+    'Impact law to compare with': 'Stoßgesetz zum Vergleich',
+    step: 'Schritt',
+    Angles: 'Winkel',
+    'Heights above the pivot': 'Höhen über der Wippenachse',
+    'Energy and impact losses': 'Energie und Stoßverluste',
+    'Rope tension': 'Seilkraft',
+    'Drag across a plot to zoom in, double-click to zoom out, click to go to that time.':
+      'Über ein Diagramm ziehen vergrößert, Doppelklick verkleinert, Klick geht zu diesem Zeitpunkt.',
+    'Tap a plot to go to that time.': 'Ein Diagramm antippen geht zu diesem Zeitpunkt.',
+    'Dashed vertical lines mark the events.': 'Gestrichelte senkrechte Linien markieren die Ereignisse.',
+    'Energies are measured from the pivot\'s height: a mass below the pivot has negative potential energy, so the machine\'s energy E can be below zero.':
+      'Energien zählen ab der Höhe der Wippenachse: eine Masse unterhalb der Achse hat negative Lageenergie, daher kann die Energie E der Maschine unter null liegen.',
+    Parameters: 'Parameter',
+    'Back to the machine as loaded': 'Zurück zur Maschine, wie sie geladen wurde',
+    'Reset all': 'Alles zurücksetzen',
+    'Every change runs the machine again at once. Angles in degrees, everything else in SI units. A blank field takes the value shown in grey.':
+      'Jede Änderung rechnet die Maschine sofort neu. Winkel in Grad, alles andere in SI-Einheiten. Ein leeres Feld nimmt den grau gezeigten Wert. Dezimalkomma oder -punkt.',
+    'The same C++ library as the': 'Dieselbe C++-Bibliothek wie das Programm',
+    'command, compiled to WebAssembly. Plots: uPlot.': ', nach WebAssembly übersetzt. Diagramme: uPlot.',
+    Keyboard: 'Tastatur',
+    Space: 'Leertaste',
+    'play / pause': 'abspielen / anhalten',
+    'back / forward 1 ms (with': 'zurück / vor 1 ms (mit',
+    Shift: 'Umschalt',
+    ': 10 ms)': ': 10 ms)',
+    PageUp: 'Bild↑',
+    PageDown: 'Bild↓',
+    or: 'oder',
+    'previous / next event': 'voriges / nächstes Ereignis',
+    Home: 'Pos1',
+    End: 'Ende',
+    'start / end of the run': 'Anfang / Ende des Laufs',
+    'faster / slower (real time … 1/50)': 'schneller / langsamer (Echtzeit … 1/50)',
+    'projector mode on / off (': 'Beamer-Modus an / aus (',
+    'leaves full screen)': 'verlässt das Vollbild)',
+    M: 'M',
+    'sound on / off': 'Ton an / aus',
+    'this help': 'diese Hilfe',
+    Close: 'Schließen',
+    'Run it': 'Rechnen',
+    "Don't run": 'Nicht rechnen',
+    'Choose a preset': 'Eine Maschine wählen',
+
+    // app.js
+    'Running… {where}{secs} s so far.': 'Rechnet… {where}bisher {secs} s.',
+    't = {t} s of {tMax} s; ': 't = {t} s von {tMax} s; ',
+    'This page cannot start its worker here ({why}). Opened from a folder on the disk, use whatnext.html (the page in one file); or serve the folder (./run.sh web).':
+      'Die Seite kann hier ihren Worker nicht starten ({why}). Aus einem Ordner auf der Festplatte geöffnet: whatnext.html verwenden (die Seite in einer Datei), oder den Ordner bereitstellen (./run.sh web).',
+    'This run': 'Dieser Lauf',
+    'The run to compare with': 'Der Vergleichslauf',
+    '{what} takes {steps} steps of the {integrator} method (t_max {tMax} s at a step of {step} s): the page may work on it for minutes. Run it anyway? (It can be stopped.)':
+      '{what} braucht {steps} Schritte des Verfahrens {integrator} (t_max {tMax} s mit Schrittweite {step} s): das kann Minuten dauern. Trotzdem rechnen? (Er lässt sich anhalten.)',
+    'not started ({steps} steps)': 'nicht gestartet ({steps} Schritte)',
+    'This machine cannot be run': 'Diese Maschine lässt sich nicht rechnen',
+    'Stopped before the run was done': 'Angehalten, bevor der Lauf fertig war',
+    'Not started': 'Nicht gestartet',
+    'Not run': 'Nicht gerechnet',
+    'The drawing and plots still show the last run that worked.': 'Zeichnung und Diagramme zeigen weiter den letzten Lauf, der ging.',
+    'Nothing to compare with: that run was stopped.': 'Kein Vergleich: dieser Lauf wurde angehalten.',
+    'Nothing to compare with: {message}': 'Kein Vergleich: {message}',
+    'it holds characters that are not URL-safe base64': 'er enthält Zeichen, die kein URL-sicheres Base64 sind',
+    'it holds {bytes} bytes, more than the {most} a machine file may have': 'er hat {bytes} Bytes, mehr als die {most}, die eine Maschinendatei haben darf',
+    '{name} is not opened: it has {bytes} bytes, more than the {most} bytes a machine file may have.':
+      '{name} wird nicht geöffnet: die Datei hat {bytes} Bytes, mehr als die {most} Bytes, die eine Maschinendatei haben darf.',
+    "The link's machine={given} is not one of this page's machines ({ids}).": 'machine={given} im Link ist keine Maschine dieser Seite ({ids}).',
+    "The link's file (text=) cannot be read: {why}.": 'Die Datei im Link (text=) ist nicht lesbar: {why}.',
+    'The link names a file ({given}) but does not hold it (no text=).': 'Der Link nennt eine Datei ({given}), enthält sie aber nicht (kein text=).',
+    'The link\'s part "{given}" is not a key (keys look like geometry.rope_length) and was left out.':
+      'Der Teil „{given}“ des Links ist kein Schlüssel (Schlüssel sehen aus wie geometry.rope_length) und wurde weggelassen.',
+    "The link's compare={given} is not a comparison (law:NAME with NAME one of {laws}; laws:; euler:STEP with a step in seconds above 0) and was left out.":
+      'compare={given} im Link ist kein Vergleich (law:NAME mit NAME aus {laws}; laws:; euler:SCHRITT mit einer Schrittweite in Sekunden über 0) und wurde weggelassen.',
+    "The link's machine does not run ({problem}).": 'Die Maschine des Links lässt sich nicht rechnen ({problem}).',
+    "This is {title} without the link's changes.": 'Zu sehen ist {title} ohne die Änderungen des Links.',
+    'Copy this link; it opens this machine:': 'Diesen Link kopieren; er öffnet diese Maschine:',
+    'Link copied: it opens this machine.': 'Link kopiert: er öffnet diese Maschine.',
+    'This address works on this computer only: serve the page (./run.sh web --lan, or any web server) to share it.':
+      'Diese Adresse gilt nur auf diesem Computer: zum Teilen die Seite bereitstellen (./run.sh web --lan oder ein beliebiger Webserver).',
+    'Outcome: {sentence}.': 'Ergebnis: {sentence}.',
+    'Dashed, {label}: {sentence}.': 'Gestrichelt, {label}: {sentence}.',
+    'impact law {law}': 'Stoßgesetz {law}',
+    'Euler, step {step} s': 'Euler, Schritt {step} s',
+    'previous parameters': 'vorige Parameter',
+    'Change a parameter: the run before the change is then drawn dashed.': 'Einen Parameter ändern: der Lauf vor der Änderung wird dann gestrichelt gezeichnet.',
+    'dashed in the plots, blue outline in the drawing': 'gestrichelt in den Diagrammen, blauer Umriss in der Zeichnung',
+    'Last run: {ms} ms in WebAssembly, {events} events, {states} states.': 'Letzter Lauf: {ms} ms in WebAssembly, {events} Ereignisse, {states} Zustände.',
+    'end of the run (Space plays it again)': 'Ende des Laufs (Leertaste spielt ihn noch einmal)',
+    'end of the run (▶ plays it again)': 'Ende des Laufs (▶ spielt ihn noch einmal)',
+    'paused (Space plays)': 'angehalten (Leertaste spielt ab)',
+    'paused (▶ plays)': 'angehalten (▶ spielt ab)',
+    'slow motion ×{x}': 'Zeitlupe ×{x}',
+    'fast forward ×{x}': 'Zeitraffer ×{x}',
+    'quiet stretch: {words}': 'ruhige Strecke: {words}',
+    'event at {t} s: {words}': 'Ereignis bei {t} s: {words}',
+    'That CSV would have {rows} rows: too many for a browser. Raise run.output_step, or use the command line (see "The same run on the command line").':
+      'Diese CSV hätte {rows} Zeilen: zu viele für einen Browser. run.output_step erhöhen oder die Kommandozeile nehmen (siehe „Derselbe Lauf auf der Kommandozeile“).',
+    'Example 1': 'Beispiel 1', 'Example 2': 'Beispiel 2', 'Example 3': 'Beispiel 3', 'Example 4': 'Beispiel 4',
+    'Example 1 with the radio': 'Beispiel 1 mit dem Radio',
+    'file: {name}': 'Datei: {name}',
+    'one hard pull of the rope opens the lid': 'ein harter Ruck am Seil öffnet den Deckel',
+    'the taut rope pulls the lid open': 'das straffe Seil zieht den Deckel auf',
+    'sandbag on the level seesaw: the lid never opens': 'Sandsack auf der waagrechten Wippe: der Deckel öffnet nie',
+    'a hard hit throws the lid up; it never opens': 'ein harter Schlag wirft den Deckel hoch; er öffnet nie',
+    'the balloon switches the radio on': 'der Ballon schaltet das Radio ein',
+    'Energy from the pivot\'s height: below it, potential energy is negative.': 'Energie ab der Höhe der Wippenachse: darunter ist die Lageenergie negativ.',
+
+    // panel.js
+    Geometry: 'Geometrie',
+    Masses: 'Massen',
+    'Air and balloon': 'Luft und Ballon',
+    Start: 'Anfang',
+    'Run: integrator and impact law': 'Lauf: Integrator und Stoßgesetz',
+    'Extensions beyond the paper': 'Erweiterungen über den Artikel hinaus',
+    Balloon: 'Ballon', Radio: 'Radio', Damping: 'Dämpfung', 'A seesaw with mass': 'Eine Wippe mit Masse',
+    'back to the machine as loaded': 'zurück zur Maschine, wie sie geladen wurde',
+    on: 'an',
+    'red: values this machine refuses': 'rot: Werte, die diese Maschine nicht annimmt',
+    'valid from {lo} to {hi}': 'gültig von {lo} bis {hi}',
+
+    // plots.js
+    'angle [°]': 'Winkel [°]', 'height [m]': 'Höhe [m]', 'energy [J]': 'Energie [J]', 'tension [N]': 'Seilkraft [N]',
+    'φS seesaw': 'φS Wippe', 'φL lid': 'φL Deckel', sandbag: 'Sandsack', 'balloon centre': 'Ballonmitte', 'lid limit': 'Grenze durch den Deckel',
+    'machine E': 'Maschine E', 'lost (impacts, damping)': 'verloren (Stöße, Dämpfung)', 'E + lost': 'E + verloren', 'rope tension': 'Seilkraft',
+    dashed: 'gestrichelt',
+    energy: 'Energie',
+    'each law in its colour: outlines in the drawing, dashes in the plots': 'jedes Gesetz in seiner Farbe: Umrisse in der Zeichnung, Striche in den Diagrammen',
+  };
+
+  // The parameters' names and help (the library's list, docs/inputs.md), by key.
+  const deKeys = {
+    'geometry.seesaw_right_arm': ['Wippe, rechter Arm', 'r_H: Achse bis zum Seilende der Wippe'],
+    'geometry.lid_half_length': ['halbe Deckellänge', 'r_L: halbe Länge des Deckels'],
+    'geometry.rope_length': ['Seillänge', 'l: das Seil von der Wippe zur Deckelkante'],
+    'geometry.hinge_distance': ['Abstand des Scharniers', 'Achse bis zum Scharnier des Deckels'],
+    'geometry.hinge_angle': ['Winkel des Scharniers', 'unter der Waagrechten, von der Achse aus'],
+    'geometry.hinge_offset': ['Lage des Scharniers', '[dx, dh]: Scharnier dx rechts und dh unter der Achse (statt Abstand und Winkel)'],
+    'masses.sandbag': ['Sandsack', 'm_S: der Sandsack (eine Punktmasse)'],
+    'masses.lid': ['Deckel', 'm_L: der Deckel (eine gleichmäßige Platte)'],
+    'air.density': ['Dichte der Luft', 'Dichte der Luft'],
+    'air.helium_density': ['Dichte des Heliums', 'Dichte des Heliums im Ballon'],
+    'balloon.radius': ['Ballonradius', 'r_B'],
+    'balloon.model': ['Ballonmodell', 'program (a = g (rho_Luft − rho_He) / rho_Luft), lagrangian (/ rho_He) oder added-mass (/ (rho_He + rho_Luft / 2))'],
+    'balloon.rubber_mass': ['Gummimasse', 'das Gummi des Ballons: Gewicht und Trägheit'],
+    'balloon.drag': ['Luftwiderstand', 'an: quadratischer Luftwiderstand 1/2 rho_Luft Cd pi r_B² v|v|'],
+    'balloon.drag_coefficient': ['Widerstandsbeiwert', 'Cd des Luftwiderstands (eine Kugel); ihn anzugeben schaltet den Widerstand ein'],
+    'radio.enabled': ['Radio', 'an: nach lid_open weiterrechnen, bis die Ballonschnur das Radio einschaltet'],
+    'radio.switch_offset': ['Lage des Schalters', '[dx, dh]: der Schalter des Radios dx rechts und dh über der oberen rechten Ecke der Kiste'],
+    'radio.string_length': ['Schnurlänge', 'die Ballonschnur, Mitte bis Schalter'],
+    'damping.pivot': ['Achse', 'zähes Moment −c phiS\' an der Achse der Wippe'],
+    'damping.lid_hinge': ['Scharnier', 'zähes Moment −c phiL\' am Scharnier des Deckels'],
+    'seesaw.left_arm': ['linker Arm', 'Achse bis zum Ende des linken Arms'],
+    'seesaw.mass': ['Masse der Wippe', 'eine Wippe mit Masse: ein gleichmäßiger Balken von −left_arm bis r_H, außer inertia/com_offset sind angegeben'],
+    'seesaw.inertia': ['Trägheitsmoment', 'das Trägheitsmoment der Wippe um die Achse'],
+    'seesaw.com_offset': ['Schwerpunkt', 'der Schwerpunkt der Wippe längs des Balkens ab der Achse, + zum Seilende hin'],
+    'start.sandbag_x': ['Sandsack x', 'Anfangslage des Sandsacks, waagrecht ab der Achse (< 0)'],
+    'start.sandbag_height': ['Sandsack Höhe', 'Anfangshöhe des Sandsacks über der Achse'],
+    'start.seesaw_angle': ['Winkel der Wippe', 'phiS0, positiv = linker Arm unten'],
+    'start.lid_angle': ['Winkel des Deckels', 'phiL0, der Ruhewinkel (tiefste Lage) des Deckels'],
+    'run.t_max': ['Ende', 'Ende der simulierten Zeit'],
+    'run.output_step': ['Ausgabeschritt', 'Abstand der CSV-/.dat-Zeilen'],
+    'run.integrator': ['Integrator', 'adaptive, euler oder rk4'],
+    'run.step': ['Schrittweite', 'Zeitschritt von euler und rk4'],
+    'run.tolerance': ['Toleranz', 'adaptive: Fehlertoleranz pro Schritt (abs. und rel.), 1e-15 bis 1e-3'],
+    'run.impact_law': ['Stoßgesetz', 'rope, angular-momentum-sum, kinetic-energy oder linear-momentum'],
+    'run.vertical_margin': ['Abstand zur Senkrechten', 'so weit vor 90° anhalten'],
+    'run.gravity': ['Schwerebeschleunigung', 'g'],
+  };
+
+  // The library's sentences with numbers: the outcome, the events, the modes and the messages.
+  const dePatterns = [
+    [/^lid open at ([\d.]+) s; the radio is not on by t_max = ([\d.]+) s$/, 'Deckel offen bei $1 s; das Radio ist bis t_max = $2 s nicht an'],
+    [/^lid open at ([\d.]+) s$/, 'Deckel offen bei $1 s'],
+    [/^seesaw vertical at ([\d.]+) s with the sandbag (\S+) m out; the lid never opens \(it is at ([-\d.]+) deg\)$/,
+      'Wippe senkrecht bei $1 s, der Sandsack $2 m weit draußen; der Deckel öffnet nie (er steht bei $3°)'],
+    [/^sandbag reaches the pivot at ([\d.]+) s; the lid has not opened \(it is at ([-\d.]+) deg\)$/,
+      'Sandsack erreicht die Achse bei $1 s; der Deckel hat sich nicht geöffnet (er steht bei $2°)'],
+    [/^linkage locked at ([\d.]+) s: the straight rope is in line with the lid or the seesaw's arm; the lid is at ([-\d.]+) deg$/,
+      'Gestänge blockiert bei $1 s: das gestreckte Seil liegt in einer Linie mit dem Deckel oder dem Arm der Wippe; der Deckel steht bei $2°'],
+    [/^radio on at t = ([\d.]+) s$/, 'Radio an bei t = $1 s'],
+    [/^no outcome by t_max = ([\d.]+) s: the lid is at ([-\d.]+) deg$/, 'kein Ergebnis bis t_max = $1 s: der Deckel steht bei $2°'],
+    [/^stopped after (\d+) events at ([\d.]+) s$/, 'angehalten nach $1 Ereignissen bei $2 s'],
+    [/^M1: sandbag falling, rope slack$/, 'M1: Sandsack fällt, Seil locker'],
+    [/^M2: sandbag falling, rope taut$/, 'M2: Sandsack fällt, Seil straff'],
+    [/^M3: sandbag on the seesaw, rope slack$/, 'M3: Sandsack auf der Wippe, Seil locker'],
+    [/^M4: sandbag on the seesaw, rope pulls the lid$/, 'M4: Sandsack auf der Wippe, Seil zieht den Deckel'],
+    [/^M5: rope taut, lid resting$/, 'M5: Seil straff, Deckel liegt auf'],
+    // Messages: the rule in German, the key and the values as given.
+    [/^(\S+) must be a number in (.+) \(given '(.*)'\)$/, '$1 muss eine Zahl in $2 sein (gegeben: „$3“)'],
+    [/^(\S+) must be a number \(given '(.*)'\)$/, '$1 muss eine Zahl sein (gegeben: „$2“)'],
+    [/^(\S+) must be ([<>]=?) (\S+) ?(.*) \(given (.*)\)$/, '$1 muss $2 $3 $4 sein (gegeben: $5)'],
+    [/^(\S+) must be within \[(.*)\] (.*), the range the model is made for \(given (.*)\)$/, '$1 muss in [$2] $3 liegen, dem Bereich, für den das Modell gemacht ist (gegeben: $4)'],
+    [/^geometry.rope_length is shorter than the distance from the seesaw's end to the lid's edge at the start \((.*)\)$/,
+      'geometry.rope_length ist kürzer als der Abstand vom Ende der Wippe zur Deckelkante am Anfang ($1)'],
+    [/^(\S+): unknown key '(.*)' \(did you mean '(.*)'\?\)$/, '$1: unbekannter Schlüssel „$2“ (gemeint: „$3“?)'],
+    [/^(\S+): unknown key '(.*)'$/, '$1: unbekannter Schlüssel „$2“'],
+  ];
+  const deEvents = {
+    'sandbag lands': 'Sandsack landet', 'rope taut': 'Seil straff', 'rope slack': 'Seil locker', 'lid rests': 'Deckel liegt auf',
+    'lid lifts': 'Deckel hebt ab', 'balloon caught': 'Ballon gefangen', 'balloon free': 'Ballon frei',
+    'sandbag falls off': 'Sandsack fällt herunter', 'sandbag leaves': 'Sandsack hebt ab', 'lid open': 'Deckel offen',
+    'seesaw vertical': 'Wippe senkrecht', 'sandbag at pivot': 'Sandsack an der Achse', 'rope locked': 'Gestänge blockiert',
+    'radio on': 'Radio an', timeout: 'Zeit abgelaufen', 'event limit': 'Ereignisgrenze',
+  };
+
+  const kLanguages = {
+    en: { name: 'English', table: {}, keys: {}, patterns: [], events: {}, decimal: '.', html: 'en' },
+    de: { name: 'Deutsch', table: de, keys: deKeys, patterns: dePatterns, events: deEvents, decimal: ',', html: 'de' },
+  };
+
+  // The page's language: the link's lang=, else the one chosen before, else the browser's.
+  function pick() {
+    const fromLink = new URLSearchParams(location.hash.slice(1)).get('lang');
+    if (fromLink && kLanguages[fromLink]) return fromLink;
+    try {
+      const saved = localStorage.getItem('whatnext.lang');
+      if (saved && kLanguages[saved]) return saved;
+    } catch (e) { /* storage off (a file:// page in some browsers): the browser's language */ }
+    for (const l of navigator.languages || [navigator.language || 'en']) {
+      const code = String(l).slice(0, 2).toLowerCase();
+      if (kLanguages[code]) return code;
+    }
+    return 'en';
+  }
+
+  let lang = pick();
+  const L = () => kLanguages[lang];
+  const fill = (text, args) => text.replace(/\{(\w+)\}/g, (m, k) => (args && k in args ? String(args[k]) : m));
+  // Words of the page: t('English {x}', {x}).
+  const t = (english, args) => fill(L().table[english] ?? english, args);
+  // Numbers with the language's decimal sign (in sentences: a point between digits).
+  const decimals = (text) => (L().decimal === '.' ? text : text.replace(/(\d)\.(\d)/g, `$1${L().decimal}$2`));
+  // A sentence of the library: its pattern's translation, numbers with the decimal sign.
+  function sentence(text) {
+    for (const [re, out] of L().patterns) if (re.test(text)) return decimals(text.replace(re, out));
+    return decimals(text);
+  }
+  // An event's words ("rope taut (impact, 0.08 J -> 0.07 J)").
+  function eventWords(text) {
+    const ev = L().events;
+    return decimals(text.replace(/^([a-z ]+?)( \(impact|$)/, (m, name, rest) => (ev[name] || name) + (rest ? (lang === 'en' ? ' (impact' : ' (Stoß') : '')));
+  }
+
+  // index.html's own words: every text and title, aria-label and placeholder.
+  function translatePage(root) {
+    document.documentElement.lang = L().html;
+    if (lang === 'en') return;
+    const walker = document.createTreeWalker(root, NodeFilter.SHOW_TEXT);
+    const nodes = [];
+    while (walker.nextNode()) nodes.push(walker.currentNode);
+    for (const node of nodes) {
+      if (node.parentElement.closest('script, style, pre, code, #timeline tbody')) continue;
+      const text = node.nodeValue.replace(/\s+/g, ' ').trim();
+      if (text && L().table[text] !== undefined) node.nodeValue = node.nodeValue.replace(node.nodeValue.trim(), L().table[text]);
+    }
+    for (const el of root.querySelectorAll('[title], [aria-label], [placeholder]')) {
+      for (const a of ['title', 'aria-label', 'placeholder']) {
+        const v = el.getAttribute(a);
+        if (v && L().table[v] !== undefined) el.setAttribute(a, L().table[v]);
+      }
+    }
+    const title = L().table[document.title];
+    if (title) document.title = title;
+  }
+
+  window.whatnextStrings = {
+    t, sentence, eventWords, decimals, translatePage,
+    keyName: (key, english) => (L().keys[key] ? L().keys[key][0] : english),
+    keyHelp: (key, english) => (L().keys[key] ? L().keys[key][1] : english),
+    get lang() { return lang; },
+    languages: Object.fromEntries(Object.entries(kLanguages).map(([k, v]) => [k, v.name])),
+    set(code) {
+      if (!kLanguages[code]) return;
+      lang = code;
+      try { localStorage.setItem('whatnext.lang', code); } catch (e) { /* not kept */ }
+    },
+  };
+})();
