@@ -37,8 +37,12 @@ TEST(Columns, AnglesAreReportedInDegrees) {
   s.phi_l = units::kPi / 2.0;
   s.dphi_s = -units::kPi;
   for (const StateColumn& c : state_columns()) {
-    if (c.name == "phi_l_deg") EXPECT_DOUBLE_EQ(c.value(s), 90.0);
-    if (c.name == "dphi_s_deg_per_s") EXPECT_DOUBLE_EQ(c.value(s), -180.0);
+    if (c.name == "phi_l_deg") {
+      EXPECT_DOUBLE_EQ(c.value(s), 90.0);
+    }
+    if (c.name == "dphi_s_deg_per_s") {
+      EXPECT_DOUBLE_EQ(c.value(s), -180.0);
+    }
   }
 }
 

@@ -533,7 +533,8 @@ View make_view(const Recording& rec, int width, int height) {
   const double bag = 0.05;  // the sandbag's drawn radius [m] (at least 6 px)
   for (const Snapshot& s : rec.states) {
     box.add(geo.seesaw_end(s.phi_s));
-    box.add(geo.lid_edge(s.phi_l));
+    box.add(geo.lid_edge(s.phi_l));  // the rope's knot
+    box.add(m.hinge + polar(2.0 * m.lid_half_length, s.phi_l));  // the lid's free edge
     box.add(polar(-v.left_arm, s.phi_s));
     landed = landed || s.on_seesaw;
     if (!landed || std::hypot(s.x, s.h) <= v.left_arm) {
@@ -753,7 +754,7 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   set(cr, kLid);
   width_m(0.025, 3.0);
   move(hinge);
-  line(geo.lid_edge(s.phi_l));
+  line(hinge + polar(2.0 * m.lid_half_length, s.phi_l));  // the whole lid; the rope is tied at its knot
   cairo_stroke(cr);
   set(cr, kBlack);
   circle(hinge, std::max(2.0, 0.012 * v.scale));

@@ -30,6 +30,8 @@
 
   const seesawEnd = (m, phiS) => polar(m.seesaw_right_arm, phiS);
   const lidEdge = (m, phiL) => add(m.hinge, polar(2 * m.lid_half_length, phiL));
+  // Where the rope is tied: the lid's free edge unless geometry.rope_on_lid ties it nearer the hinge.
+  const ropeKnot = (m, phiL) => add(m.hinge, polar(m.rope_knot, phiL));
   const groundLevel = (m) => m.hinge.h - 2 * m.lid_half_length;
   const balloonCentre = (m, s) => ({ x: m.hinge.x + m.lid_half_length, h: m.hinge.h + s.balloon_h });
 
@@ -127,7 +129,7 @@
   // A span up to this many rope lengths counts as the rope's length (the taut rope's closure holds
   // it to rounding), as in the animation.
   const kSpanTolerance = 1 + 1e-9;
-  const beyondRope = (m, phiS, phiL) => norm(sub(seesawEnd(m, phiS), lidEdge(m, phiL))) > kSpanTolerance * m.rope_length;
+  const beyondRope = (m, phiS, phiL) => norm(sub(seesawEnd(m, phiS), ropeKnot(m, phiL))) > kSpanTolerance * m.rope_length;
 
   // With the radio the rope is let go for good at lid_open (the latch): when that is, and the first
   // sample after it with the seesaw's end farther from the lid's edge than the rope is long (a heavy
@@ -153,7 +155,7 @@
   // of the seesaw's end: never longer than the rope.
   function ropePath(run, s) {
     const m = run.machine, length = m.rope_length;
-    const a = seesawEnd(m, s.phi_s), b = lidEdge(m, s.phi_l);
+    const a = seesawEnd(m, s.phi_s), b = ropeKnot(m, s.phi_l);
     if (s.rope_taut) return [a, b];
     const r = release(run);
     if (s.t < r.latch) return slackRope(m, a, b, length);

@@ -164,6 +164,7 @@ val machine_object(const Scenario& sc) {
   v.set("seesaw_right_arm", m.seesaw_right_arm);
   v.set("seesaw_left_arm", m.seesaw_left_arm);  // Infinity: the paper's endless arm
   v.set("lid_half_length", m.lid_half_length);
+  v.set("rope_knot", m.rope_knot());  // the rope's knot from the hinge along the lid [m]
   v.set("rope_length", m.rope_length);
   v.set("hinge", xy(m.hinge));
   v.set("balloon_radius", m.balloon_radius);
