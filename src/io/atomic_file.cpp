@@ -1,10 +1,15 @@
 // Output files that appear under their name only when complete (AtomicFile), and the checks of an
 // output path made before any work.
 #include <fcntl.h>
+#include <time.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cstdint>
+#include <ctime>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -87,6 +92,13 @@ int descriptor_path(const std::string& p) {
   return -1;
 }
 
+// The folder a file is in, opened: the temporary is created, renamed and removed through it, so
+// that a folder moved meanwhile keeps no temporary and receives the complete file.
+int open_folder_of(const std::string& path) {
+  const std::string dir = fs::path(path).parent_path().string();
+  return ::open(dir.empty() ? "." : dir.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
+}
+
 struct stat null_device_stat() {
   struct stat st {};
   if (::stat("/dev/null", &st) != 0) st.st_rdev = static_cast<dev_t>(-1);
@@ -132,6 +144,37 @@ Target resolve(const std::string& given, const std::function<void(const std::str
   return t;
 }
 
+// A new file beside target, created exclusively under a name no other process holds:
+// ".NAME.XXXXXX.part", XXXXXX random (as rsync's temporaries). A user's own NAME.part is never
+// touched, and two processes writing one name each write their own temporary.
+// dir_fd is target's folder, opened; tmp gets the temporary's path, name its name in the folder.
+int create_temp(int dir_fd, const std::string& target, std::string& tmp, std::string& name) {
+  static std::atomic<std::uint64_t> counter{0};
+  const fs::path p(target);
+  std::string base = p.filename().string();
+  if (base.size() > 200) base.resize(200);  // within NAME_MAX with the marks around it
+  timespec now {};
+  ::clock_gettime(CLOCK_REALTIME, &now);
+  std::uint64_t x = (static_cast<std::uint64_t>(::getpid()) << 32) ^ static_cast<std::uint64_t>(now.tv_nsec) ^
+                    (static_cast<std::uint64_t>(now.tv_sec) << 20);
+  static const char kChars[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    // splitmix64: a different name on every attempt, in every process and thread.
+    std::uint64_t z = (x += 0x9e3779b97f4a7c15ull + counter.fetch_add(1, std::memory_order_relaxed));
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    z ^= z >> 31;
+    std::string suffix(6, 'x');
+    for (char& c : suffix) c = kChars[z % 62], z /= 62;
+    name = "." + base + "." + suffix + ".part";
+    tmp = (p.parent_path() / name).string();
+    const int fd = ::openat(dir_fd, name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0666);
+    if (fd >= 0 || errno != EEXIST) return fd;
+  }
+  errno = EEXIST;
+  return -1;
+}
+
 }  // namespace
 
 std::string regular_output_target(const std::string& path, const std::string& option) {
@@ -141,6 +184,21 @@ std::string regular_output_target(const std::string& path, const std::string& op
   const Target t = resolve(path, fail);
   if (t.fd >= 0 || (t.exists && !S_ISREG(t.st.st_mode))) fail("must be a regular file");
   return t.path;
+}
+
+int can_create_in(const std::string& dir) {
+  std::string tmp, name;
+  const std::string probe = (fs::path(dir.empty() ? "." : dir) / "probe").string();
+  const int dir_fd = open_folder_of(probe);
+  if (dir_fd < 0) return errno;
+  const int fd = create_temp(dir_fd, probe, tmp, name);
+  const int err = errno;
+  if (fd >= 0) {
+    ::close(fd);
+    ::unlinkat(dir_fd, name.c_str(), 0);  // the file just made, exclusively: nobody else's
+  }
+  ::close(dir_fd);
+  return fd >= 0 ? 0 : err;
 }
 
 void AtomicFile::fail(const std::string& why) const {
@@ -175,15 +233,12 @@ AtomicFile::AtomicFile(std::string path, std::string option) : option_(std::move
   }
   if (t.exists) dev_ = st.st_dev, ino_ = st.st_ino;
   target_ = t.path;
-  tmp_ = t.path + ".part";
   int fd = -1;
   {
+    // Registered under the lock: an interrupt between creating and registering cannot leave it.
     std::lock_guard<std::mutex> hold(interrupts().lock);
-    fd = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0 && errno == EEXIST) {  // left by a killed run: ours to replace
-      ::unlink(tmp_.c_str());
-      fd = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    }
+    dir_fd_ = open_folder_of(target_);
+    if (dir_fd_ >= 0) fd = create_temp(dir_fd_, target_, tmp_, tmp_name_);
     if (fd < 0) {
       const std::string why = std::strerror(errno);
       tmp_.clear();
@@ -196,11 +251,25 @@ AtomicFile::AtomicFile(std::string path, std::string option) : option_(std::move
   buf_.fd = fd;
 }
 
+std::unique_ptr<AtomicFile> AtomicFile::during_work(std::string path, std::string option) {
+  try {
+    return std::make_unique<AtomicFile>(std::move(path), std::move(option));
+  } catch (const InputError& e) {
+    throw OutputError(e.what());
+  }
+}
+
 AtomicFile::~AtomicFile() {
   if (owns_fd_) ::close(buf_.fd);
+  struct CloseFolder {
+    int fd;
+    ~CloseFolder() {
+      if (fd >= 0) ::close(fd);
+    }
+  } close_folder{dir_fd_};
   if (!committed_ && !tmp_.empty()) {
     std::lock_guard<std::mutex> hold(interrupts().lock);
-    ::unlink(tmp_.c_str());
+    ::unlinkat(dir_fd_, tmp_name_.c_str(), 0);
     auto& paths = interrupts().paths;
     const auto it = std::find(paths.rbegin(), paths.rend(), tmp_);
     if (it != paths.rend()) paths.erase(std::next(it).base());
@@ -223,27 +292,71 @@ void AtomicFile::commit() {
     committed_ = true;
     return;
   }
+  if (named_) check_written_by_name();
   const int fd = buf_.fd;
   owns_fd_ = false;
   buf_.fd = -1;
-  if (::close(fd) != 0) {
-    throw OutputError(fmt::format("{} {}: writing failed: {}", option_, printable(path_, 96), std::strerror(errno)));
-  }
+  if (::close(fd) != 0) write_failed(std::strerror(errno));
   std::lock_guard<std::mutex> hold(interrupts().lock);  // an interrupt waits for the name
-  // The old file goes first, then the new one takes its name: never a partial file under it, and
-  // for the microseconds between, none. Renamed over the old file, ext4 would write the new one's
-  // delayed blocks out at once (auto_da_alloc, its guard against empty files after a power cut,
-  // a promise this program does not make: it never fsyncs): 2.6 ms of example 3's 5.8 MB .dat,
-  // a fifth of the whole run (docs/performance.md). An unlink that fails leaves it to rename.
-  ::unlink(target_.c_str());
-  if (::rename(tmp_.c_str(), target_.c_str()) != 0) {
-    throw OutputError(fmt::format("{} {}: writing failed: {}", option_, printable(path_, 96), std::strerror(errno)));
-  }
+  // rename() replaces the old file in one step: the name holds the old file or the new one, never
+  // none and never a part, and of two writers of one name the later rename wins whole.
+  const std::string target_name = fs::path(target_).filename().string();
+  if (::renameat(dir_fd_, tmp_name_.c_str(), dir_fd_, target_name.c_str()) != 0) write_failed(std::strerror(errno));
   committed_ = true;
   auto& paths = interrupts().paths;
   const auto it = std::find(paths.rbegin(), paths.rend(), tmp_);
   if (it != paths.rend()) paths.erase(std::next(it).base());
 }
+
+const std::string& AtomicFile::temp_path() const {
+  named_ = !tmp_.empty();
+  return tmp_;
+}
+
+void AtomicFile::write_failed(const std::string& why) const {
+  throw OutputError(fmt::format("{} {}: writing failed: {}", option_, printable(path_, 96), why));
+}
+
+// A library that writes by name (PLplot) does not say when a write failed: on a full disk it
+// leaves a short file. Each format's end is checked instead (PNG's IEND chunk, SVG's closing tag,
+// PDF's %%EOF); any other file must at least not be empty.
+void AtomicFile::check_written_by_name() const {
+  std::string tail;
+  const int fd = ::openat(dir_fd_, tmp_name_.c_str(), O_RDONLY | O_CLOEXEC);
+  struct stat st {};
+  if (fd < 0 || ::fstat(fd, &st) != 0) {
+    const std::string why = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    write_failed(why);
+  }
+  const off_t want = std::min<off_t>(st.st_size, 64);
+  tail.resize(static_cast<std::size_t>(want));
+  const ssize_t n = want > 0 ? ::pread(fd, tail.data(), tail.size(), st.st_size - want) : 0;
+  ::close(fd);
+  if (n != want) write_failed("cannot read it back");
+  const auto ends = [&](std::string_view ext) {
+    return target_.size() >= ext.size() &&
+           std::equal(ext.rbegin(), ext.rend(), target_.rbegin(), [](char a, char b) {
+             return a == std::tolower(static_cast<unsigned char>(b));
+           });
+  };
+  while (!tail.empty() && std::isspace(static_cast<unsigned char>(tail.back()))) tail.pop_back();
+  bool complete = !tail.empty();
+  if (ends(".png")) complete = tail.size() >= 8 && tail.compare(tail.size() - 8, 8, "IEND\xae\x42\x60\x82") == 0;
+  if (ends(".svg")) complete = tail.size() >= 6 && tail.compare(tail.size() - 6, 6, "</svg>") == 0;
+  if (ends(".pdf")) complete = tail.find("%%EOF") != std::string::npos;
+  if (!complete) {
+    // Why the library's write failed is not known; writing on past the end (the temporary is
+    // discarded) tells the likely reason: a full disk, the file size limit.
+    const std::string zeros(1 << 16, '\0');
+    for (off_t at = st.st_size; at < st.st_size + (off_t{1} << 20); at += static_cast<off_t>(zeros.size())) {
+      if (::pwrite(buf_.fd, zeros.data(), zeros.size(), at) < 0) write_failed(std::strerror(errno));
+    }
+    write_failed("the drawing library left the file incomplete");
+  }
+}
+
+int AtomicFile::descriptor() const { return buf_.fd; }
 
 void AtomicFile::check_distinct(const std::vector<const AtomicFile*>& files) {
   for (std::size_t i = 0; i < files.size(); ++i) {

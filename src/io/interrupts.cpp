@@ -35,16 +35,6 @@ extern "C" void on_interrupt(int sig) {
   errno = saved;
 }
 
-std::set<std::string> part_files(const std::string& dir) {
-  std::set<std::string> out;
-  std::error_code ec;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (name.size() > 5 && name.compare(name.size() - 5, 5, ".part") == 0) out.insert(it->path().string());
-  }
-  return out;
-}
-
 void watch(int pipe_read) {
   for (;;) {
     unsigned char sig = 0;
@@ -57,11 +47,6 @@ void watch(int pipe_read) {
       if (!in.stopped) in.stop(sig);
       in.stopped = true;
       continue;  // the owner stops and cleans up; a second interrupt changes nothing
-    }
-    for (const auto& [dir, before] : in.dirs) {
-      for (const std::string& f : part_files(dir)) {
-        if (!before.count(f)) ::unlink(f.c_str());
-      }
     }
     for (auto it = in.paths.rbegin(); it != in.paths.rend(); ++it) {
       if (::unlink(it->c_str()) != 0 && (errno == EISDIR || errno == EPERM)) ::rmdir(it->c_str());
@@ -105,12 +90,6 @@ void install_interrupt_cleanup() {
 
 void remove_on_interrupt(const std::string& path) { add_path(path); }
 void forget_on_interrupt(const std::string& path) { drop_path(path); }
-
-void remove_new_parts_on_interrupt(const std::string& dir) {
-  std::set<std::string> before = part_files(dir);
-  std::lock_guard<std::mutex> hold(interrupts().lock);
-  interrupts().dirs.emplace_back(dir, std::move(before));
-}
 
 void set_interrupt_handler(std::function<void(int)> stop) {
   std::lock_guard<std::mutex> hold(interrupts().lock);

@@ -17,7 +17,6 @@ namespace whatnext::io {
 struct Interrupts {
   std::mutex lock;
   std::vector<std::string> paths;  // removed in reverse order (files before their directory)
-  std::vector<std::pair<std::string, std::set<std::string>>> dirs;  // dir, .part files already there
   std::function<void(int)> stop;
   bool stopped = false;
   int pipe_write = -1;
