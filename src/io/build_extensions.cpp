@@ -11,6 +11,26 @@ bool flag(const Reader& in, std::string_view key, bool fallback) {
   const ConfigValue* v = in.find(key);
   return v ? v->number != 0.0 : fallback;
 }
+// Not given, the seesaw's inertia is a uniform bar's, made from seesaw.mass, seesaw.left_arm and
+// seesaw.com_offset: a rule it breaks is told of the keys that were given (seesaw.inertia was not).
+void check_bar_inertia(const Reader& in, const Machine& m) {
+  const char* key = in.find("seesaw.left_arm") ? "seesaw.left_arm" : "seesaw.mass";
+  const double given = key[7] == 'l' ? m.seesaw_left_arm : m.seesaw_mass;
+  if (!(std::fabs(m.seesaw_inertia) <= kMaxInertia)) {
+    in.fail(key, fmt::format("makes the seesaw (a uniform bar of seesaw.mass = {} kg from -seesaw.left_arm to r_H) "
+                             "an inertia of {:.4g} kg m^2 about the pivot; at most {} kg m^2 is within the range the "
+                             "model is made for (given {})",
+                             fmt_num(m.seesaw_mass), m.seesaw_inertia, fmt_num(kMaxInertia), in.shown(key, given)));
+  }
+  const double least = m.seesaw_mass * m.seesaw_com_offset * m.seesaw_com_offset;
+  if (in.find("seesaw.com_offset") && m.seesaw_inertia < least * (1.0 - 1e-12)) {
+    in.fail("seesaw.com_offset",
+            fmt::format("is too far from the pivot for the bar's inertia {:.4g} kg m^2 (mass * com_offset^2 = {:.4g} "
+                        "kg m^2 is more): give seesaw.inertia too (given {})",
+                        m.seesaw_inertia, least, in.shown("seesaw.com_offset", m.seesaw_com_offset)));
+  }
+}
+
 }  // namespace
 
 // The switches beyond the paper (docs/extensions.md); with none of their keys given the machine
@@ -71,6 +91,7 @@ void build_extensions(const Reader& in, Machine& m) {
     const double bar_inertia = std::isfinite(l) ? m.seesaw_mass * (l * l * l + rh * rh * rh) / (3.0 * (l + rh)) : 0.0;
     m.seesaw_com_offset = in.offset("seesaw.com_offset", bar_com);
     m.seesaw_inertia = in.number("seesaw.inertia", bar_inertia);
+    if (!in.find("seesaw.inertia")) check_bar_inertia(in, m);
     in.plausible("seesaw.inertia", m.seesaw_inertia, -kMaxInertia, kMaxInertia);
     const double least = m.seesaw_mass * m.seesaw_com_offset * m.seesaw_com_offset;
     if (!(m.seesaw_inertia > 0.0) || m.seesaw_inertia < least * (1.0 - 1e-12)) {

@@ -30,7 +30,7 @@ std::size_t scan_real(const std::string& s, std::size_t from) {
     mantissa += digits();
   }
   if (mantissa == 0) return from;
-  if (i < s.size() && std::strchr("eEdD", s[i]) != nullptr) {
+  if (i < s.size() && s[i] != '\0' && std::strchr("eEdD", s[i]) != nullptr) {  // strchr finds a NUL too
     const std::size_t mark = i++;
     if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
     if (digits() == 0) i = mark;  // "1e" : the e starts the comment
@@ -57,6 +57,8 @@ Config parse_inp(std::string_view text, const std::string& source) {
   };
   Config cfg;
   cfg.source = printable(source, 96);
+  // A UTF-8 byte order mark, which some editors write first, is not part of the first number.
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   std::istringstream in{std::string(text)};
   std::string line;
   int line_no = 0, field = 0;
@@ -66,7 +68,8 @@ Config parse_inp(std::string_view text, const std::string& source) {
     const std::size_t first = line.find_first_not_of(" \t\r");
     const std::string origin = fmt::format("{} line {}", cfg.source, line_no);
     const std::size_t end = scan_real(line, first);
-    const bool separated = end < line.size() ? std::strchr(" \t\r;!", line[end]) != nullptr : true;
+    // strchr finds a NUL too, as the string's end: "0.5<NUL>9" is refused, not read as 0.5.
+    const bool separated = end < line.size() ? line[end] != '\0' && std::strchr(" \t\r;!", line[end]) != nullptr : true;
     if (end == first || !separated) {
       throw InputError(fmt::format("{}: expected a number for {} ({}), got '{}'{}", origin, kFields[field][1],
                                    kFields[field][0], printable(line.substr(first)),

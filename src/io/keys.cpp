@@ -81,7 +81,7 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 namespace io {
 [[noreturn]] void unknown_key(const std::string& where, std::string_view key) {
   const std::string near = nearest_key(key);
-  if (near.empty()) throw InputError(fmt::format("{}: unknown key '{}'", where, printable(key)));
+  if (near.empty() || near == key) throw InputError(fmt::format("{}: unknown key '{}'", where, printable(key)));
   throw InputError(fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, printable(key), near));
 }
 }  // namespace io

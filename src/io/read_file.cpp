@@ -78,7 +78,8 @@ std::string read_file(const std::string& path) {
 
 Config load_config_file(const std::string& path) {
   const std::string text = read_file(path);
-  const auto first = text.find_first_not_of(" \t\r\n");
+  // Past a UTF-8 byte order mark: a .inp saved with one still starts with a number.
+  const auto first = text.find_first_not_of(" \t\r\n", text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0);
   const bool looks_inp =
       (path.size() >= 4 && path.compare(path.size() - 4, 4, ".inp") == 0) ||
       (first != std::string::npos &&

@@ -1,9 +1,11 @@
 // TOML inputs: [section] name = value, each value checked against its key's kind; numbers keep the
 // text they were written as, for messages.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "input_common.hpp"
 
@@ -113,6 +115,19 @@ void store(Config& cfg, const std::string& key, const toml::node& node, const st
 }  // namespace io
 
 namespace {
+// An empty table must still be a section of known keys ([foo] alone was accepted).
+void check_section(const std::string& origin, const std::string& sect) {
+  std::vector<std::string> sections;
+  for (const KeySpec& k : known_keys()) {
+    const std::string s(k.key.substr(0, k.key.find('.')));
+    if (s == sect) return;
+    if (std::find(sections.begin(), sections.end(), s) == sections.end()) sections.push_back(s);
+  }
+  const std::string near = nearest_word(sect, sections);
+  throw InputError(fmt::format("{}: unknown section [{}]{}", origin, printable(sect),
+                               near.empty() ? "" : fmt::format(" (did you mean [{}]?)", near)));
+}
+
 std::string line_origin(const std::string& source, const toml::node& node) {
   return fmt::format("{}:{}", source, node.source().begin.line);
 }
@@ -131,7 +146,15 @@ Config parse_toml(std::string_view text, const std::string& source) {
   for (const auto& [section, node] : root) {
     const std::string sect(section.str());
     const toml::table* table = node.as_table();
+    if (!table && find_key(sect)) {
+      // "masses.sandbag" = 0.5: quoted, the dot is part of one key's name, not a section's.
+      throw InputError(fmt::format("{}: key \"{}\" is quoted, so its dot does not make a section: write {} = ... "
+                                   "without the quotes, or the name after the dot under [{}]",
+                                   line_origin(cfg.source, node), printable(sect), printable(sect),
+                                   sect.substr(0, sect.find('.'))));
+    }
     if (!table) unknown_key(line_origin(cfg.source, node), sect);
+    if (table->empty()) check_section(line_origin(cfg.source, node), sect);
     for (const auto& [name, value] : *table) {
       store(cfg, sect + "." + std::string(name.str()), value, line_origin(cfg.source, value), text);
     }
