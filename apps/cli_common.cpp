@@ -272,7 +272,6 @@ void prepare_picture_dir(const std::string& dir, const std::string& option) {
     g_created_dirs.push_back(d);
     remove_on_interrupt(d);
   }
-  remove_new_parts_on_interrupt(dir);
 }
 #endif
 

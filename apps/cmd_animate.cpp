@@ -72,10 +72,8 @@ void register_animate(CLI::App& app, int& exit_code) {
         std::fprintf(stderr, "animate: frame %d of %d\n", done, total);
       }
     };
-    remove_on_interrupt(target + ".part");
     const int frames = viz::write_animation(viz::record(in.scenario), target, opts->anim, opts->dump,
                                             "--out", progress);
-    forget_on_interrupt(target + ".part");
     if (!opts->quiet) fmt::print("{}: {} frames\n", printable(opts->out, 96), frames);
     exit_code = 0;
   });

@@ -102,9 +102,7 @@ void register_run(CLI::App& app, int& exit_code) {
         if (!opts->quiet) fmt::print(text, "Plots: {} files in {}\n", files.size(), printable(opts->plots, 96));
       }
       if (given(*cmd, "--animate")) {
-        remove_on_interrupt(animation + ".part");
         const int frames = viz::write_animation(rec, animation, viz::AnimationOptions{}, "", "--animate");
-        forget_on_interrupt(animation + ".part");
         if (!opts->quiet) fmt::print(text, "Animation: {} ({} frames)\n", printable(opts->animate, 96), frames);
       }
     }

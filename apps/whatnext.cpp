@@ -3,11 +3,14 @@
 // written), 3 a run failed (no file written); an interrupted command ends by its signal, an
 // interrupted sweep with 128 + the signal's number.
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cstdio>
 #include <exception>
 #include <new>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -23,6 +26,27 @@ using namespace whatnext;
 void print_error(const std::string& message) {
   // fputs, not fmt::print, which throws when stderr is closed (whatnext ... 2>&- aborted).
   std::fputs(fmt::format("whatnext: error: {}\n", printable(message, 400)).c_str(), stderr);
+}
+
+// Standard output is buffered: a failed write (a full disk, /dev/full) shows when it is flushed, or
+// as fmt's exception mid-way. Either is exit code 1 with one line, never a truncated success.
+int stdout_failed(int err) {
+  print_error(fmt::format("standard output: writing failed: {}", std::strerror(err != 0 ? err : EIO)));
+  return 1;
+}
+
+// err: the errno of what wrote last, in case its failure set stdout's error indicator already.
+int finish_stdout(int code, int err = 0) {
+  errno = 0;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) return code == 0 ? stdout_failed(errno != 0 ? errno : err) : code;
+  return code;
+}
+
+// CLI11's --help and --version, written through std::cout (on stdout's buffer).
+int finish_stdout(CLI::App& app, const CLI::Error& e) {
+  errno = 0;
+  const int code = app.exit(e);
+  return finish_stdout(code, errno);
 }
 
 // `whatnext examples [N]`: the shipped examples, or one of them as TOML to copy.
@@ -152,11 +176,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return finish_stdout(app, e);
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return finish_stdout(app, e);
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return finish_stdout(app, e);
   } catch (const CLI::ParseError& e) {
     std::string message = e.what();
     // A missing required option is often a mistyped one: say that instead, with a suggestion.
@@ -188,10 +212,15 @@ int main(int argc, char** argv) {
     print_error("out of memory: the machine cannot hold this job (fewer machines, samples or threads, or a "
                 "coarser run.output_step); no file written");
     return 1;
+  } catch (const std::system_error& e) {
+    whatnext::cli::remove_empty_picture_dirs();
+    if (std::ferror(stdout)) return stdout_failed(e.code().value());
+    print_error(e.what());
+    return 1;
   } catch (const std::exception& e) {
     whatnext::cli::remove_empty_picture_dirs();
     print_error(e.what());
     return 1;
   }
-  return exit_code;
+  return finish_stdout(exit_code);
 }

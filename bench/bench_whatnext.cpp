@@ -19,7 +19,7 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 
-#include "number_text.hpp"  // src/: the output files' number writers
+#include "number_text.hpp"  // src/io/: the output files' number writers
 #include "whatnext/config.hpp"
 #include "whatnext/explore/sweep.hpp"
 #include "whatnext/output.hpp"

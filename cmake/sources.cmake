@@ -16,7 +16,22 @@ set(WHATNEXT_CORE_SOURCES
   src/core/columns.cpp
   src/core/names.cpp
   src/core/simulate.cpp)
-# Inputs and file outputs.
+# Inputs and file outputs (src/io/): reading, parsing and validating machines, writing them back,
+# and the output files.
 set(WHATNEXT_IO_SOURCES
-  src/config.cpp
-  src/output.cpp)
+  src/io/keys.cpp
+  src/io/text.cpp
+  src/io/read_file.cpp
+  src/io/toml_input.cpp
+  src/io/inp_input.cpp
+  src/io/set_input.cpp
+  src/io/examples.cpp
+  src/io/build_scenario.cpp
+  src/io/build_extensions.cpp
+  src/io/write_toml.cpp
+  src/io/interrupts.cpp
+  src/io/atomic_file.cpp
+  src/io/timeline.cpp
+  src/io/events_json.cpp
+  src/io/csv.cpp
+  src/io/dat.cpp)

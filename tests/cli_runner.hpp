@@ -73,10 +73,42 @@ inline pid_t spawn_whatnext(const std::vector<std::string>& args) {
   return start_whatnext(args, "/dev/null", "/dev/null");
 }
 
-// Waits (up to about 20 s) until path exists; false if it never does.
+// The temporaries whatnext writes target through: ".NAME.XXXXXX.part" beside it
+// (src/io/atomic_file.cpp).
+inline std::vector<fs::path> temps_of(const fs::path& target) {
+  std::vector<fs::path> found;
+  const std::string prefix = "." + target.filename().string() + ".";
+  std::error_code ec;
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string n = it->path().filename().string();
+    if (n.size() == prefix.size() + 11 && n.compare(0, prefix.size(), prefix) == 0 &&
+        n.compare(n.size() - 5, 5, ".part") == 0) {
+      found.push_back(it->path());
+    }
+  }
+  return found;
+}
+
+// Every temporary of whatnext's in dir (hidden files ending in .part).
+inline std::vector<fs::path> temps_in(const fs::path& dir) {
+  std::vector<fs::path> found;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string n = it->path().filename().string();
+    if (n.size() > 6 && n[0] == '.' && n.compare(n.size() - 5, 5, ".part") == 0) found.push_back(it->path());
+  }
+  return found;
+}
+
+// Waits (up to about 20 s) until path exists; false if it never does. A path "TARGET.part" waits
+// for TARGET's temporary (temps_of).
 inline bool wait_for_file(const fs::path& path) {
+  const std::string p = path.string();
+  const bool temp = p.size() > 5 && p.compare(p.size() - 5, 5, ".part") == 0;
   for (int i = 0; i < 400; ++i) {
     if (fs::exists(path)) return true;
+    if (temp && !temps_of(p.substr(0, p.size() - 5)).empty()) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   return false;

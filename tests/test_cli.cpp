@@ -34,7 +34,7 @@ class Cli : public whatnext::test_support::CliTest {
     EXPECT_NE(r.err.find(must_mention), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
     EXPECT_FALSE(fs::exists(events));
-    EXPECT_FALSE(fs::exists(dir_ / "events.json.part"));
+    EXPECT_TRUE(whatnext::test_support::temps_in(dir_).empty());
   }
 };
 

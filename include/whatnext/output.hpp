@@ -27,23 +27,30 @@ class OutputError : public std::runtime_error {
 //  * "-" is standard output; /dev/stdout, /dev/stderr and /dev/fd/N are those open descriptors;
 //    an existing character device, pipe or socket (/dev/null, a FIFO) is written through in place.
 //    These are never replaced, and what was written before a failure stays written.
-//  * anything else is a regular file: symlinks are followed to their target, which is written as
-//    TARGET.part beside it and given the target's name by commit() (the old file removed just
-//    before), keeping an existing file's permissions: the name never holds a partial file.
-//    Nothing is left behind without commit(), nor when the process is interrupted (see
-//    install_interrupt_cleanup). A directory, or an existing file without write permission (even
-//    for root), is refused.
+//  * anything else is a regular file: symlinks are followed to their target, which is written as a
+//    temporary beside it, created exclusively under a name of this process's own
+//    (".NAME.XXXXXX.part"), and renamed over the target by commit() only when every write and
+//    the close succeeded, keeping an existing file's permissions: the name holds the old file or
+//    the complete new one, never a part, and no other file is touched. Nothing is left behind
+//    without commit(), nor when the process is interrupted (see install_interrupt_cleanup). A
+//    directory, or an existing file without write permission (even for root), is refused.
 class AtomicFile {
  public:
   explicit AtomicFile(std::string path, std::string option = "output");
+  // An output opened once the work is under way (a figure, a frame): a path that fails now, its
+  // directory removed meanwhile, is a failed write (OutputError), not bad input.
+  static std::unique_ptr<AtomicFile> during_work(std::string path, std::string option);
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
   std::ostream& stream() { return out_; }
   const std::string& path() const { return path_; }
   // Where a writer that needs a file name (PLplot) writes instead of stream(); empty for outputs
-  // that are written through in place.
-  const std::string& temp_path() const { return tmp_; }
+  // that are written through in place. commit() then checks that the file it wrote is complete
+  // (a PNG, SVG or PDF by its end; anything else not empty), for such writers ignore failed writes.
+  const std::string& temp_path() const;
+  // The open descriptor, for a writer that writes and checks its writes itself (giflib).
+  int descriptor() const;
   bool to_stdout() const;
   // Sends everything written so far on its way; OutputError when that failed.
   void flush();
@@ -67,16 +74,24 @@ class AtomicFile {
     bool drain();
     char buffer_[1 << 16];
   };
-  std::string option_, path_, target_, tmp_;
+  std::string option_, path_, target_, tmp_, tmp_name_;
+  int dir_fd_ = -1;  // target's folder (the temporary's), for renameat and unlinkat
   bool through_ = false;  // written in place (no temporary)
   bool owns_fd_ = false;
   bool committed_ = false;
   unsigned long long dev_ = 0, ino_ = 0;  // identity, for check_distinct (0: a new file)
   bool null_device_ = false;
+  mutable bool named_ = false;  // temp_path() was handed out: written by name
   FdBuf buf_;
   std::ostream out_{&buf_};
   [[noreturn]] void fail(const std::string& why) const;
+  [[noreturn]] void write_failed(const std::string& why) const;
+  void check_written_by_name() const;
 };
+
+// 0 when a new file can be created in dir (tried with a temporary of this process's own, removed
+// at once), the errno otherwise.
+int can_create_in(const std::string& dir);
 
 // The regular file an output path names, symlinks followed, for writers that make and rename
 // their own temporary (the animation). InputError naming option when it is a directory, a device,
@@ -90,9 +105,6 @@ void install_interrupt_cleanup();
 // Files (or empty directories) other writers make, removed on an interrupt until forgotten.
 void remove_on_interrupt(const std::string& path);
 void forget_on_interrupt(const std::string& path);
-// Every NAME.part that appears in dir after this call is removed on an interrupt (for writers
-// that name their own temporaries, like the plots).
-void remove_new_parts_on_interrupt(const std::string& dir);
 // While set, an interrupt only calls stop(signal) on a watcher thread (the sweep stops and writes
 // what it has), once; temporaries are then cleaned up by their owners. An empty function:
 // interrupts end the process again.

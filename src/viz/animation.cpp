@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <cmath>
 #include <cstdio>
@@ -946,6 +947,14 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   return img;
 }
 
+namespace {
+cairo_status_t png_to_stream(void* closure, const unsigned char* data, unsigned int length) {
+  auto& out = *static_cast<std::ostream*>(closure);
+  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(length));
+  return out ? CAIRO_STATUS_SUCCESS : CAIRO_STATUS_WRITE_ERROR;
+}
+}  // namespace
+
 void write_png(const Image& image, const std::string& path) {
   const int stride = cairo_format_stride_for_width(CAIRO_FORMAT_RGB24, image.width);
   std::vector<unsigned char> buffer(static_cast<std::size_t>(stride) * image.height);
@@ -953,16 +962,17 @@ void write_png(const Image& image, const std::string& path) {
     std::copy_n(image.pixels.begin() + static_cast<std::ptrdiff_t>(y) * image.width, image.width,
                 reinterpret_cast<std::uint32_t*>(buffer.data() + static_cast<std::size_t>(y) * stride));
   }
+  const auto file = AtomicFile::during_work(path, "--dump-frames");
   cairo_surface_t* s = cairo_image_surface_create_for_data(buffer.data(), CAIRO_FORMAT_RGB24,
                                                            image.width, image.height, stride);
-  const std::string tmp = path + ".part";
-  const cairo_status_t st = cairo_surface_write_to_png(s, tmp.c_str());
+  const cairo_status_t st = cairo_surface_write_to_png_stream(s, png_to_stream, &file->stream());
   cairo_surface_destroy(s);
+  file->flush();  // a failed write: its reason (a full disk)
   if (st != CAIRO_STATUS_SUCCESS) {
-    std::remove(tmp.c_str());
-    throw InputError(fmt::format("cannot write PNG '{}': {}", path, cairo_status_to_string(st)));
+    throw OutputError(fmt::format("--dump-frames {}: writing failed: {}", printable(path, 96),
+                                  cairo_status_to_string(st)));
   }
-  fs::rename(tmp, path);
+  file->commit();
 }
 
 void check_animation_target(const std::string& path, const std::string& option) {
@@ -970,13 +980,60 @@ void check_animation_target(const std::string& path, const std::string& option) 
     throw InputError(fmt::format("{}: writing '{}' needs ffmpeg on PATH, and there is none "
                                  "(write a .gif instead)", option, path));
   }
-  const std::string probe = path + ".part";
-  {
-    std::ofstream out(probe, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(fmt::format("{}: cannot write '{}'", option, path));
+  const std::string dir = fs::path(path).parent_path().string();
+  if (const int err = can_create_in(dir.empty() ? "." : dir)) {
+    throw InputError(fmt::format("{}: cannot write '{}': {}", option, path, std::strerror(err)));
   }
-  std::remove(probe.c_str());
 }
+
+namespace {
+// MP4 through ffmpeg, which writes the temporary by name; every frame's write into its pipe and its
+// exit status are checked, and a pipe ffmpeg closed early is an error, not SIGPIPE.
+template <class Dump>
+int write_mp4(const Recording& rec, const View& view, const std::vector<Frame>& frames, const AnimationOptions& opts,
+              const std::string& ffmpeg, const std::string& path, const std::string& option, const Dump& dump,
+              const std::function<void(int, int)>& progress) {
+  const int total = static_cast<int>(frames.size());
+  const auto file = AtomicFile::during_work(path, option);
+  // Raw BGRA frames (Cairo's ARGB32 in memory on little-endian machines) into ffmpeg; held
+  // frames are repeated for their time on screen.
+  const std::string cmd = fmt::format(
+      "{} -loglevel error -y -f rawvideo -pix_fmt bgra -s {}x{} -r {:g} -i - "
+      "-vf pad=ceil(iw/2)*2:ceil(ih/2)*2 -c:v libx264 -pix_fmt yuv420p -f mp4 {}",
+      shell_quote(ffmpeg), view.width, view.height, opts.fps, shell_quote(file->temp_path()));
+  struct sigaction ignore {}, before {};
+  ignore.sa_handler = SIG_IGN;
+  ::sigaction(SIGPIPE, &ignore, &before);
+  struct Restore {
+    struct sigaction* before;
+    ~Restore() { ::sigaction(SIGPIPE, before, nullptr); }
+  } restore{&before};
+  FILE* pipe = ::popen(cmd.c_str(), "w");
+  if (!pipe) throw OutputError(fmt::format("{} {}: cannot start ffmpeg", option, printable(path, 96)));
+  double shown = 0.0;
+  long written = 0;
+  int index = 0;
+  bool ok = true;
+  for (const Frame& f : frames) {
+    const Image img = render_frame(rec, view, f, opts);
+    dump(img, f, index);
+    shown += f.delay;
+    const long until = std::lround(shown * opts.fps);
+    for (; ok && written < std::max(until, written + 1); ++written) {
+      ok = std::fwrite(img.pixels.data(), sizeof(std::uint32_t), img.pixels.size(), pipe) == img.pixels.size();
+    }
+    ++index;
+    if (progress) progress(index, total);
+    if (!ok) break;
+  }
+  ok = std::fflush(pipe) == 0 && ok;
+  if (::pclose(pipe) != 0 || !ok) {
+    throw OutputError(fmt::format("{} {}: writing failed: ffmpeg could not write it", option, printable(path, 96)));
+  }
+  file->commit();
+  return total;
+}
+}  // namespace
 
 int write_animation(const Recording& rec, const std::string& path, const AnimationOptions& opts,
                     const std::string& dump_dir, const std::string& option,
@@ -994,7 +1051,6 @@ int write_animation(const Recording& rec, const std::string& path, const Animati
   if (!dump_dir.empty()) prepare_output_dir(dump_dir, "--dump-frames");
   const std::vector<Frame> frames = plan_frames(rec, opts);
   const View view = make_view(rec, opts.width, opts.height);
-  const std::string tmp = path + ".part";
   const int total = static_cast<int>(frames.size());
   // The held frames and one frame per second on screen, for looking at single frames.
   const int dump_every = std::max(1, static_cast<int>(std::lround(opts.fps)));
@@ -1003,80 +1059,39 @@ int write_animation(const Recording& rec, const std::string& path, const Animati
     write_png(img, (fs::path(dump_dir) / fmt::format("frame{:05d}.png", index)).string());
   };
 
-  if (mp4) {
-    // Raw BGRA frames (Cairo's ARGB32 in memory on little-endian machines) into ffmpeg; held
-    // frames are repeated for their time on screen.
-    const std::string cmd = fmt::format(
-        "{} -loglevel error -y -f rawvideo -pix_fmt bgra -s {}x{} -r {:g} -i - "
-        "-vf pad=ceil(iw/2)*2:ceil(ih/2)*2 -c:v libx264 -pix_fmt yuv420p -f mp4 {}",
-        shell_quote(ffmpeg), view.width, view.height, opts.fps, shell_quote(tmp));
-    FILE* pipe = ::popen(cmd.c_str(), "w");
-    if (!pipe) throw std::runtime_error("cannot start ffmpeg");
+  if (mp4) return write_mp4(rec, view, frames, opts, ffmpeg, path, option, dump, progress);
+
+  const auto file = AtomicFile::during_work(path, option);
+  int fd = file->descriptor();
+  g_gif_errno = 0;
+  auto failed = [&](int err) {  // the work is done: a write error, not bad input (exit code 1)
+    return OutputError(fmt::format("{} {}: writing failed: {}", option, printable(path, 96), std::strerror(err)));
+  };
+  try {
+    GifEncoder gif(fd, view.width, view.height);
     double shown = 0.0;
-    long written = 0;
+    long shown_cs = 0;
     int index = 0;
+    std::vector<std::uint8_t> idx(static_cast<std::size_t>(view.width) * view.height);
     for (const Frame& f : frames) {
       const Image img = render_frame(rec, view, f, opts);
       dump(img, f, index);
+      for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = palette_index(img.pixels[i]);
+      // Delays in centiseconds, rounded on the running total so that they do not drift.
       shown += f.delay;
-      const long until = std::lround(shown * opts.fps);
-      for (; written < std::max(until, written + 1); ++written) {
-        std::fwrite(img.pixels.data(), sizeof(std::uint32_t), img.pixels.size(), pipe);
-      }
+      const long until = std::lround(shown * 100.0);
+      gif.add(idx, static_cast<int>(std::max(1L, until - shown_cs)));
+      shown_cs = std::max(until, shown_cs + 1);
       ++index;
       if (progress) progress(index, total);
     }
-    if (::pclose(pipe) != 0) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error(fmt::format("ffmpeg failed to write '{}'", path));
-    }
-    fs::rename(tmp, path);
-    return static_cast<int>(frames.size());
+    gif.close();
+  } catch (const std::runtime_error&) {
+    // giflib's "Write failed (disk full?)": say which file and why (a full disk, ulimit -f).
+    if (g_gif_errno == 0) throw;
+    throw failed(g_gif_errno);
   }
-
-  {
-    int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd < 0) throw InputError(fmt::format("{}: cannot write '{}'", option, path));
-    g_gif_errno = 0;
-    auto failed = [&](int err) {  // the work is done: a write error, not bad input (exit code 1)
-      std::remove(tmp.c_str());
-      return OutputError(fmt::format("{} {}: writing failed: {}", option, printable(path, 96), std::strerror(err)));
-    };
-    try {
-      GifEncoder gif(fd, view.width, view.height);
-      double shown = 0.0;
-      long shown_cs = 0;
-      int index = 0;
-      std::vector<std::uint8_t> idx(static_cast<std::size_t>(view.width) * view.height);
-      for (const Frame& f : frames) {
-        const Image img = render_frame(rec, view, f, opts);
-        dump(img, f, index);
-        for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = palette_index(img.pixels[i]);
-        // Delays in centiseconds, rounded on the running total so that they do not drift.
-        shown += f.delay;
-        const long until = std::lround(shown * 100.0);
-        gif.add(idx, static_cast<int>(std::max(1L, until - shown_cs)));
-        shown_cs = std::max(until, shown_cs + 1);
-        ++index;
-        if (progress) progress(index, total);
-      }
-      gif.close();
-    } catch (const std::runtime_error&) {
-      // giflib's "Write failed (disk full?)": say which file and why (a full disk, ulimit -f).
-      ::close(fd);
-      if (g_gif_errno == 0) {
-        std::remove(tmp.c_str());
-        throw;
-      }
-      throw failed(g_gif_errno);
-    } catch (...) {
-      ::close(fd);
-      std::remove(tmp.c_str());
-      throw;
-    }
-    if (::close(fd) != 0) throw failed(errno);
-  }
-  fs::rename(tmp, path);
+  file->commit();  // closes the descriptor (checked) and puts the file in place
   return static_cast<int>(frames.size());
 }
 

@@ -16,17 +16,22 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
 
 #include "whatnext/config.hpp"
 #include "whatnext/events.hpp"
+#include "whatnext/output.hpp"
 #include "placement.hpp"
 
 namespace whatnext::viz {
@@ -701,13 +706,17 @@ PageLayout public_layout(const Page& page, const PageGeometry& pg) {
 
 // ---- drawing ----
 
-std::string tmp_name(const std::string& path) { return path + ".part"; }
-
-// Cairo's PDF surface stamps the wall-clock time; a fixed date of the same length keeps the byte
-// offsets of the cross-reference table valid and makes the file reproducible.
-void pin_pdf_date(const std::string& path) {
+// Cairo's PDF surface stamps the wall-clock time, in local time with its offset from UTC. Drawn
+// with the clock in UTC (UtcClock) the date has the "...Z" form, which a fixed date of the same
+// length replaces: the byte offsets of the cross-reference table stay valid and the file is the
+// same whatever the date and the time zone.
+void pin_pdf_date(const std::string& path, const std::string& shown) {
+  const auto failed = [&] {
+    return OutputError(fmt::format("--out {}: writing failed: {}", printable(shown, 96), std::strerror(errno)));
+  };
   std::ifstream in(path, std::ios::binary);
   std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw failed();
   in.close();
   const std::string key = "/CreationDate (D:";
   auto pos = data.find(key);
@@ -718,7 +727,35 @@ void pin_pdf_date(const std::string& path) {
   data.replace(pos, fixed.size(), fixed);
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out << data;
+  out.close();
+  if (!out) throw failed();
 }
+
+// The process's clock in UTC while it lives (for Cairo's PDF date); the time zone as it was after.
+class UtcClock {
+ public:
+  UtcClock() {
+    const char* tz = std::getenv("TZ");
+    had_ = tz != nullptr;
+    if (had_) old_ = tz;
+    ::setenv("TZ", "UTC0", 1);
+    ::tzset();
+  }
+  ~UtcClock() {
+    if (had_) {
+      ::setenv("TZ", old_.c_str(), 1);
+    } else {
+      ::unsetenv("TZ");
+    }
+    ::tzset();
+  }
+  UtcClock(const UtcClock&) = delete;
+  UtcClock& operator=(const UtcClock&) = delete;
+
+ private:
+  bool had_ = false;
+  std::string old_;
+};
 
 const char* device(Format f) {
   switch (f) {
@@ -857,9 +894,13 @@ std::vector<std::string> write_page(const std::string& dir, const Page& page,
   std::vector<std::string> written;
   for (Format f : opts.formats) {
     const std::string path = (fs::path(dir) / (page.name + "." + std::string(extension(f)))).string();
-    const std::string tmp = tmp_name(path);
+    // PLplot writes the temporary by name and says nothing of failed writes: commit() checks that
+    // the file is complete before it takes the name.
+    const auto file = AtomicFile::during_work(path, "--out");
+    std::optional<UtcClock> utc;
+    if (f == Format::pdf) utc.emplace();
     plsdev(device(f));
-    plsfnam(tmp.c_str());
+    plsfnam(file->temp_path().c_str());
     plsetopt("geometry", fmt::format("{}x{}", page.width, page.height).c_str());
     set_palette();
     plsfam(0, 0, 0);
@@ -870,10 +911,9 @@ std::vector<std::string> write_page(const std::string& dir, const Page& page,
     mm_space(pg);
     for (const Text& t : pg.texts) draw_text(t);
     plend1();
-    if (f == Format::pdf) pin_pdf_date(tmp);
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) throw InputError(fmt::format("--out: cannot write '{}': {}", path, ec.message()));
+    utc.reset();
+    if (f == Format::pdf) pin_pdf_date(file->temp_path(), path);
+    file->commit();
     written.push_back(path);
   }
   return written;
@@ -1097,12 +1137,7 @@ void prepare_output_dir(const std::string& dir, std::string_view option) {
     throw InputError(fmt::format("{}: cannot create directory '{}'{}{}", option, dir,
                                  ec ? ": " : "", ec ? ec.message() : ""));
   }
-  const std::string probe = (fs::path(dir) / ".whatnext-probe.part").string();
-  {
-    std::ofstream out(probe);
-    if (!out) throw InputError(fmt::format("{}: cannot write into directory '{}'", option, dir));
-  }
-  fs::remove(probe, ec);
+  if (can_create_in(dir) != 0) throw InputError(fmt::format("{}: cannot write into directory '{}'", option, dir));
 }
 
 std::vector<std::string> write_run_figures(const Recording& rec, const std::string& dir,

@@ -1,0 +1,133 @@
+// Validation of the switches beyond the paper (docs/extensions.md): radio, balloon rubber and
+// drag, damping, a seesaw with mass.
+#include <cmath>
+
+#include "reader.hpp"
+
+namespace whatnext::io {
+
+namespace {
+bool flag(const Reader& in, std::string_view key, bool fallback) {
+  const ConfigValue* v = in.find(key);
+  return v ? v->number != 0.0 : fallback;
+}
+// Not given, the seesaw's inertia is a uniform bar's, made from seesaw.mass, seesaw.left_arm and
+// seesaw.com_offset: a rule it breaks is told of the keys that were given (seesaw.inertia was not).
+void check_bar_inertia(const Reader& in, const Machine& m) {
+  const char* key = in.find("seesaw.left_arm") ? "seesaw.left_arm" : "seesaw.mass";
+  const double given = key[7] == 'l' ? m.seesaw_left_arm : m.seesaw_mass;
+  if (!(std::fabs(m.seesaw_inertia) <= kMaxInertia)) {
+    in.fail(key, fmt::format("makes the seesaw (a uniform bar of seesaw.mass = {} kg from -seesaw.left_arm to r_H) "
+                             "an inertia of {:.4g} kg m^2 about the pivot; at most {} kg m^2 is within the range the "
+                             "model is made for (given {})",
+                             fmt_num(m.seesaw_mass), m.seesaw_inertia, fmt_num(kMaxInertia), in.shown(key, given)));
+  }
+  const double least = m.seesaw_mass * m.seesaw_com_offset * m.seesaw_com_offset;
+  if (in.find("seesaw.com_offset") && m.seesaw_inertia < least * (1.0 - 1e-12)) {
+    in.fail("seesaw.com_offset",
+            fmt::format("is too far from the pivot for the bar's inertia {:.4g} kg m^2 (mass * com_offset^2 = {:.4g} "
+                        "kg m^2 is more): give seesaw.inertia too (given {})",
+                        m.seesaw_inertia, least, in.shown("seesaw.com_offset", m.seesaw_com_offset)));
+  }
+}
+
+}  // namespace
+
+// The switches beyond the paper (docs/extensions.md); with none of their keys given the machine
+// is docs/model.md's.
+void build_extensions(const Reader& in, Machine& m) {
+  // Kermit's radio stands 0.5 m right of the box, its switch level with the box's top. The radio is
+  // opt-in: radio.enabled, or any other radio key, turns it on.
+  Vec2 offset{0.5, 0.0};
+  if (in.find("radio.switch_offset")) offset = in.pair("radio.switch_offset");
+  m.radio_switch = m.hinge + Vec2{2.0 * m.lid_half_length, 0.0} + offset;
+  m.string_length = in.length("radio.string_length", 1.0);
+  const bool any_radio = in.find("radio.switch_offset") || in.find("radio.string_length");
+  m.radio = flag(in, "radio.enabled", any_radio);
+  if (!m.radio && any_radio && in.find("radio.enabled")) {
+    in.fail("radio.enabled", "is false but other radio keys are given: remove them or enable the radio");
+  }
+
+  m.balloon_rubber_mass = in.number("balloon.rubber_mass", 0.0);
+  if (!(m.balloon_rubber_mass >= 0.0)) {
+    in.fail("balloon.rubber_mass", fmt::format("must be >= 0 kg (given {})", fmt_num(m.balloon_rubber_mass)));
+  }
+  in.plausible("balloon.rubber_mass", m.balloon_rubber_mass, 0.0, kMaxMass);
+  if (!(m.balloon_acceleration() > 0.0)) {
+    const double most = (m.air_density - m.helium_density) * m.balloon_volume();
+    in.fail("balloon.rubber_mass",
+            fmt::format("must be below the lift {:.4g} kg (displaced air minus helium) so that the balloon "
+                        "rises (given {})", most, fmt_num(m.balloon_rubber_mass)));
+  }
+  const bool drag_given = in.find("balloon.drag_coefficient") != nullptr;
+  const bool drag = flag(in, "balloon.drag", drag_given);
+  if (!drag && drag_given && in.find("balloon.drag")) {
+    in.fail("balloon.drag", "is false but balloon.drag_coefficient is given: remove one");
+  }
+  m.balloon_drag_coefficient = drag ? in.positive("balloon.drag_coefficient", 0.47) : 0.0;
+  in.plausible("balloon.drag_coefficient", m.balloon_drag_coefficient, 0.0, kMaxDrag);
+
+  m.pivot_damping = in.in_range("damping.pivot", 0.0, 0.0, true, kMaxDamping, true);
+  m.lid_hinge_damping = in.in_range("damping.lid_hinge", 0.0, 0.0, true, kMaxDamping, true);
+
+  if (in.find("seesaw.left_arm")) m.seesaw_left_arm = in.length("seesaw.left_arm", 1.0);
+  m.seesaw_mass = in.number("seesaw.mass", 0.0);
+  if (!(m.seesaw_mass >= 0.0)) {
+    in.fail("seesaw.mass", fmt::format("must be >= 0 kg (given {})", fmt_num(m.seesaw_mass)));
+  }
+  in.plausible("seesaw.mass", m.seesaw_mass, 0.0, kMaxMass);
+  const bool bar = !in.find("seesaw.inertia") || !in.find("seesaw.com_offset");
+  if (m.seesaw_mass > 0.0 && bar && !std::isfinite(m.seesaw_left_arm)) {
+    in.fail("seesaw.mass", "needs seesaw.left_arm (a uniform bar) or both seesaw.inertia and seesaw.com_offset");
+  }
+  if ((in.find("seesaw.inertia") || in.find("seesaw.com_offset")) && !in.find("seesaw.mass")) {
+    in.fail(in.find("seesaw.inertia") ? "seesaw.inertia" : "seesaw.com_offset",
+            "needs seesaw.mass (the seesaw's weight acts at its centre of mass)");
+  }
+  if (m.seesaw_mass > 0.0) {
+    // Uniform bar from -L to r_H: centre (r_H - L) / 2, I = m (L^3 + r_H^3) / (3 (L + r_H)).
+    const double l = m.seesaw_left_arm, rh = m.seesaw_right_arm;
+    const double bar_com = std::isfinite(l) ? 0.5 * (rh - l) : 0.0;
+    const double bar_inertia = std::isfinite(l) ? m.seesaw_mass * (l * l * l + rh * rh * rh) / (3.0 * (l + rh)) : 0.0;
+    m.seesaw_com_offset = in.offset("seesaw.com_offset", bar_com);
+    m.seesaw_inertia = in.number("seesaw.inertia", bar_inertia);
+    if (!in.find("seesaw.inertia")) check_bar_inertia(in, m);
+    in.plausible("seesaw.inertia", m.seesaw_inertia, -kMaxInertia, kMaxInertia);
+    const double least = m.seesaw_mass * m.seesaw_com_offset * m.seesaw_com_offset;
+    if (!(m.seesaw_inertia > 0.0) || m.seesaw_inertia < least * (1.0 - 1e-12)) {
+      in.fail("seesaw.inertia",
+              fmt::format("must be > 0 and at least mass * com_offset^2 = {:.4g} kg m^2 (given {})", least,
+                          fmt_num(m.seesaw_inertia)));
+    }
+  }
+  if (m.pivot_damping > 0.0 && !m.heavy_seesaw()) {
+    // A massless seesaw can only take the damper's torque from the sandbag pushing the arm, which
+    // would have to pull whenever the seesaw turns back: no consistent motion (docs/extensions.md).
+    in.fail("damping.pivot", "needs a seesaw with inertia: give seesaw.mass (and seesaw.left_arm) too");
+  }
+}
+
+// Start conditions that only the extensions can violate.
+void check_extension_start(const Reader& in, const Scenario& sc) {
+  const Machine& m = sc.machine;
+  const Start& st = sc.start;
+  const double c = std::cos(st.seesaw_angle), s = std::sin(st.seesaw_angle);
+  const double along = -st.sandbag_x * c - st.sandbag_h * s;
+  const double above = -st.sandbag_x * s + st.sandbag_h * c;
+  if (std::isfinite(m.seesaw_left_arm) && std::fabs(above) <= 1e-9 && along > m.seesaw_left_arm) {
+    in.fail("seesaw.left_arm", fmt::format("is shorter than the sandbag's start on the arm ({:.4g} m < {:.4g} m)",
+                                           m.seesaw_left_arm, along));
+  }
+  if (m.radio) {
+    const BalloonLimit limit{m.balloon_radius};
+    const Vec2 balloon{m.hinge.x + m.lid_half_length, m.hinge.h + limit.height(st.lid_angle)};
+    const double reach = norm(balloon - m.radio_switch);
+    if (reach >= m.string_length) {
+      in.fail("radio.string_length",
+              fmt::format("is already straight at the start: the balloon is {:.4g} m from the switch (given {:.4g} m)",
+                          reach, m.string_length));
+    }
+  }
+}
+
+}  // namespace whatnext::io

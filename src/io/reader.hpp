@@ -1,0 +1,138 @@
+// Validation: the limits of the range the model is made for (docs/inputs.md "Limits") and Reader,
+// which reads a Config's values with their rules and says which input broke which rule.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <string_view>
+
+#include <fmt/format.h>
+
+#include "input_common.hpp"
+#include "whatnext/config.hpp"
+#include "whatnext/geometry.hpp"
+
+namespace whatnext::io {
+
+constexpr double kMaxSteps = 1e8;    // fixed-step runs longer than this are refused
+constexpr double kMaxSamples = 1e7;  // output rows
+
+// Where the model is made for (docs/inputs.md "Limits"): a tabletop machine. Far outside, lengths
+// fall below the contact tolerance (1e-9 m) or the rounding of the others, energies overflow, and
+// the integrator cannot meet its tolerance in any number of steps.
+constexpr double kMinLength = 1e-3, kMaxLength = 1e3;      // [m]
+constexpr double kMinMass = 1e-3, kMaxMass = 1e3;          // [kg]
+constexpr double kMinDensity = 1e-3, kMaxDensity = 1e3;    // [kg/m^3]
+constexpr double kMinGravity = 1e-2, kMaxGravity = 1e3;    // [m/s^2]
+constexpr double kMaxTime = 1e4;                           // run.t_max [s]
+constexpr double kMinTolerance = 1e-15, kMaxTolerance = 1e-3;
+constexpr double kMaxBalloonG = 1e3;                       // free balloon's acceleration [g]
+constexpr double kMaxDrag = 10.0;                          // drag coefficient
+constexpr double kMaxDamping = 1e3;                        // [N m s/rad]
+constexpr double kMaxInertia = 1e4;                        // seesaw [kg m^2]
+
+// --- validation helpers ---------------------------------------------------------------------
+
+struct Reader {
+  const Config& cfg;
+
+  // Keys are literals: looked up as string_views (Config's map compares transparently), and the
+  // unit looked up only for a message, since a sweep builds a machine for every row.
+  const ConfigValue* find(std::string_view key) const {
+    auto it = cfg.values.find(key);
+    return it == cfg.values.end() ? nullptr : &it->second;
+  }
+  std::string where(std::string_view key) const {
+    const ConfigValue* v = find(key);
+    return v ? v->origin : cfg.source;
+  }
+  [[noreturn]] void fail(std::string_view key, const std::string& rule) const {
+    throw InputError(fmt::format("{}: {} {}", where(key), key, rule));
+  }
+  // The value as the input gave it: an integer too long for a double as written.
+  std::string shown(std::string_view key, double x) const {
+    const ConfigValue* v = find(key);
+    if (v && v->type == ConfigValue::Type::number && !v->text.empty() && v->number == x) return v->text;
+    return fmt_num(x);
+  }
+  std::string unit(std::string_view key) const {
+    const KeySpec* spec = find_key(key);
+    return spec ? std::string(spec->unit) : std::string();
+  }
+  double number(std::string_view key, double fallback) const {
+    const ConfigValue* v = find(key);
+    if (!v) return fallback;
+    if (!std::isfinite(v->number)) fail(key, fmt::format("must be a finite number (given {})", shown(key, v->number)));
+    return v->number;
+  }
+  double positive(std::string_view key, double fallback) const {
+    const double x = number(key, fallback);
+    if (!(x > 0.0)) {
+      const std::string u = unit(key);
+      fail(key, fmt::format("must be > 0{} (given {})", u.empty() ? "" : " " + u, shown(key, x)));
+    }
+    return x;
+  }
+  double in_range(std::string_view key, double fallback, double lo, bool lo_closed, double hi,
+                  bool hi_closed) const {
+    const double x = number(key, fallback);
+    const bool ok = (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
+    if (!ok) {
+      const std::string u = unit(key);
+      fail(key, fmt::format("must be in {}{}, {}{}{} (given {})", lo_closed ? "[" : "(", fmt_num(lo), fmt_num(hi),
+                            hi_closed ? "]" : ")", u.empty() ? "" : " " + u, shown(key, x)));
+    }
+    return x;
+  }
+  // The plausibility limits: a value the rules accept, outside what the model is made for.
+  void plausible(std::string_view key, double x, double lo, double hi) const {
+    if (!(x >= lo && x <= hi)) {
+      const std::string u = unit(key);
+      fail(key, fmt::format("must be within [{}, {}]{}, the range the model is made for (given {})", fmt_num(lo),
+                            fmt_num(hi), u.empty() ? "" : " " + u, shown(key, x)));
+    }
+  }
+  double length(std::string_view key, double fallback) const {
+    const double x = positive(key, fallback);
+    plausible(key, x, kMinLength, kMaxLength);
+    return x;
+  }
+  double mass(std::string_view key, double fallback) const {
+    const double x = positive(key, fallback);
+    plausible(key, x, kMinMass, kMaxMass);
+    return x;
+  }
+  // A signed distance (an offset or a start position) within the machine's reach.
+  double offset(std::string_view key, double fallback) const {
+    const double x = number(key, fallback);
+    plausible(key, x, -kMaxLength, kMaxLength);
+    return x;
+  }
+  Vec2 pair(std::string_view key) const {
+    const ConfigValue& v = *find(key);
+    // As the input wrote it (v.text: numbers a double rounds), for the messages.
+    const auto given = [&v] {
+      return v.text.empty() ? fmt::format("[{}, {}]", fmt_num(v.pair[0]), fmt_num(v.pair[1])) : v.text;
+    };
+    if (!std::isfinite(v.pair[0]) || !std::isfinite(v.pair[1])) {
+      fail(key, fmt::format("must hold finite numbers (given {})", given()));
+    }
+    if (std::fabs(v.pair[0]) > kMaxLength || std::fabs(v.pair[1]) > kMaxLength) {
+      fail(key, fmt::format("must hold numbers within [{}, {}] m, the range the model is made for (given {})",
+                            fmt_num(-kMaxLength), fmt_num(kMaxLength), given()));
+    }
+    return {v.pair[0], v.pair[1]};
+  }
+  std::string text(std::string_view key, const std::string& fallback) const {
+    const ConfigValue* v = find(key);
+    return v ? v->text : fallback;
+  }
+};
+
+
+// The switches beyond the paper (build_extensions.cpp).
+void build_extensions(const Reader& in, Machine& m);
+// Start conditions that only the extensions can violate (build_extensions.cpp).
+void check_extension_start(const Reader& in, const Scenario& sc);
+
+}  // namespace whatnext::io
