@@ -449,14 +449,18 @@ TEST(Reproducers, ARopeThatTightensAgainWithinAFractionOfAMillisecondAtEveryTole
 }
 
 TEST(Reproducers, HeavySeesawTheRopeHoldsItAsTheSandbagSeparates) {
-  // A light seesaw: the sandbag separates while the rope stays taut; the lid opens at 0.8326 s.
+  // A light seesaw: the sandbag separates while the rope stays taut. The rope then swings the
+  // empty seesaw up; before the lid opens (0.8326 s, had it swung on) it reaches the vertical,
+  // where the paper allows no somersault (issue 19): the run ends there.
   const wn::Result r = run_example(1, {"seesaw.mass=0.141", "seesaw.left_arm=0.9173"});
   const wn::Event* leaves = first_event(r, wn::EventType::sandbag_leaves, 0.5);
   ASSERT_NE(leaves, nullptr);
   EXPECT_TRUE(leaves->after.rope_taut);
   EXPECT_GT(leaves->after.tension, 0.0);
-  EXPECT_EQ(r.outcome().type, wn::EventType::lid_open);
-  EXPECT_NEAR(r.outcome().t, 0.8326, 1e-4);
+  EXPECT_EQ(r.outcome().type, wn::EventType::seesaw_vertical);
+  EXPECT_FALSE(r.outcome().after.on_seesaw);
+  EXPECT_NEAR(std::fabs(r.outcome().after.phi_s), kPi / 2.0 - 0.9 * kDeg, 1e-9);
+  EXPECT_LT(r.outcome().t, 0.8326);
 }
 
 TEST(Reproducers, HeavySeesawWithNegativeKTheLidStaysDown) {

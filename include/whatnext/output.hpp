@@ -117,6 +117,8 @@ void set_interrupt_handler(std::function<void(int)> stop);
 void require_finite(const Result& result);
 
 // "lid open at 0.820 s" and its relatives.
+// An impact's impulses per contact, e.g. "sandbag 1.0600 N s, rope 0.7269 N s" ("" for none).
+std::string impulse_text(const Event& e);
 std::string outcome_sentence(const Result& result);
 // The timeline printed by `whatnext run`.
 std::string timeline_text(const Result& result, const Scenario& scenario, const std::string& source);

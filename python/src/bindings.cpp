@@ -22,6 +22,8 @@
 
 #include <fmt/format.h>
 
+#include "whatnext/units.hpp"
+#include "whatnext/columns.hpp"
 #include "whatnext/config.hpp"
 #include "whatnext/explore/sweep.hpp"
 #include "whatnext/output.hpp"
@@ -33,7 +35,6 @@ namespace whatnext::python {
 
 namespace {
 
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A validated machine: the input as given (so that further overrides are checked, and named in
@@ -139,38 +140,7 @@ py::dict inputs_of(const MachineHandle& m) {
 // The CSV's numeric columns after t_s, event, mode and rope_taut, computed as CsvWriter computes
 // them; their names are read from CsvWriter::header() so that the two cannot drift apart silently
 // (module import fails if the counts differ, the tests compare the values with the CLI's CSV).
-using Getter = double (*)(const Snapshot&);
-constexpr Getter kNumeric[] = {
-    [](const Snapshot& s) { return s.x; },
-    [](const Snapshot& s) { return s.h; },
-    [](const Snapshot& s) { return s.r; },
-    [](const Snapshot& s) { return s.dr; },
-    [](const Snapshot& s) { return s.phi_s * kDeg; },
-    [](const Snapshot& s) { return s.dphi_s * kDeg; },
-    [](const Snapshot& s) { return s.phi_l * kDeg; },
-    [](const Snapshot& s) { return s.dphi_l * kDeg; },
-    [](const Snapshot& s) { return s.balloon_h; },
-    [](const Snapshot& s) { return s.balloon_v; },
-    [](const Snapshot& s) { return s.balloon_limit; },
-    [](const Snapshot& s) { return s.tension; },
-    [](const Snapshot& s) { return s.energy(); },
-    [](const Snapshot& s) { return s.sandbag_kinetic; },
-    [](const Snapshot& s) { return s.sandbag_potential; },
-    [](const Snapshot& s) { return s.lid_kinetic; },
-    [](const Snapshot& s) { return s.lid_potential; },
-    [](const Snapshot& s) { return s.seesaw_kinetic; },
-    [](const Snapshot& s) { return s.seesaw_potential; },
-    [](const Snapshot& s) { return s.balloon_kinetic; },
-    [](const Snapshot& s) { return s.balloon_potential; },
-    [](const Snapshot& s) { return s.lost_impacts; },
-    [](const Snapshot& s) { return s.lost_balloon_catch; },
-    [](const Snapshot& s) { return s.dissipated_pivot; },
-    [](const Snapshot& s) { return s.dissipated_hinge; },
-    [](const Snapshot& s) { return s.dissipated_drag; },
-    [](const Snapshot& s) { return s.lid_push_work; },
-    [](const Snapshot& s) { return s.ledger_residual(); },
-};
-constexpr std::size_t kNumericCount = std::size(kNumeric);
+constexpr std::size_t kNumericCount = std::size(kStateColumns);  // whatnext/columns.hpp
 constexpr const char* kLeading[] = {"t_s", "event", "mode", "rope_taut"};
 
 const std::vector<std::string>& column_names() {
@@ -194,7 +164,7 @@ void check_columns() {
   for (std::size_t i = 0; ok && i < std::size(kLeading); ++i) ok = names[i] == kLeading[i];
   if (!ok) {
     throw std::runtime_error(fmt::format(
-        "whatnext._core: the CSV has {} columns ({}), the module knows {}; update kNumeric in bindings.cpp",
+        "whatnext._core: the CSV has {} columns ({}), the module knows {}; the table is whatnext/columns.hpp",
         names.size(), CsvWriter::header(), std::size(kLeading) + kNumericCount));
   }
 }
@@ -300,7 +270,7 @@ class ColumnRecorder : public Interruptible {
     event_.push_back(event);
     mode_.push_back(s.mode);
     taut_.push_back(s.rope_taut ? 1 : 0);
-    for (std::size_t c = 0; c < kNumericCount; ++c) numeric_[c].push_back(kNumeric[c](s));
+    for (std::size_t c = 0; c < kNumericCount; ++c) numeric_[c].push_back(kStateColumns[c].value(s));
   }
   std::vector<double> t_;
   std::vector<std::string_view> event_;  // names live in the static names table
@@ -316,7 +286,7 @@ py::dict state_of(const Snapshot& s) {
   d["t_s"] = s.t;
   d["mode"] = py::str(std::string(to_string(s.mode)));
   d["rope_taut"] = s.rope_taut;
-  for (std::size_t c = 0; c < kNumericCount; ++c) d[py::str(names[std::size(kLeading) + c])] = kNumeric[c](s);
+  for (std::size_t c = 0; c < kNumericCount; ++c) d[py::str(names[std::size(kLeading) + c])] = kStateColumns[c].value(s);
   return d;
 }
 
@@ -351,6 +321,15 @@ py::dict run_machine(const MachineHandle& m, bool samples) {
     d["energy_before"] = e.energy_before;
     d["energy_after"] = e.energy_after;
     d["state"] = state_of(e.after);
+    if (e.impact) {  // each contact's impulse and the law applied (docs/model.md §7)
+      py::dict p;
+      p["sandbag_N_s"] = e.impulse[0];
+      p["rope_N_s"] = e.impulse[1];
+      p["lid_N_m_s"] = e.impulse[2];
+      d["impulses"] = p;
+      d["law_applied"] = py::str(std::string(to_string(e.law)));
+      d["law_note"] = py::str(std::string(e.law_note));
+    }
     events.append(std::move(d));
   }
   const Event& last = result.outcome();

@@ -297,7 +297,9 @@ class Event:
     ``time`` is located to the integrator's tolerance (not to a time step); ``state`` is the
     machine right after the event, keyed like the CSV's columns (``x_m``, ``phi_s_deg``,
     ``energy_J``, ...). An impact (``impact``) changes the machine's energy from
-    ``energy_before`` to ``energy_after`` [J]; otherwise the two are equal.
+    ``energy_before`` to ``energy_after`` [J]; otherwise the two are equal. An impact also has
+    ``impulses`` (N s per contact, the lid's N m s: docs/model.md "Impulses") and ``law_applied``;
+    a law that could not be applied is never replaced silently: ``law_note`` says why.
     """
 
     type: str
@@ -308,6 +310,12 @@ class Event:
     energy_before: float
     energy_after: float
     state: Dict[str, Any]
+    #: An impact's impulse per contact (``sandbag_N_s``, ``rope_N_s``, ``lid_N_m_s``), else None.
+    impulses: Optional[Dict[str, float]] = None
+    #: The impact law that set the velocities after a rope's jerk (impacts only).
+    law_applied: Optional[str] = None
+    #: Why that is not the run's impact law, where it is not ("" otherwise).
+    law_note: Optional[str] = None
 
 
 class Run:

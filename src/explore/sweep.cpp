@@ -1,3 +1,4 @@
+#include "whatnext/units.hpp"
 #include "whatnext/explore/sweep.hpp"
 
 #include <algorithm>
@@ -25,7 +26,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 std::string_view trim(std::string_view s) {
   const auto a = s.find_first_not_of(" \t");
@@ -187,7 +187,7 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
     o.outcome_t = r.outcome_t;
     const Event& last = res.outcome();
     o.final_r = last.after.r;
-    o.final_phi_l_deg = last.after.phi_l * kRadToDeg;
+    o.final_phi_l_deg = last.after.phi_l * units::kDegreesPerRadian;
     o.valid = true;
   } catch (const InputError& e) {
     o.error = e.what();

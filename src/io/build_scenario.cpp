@@ -18,6 +18,13 @@ void read_geometry(const Reader& in, const Config& cfg, Machine& m) {
   m.seesaw_right_arm = in.length("geometry.seesaw_right_arm", 0.6);
   m.lid_half_length = in.length("geometry.lid_half_length", 0.2);
   m.rope_length = in.length("geometry.rope_length", 1.0);
+  if (in.find("geometry.rope_on_lid")) {  // the knot along the lid (docs/model.md §3); on the lid
+    m.rope_on_lid = in.length("geometry.rope_on_lid", 2.0 * m.lid_half_length);
+    if (m.rope_on_lid > 2.0 * m.lid_half_length) {
+      in.fail("geometry.rope_on_lid", fmt::format("must be on the lid, at most its length 2 r_L = {} m from the hinge "
+                                                  "(given {} m)", fmt_num(2.0 * m.lid_half_length), fmt_num(m.rope_on_lid)));
+    }
+  }
   if (cfg.has("geometry.hinge_offset")) {
     if (cfg.has("geometry.hinge_distance") || cfg.has("geometry.hinge_angle")) {
       in.fail("geometry.hinge_offset", "and geometry.hinge_distance/hinge_angle both given: use one form");
@@ -32,7 +39,7 @@ void read_geometry(const Reader& in, const Config& cfg, Machine& m) {
     m.hinge = {v.x, -v.h};
   } else {
     const double f = in.length("geometry.hinge_distance", 0.8);
-    const double gamma = in.in_range("geometry.hinge_angle", 27.0, -180.0, true, 180.0, true) * kDeg;
+    const double gamma = in.in_range("geometry.hinge_angle", 27.0, -180.0, true, 180.0, true) * units::kRadiansPerDegree;
     m.hinge = {f * std::cos(gamma), -f * std::sin(gamma)};
   }
 }
@@ -69,8 +76,8 @@ void read_bodies(const Reader& in, Machine& m) {
 void read_start(const Reader& in, Start& st) {
   st.sandbag_x = in.number("start.sandbag_x", -0.3);
   st.sandbag_h = in.offset("start.sandbag_height", 1.0);
-  st.seesaw_angle = in.in_range("start.seesaw_angle", -25.0, -90.0, false, 90.0, false) * kDeg;
-  st.lid_angle = in.in_range("start.lid_angle", 5.0, 0.0, true, 90.0, false) * kDeg;
+  st.seesaw_angle = in.in_range("start.seesaw_angle", -25.0, -90.0, false, 90.0, false) * units::kRadiansPerDegree;
+  st.lid_angle = in.in_range("start.lid_angle", 5.0, 0.0, true, 90.0, false) * units::kRadiansPerDegree;
 }
 
 // How to run: end time, output spacing, integrator, impact law, and the work that asks for.
@@ -82,7 +89,7 @@ void read_run(const Reader& in, const Machine& m, RunSettings& run) {
   // Tighter than 1e-15 the error estimate is rounding noise and the steps shrink without end;
   // looser than 1e-3 events are located on a state that is wrong in the third digit.
   run.tolerance = in.in_range("run.tolerance", 1e-12, kMinTolerance, true, kMaxTolerance, true);
-  run.vertical_margin = in.in_range("run.vertical_margin", 0.9, 0.0, true, 90.0, false) * kDeg;
+  run.vertical_margin = in.in_range("run.vertical_margin", 0.9, 0.0, true, 90.0, false) * units::kRadiansPerDegree;
   const std::string integ = in.text("run.integrator", "adaptive");
   if (!parse_integrator(integ, run.integrator)) {
     in.fail("run.integrator", fmt::format("must be adaptive, euler or rk4 (given '{}')", printable(integ)));
@@ -149,7 +156,7 @@ void check_start(const Reader& in, const Scenario& sc) {
     in.fail("start.lid_angle",
             fmt::format("puts the lid above the rope, which is straight at the start (geometry.rope_length = {} m "
                         "at start.seesaw_angle = {} deg) and would run under the hinge, through the box (given {} deg)",
-                        fmt_num(m.rope_length), fmt_num(st.seesaw_angle / kDeg), fmt_num(st.lid_angle / kDeg)));
+                        fmt_num(m.rope_length), fmt_num(st.seesaw_angle / units::kRadiansPerDegree), fmt_num(st.lid_angle / units::kRadiansPerDegree)));
   }
   const double reach = rope.max_span(st.lid_angle);
   if (m.rope_length > reach) {

@@ -40,10 +40,10 @@ std::string events_json(const Result& result, const Scenario& sc, const std::str
                 {"h", clean(s.h)},
                 {"r", clean(s.r)},
                 {"dr", clean(s.dr)},
-                {"phi_s_deg", clean(s.phi_s * kRadToDeg)},
-                {"dphi_s_deg_per_s", clean(s.dphi_s * kRadToDeg)},
-                {"phi_l_deg", clean(s.phi_l * kRadToDeg)},
-                {"dphi_l_deg_per_s", clean(s.dphi_l * kRadToDeg)},
+                {"phi_s_deg", clean(s.phi_s * units::kDegreesPerRadian)},
+                {"dphi_s_deg_per_s", clean(s.dphi_s * units::kDegreesPerRadian)},
+                {"phi_l_deg", clean(s.phi_l * units::kDegreesPerRadian)},
+                {"dphi_l_deg_per_s", clean(s.dphi_l * units::kDegreesPerRadian)},
                 {"balloon_h", clean(s.balloon_h)},
                 {"energy", clean(s.energy())}};
   };
@@ -57,6 +57,13 @@ std::string events_json(const Result& result, const Scenario& sc, const std::str
     if (e.impact) {
       j["energy_before"] = clean(e.energy_before);
       j["energy_after"] = clean(e.energy_after);
+      // Each contact's impulse (docs/model.md §7) and the law that set the velocities, with the
+      // reason where it is not the run's impact_law.
+      j["impulses"] = json{{"sandbag_N_s", clean(e.impulse[0])},
+                           {"rope_N_s", clean(e.impulse[1])},
+                           {"lid_N_m_s", clean(e.impulse[2])}};
+      j["law_applied"] = std::string(to_string(e.law));
+      if (!e.law_note.empty()) j["law_note"] = std::string(e.law_note);
     }
     j["ledger"] = ledger(e.after);
     events.push_back(std::move(j));

@@ -6,11 +6,11 @@
 
 #include <fmt/format.h>
 
+#include "whatnext/units.hpp"
 #include "whatnext/simulate.hpp"
 
 namespace whatnext::io {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 // Never let -0.000 reach a file.
 inline double clean(double v) { return (std::isfinite(v) && v != 0.0) ? v : 0.0; }

@@ -11,11 +11,10 @@
 #include <toml++/toml.h>
 
 #include "whatnext/config.hpp"
+#include "whatnext/units.hpp"
 
 namespace whatnext::io {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kDeg = kPi / 180.0;  // degrees as inputs write them, to radians
 
 inline std::string fmt_num(double v) { return fmt::format("{}", v); }
 

@@ -18,6 +18,8 @@ const std::vector<KeySpec> kKeys = {
     {"geometry.hinge_angle", KeyKind::angle, "deg", "gamma: hinge below the pivot's horizontal", "27"},
     {"geometry.hinge_offset", KeyKind::pair, "m",
      "[dx, dh]: hinge dx right of and dh below the pivot (instead of distance + angle)", "none"},
+    {"geometry.rope_on_lid", KeyKind::length, "m",
+     "where the rope is tied: from the hinge along the lid (Fig. 3: r_L, the lid's middle)", "2 r_L"},
     {"masses.sandbag", KeyKind::mass, "kg", "m_S: the sandbag (a point mass)", "0.6"},
     {"masses.lid", KeyKind::mass, "kg", "m_L: the lid (a uniform plate)", "0.5"},
     {"air.density", KeyKind::density, "kg/m^3", "density of air", "1.29"},

@@ -25,16 +25,20 @@ std::string outcome_sentence(const Result& result) {
     case EventType::lid_open:
       return fmt::format("lid open at {:.3f} s", e.t);
     case EventType::seesaw_vertical:
+      if (!s.on_seesaw) {  // a seesaw with mass that lost its sandbag (no somersaults, docs/model.md §6)
+        return fmt::format("seesaw vertical at {:.3f} s without the sandbag (it is {:.4g} m from the pivot); the "
+                           "lid never opens (it is at {:.1f} deg)", e.t, s.r, s.phi_l * units::kDegreesPerRadian);
+      }
       return fmt::format("seesaw vertical at {:.3f} s with the sandbag {:.4g} m out; the lid never "
-                         "opens (it is at {:.1f} deg)", e.t, s.r, s.phi_l * kRadToDeg);
+                         "opens (it is at {:.1f} deg)", e.t, s.r, s.phi_l * units::kDegreesPerRadian);
     case EventType::sandbag_at_pivot:
       return fmt::format("sandbag reaches the pivot at {:.3f} s; the lid has not opened (it is at "
-                         "{:.1f} deg)", e.t, s.phi_l * kRadToDeg);
+                         "{:.1f} deg)", e.t, s.phi_l * units::kDegreesPerRadian);
     case EventType::rope_locked:
       // Either the lid or the seesaw's arm has come in line with the straight rope (docs/model.md):
       // the linkage cannot move on; which of the two is not in the result, so the line names both.
       return fmt::format("linkage locked at {:.3f} s: the straight rope is in line with the lid or the seesaw's "
-                         "arm; the lid is at {:.1f} deg", e.t, s.phi_l * kRadToDeg);
+                         "arm; the lid is at {:.1f} deg", e.t, s.phi_l * units::kDegreesPerRadian);
     case EventType::radio_on:
       return fmt::format("radio on at t = {:.3f} s", e.t);
     case EventType::timeout:
@@ -45,13 +49,35 @@ std::string outcome_sentence(const Result& result) {
         }
       }
       return fmt::format("no outcome by t_max = {:.3f} s: the lid is at {:.1f} deg", e.t,
-                         s.phi_l * kRadToDeg);
+                         s.phi_l * units::kDegreesPerRadian);
     case EventType::event_limit:
       return fmt::format("stopped after {} events at {:.3f} s", result.events.size(), e.t);
     default:
       return fmt::format("{} at {:.3f} s", to_string(e.type), e.t);
   }
 }
+
+std::string impulse_text(const Event& e) {
+  // Each contact's impulse (docs/model.md §7): N s, the lid's a torque's, N m s.
+  static constexpr const char* kName[3] = {"sandbag", "rope", "lid"};
+  static constexpr const char* kUnit[3] = {"N s", "N s", "N m s"};
+  std::string out;
+  for (int i = 0; i < 3; ++i) {
+    if (e.impulse[i] == 0.0) continue;
+    out += fmt::format("{}{} {:.4f} {}", out.empty() ? "" : ", ", kName[i], clean(e.impulse[i]), kUnit[i]);
+  }
+  return out;
+}
+
+namespace {
+std::string impact_text(const Event& e, const Scenario& sc) {
+  std::string out = fmt::format("energy {:.4f} J -> {:.4f} J", e.energy_before, e.energy_after);
+  const std::string impulses = impulse_text(e);
+  if (!impulses.empty()) out += "; impulse " + impulses;
+  if (!e.law_note.empty()) out += fmt::format("; not the {} law: {}", to_string(sc.run.impact_law), e.law_note);
+  return out;
+}
+}  // namespace
 
 std::string timeline_text(const Result& result, const Scenario& sc, const std::string& source) {
   // Every cell is formatted first and the columns are as wide as their widest cell, so long event
@@ -64,9 +90,9 @@ std::string timeline_text(const Result& result, const Scenario& sc, const std::s
                     e.mode_before == e.mode_after
                         ? std::string(to_string(e.mode_after))
                         : fmt::format("{}>{}", to_string(e.mode_before), to_string(e.mode_after)),
-                    fmt::format("{:.3f}", s.phi_s * kRadToDeg), fmt::format("{:.3f}", s.phi_l * kRadToDeg),
+                    fmt::format("{:.3f}", s.phi_s * units::kDegreesPerRadian), fmt::format("{:.3f}", s.phi_l * units::kDegreesPerRadian),
                     fmt::format("{:.4f}", s.r),
-                    e.impact ? fmt::format("energy {:.4f} J -> {:.4f} J", e.energy_before, e.energy_after) : ""});
+                    e.impact ? impact_text(e, sc) : ""});
   }
   std::array<std::size_t, 7> width{12, 16, 7, 9, 9, 9, 0};
   for (const auto& row : rows) {

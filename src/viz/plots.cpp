@@ -6,6 +6,7 @@
 // (event numbers on the trajectory, the 90° line's name) are placed by a collision test against
 // the curves and the other texts. Text widths are measured with Cairo in DejaVu Sans, the font
 // PLplot's drivers use here.
+#include "whatnext/units.hpp"
 #include "whatnext/viz/plots.hpp"
 
 #include <cairo.h>
@@ -40,7 +41,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
 constexpr double kMmPerPt = 25.4 / 72.0;  // the Cairo drivers map one pixel to one point
 
 // Colour map 0 (PLplot's indexed colours).
@@ -1036,9 +1036,9 @@ std::vector<Panel> run_panels(const Recording& rec, const std::string& title) {
   panels.push_back(tr);
 
   Panel ang = time_panel(rec, pre + "seesaw and lid angles", "angle [deg]");
-  ang.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_s * kDeg; },
+  ang.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_s * units::kDegreesPerRadian; },
                               "φ#dS#u seesaw (+ = left arm down)", kBlue));
-  ang.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_l * kDeg; },
+  ang.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_l * units::kDegreesPerRadian; },
                               "φ#dL#u lid", kOrange));
   ang.hlines.push_back({90.0, "90°: vertical"});
   panels.push_back(ang);
@@ -1083,7 +1083,7 @@ Curve event_points(const Recording& rec, bool lid, int colour) {
   c.dots = true;
   for (const Event& e : rec.result.events) {
     c.x.push_back(e.t);
-    c.y.push_back((lid ? e.after.phi_l : e.after.phi_s) * kDeg);
+    c.y.push_back((lid ? e.after.phi_l : e.after.phi_s) * units::kDegreesPerRadian);
   }
   return c;
 }
@@ -1188,9 +1188,9 @@ std::vector<std::string> write_law_comparison(const Scenario& scenario, const st
     const Recording rec = record(sc);
     t_end = std::max(t_end, rec.t_end());
     const std::string label = fmt::format("{}: {}", law_words(law), outcome_words(rec.result));
-    ps.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_s * kDeg; },
+    ps.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_s * units::kDegreesPerRadian; },
                                label, colours[i], styles[i]));
-    pl.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_l * kDeg; },
+    pl.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_l * units::kDegreesPerRadian; },
                                label, colours[i], styles[i]));
     ps.curves.push_back(event_points(rec, false, colours[i]));
     pl.curves.push_back(event_points(rec, true, colours[i]));
@@ -1228,8 +1228,8 @@ std::vector<std::string> write_integrator_comparison(const Scenario& scenario,
   ang.hlines.push_back({90.0, "90°: vertical"});
   ang.legend_columns = 2;  // a row per integrator
   ang.events = group_events(ra.result);
-  auto phs = [](const Snapshot& s) { return s.phi_s * kDeg; };
-  auto phl = [](const Snapshot& s) { return s.phi_l * kDeg; };
+  auto phs = [](const Snapshot& s) { return s.phi_s * units::kDegreesPerRadian; };
+  auto phl = [](const Snapshot& s) { return s.phi_l * units::kDegreesPerRadian; };
   ang.curves.push_back(series(ra, time_of, phs, "φ#dS#u adaptive: " + outcome_words(ra.result), kBlue));
   ang.curves.push_back(series(ra, time_of, phl, "φ#dL#u adaptive", kOrange));
   ang.curves.push_back(series(rf, time_of, phs, "φ#dS#u " + fixed_name + ": " + outcome_words(rf.result),
