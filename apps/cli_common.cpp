@@ -226,7 +226,7 @@ bool Outputs::any_to_stdout() const {
 }
 
 void Outputs::commit_all() {
-  for (const auto& f : files_) f->flush();
+  for (const auto& f : files_) f->finish();  // every write and check first: all appear, or none
   for (const auto& f : files_) f->commit();
 }
 

@@ -178,8 +178,8 @@ TEST_F(SweepCli, InterruptKeepsAValidFileOfFinishedRows) {
           "--vary", "masses.lid=0.3:0.7:200", "--out", csv.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  // The .part file appears just before the handler is installed and the machines start.
-  for (int i = 0; i < 200 && !fs::exists(csv.string() + ".part"); ++i) {
+  // The temporary appears just before the handler is installed and the machines start.
+  for (int i = 0; i < 200 && whatnext::test_support::temps_of(csv).empty(); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(400));

@@ -54,7 +54,10 @@ class AtomicFile {
   bool to_stdout() const;
   // Sends everything written so far on its way; OutputError when that failed.
   void flush();
-  // flush(), then the file appears under its name.
+  // Everything but putting the file in place: flush(), the check of a file written by name, and
+  // closing it; OutputError when any failed. Several files committed together finish() first.
+  void finish();
+  // finish(), then the file appears under its name.
   void commit();
   // Throws InputError when two of the files are the same (as given, through a symlink or a
   // descriptor); several outputs may go to /dev/null.
@@ -79,6 +82,7 @@ class AtomicFile {
   bool through_ = false;  // written in place (no temporary)
   bool owns_fd_ = false;
   bool committed_ = false;
+  bool finished_ = false;
   unsigned long long dev_ = 0, ino_ = 0;  // identity, for check_distinct (0: a new file)
   bool null_device_ = false;
   mutable bool named_ = false;  // temp_path() was handed out: written by name

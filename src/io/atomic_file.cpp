@@ -286,10 +286,11 @@ void AtomicFile::flush() {
   }
 }
 
-void AtomicFile::commit() {
+void AtomicFile::finish() {
+  if (finished_) return;
   flush();
   if (through_) {
-    committed_ = true;
+    finished_ = true;
     return;
   }
   if (named_) check_written_by_name();
@@ -297,6 +298,15 @@ void AtomicFile::commit() {
   owns_fd_ = false;
   buf_.fd = -1;
   if (::close(fd) != 0) write_failed(std::strerror(errno));
+  finished_ = true;
+}
+
+void AtomicFile::commit() {
+  finish();
+  if (through_) {
+    committed_ = true;
+    return;
+  }
   std::lock_guard<std::mutex> hold(interrupts().lock);  // an interrupt waits for the name
   // rename() replaces the old file in one step: the name holds the old file or the new one, never
   // none and never a part, and of two writers of one name the later rename wins whole.
