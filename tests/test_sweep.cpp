@@ -131,7 +131,8 @@ TEST_F(SweepCli, BadVarySpecsAreRejectedWithOneLineAndNoFile) {
   const std::string base = "sweep --example 2 ";
   expect_rejected(base + "--vary geometry.rope_lenght=0.6:0.7:3", "did you mean 'geometry.rope_length'");
   expect_rejected(base + "--vary geometry.rope_length=0.7:0.6:3", "A <= B");
-  expect_rejected(base + "--vary geometry.rope_length=0.6:0.7:0", "N must be a whole number >= 1");
+  expect_rejected(base + "--vary geometry.rope_length=0.6:0.7:0", "N must be a whole number from 1 to 10^9");
+  expect_rejected(base + "--vary geometry.rope_length=0.6:0.7:4294967295", "N must be a whole number from 1 to 10^9");
   expect_rejected(base + "--vary geometry.rope_length=0.6:0.7:2.5", "N must be");
   expect_rejected(base + "--vary geometry.rope_length=0.6:abc:3", "B must be a finite number (given 'abc')");
   expect_rejected(base + "--vary geometry.rope_length=0.6:0.7", "needs the number of values N");

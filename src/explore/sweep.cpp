@@ -305,7 +305,8 @@ Range parse_range(std::string_view spec, std::string_view option, bool need_coun
   if (count_given) {
     double n = 0.0;
     if (!parse_double(parts[2], n) || n != std::floor(n) || n < 1.0 || n > 1e9) {
-      throw InputError(fmt::format("{}: N must be a whole number >= 1 (given '{}')", where, printable(trim(parts[2]))));
+      throw InputError(fmt::format("{}: N must be a whole number from 1 to 10^9 (given '{}')", where,
+                                   printable(trim(parts[2]))));
     }
     r.n = static_cast<int>(n);
   }
