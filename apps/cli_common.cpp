@@ -50,8 +50,9 @@ void hand_over_to_full() {
     ::execv(p.c_str(), argv.data());
     throw std::runtime_error(fmt::format("cannot start {}: {}", p.string(), std::strerror(errno)));
   }
-  throw std::runtime_error(fmt::format("whatnext-full, which draws and optimises, is not installed (looked for {})",
-                                       tried.empty() ? std::string("it beside whatnext") : tried));
+  throw std::runtime_error(
+      fmt::format("whatnext-full, which draws and optimises, is not installed (looked for {})",
+                  tried.empty() ? std::string("it beside whatnext") : tried));
 }
 
 void add_input_options(CLI::App& cmd, InputOptions& opts) {
@@ -135,7 +136,8 @@ LoadedInput load_input(const InputOptions& opts) {
 CLI::Validator number_text(bool whole, double lo, double hi) {
   const std::string what = whole ? "a whole number" : "a number";
   std::string range;
-  if (std::isfinite(lo) && std::isfinite(hi)) range = fmt::format(" from {} to {}", shortest(lo), shortest(hi));
+  if (std::isfinite(lo) && std::isfinite(hi))
+    range = fmt::format(" from {} to {}", shortest(lo), shortest(hi));
   return CLI::Validator(
       [what, range, whole, lo, hi](std::string& text) -> std::string {
         const std::string shown = printable(text, 40);
@@ -143,7 +145,8 @@ CLI::Validator number_text(bool whole, double lo, double hi) {
         char* end = nullptr;
         errno = 0;
         const double v = std::strtod(begin, &end);
-        const bool number = end != begin && *end == '\0' && !std::isspace(static_cast<unsigned char>(text[0]));
+        const bool number =
+            end != begin && *end == '\0' && !std::isspace(static_cast<unsigned char>(text[0]));
         if (!number || (whole && !(std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 1e15)) ||
             !(v >= lo && v <= hi)) {
           return fmt::format("must be {}{} (given '{}')", what, range, shown);
@@ -167,16 +170,17 @@ void check_leftovers(const CLI::App& cmd) {
     }
     const std::string word = first.substr(0, first.find('='));
     const std::string near = nearest_word(word, names);
-    throw InputError(fmt::format("{}: unknown option '{}'{} (see whatnext help {})", cmd.get_name(),
-                                 printable(word), near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
-                                 cmd.get_name()));
+    throw InputError(
+        fmt::format("{}: unknown option '{}'{} (see whatnext help {})", cmd.get_name(), printable(word),
+                    near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), cmd.get_name()));
   }
   if (first.find('=') != std::string::npos) {
     throw InputError(fmt::format("{}: '{}' looks like an override: write --set before each KEY=VALUE",
                                  cmd.get_name(), printable(first)));
   }
-  throw InputError(fmt::format("{}: unexpected argument '{}' (one machine FILE at most; see whatnext help {})",
-                               cmd.get_name(), printable(first), cmd.get_name()));
+  throw InputError(
+      fmt::format("{}: unexpected argument '{}' (one machine FILE at most; see whatnext help {})",
+                  cmd.get_name(), printable(first), cmd.get_name()));
 }
 
 namespace {
@@ -186,12 +190,15 @@ Claim unclaimed(const std::string& option, const std::string& path) {
   if (path.empty() || path == "-") return {};
   const Claim c = identify(option, path);
   struct stat st {};
-  if (c.exists && ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) return {};  // /dev/null and the like
+  if (c.exists && ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    return {};  // /dev/null and the like
   for (const Claim& other : g_claims) {
     if (!same(c, other)) continue;
     if (other.option == "input") {
-      throw InputError(fmt::format("{} {}: is the input file; whatnext does not write over its input (give the "
-                                   "output another name)", option, c.shown));
+      throw InputError(
+          fmt::format("{} {}: is the input file; whatnext does not write over its input (give the "
+                      "output another name)",
+                      option, c.shown));
     }
     throw InputError(fmt::format("{} {}: is the same file as {}; give each output its own", option, c.shown,
                                  other.option));
@@ -240,10 +247,10 @@ void check_size(const Scenario& sc, double bytes_per_row, const std::string& opt
   const double rows = max_rows(sc);
   const double bytes = rows * bytes_per_row;
   if (force || bytes <= kLargeBytes) return;
-  throw InputError(fmt::format("{}: up to {:.3g} rows (run.t_max {} s / run.output_step {} s) would {} about "
-                               "{:.1f} GB; raise run.output_step, or give --force-large",
-                               option, rows, shortest(sc.run.t_max), shortest(sc.run.output_step), what,
-                               bytes / 1e9));
+  throw InputError(
+      fmt::format("{}: up to {:.3g} rows (run.t_max {} s / run.output_step {} s) would {} about "
+                  "{:.1f} GB; raise run.output_step, or give --force-large",
+                  option, rows, shortest(sc.run.t_max), shortest(sc.run.output_step), what, bytes / 1e9));
 }
 
 namespace {
@@ -255,8 +262,8 @@ void prepare_picture_dir(const std::string& dir, const std::string& option) {
   std::vector<std::string> created;
   if (!dir.empty()) {
     std::error_code ec;
-    for (fs::path p = fs::absolute(dir, ec).lexically_normal(); !p.empty() && !fs::exists(fs::symlink_status(p, ec));
-         p = p.parent_path()) {
+    for (fs::path p = fs::absolute(dir, ec).lexically_normal();
+         !p.empty() && !fs::exists(fs::symlink_status(p, ec)); p = p.parent_path()) {
       created.insert(created.begin(), p.string());
       if (p == p.parent_path()) break;
     }

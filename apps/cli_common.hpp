@@ -16,8 +16,9 @@
 // The command is two programs built from these sources. whatnext-full (WHATNEXT_FULL=1) does
 // everything. whatnext (WHATNEXT_FULL=0) is what people wait for, run and sweep, and starts in
 // about 3 ms more than /bin/true: no picture libraries (PLplot, Cairo, giflib and thirty more), no
-// NLopt, and its C++ libraries linked in; loading them took 8-15 ms (docs/performance.md). It hands a command that draws (plot, animate, run --plots/--animate,
-// sweep --heatmap) or optimises over to whatnext-full, whole and before any work.
+// NLopt, and its C++ libraries linked in; loading them took 8-15 ms (docs/performance.md). It hands a command
+// that draws (plot, animate, run --plots/--animate, sweep --heatmap) or optimises over to whatnext-full,
+// whole and before any work.
 #ifndef WHATNEXT_FULL
 #define WHATNEXT_FULL 1
 #endif

@@ -24,7 +24,9 @@ void register_animate(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<AnimateOptions>();
   CLI::App* cmd = app.add_subcommand("animate", "draw the machine moving, as an animated GIF or MP4");
   add_input_options(*cmd, opts->input);
-  cmd->add_option("--out", opts->out, "FILE.gif, or FILE.mp4 (needs ffmpeg on PATH)")->required()->type_name("FILE");
+  cmd->add_option("--out", opts->out, "FILE.gif, or FILE.mp4 (needs ffmpeg on PATH)")
+      ->required()
+      ->type_name("FILE");
   cmd->add_option("--slowmo", opts->anim.slowmo, "one simulated second lasts this many seconds")
       ->capture_default_str()
       ->transform(number_text(false));
@@ -46,7 +48,8 @@ void register_animate(CLI::App& app, int& exit_code) {
                   "also write the held frames and one frame per second as PNG into this directory")
       ->type_name("DIR");
   cmd->add_flag("-q,--quiet", opts->quiet, "print nothing");
-  cmd->add_flag("--force-large", opts->force_large, "animate runs whose states would take more than 256 MB of memory");
+  cmd->add_flag("--force-large", opts->force_large,
+                "animate runs whose states would take more than 256 MB of memory");
 #if !WHATNEXT_FULL
   (void)exit_code;
   cmd->callback([opts] { hand_over_to_full(); });  // opts: the options write into it
@@ -72,8 +75,8 @@ void register_animate(CLI::App& app, int& exit_code) {
         std::fprintf(stderr, "animate: frame %d of %d\n", done, total);
       }
     };
-    const int frames = viz::write_animation(viz::record(in.scenario), target, opts->anim, opts->dump,
-                                            "--out", progress);
+    const int frames =
+        viz::write_animation(viz::record(in.scenario), target, opts->anim, opts->dump, "--out", progress);
     if (!opts->quiet) fmt::print("{}: {} frames\n", printable(opts->out, 96), frames);
     exit_code = 0;
   });

@@ -24,7 +24,8 @@ struct OptimizeCliOptions {
 
 void register_optimize(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<OptimizeCliOptions>();
-  CLI::App* cmd = app.add_subcommand("optimize", "find the machine within bounds that minimises or maximises an outcome");
+  CLI::App* cmd =
+      app.add_subcommand("optimize", "find the machine within bounds that minimises or maximises an outcome");
   add_input_options(*cmd, opts->input);
   cmd->add_option("--vary", opts->vary, "KEY=A:B: search KEY between A and B; repeat for more keys")
       ->required()
@@ -34,8 +35,9 @@ void register_optimize(CLI::App& app, int& exit_code) {
   auto* mn = cmd->add_option("--minimize", opts->minimize,
                              "value to minimise: an event name (its first time, e.g. lid_open), outcome_t, "
                              "final_r or final_phi_l_deg")
-                ->type_name("VALUE");
-  auto* mx = cmd->add_option("--maximize", opts->maximize, "value to maximise (as --minimize)")->type_name("VALUE");
+                 ->type_name("VALUE");
+  auto* mx =
+      cmd->add_option("--maximize", opts->maximize, "value to maximise (as --minimize)")->type_name("VALUE");
   mn->excludes(mx);
   cmd->add_option("--out", opts->out, "write the best machine to this TOML file ('-': standard output)")
       ->required()
@@ -44,8 +46,10 @@ void register_optimize(CLI::App& app, int& exit_code) {
       ->transform(number_text(true, 1, 1024));
   cmd->add_option("--grid", opts->grid, "coarse grid points per key (default: about 400 machines in all)")
       ->transform(number_text(true, 2, 100000));
-  cmd->add_option("--starts", opts->starts, "local searches from the best grid points")->transform(number_text(true, 1, 100));
-  cmd->add_option("--max-evals", opts->max_evals, "machines per local search")->transform(number_text(true, 1, 1000000));
+  cmd->add_option("--starts", opts->starts, "local searches from the best grid points")
+      ->transform(number_text(true, 1, 100));
+  cmd->add_option("--max-evals", opts->max_evals, "machines per local search")
+      ->transform(number_text(true, 1, 1000000));
 #if !WHATNEXT_FULL
   (void)exit_code;
   cmd->callback([opts] { hand_over_to_full(); });  // opts: the options write into it
@@ -63,8 +67,10 @@ void register_optimize(CLI::App& app, int& exit_code) {
     for (const std::string& v : opts->vary) {
       o.bounds.push_back(explore::parse_range(v, "--vary", false));
       if (o.bounds.back().n != 0) {
-        throw InputError(fmt::format("--vary {}: optimize searches the whole range; write KEY=A:B without a count "
-                                     "(--grid sets the coarse grid)", printable(v)));
+        throw InputError(
+            fmt::format("--vary {}: optimize searches the whole range; write KEY=A:B without a count "
+                        "(--grid sets the coarse grid)",
+                        printable(v)));
       }
     }
     o.threads = opts->threads > 0 ? opts->threads
@@ -76,8 +82,10 @@ void register_optimize(CLI::App& app, int& exit_code) {
     bool radio_varied = false;
     for (const explore::Range& r : o.bounds) radio_varied = radio_varied || r.key.rfind("radio.", 0) == 0;
     if (o.value == "radio_on" && !in.scenario.machine.radio && !radio_varied) {
-      throw InputError(fmt::format("{} radio_on: the radio is off in this machine, so it never switches on "
-                                   "(add --set radio.enabled=true)", option));
+      throw InputError(
+          fmt::format("{} radio_on: the radio is off in this machine, so it never switches on "
+                      "(add --set radio.enabled=true)",
+                      option));
     }
     Outputs outputs;
     AtomicFile* out = outputs.add(*cmd, "--out", opts->out);  // a bad path fails before the search
@@ -85,8 +93,10 @@ void register_optimize(CLI::App& app, int& exit_code) {
 
     const explore::OptimizeResult r = explore::optimize(in.config, o);
     if (!r.found) {
-      fmt::print(stderr, "whatnext: optimize: {} never happens within the bounds ({} machines tried); no file written\n",
-                 o.value, r.evaluations);
+      fmt::print(
+          stderr,
+          "whatnext: optimize: {} never happens within the bounds ({} machines tried); no file written\n",
+          o.value, r.evaluations);
       exit_code = 1;
       return;
     }
@@ -98,7 +108,8 @@ void register_optimize(CLI::App& app, int& exit_code) {
     }
     const Scenario sc = build_scenario(best);
     if (r.at_time_limit) {
-      fmt::print(stderr, "whatnext: optimize: {} = {} s is the end of the run (run.t_max = {} s): within the "
+      fmt::print(stderr,
+                 "whatnext: optimize: {} = {} s is the end of the run (run.t_max = {} s): within the "
                  "bounds it can be put off as long as the run lasts, so there is no {}; no file written\n",
                  o.value, shortest(r.value), shortest(sc.run.t_max), o.maximize ? "maximum" : "minimum");
       exit_code = 1;
@@ -106,16 +117,18 @@ void register_optimize(CLI::App& app, int& exit_code) {
     }
     const std::string toml = to_toml(sc, &best);  // the hinge in the form the input gave it
     out->stream() << fmt::format("# whatnext optimize: {} {} over {} ({} machines): {}; {} = {}\n",
-                                 o.maximize ? "maximise" : "minimise", o.value, in.source, r.evaluations, values,
-                                 o.value, shortest(r.value))
+                                 o.maximize ? "maximise" : "minimise", o.value, in.source, r.evaluations,
+                                 values, o.value, shortest(r.value))
                   << toml;
     outputs.commit_all();
     // The file is only useful if it is the optimum: run it again from its own text.
     const explore::Outcome again = explore::evaluate(parse_toml(toml, opts->out), {}, nullptr);
     const double v = explore::value_of(again, o.value);
     if (!(std::fabs(v - r.value) <= 1e-9 * (1.0 + std::fabs(r.value)))) {
-      fmt::print(stderr, "whatnext: warning: {} gives {} = {}, not {}: to_toml() does not write every input key "
-                 "that was set\n", printable(opts->out, 96), o.value, shortest(v), shortest(r.value));
+      fmt::print(stderr,
+                 "whatnext: warning: {} gives {} = {}, not {}: to_toml() does not write every input key "
+                 "that was set\n",
+                 printable(opts->out, 96), o.value, shortest(v), shortest(r.value));
     }
     fmt::print(text, "best: {}\n{} = {}; outcome {} at {:.6f} s ({} machines tried)\nwritten to {}\n", values,
                o.value, shortest(r.value), to_string(r.outcome.outcome), r.outcome.outcome_t, r.evaluations,

@@ -24,7 +24,9 @@ void register_plot(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<PlotOptions>();
   CLI::App* cmd = app.add_subcommand("plot", "draw the paper's figures (Fig. 8, 9) for one machine");
   add_input_options(*cmd, opts->input);
-  cmd->add_option("--out", opts->out, "directory for the figures (created if missing)")->required()->type_name("DIR");
+  cmd->add_option("--out", opts->out, "directory for the figures (created if missing)")
+      ->required()
+      ->type_name("DIR");
   cmd->add_option("--compare", opts->compare,
                   "laws: phiS and phiL for the four impact laws; integrator: adaptive against "
                   "--integrator with --step")
@@ -34,7 +36,9 @@ void register_plot(CLI::App& app, int& exit_code) {
       ->type_name("euler|rk4");
   cmd->add_option("--step", opts->step, "with --compare integrator: its step [s] (default: run.step)")
       ->transform(number_text(false));
-  cmd->add_option("--format", opts->formats, "comma-separated: png, svg, pdf")->capture_default_str()->type_name("LIST");
+  cmd->add_option("--format", opts->formats, "comma-separated: png, svg, pdf")
+      ->capture_default_str()
+      ->type_name("LIST");
   cmd->add_option("--width", opts->width, "width of a one-panel figure [px]")
       ->capture_default_str()
       ->transform(number_text(true));
@@ -42,7 +46,8 @@ void register_plot(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->transform(number_text(true));
   cmd->add_flag("-q,--quiet", opts->quiet, "do not list the files written");
-  cmd->add_flag("--force-large", opts->force_large, "draw runs whose states would take more than 256 MB of memory");
+  cmd->add_flag("--force-large", opts->force_large,
+                "draw runs whose states would take more than 256 MB of memory");
 #if !WHATNEXT_FULL
   (void)exit_code;
   cmd->callback([opts] { hand_over_to_full(); });  // opts: the options write into it
@@ -53,8 +58,8 @@ void register_plot(CLI::App& app, int& exit_code) {
     check_size(in.scenario, kStateBytes, "plot", opts->force_large, "hold in memory");
     viz::FigureOptions fig;
     if (!viz::parse_formats(opts->formats, fig.formats)) {
-      throw InputError(fmt::format("--format: must list png, svg or pdf separated by commas, got '{}'",
-                                   opts->formats));
+      throw InputError(
+          fmt::format("--format: must list png, svg or pdf separated by commas, got '{}'", opts->formats));
     }
     if (opts->width < 200 || opts->width > 8000) {
       throw InputError(fmt::format("--width: must be between 200 and 8000 pixels, got {}", opts->width));
@@ -69,7 +74,9 @@ void register_plot(CLI::App& app, int& exit_code) {
     std::vector<std::string> written;
     if (opts->compare.empty()) {
       if (cmd->count("--integrator") || cmd->count("--step")) {
-        throw InputError("--integrator/--step: only with --compare integrator (use --set run.integrator=... to plot one run)");
+        throw InputError(
+            "--integrator/--step: only with --compare integrator (use --set run.integrator=... to plot one "
+            "run)");
       }
       written = viz::write_run_figures(viz::record(in.scenario), opts->out, fig);
     } else if (opts->compare == "laws") {

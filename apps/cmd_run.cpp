@@ -32,7 +32,8 @@ void register_run(CLI::App& app, int& exit_code) {
   add_input_options(*cmd, opts->input);
   cmd->add_option("--events", opts->events, "write the events as JSON to this file ('-': standard output)");
   cmd->add_option("--csv", opts->csv, "write the sampled state as CSV to this file ('-': standard output)");
-  cmd->add_option("--dat", opts->dat, "write the paper's whatnext.dat layout to this file ('-': standard output)");
+  cmd->add_option("--dat", opts->dat,
+                  "write the paper's whatnext.dat layout to this file ('-': standard output)");
   cmd->add_option("--plots", opts->plots, "also draw the paper's figures into this directory");
   cmd->add_option("--animate", opts->animate, "also write an animation to this .gif (or .mp4)");
   cmd->add_flag("-q,--quiet", opts->quiet, "print only the outcome line");
@@ -49,8 +50,8 @@ void register_run(CLI::App& app, int& exit_code) {
     if (given(*cmd, "--csv")) check_size(in.scenario, kCsvRowBytes, "--csv", opts->force_large);
     if (given(*cmd, "--dat")) check_size(in.scenario, kDatRowBytes, "--dat", opts->force_large);
     if (given(*cmd, "--plots") || given(*cmd, "--animate")) {
-      check_size(in.scenario, kStateBytes, given(*cmd, "--plots") ? "--plots" : "--animate", opts->force_large,
-                 "hold in memory");
+      check_size(in.scenario, kStateBytes, given(*cmd, "--plots") ? "--plots" : "--animate",
+                 opts->force_large, "hold in memory");
     }
     Outputs outputs;
     AtomicFile* csv_file = outputs.add(*cmd, "--csv", opts->csv);
@@ -99,11 +100,13 @@ void register_run(CLI::App& app, int& exit_code) {
         viz::FigureOptions fig;
         fig.title = in.source;
         const auto files = viz::write_run_figures(rec, opts->plots, fig);
-        if (!opts->quiet) fmt::print(text, "Plots: {} files in {}\n", files.size(), printable(opts->plots, 96));
+        if (!opts->quiet)
+          fmt::print(text, "Plots: {} files in {}\n", files.size(), printable(opts->plots, 96));
       }
       if (given(*cmd, "--animate")) {
         const int frames = viz::write_animation(rec, animation, viz::AnimationOptions{}, "", "--animate");
-        if (!opts->quiet) fmt::print(text, "Animation: {} ({} frames)\n", printable(opts->animate, 96), frames);
+        if (!opts->quiet)
+          fmt::print(text, "Animation: {} ({} frames)\n", printable(opts->animate, 96), frames);
       }
     }
 #endif

@@ -72,7 +72,8 @@ class ProgressBar {
     constexpr int kWidth = 30;
     const int filled = static_cast<int>(frac * kWidth);
     std::string left = "?";
-    if (done > 0) left = fmt::format("{:.0f} s", elapsed / static_cast<double>(done) * static_cast<double>(total - done));
+    if (done > 0)
+      left = fmt::format("{:.0f} s", elapsed / static_cast<double>(done) * static_cast<double>(total - done));
     fmt::print(stderr, "\r[{}{}] {:3.0f}%  {}/{} machines, {} left   ", std::string(filled, '#'),
                std::string(kWidth - filled, '.'), 100.0 * frac, done, total, left);
     std::fflush(stderr);
@@ -103,7 +104,8 @@ class ResumedCsv {
     if (fd_ < 0) fail("cannot write its .part file");
     struct stat st {};
     if (!from_part && ::stat(target_.c_str(), &st) == 0) (void)::fchmod(fd_, st.st_mode & 07777);
-    if (::ftruncate(fd_, static_cast<off_t>(from_part ? kept.size() : 0)) != 0) fail("cannot cut its .part file");
+    if (::ftruncate(fd_, static_cast<off_t>(from_part ? kept.size() : 0)) != 0)
+      fail("cannot cut its .part file");
     if (!from_part) {
       for (std::size_t done = 0; done < kept.size();) {
         const ssize_t n = ::write(fd_, kept.data() + done, kept.size() - done);
@@ -140,7 +142,8 @@ class ResumedCsv {
   int fd_ = -1;
   std::ofstream out_;
   [[noreturn]] void fail(const std::string& why, bool output = false) const {
-    const std::string line = fmt::format("--out {}: {}: {}", printable(given_, 96), why, std::strerror(errno ? errno : EIO));
+    const std::string line =
+        fmt::format("--out {}: {}: {}", printable(given_, 96), why, std::strerror(errno ? errno : EIO));
     if (output) throw OutputError(line);
     throw InputError(line);
   }
@@ -158,26 +161,30 @@ std::string read_file(const std::string& path, const std::string& given) {
 
 void register_sweep(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<SweepOptions>();
-  CLI::App* cmd = app.add_subcommand("sweep", "run many machines over a grid of input values, one CSV row each");
+  CLI::App* cmd =
+      app.add_subcommand("sweep", "run many machines over a grid of input values, one CSV row each");
   add_input_options(*cmd, opts->input);
   cmd->add_option("--vary", opts->vary,
                   "KEY=A:B:N: N values of KEY from A to B (KEY=A:B with --samples); repeat for more keys")
       ->take_all()
       ->allow_extra_args(false);
-  cmd->add_option("--spread", opts->spread,
-                  "KEY=±X (or KEY=+-X): a Monte Carlo around the machine, KEY off by a random amount of spread X "
-                  "in its unit; repeat for more keys")
+  cmd->add_option(
+         "--spread", opts->spread,
+         "KEY=±X (or KEY=+-X): a Monte Carlo around the machine, KEY off by a random amount of spread X "
+         "in its unit; repeat for more keys")
       ->take_all()
       ->allow_extra_args(false);
   cmd->add_option("--spread-dist", opts->spread_dist,
                   "normal (X is the standard deviation, the default) or uniform (X is the half-width)");
   cmd->add_option("--histogram", opts->histogram,
                   "with --spread: a PNG histogram of the lid's opening time (the radio's, if it is on)");
-  cmd->add_option("--samples", opts->samples,
-                  "a Latin hypercube of this many machines instead of the grid; with --spread, the machines drawn "
-                  "(default 1000)")
+  cmd->add_option(
+         "--samples", opts->samples,
+         "a Latin hypercube of this many machines instead of the grid; with --spread, the machines drawn "
+         "(default 1000)")
       ->check(CLI::Range(std::int64_t{1}, explore::kMaxMachines));
-  cmd->add_option("--seed", opts->seed, "seed of the Latin hypercube or the --spread draws (same seed, same machines)");
+  cmd->add_option("--seed", opts->seed,
+                  "seed of the Latin hypercube or the --spread draws (same seed, same machines)");
   cmd->add_option("--threads", opts->threads, "worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--accuracy", opts->accuracy,
@@ -216,10 +223,12 @@ void register_sweep(CLI::App& app, int& exit_code) {
     } else {
       for (const char* o : {"--heatmap", "--heatmap-value", "--resume"}) {
         if (given(*cmd, o)) {
-          throw InputError(fmt::format("{}: goes with a grid (--vary), not with a Monte Carlo (--spread)", o));
+          throw InputError(
+              fmt::format("{}: goes with a grid (--vary), not with a Monte Carlo (--spread)", o));
         }
       }
-      if (given(*cmd, "--histogram") && !ends_with(opts->histogram, ".png") && !ends_with(opts->histogram, ".PNG")) {
+      if (given(*cmd, "--histogram") && !ends_with(opts->histogram, ".png") &&
+          !ends_with(opts->histogram, ".PNG")) {
         throw InputError(fmt::format("--histogram {}: the histogram is a PNG; give a name ending in .png",
                                      printable(opts->histogram, 96)));
       }
@@ -236,16 +245,19 @@ void register_sweep(CLI::App& app, int& exit_code) {
     for (const std::string& v : opts->vary) {
       plan.ranges.push_back(explore::parse_range(v, "--vary", plan.samples == 0));
       if (plan.samples > 0 && plan.ranges.back().n != 0) {
-        throw InputError(fmt::format("--vary {}: with --samples the values come from a Latin hypercube; write "
-                                     "KEY=A:B without a count", printable(v)));
+        throw InputError(
+            fmt::format("--vary {}: with --samples the values come from a Latin hypercube; write "
+                        "KEY=A:B without a count",
+                        printable(v)));
       }
     }
     // A Latin hypercube's points are made up front: its size is checked before.
     const auto check_large = [&](std::int64_t n) {
       if (n > kLargeSweep && !opts->force_large) {
-        throw InputError(fmt::format("sweep: {} machines would hold about {:.1f} GB in memory and write as much; "
-                                     "use fewer, or give --force-large", n,
-                                     static_cast<double>(n) * kSweepRowBytes / 1e9));
+        throw InputError(
+            fmt::format("sweep: {} machines would hold about {:.1f} GB in memory and write as much; "
+                        "use fewer, or give --force-large",
+                        n, static_cast<double>(n) * kSweepRowBytes / 1e9));
       }
     };
     check_large(plan.samples);
@@ -271,15 +283,18 @@ void register_sweep(CLI::App& app, int& exit_code) {
     if (given(*cmd, "--heatmap") || given(*cmd, "--heatmap-value")) {
       explore::check_value_name(opts->heatmap_value, "--heatmap-value");
       bool radio_varied = false;
-      for (const explore::Range& r : plan.ranges) radio_varied = radio_varied || r.key.rfind("radio.", 0) == 0;
+      for (const explore::Range& r : plan.ranges)
+        radio_varied = radio_varied || r.key.rfind("radio.", 0) == 0;
       if (opts->heatmap_value == "radio_on" && !in.scenario.machine.radio && !radio_varied) {
-        throw InputError("--heatmap-value radio_on: the radio is off in this machine, so the map would be all "
-                         "grey (add --set radio.enabled=true)");
+        throw InputError(
+            "--heatmap-value radio_on: the radio is off in this machine, so the map would be all "
+            "grey (add --set radio.enabled=true)");
       }
     }
     if (opts->resume && given(*cmd, "--heatmap")) {
-      throw InputError("--resume: draw the heat map from the finished CSV with a sweep of its own; --resume does "
-                       "not take --heatmap");
+      throw InputError(
+          "--resume: draw the heat map from the finished CSV with a sweep of its own; --resume does "
+          "not take --heatmap");
     }
     // A resumed sweep: what the interrupted one left is read (and checked to be this sweep's)
     // before anything is written.
@@ -297,11 +312,13 @@ void register_sweep(CLI::App& app, int& exit_code) {
       }
       const bool from_target = !from_part && ::stat(target.c_str(), &st) == 0;
       const std::string given_source = from_part ? opts->out + ".part" : opts->out;
-      const std::string text = from_part ? read_file(part, given_source) : from_target ? read_file(target, given_source) : "";
+      const std::string text = from_part     ? read_file(part, given_source)
+                               : from_target ? read_file(target, given_source)
+                                             : "";
       kept = explore::read_resumable(text, machines, in.config, opts->accuracy,
                                      fmt::format("--resume {}", printable(given_source, 96)));
-      resumed = std::make_unique<ResumedCsv>(target, part, from_part, std::string_view(text).substr(0, kept.prefix_bytes),
-                                             opts->out);
+      resumed = std::make_unique<ResumedCsv>(target, part, from_part,
+                                             std::string_view(text).substr(0, kept.prefix_bytes), opts->out);
     }
     Outputs outputs;
     AtomicFile* csv = resumed ? nullptr : outputs.add(*cmd, "--out", opts->out);
@@ -335,7 +352,8 @@ void register_sweep(CLI::App& app, int& exit_code) {
     // leaves a .part file that --resume continues.
     std::exception_ptr write_failure;
     int sync_fd = -1;
-    if (csv && !csv->to_stdout() && !csv->temp_path().empty()) sync_fd = ::open(csv->temp_path().c_str(), O_RDONLY | O_CLOEXEC);
+    if (csv && !csv->to_stdout() && !csv->temp_path().empty())
+      sync_fd = ::open(csv->temp_path().c_str(), O_RDONLY | O_CLOEXEC);
     ro.checkpoint = [&] {
       try {
         if (resumed) {
@@ -373,19 +391,21 @@ void register_sweep(CLI::App& app, int& exit_code) {
       summary = fmt::format("monte carlo: {} machines around {}, {} key{} off by {} spreads (seed {})\n",
                             result.completed, in.source, spreads.size(), spreads.size() == 1 ? "" : "s",
                             opts->spread_dist, opts->seed);
-      summary += fmt::format("  the machine as given: {}\n",
-                             own.valid ? fmt::format("{} at {:.4f} s", to_string(own.outcome), own.outcome_t)
-                                       : fmt::format("{} ({})", own.failed ? "failed" : "invalid", own.error));
+      summary +=
+          fmt::format("  the machine as given: {}\n",
+                      own.valid ? fmt::format("{} at {:.4f} s", to_string(own.outcome), own.outcome_t)
+                                : fmt::format("{} ({})", own.failed ? "failed" : "invalid", own.error));
       const auto line = [&](const std::string& name, const char* what) {
         const explore::Distribution d = explore::distribution(result, name);
         const double n = static_cast<double>(std::max<std::int64_t>(1, result.completed));
-        std::string out = fmt::format("  {} in {} of {} machines ({:.1f} %)", what, d.happened, result.completed,
-                                      100.0 * static_cast<double>(d.happened) / n);
+        std::string out = fmt::format("  {} in {} of {} machines ({:.1f} %)", what, d.happened,
+                                      result.completed, 100.0 * static_cast<double>(d.happened) / n);
         if (d.happened > 0) {
-          out += fmt::format("; {} [s]: 5 % {:.4f}, 25 % {:.4f}, median {:.4f}, 75 % {:.4f}, 95 % {:.4f} "
-                             "(min {:.4f}, max {:.4f})",
-                             name, d.quantile(0.05), d.quantile(0.25), d.quantile(0.5), d.quantile(0.75),
-                             d.quantile(0.95), d.values.front(), d.values.back());
+          out += fmt::format(
+              "; {} [s]: 5 % {:.4f}, 25 % {:.4f}, median {:.4f}, 75 % {:.4f}, 95 % {:.4f} "
+              "(min {:.4f}, max {:.4f})",
+              name, d.quantile(0.05), d.quantile(0.25), d.quantile(0.5), d.quantile(0.75), d.quantile(0.95),
+              d.values.front(), d.values.back());
         }
         summary += out + "\n";
         return d;
@@ -404,8 +424,9 @@ void register_sweep(CLI::App& app, int& exit_code) {
       t.title = fmt::format("{}: {} machines around {}", value, result.completed, printable(in.source, 60));
       t.x_label = value + " [s]";
       const std::int64_t never = result.completed - dist.happened;
-      t.note = fmt::format("{} of {} machines{}; red line: the machine as given", dist.happened, result.completed,
-                           never > 0 ? fmt::format(" ({} invalid or without {})", never, value) : std::string());
+      t.note =
+          fmt::format("{} of {} machines{}; red line: the machine as given", dist.happened, result.completed,
+                      never > 0 ? fmt::format(" ({} invalid or without {})", never, value) : std::string());
       viz::draw_histogram(hist->temp_path(), dist.values, designed, t);
     }
 #else
@@ -428,14 +449,16 @@ void register_sweep(CLI::App& app, int& exit_code) {
         return;
       }
       fmt::print(text, "written to {}\n",
-                 csv && hist ? fmt::format("{} and {}", printable(opts->out, 96), printable(opts->histogram, 96))
-                 : csv       ? printable(opts->out, 96)
-                             : printable(opts->histogram, 96));
+                 csv && hist
+                     ? fmt::format("{} and {}", printable(opts->out, 96), printable(opts->histogram, 96))
+                 : csv ? printable(opts->out, 96)
+                       : printable(opts->histogram, 96));
       exit_code = 0;
       return;
     }
     fmt::print(text, "sweep: {} machines ({} with invalid inputs, {} failed runs) written to {}{}{}\n",
-               machines.size(), result.invalid + kept.invalid, result.failed + kept.failed, printable(opts->out, 96),
+               machines.size(), result.invalid + kept.invalid, result.failed + kept.failed,
+               printable(opts->out, 96),
                heat ? fmt::format(", heat map {}", printable(opts->heatmap, 96)) : "",
                resumed ? fmt::format(" ({} rows kept from the interrupted sweep)", kept.kept) : "");
     exit_code = 0;

@@ -38,7 +38,8 @@ int stdout_failed(int err) {
 // err: the errno of what wrote last, in case its failure set stdout's error indicator already.
 int finish_stdout(int code, int err = 0) {
   errno = 0;
-  if (std::fflush(stdout) != 0 || std::ferror(stdout)) return code == 0 ? stdout_failed(errno != 0 ? errno : err) : code;
+  if (std::fflush(stdout) != 0 || std::ferror(stdout))
+    return code == 0 ? stdout_failed(errno != 0 ? errno : err) : code;
   return code;
 }
 
@@ -72,7 +73,8 @@ void register_examples(CLI::App& app) {
         text += line.substr(2);
       }
       std::size_t end = text.find(". ");
-      while (end != std::string::npos && end >= 3 && text.compare(end - 3, 3, "Fig") == 0) end = text.find(". ", end + 1);
+      while (end != std::string::npos && end >= 3 && text.compare(end - 3, 3, "Fig") == 0)
+        end = text.find(". ", end + 1);
       text = text.substr(0, end);
       if (text.size() > 100 && text.find("; ") != std::string::npos) text = text.substr(0, text.find("; "));
       fmt::print("{}  {}\n", i, text);
@@ -96,8 +98,9 @@ void register_keys(CLI::App& app) {
     for (const KeySpec& k : known_keys()) {
       fmt::print("{:<{}}  {:<{}}  {:<{}}  {}\n", k.key, wk, k.unit, wu, k.default_text, wd, k.help);
     }
-    fmt::print("Set them in a TOML file ([section] then name = value) or with --set section.name=value; "
-               "docs/inputs.md has the rules and limits.\n");
+    fmt::print(
+        "Set them in a TOML file ([section] then name = value) or with --set section.name=value; "
+        "docs/inputs.md has the rules and limits.\n");
   });
 }
 
@@ -168,7 +171,8 @@ int main(int argc, char** argv) {
   if (first[0] != '-' && std::find(commands.begin(), commands.end(), first) == commands.end()) {
     const std::string near = nearest_word(first, commands);
     print_error(fmt::format("unknown command '{}'{}; the commands are {}", printable(first),
-                            near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), joined(commands)));
+                            near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                            joined(commands)));
     return 2;
   }
   whatnext::cli::keep_command_line(argc, argv);
@@ -209,8 +213,9 @@ int main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     // std::bad_alloc's own text says nothing a user can act on.
     whatnext::cli::remove_empty_picture_dirs();
-    print_error("out of memory: the machine cannot hold this job (fewer machines, samples or threads, or a "
-                "coarser run.output_step); no file written");
+    print_error(
+        "out of memory: the machine cannot hold this job (fewer machines, samples or threads, or a "
+        "coarser run.output_step); no file written");
     return 1;
   } catch (const std::system_error& e) {
     whatnext::cli::remove_empty_picture_dirs();

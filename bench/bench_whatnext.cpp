@@ -161,11 +161,15 @@ void sweep_throughput(benchmark::State& state, double accuracy) {
     bool differs = false;
     double e = 0.0;
     for (std::size_t k = 0; k < a.first.size(); ++k) {
-      if (std::isnan(a.first[k]) != std::isnan(b.first[k])) differs = true;
-      else if (!std::isnan(a.first[k])) e = std::fmax(e, std::fabs(a.first[k] - b.first[k]));
+      if (std::isnan(a.first[k]) != std::isnan(b.first[k]))
+        differs = true;
+      else if (!std::isnan(a.first[k]))
+        e = std::fmax(e, std::fabs(a.first[k] - b.first[k]));
     }
-    if (differs) ++seq_diff;
-    else err = std::fmax(err, e);
+    if (differs)
+      ++seq_diff;
+    else
+      err = std::fmax(err, e);
     if (!differs && e > 0.5 * accuracy) ++beyond_half;
   }
   state.counters["err_s"] = err;
@@ -262,11 +266,35 @@ std::vector<double> dat_values(const Snapshot& s) {
   return {s.t, s.x, s.h, s.phi_s, s.phi_l, s.balloon_limit, s.balloon_h, 0.0, s.rope_taut ? 1.0 : 0.0};
 }
 std::vector<double> csv_values(const Snapshot& s) {
-  return {s.t, s.x, s.h, s.r, s.dr, s.phi_s, s.dphi_s, s.phi_l, s.dphi_l, s.balloon_h, s.balloon_v,
-          s.balloon_limit, s.tension, s.energy(), s.sandbag_kinetic, s.sandbag_potential, s.lid_kinetic,
-          s.lid_potential, s.seesaw_kinetic, s.seesaw_potential, s.balloon_kinetic, s.balloon_potential,
-          s.lost_impacts, s.lost_balloon_catch, s.dissipated_pivot, s.dissipated_hinge, s.dissipated_drag,
-          s.lid_push_work, s.ledger_residual()};
+  return {s.t,
+          s.x,
+          s.h,
+          s.r,
+          s.dr,
+          s.phi_s,
+          s.dphi_s,
+          s.phi_l,
+          s.dphi_l,
+          s.balloon_h,
+          s.balloon_v,
+          s.balloon_limit,
+          s.tension,
+          s.energy(),
+          s.sandbag_kinetic,
+          s.sandbag_potential,
+          s.lid_kinetic,
+          s.lid_potential,
+          s.seesaw_kinetic,
+          s.seesaw_potential,
+          s.balloon_kinetic,
+          s.balloon_potential,
+          s.lost_impacts,
+          s.lost_balloon_catch,
+          s.dissipated_pivot,
+          s.dissipated_hinge,
+          s.dissipated_drag,
+          s.lid_push_work,
+          s.ledger_residual()};
 }
 
 template <class Put>
@@ -284,9 +312,9 @@ void format_numbers(benchmark::State& state, std::vector<double> (*values)(const
     benchmark::DoNotOptimize(text.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(all.size()));
-  state.counters["s_per_number"] = benchmark::Counter(static_cast<double>(all.size()),
-                                                      benchmark::Counter::kIsIterationInvariantRate |
-                                                          benchmark::Counter::kInvert);
+  state.counters["s_per_number"] =
+      benchmark::Counter(static_cast<double>(all.size()),
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.counters["text_bytes"] = static_cast<double>(bytes);
 }
 
@@ -323,16 +351,19 @@ int main(int argc, char** argv) {
   std::vector<Method> table;
   for (double dt : {1e-3, 2.5e-4, 1e-4, 2.5e-5}) table.push_back({IntegratorKind::euler, dt});
   for (double dt : {1e-2, 2.5e-3, 1e-3, 2.5e-4, 1e-4}) table.push_back({IntegratorKind::rk4, dt});
-  for (double tol : {1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13}) table.push_back({IntegratorKind::adaptive, tol});
+  for (double tol : {1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13})
+    table.push_back({IntegratorKind::adaptive, tol});
   for (int ex : {2, 3}) {
     for (const Method& m : table) {
-      benchmark::RegisterBenchmark(fmt::format("precision/example{}/{}", ex, m.name()).c_str(), run_example, ex, m)
+      benchmark::RegisterBenchmark(fmt::format("precision/example{}/{}", ex, m.name()).c_str(), run_example,
+                                   ex, m)
           ->Unit(benchmark::kMicrosecond);
     }
   }
   for (double accuracy : {1e-6, 1e-8, 1e-10}) {
-    benchmark::RegisterBenchmark(fmt::format("sweep/example2_grid_10000/accuracy{:g}/threads", accuracy).c_str(),
-                                 sweep_throughput, accuracy)
+    benchmark::RegisterBenchmark(
+        fmt::format("sweep/example2_grid_10000/accuracy{:g}/threads", accuracy).c_str(), sweep_throughput,
+        accuracy)
         ->Arg(1)
         ->Arg(2)
         ->UseRealTime()
@@ -341,9 +372,11 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("output/example3_step0.00025/samples_positions", samples_only,
                                Observer::Detail::positions)
       ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("output/example3_step0.00025/samples_full", samples_only, Observer::Detail::full)
+  benchmark::RegisterBenchmark("output/example3_step0.00025/samples_full", samples_only,
+                               Observer::Detail::full)
       ->Unit(benchmark::kMillisecond);
-  for (const auto& [name, writing] : {std::pair{"at_once", Writing::at_once}, std::pair{"parallel", Writing::parallel}}) {
+  for (const auto& [name, writing] :
+       {std::pair{"at_once", Writing::at_once}, std::pair{"parallel", Writing::parallel}}) {
     benchmark::RegisterBenchmark((std::string("output/example3_step0.00025/dat/") + name).c_str(),
                                  run_with_writer<DatWriter>, writing)
         ->UseRealTime()
@@ -353,17 +386,19 @@ int main(int argc, char** argv) {
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
   }
-  benchmark::RegisterBenchmark("format/dat_numbers/numtext", format_numbers<char* (*)(char*, double)>, dat_values,
-                               numtext::put_f8_3)
+  benchmark::RegisterBenchmark("format/dat_numbers/numtext", format_numbers<char* (*)(char*, double)>,
+                               dat_values, numtext::put_f8_3)
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("format/dat_numbers/fmt_compiled", format_numbers<char* (*)(char*, double)>,
-                               dat_values, [](char* p, double v) { return fmt::format_to(p, FMT_COMPILE("{:8.3f}"), v); })
+                               dat_values,
+                               [](char* p, double v) { return fmt::format_to(p, FMT_COMPILE("{:8.3f}"), v); })
       ->Unit(benchmark::kMillisecond);
-  benchmark::RegisterBenchmark("format/csv_numbers/numtext", format_numbers<char* (*)(char*, double)>, csv_values,
-                               numtext::put_g9)
+  benchmark::RegisterBenchmark("format/csv_numbers/numtext", format_numbers<char* (*)(char*, double)>,
+                               csv_values, numtext::put_g9)
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("format/csv_numbers/fmt_compiled", format_numbers<char* (*)(char*, double)>,
-                               csv_values, [](char* p, double v) { return fmt::format_to(p, FMT_COMPILE("{:.9g}"), v); })
+                               csv_values,
+                               [](char* p, double v) { return fmt::format_to(p, FMT_COMPILE("{:.9g}"), v); })
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark("allocations/example2/adaptive_tol1e-12", allocations, 2, adaptive_default);
   benchmark::RegisterBenchmark("allocations/example3/adaptive_tol1e-12", allocations, 3, adaptive_default);

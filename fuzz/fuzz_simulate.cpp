@@ -19,7 +19,8 @@ void check_state(const Snapshot& s, const Scenario& sc, const char* where) {
     if (!std::isfinite(v)) fuzz::broken("finite states", where);
   }
   constexpr double kHalfPi = 1.57079632679489661923;
-  if (s.phi_l < sc.start.lid_angle - 1e-9 || s.phi_l > kHalfPi + 1e-9) fuzz::broken("lid angle in [phiL0, 90 deg]", where);
+  if (s.phi_l < sc.start.lid_angle - 1e-9 || s.phi_l > kHalfPi + 1e-9)
+    fuzz::broken("lid angle in [phiL0, 90 deg]", where);
   if (std::fabs(s.phi_s) > kHalfPi + 1e-9) fuzz::broken("seesaw angle in [-90, 90] deg", where);
   if (s.t < -1e-12 || s.t > sc.run.t_max + 1e-9) fuzz::broken("times within [0, t_max]", where);
 }
@@ -50,7 +51,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   checker.sc = &sc;
   try {
     const Result r = simulate(sc, &checker);
-    if (r.events.empty() || !is_stop(r.outcome().type)) fuzz::broken("a run ends with an outcome", std::string(text));
+    if (r.events.empty() || !is_stop(r.outcome().type))
+      fuzz::broken("a run ends with an outcome", std::string(text));
   } catch (const SimulationError&) {
     // A run that cannot go on says so; that is allowed.
   }

@@ -37,8 +37,8 @@ struct CliResult {
 // output goes through files in dir.
 inline CliResult run_whatnext(const std::string& args, const fs::path& dir, bool prefix = true) {
   const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = (prefix ? std::string(WHATNEXT_CLI) + " " : std::string()) + args + " >" + out.string() +
-                          " 2>" + err.string() + " </dev/null";
+  const std::string cmd = (prefix ? std::string(WHATNEXT_CLI) + " " : std::string()) + args + " >" +
+                          out.string() + " 2>" + err.string() + " </dev/null";
   const int status = std::system(cmd.c_str());
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
 }

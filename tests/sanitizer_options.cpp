@@ -14,5 +14,4 @@ const char* __lsan_default_options() { return "print_suppressions=0"; }
 const char* __ubsan_default_options() { return "print_stacktrace=1:halt_on_error=1"; }
 
 const char* __asan_default_options() { return "detect_leaks=1:strict_init_order=1"; }
-
 }

@@ -109,8 +109,8 @@ TEST_F(Cli, SameInputSameBytes) {
 }
 
 TEST_F(Cli, InpFileRunsLikeTheExample) {
-  const fs::path inp = write("whatnext.inp",
-                             "1.0\n-0.3\n-25.0\n5.0\n0.8\n1.0\n27.0\n0.2\n0.6\n0.6\n0.5\n1.29\n0.18\n1.0\n0.001\n");
+  const fs::path inp = write(
+      "whatnext.inp", "1.0\n-0.3\n-25.0\n5.0\n0.8\n1.0\n27.0\n0.2\n0.6\n0.6\n0.5\n1.29\n0.18\n1.0\n0.001\n");
   const CliResult r = whatnext("run -q " + inp.string());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("lid open at 0.82"), std::string::npos) << r.out;
@@ -122,9 +122,7 @@ TEST_F(Cli, MalformedToml) {
 TEST_F(Cli, MalformedInp) {
   expect_rejected("run " + write("bad.inp", "1.0\n-0.3\nminus25\n").string(), "phiS");
 }
-TEST_F(Cli, ShortInp) {
-  expect_rejected("run " + write("short.inp", "1.0\n-0.3\n").string(), "15 numbers");
-}
+TEST_F(Cli, ShortInp) { expect_rejected("run " + write("short.inp", "1.0\n-0.3\n").string(), "15 numbers"); }
 TEST_F(Cli, UnknownKeySuggestsTheNearest) {
   expect_rejected("run " + write("k.toml", "[masses]\nsandbg = 0.6\n").string(), "masses.sandbag");
 }
@@ -140,7 +138,8 @@ TEST_F(Cli, NonPositiveMassOrLength) {
   expect_rejected("run --example 1 --set geometry.lid_half_length=-0.2", "lid_half_length");
 }
 TEST_F(Cli, LidAngleOutOfRange) {
-  expect_rejected("run --example 1 --set start.lid_angle=95", "start.lid_angle must be in [0, 90) deg (given 95)");
+  expect_rejected("run --example 1 --set start.lid_angle=95",
+                  "start.lid_angle must be in [0, 90) deg (given 95)");
 }
 TEST_F(Cli, RopeTooShortSaysBothLengths) {
   expect_rejected("run --example 2 --set geometry.rope_length=0.6", "(0.6 m < 0.62");
@@ -228,7 +227,8 @@ TEST_F(Cli, ExamplesAreListedAndPrintedAsTheirFiles) {
     EXPECT_NE(list.out.find(std::to_string(n) + "  The paper's"), std::string::npos) << list.out;
     const CliResult one = whatnext("examples " + std::to_string(n));
     EXPECT_EQ(one.code, 0);
-    EXPECT_EQ(one.out, slurp(fs::path(WHATNEXT_SOURCE_DIR) / "examples" / ("example" + std::to_string(n) + ".toml")));
+    EXPECT_EQ(one.out,
+              slurp(fs::path(WHATNEXT_SOURCE_DIR) / "examples" / ("example" + std::to_string(n) + ".toml")));
   }
   EXPECT_EQ(whatnext("examples 5").code, 2);
 }
@@ -261,12 +261,14 @@ TEST_F(Cli, DashWritesToStandardOutputAndTheTimelineMovesToStandardError) {
 TEST_F(Cli, SweepGridValuesAreTheDecimalsOfTheGrid) {
   // 0.62:0.9:29 steps by 0.01: every value is 0.62 + 0.01 j to the digit, printed as such.
   const fs::path csv = dir_ / "s.csv";
-  ASSERT_EQ(whatnext("sweep --example 2 --vary geometry.rope_length=0.62:0.9:29 --out " + csv.string()).code, 0);
+  ASSERT_EQ(whatnext("sweep --example 2 --vary geometry.rope_length=0.62:0.9:29 --out " + csv.string()).code,
+            0);
   std::istringstream in(slurp(csv));
   std::string line;
   std::getline(in, line);
   for (int j = 0; std::getline(in, line); ++j) {
-    const std::string value = line.substr(line.find(',') + 1, line.find(',', line.find(',') + 1) - line.find(',') - 1);
+    const std::string value =
+        line.substr(line.find(',') + 1, line.find(',', line.find(',') + 1) - line.find(',') - 1);
     char expected[16];
     std::snprintf(expected, sizeof expected, "%.2f", 0.62 + 0.01 * j);
     std::string want = expected;
@@ -278,7 +280,9 @@ TEST_F(Cli, SweepGridValuesAreTheDecimalsOfTheGrid) {
 TEST_F(Cli, OptimizedTomlHasShortNumbers) {
   const fs::path best = dir_ / "best.toml";
   ASSERT_EQ(whatnext("optimize --example 2 --vary start.sandbag_x=-0.6:-0.1 --minimize final_r --out " +
-                     best.string()).code, 0);
+                     best.string())
+                .code,
+            0);
   const std::string text = slurp(best);
   EXPECT_NE(text.find("\nsandbag = 0.6\n"), std::string::npos) << text;
   EXPECT_NE(text.find("\nlid_angle = 5\n"), std::string::npos) << text;
@@ -296,17 +300,25 @@ TEST_F(Cli, OptimizedTomlWritesAnglesAsTyped) {
   for (const std::string hinge : {"geometry.hinge_angle=27.3", "geometry.hinge_offset=[0.64,0.3]"}) {
     SCOPED_TRACE(hinge);
     const fs::path best = dir_ / "best.toml";
-    const std::string sets = "--set " + hinge + " --set start.seesaw_angle=-33.3 --set start.lid_angle=7.7 "
+    const std::string sets = "--set " + hinge +
+                             " --set start.seesaw_angle=-33.3 --set start.lid_angle=7.7 "
                              "--set run.vertical_margin=1.1";
-    ASSERT_EQ(whatnext("optimize --example 2 " + sets + " --vary start.sandbag_x=-0.6:-0.1 --grid 5 --max-evals 10 "
-                       "--minimize final_r --out " + best.string()).code, 0);
+    ASSERT_EQ(whatnext("optimize --example 2 " + sets +
+                       " --vary start.sandbag_x=-0.6:-0.1 --grid 5 --max-evals 10 "
+                       "--minimize final_r --out " +
+                       best.string())
+                  .code,
+              0);
     const std::string text = slurp(best);
-    for (const char* line : {"\nseesaw_angle = -33.3\n", "\nlid_angle = 7.7\n", "\nvertical_margin = 1.1\n"}) {
+    for (const char* line :
+         {"\nseesaw_angle = -33.3\n", "\nlid_angle = 7.7\n", "\nvertical_margin = 1.1\n"}) {
       EXPECT_NE(text.find(line), std::string::npos) << line << text;
     }
     const bool angle = hinge.find("hinge_angle") != std::string::npos;
-    EXPECT_NE(text.find(angle ? "\nhinge_distance = 0.8\nhinge_angle = 27.3\n" : "\nhinge_offset = [0.64, 0.3]\n"),
-              std::string::npos) << text;
+    EXPECT_NE(
+        text.find(angle ? "\nhinge_distance = 0.8\nhinge_angle = 27.3\n" : "\nhinge_offset = [0.64, 0.3]\n"),
+        std::string::npos)
+        << text;
     whatnext::Config given = whatnext::example_config(2);
     whatnext::apply_set(given, hinge);
     const whatnext::Scenario a = whatnext::build_scenario(given);
@@ -358,18 +370,23 @@ TEST_F(Cli, RadioTimeoutAfterTheLidOpenedSaysTheLidOpened) {
 
 // Options that take a value name what they take, in the help and when the value is missing.
 TEST_F(Cli, MissingValuesSayWhatIsWanted) {
-  EXPECT_NE(whatnext("run --example 1 --set").err.find("--set: 1 required KEY=VALUE missing"), std::string::npos);
+  EXPECT_NE(whatnext("run --example 1 --set").err.find("--set: 1 required KEY=VALUE missing"),
+            std::string::npos);
   EXPECT_NE(whatnext("run --example").err.find("--example: 1 required N missing"), std::string::npos);
   const std::string help = whatnext("help plot").out;
-  for (const char* shown : {"--set KEY=VALUE", "--out DIR", "--compare laws|integrator", "--width INT=1000"}) {
+  for (const char* shown :
+       {"--set KEY=VALUE", "--out DIR", "--compare laws|integrator", "--width INT=1000"}) {
     EXPECT_NE(help.find(shown), std::string::npos) << shown << "\n" << help;
   }
 }
 
 TEST_F(Cli, TitlesNameTheOverrides) {
-  const CliResult r = whatnext("run --example 4 --set masses.lid=0.7 --set 'geometry.hinge_offset=[0.64, 0.3]'");
+  const CliResult r =
+      whatnext("run --example 4 --set masses.lid=0.7 --set 'geometry.hinge_offset=[0.64, 0.3]'");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(r.out.rfind("whatnext: example 4 with --set masses.lid=0.7, geometry.hinge_offset=[0.64, 0.3] (", 0), 0u)
+  EXPECT_EQ(
+      r.out.rfind("whatnext: example 4 with --set masses.lid=0.7, geometry.hinge_offset=[0.64, 0.3] (", 0),
+      0u)
       << r.out;
   const fs::path json = dir_ / "e.json";
   ASSERT_EQ(whatnext("run -q --example 4 --set masses.lid=0.7 --events " + json.string()).code, 0);
@@ -381,7 +398,7 @@ TEST_F(Cli, TitlesNameTheOverrides) {
 void expect_aligned_timeline(const std::string& out) {
   std::istringstream in(out);
   std::string line;
-  std::getline(in, line);  // the title
+  std::getline(in, line);                                              // the title
   std::vector<std::vector<std::pair<std::size_t, std::size_t>>> rows;  // [begin, end) of each field
   while (std::getline(in, line) && line.rfind("Outcome:", 0) != 0) {
     std::vector<std::pair<std::size_t, std::size_t>> fields;

@@ -49,5 +49,6 @@ TEST(Columns, AnglesAreReportedInDegrees) {
 TEST(Units, DegreesAndRadiansAreInverse) {
   EXPECT_DOUBLE_EQ(units::degrees(units::kPi), 180.0);
   EXPECT_DOUBLE_EQ(units::radians(180.0), units::kPi);
-  for (double d : {-89.1, -25.0, 0.0, 5.0, 27.0, 90.0}) EXPECT_NEAR(units::degrees(units::radians(d)), d, 1e-12);
+  for (double d : {-89.1, -25.0, 0.0, 5.0, 27.0, 90.0})
+    EXPECT_NEAR(units::degrees(units::radians(d)), d, 1e-12);
 }

@@ -105,7 +105,9 @@ class Generator {
   }
 
  private:
-  double u(double a, double b) { return a + (b - a) * std::uniform_real_distribution<double>(0.0, 1.0)(rng_); }
+  double u(double a, double b) {
+    return a + (b - a) * std::uniform_real_distribution<double>(0.0, 1.0)(rng_);
+  }
   bool pick(double p) { return u(0.0, 1.0) < p; }
   std::mt19937_64 rng_;
 };
@@ -132,7 +134,8 @@ struct Checked {
 void check_invariants(const Machine& m, const wn::Scenario& sc, const wn::Recorder& rec, Checked& out) {
   const wn::RopeGeometry rope(sc.machine);
   const double l = sc.machine.rope_length, phi_l0 = sc.start.lid_angle;
-  const double weights = (sc.machine.sandbag_mass + sc.machine.lid_mass + sc.machine.seesaw_mass) * sc.machine.gravity;
+  const double weights =
+      (sc.machine.sandbag_mass + sc.machine.lid_mass + sc.machine.seesaw_mass) * sc.machine.gravity;
   const double tol_f = 1e-7 * weights;
   // The ledger balances to 1e-9 of the energies in play (kinetic and potential energies of every
   // part: a sandbag that falls far carries a lot of both, and the laws other than rope and
@@ -209,7 +212,8 @@ void check_invariants(const Machine& m, const wn::Scenario& sc, const wn::Record
       // (the box and a landing on a slack rope stay inelastic under every law).
       if ((law == wn::ImpactLaw::rope || law == wn::ImpactLaw::kinetic_energy) && gain) {
         std::ostringstream o;
-        o << wn::to_string(e.type) << " at t=" << e.t << " gains " << e.energy_after - e.energy_before << " J";
+        o << wn::to_string(e.type) << " at t=" << e.t << " gains " << e.energy_after - e.energy_before
+          << " J";
         out.fail(m, o.str());
       }
       (void)keeps;
@@ -557,7 +561,8 @@ TEST(ContactSolver, InverseDynamicsGivesBackTheForcesOfTheConstrainedMotion) {
       double scale = 1.0;
       for (double f : force) scale = std::fmax(scale, std::fabs(f));
       for (int i = 0; i < 3; ++i) {
-        EXPECT_NEAR(again[i], force[i], 1e-9 * scale) << "trial " << trial << " set " << s << " contact " << i;
+        EXPECT_NEAR(again[i], force[i], 1e-9 * scale)
+            << "trial " << trial << " set " << s << " contact " << i;
         if (!wn::contact::has(s, i)) {
           EXPECT_EQ(again[i], 0.0);
         }

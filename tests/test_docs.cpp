@@ -42,8 +42,10 @@ std::set<std::string> backticked(const std::string& markdown) {
 std::vector<std::string> split(const std::string& line, char sep) {
   std::vector<std::string> out(1);
   for (char c : line) {
-    if (c == sep) out.emplace_back();
-    else if (c != '\n' && c != '\r') out.back() += c;
+    if (c == sep)
+      out.emplace_back();
+    else if (c != '\n' && c != '\r')
+      out.back() += c;
   }
   return out;
 }
@@ -58,7 +60,8 @@ TEST_F(Docs, ShippedInpIsExampleOneInThePapersLayout) {
   EXPECT_EQ(to_toml(Scenario{inp.machine, ex1.start, ex1.run}), to_toml(ex1));  // same machine
   EXPECT_EQ(to_toml(Scenario{ex1.machine, inp.start, ex1.run}), to_toml(ex1));  // same start
   EXPECT_EQ(outcome_sentence(simulate(inp)), outcome_sentence(simulate(ex1)));
-  const CliResult r = whatnext("run " + kSource + "/examples/whatnext.inp --dat " + (dir_ / "w.dat").string());
+  const CliResult r =
+      whatnext("run " + kSource + "/examples/whatnext.inp --dat " + (dir_ / "w.dat").string());
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir_ / "w.dat"));
 }
@@ -150,11 +153,11 @@ TEST_F(Docs, PicturesPageDescribesEulerAsItRuns) {
 
 // Users have docs/model.md; the specification MODEL.md is not in the repository.
 TEST_F(Docs, UserPagesCiteNoMissingSpecification) {
-  for (const char* page : {"README.md", "docs/inputs.md", "docs/pictures.md", "docs/explore.md",
-                           "docs/model.md", "docs/extensions.md", "docs/performance.md", "docs/python.md",
-                           "docs/web.md",
-                           "examples/example1.toml", "examples/example2.toml", "examples/example3.toml",
-                           "examples/example4.toml", "examples/example1-radio.toml", "examples/whatnext.inp"}) {
+  for (const char* page :
+       {"README.md", "docs/inputs.md", "docs/pictures.md", "docs/explore.md", "docs/model.md",
+        "docs/extensions.md", "docs/performance.md", "docs/python.md", "docs/web.md",
+        "examples/example1.toml", "examples/example2.toml", "examples/example3.toml",
+        "examples/example4.toml", "examples/example1-radio.toml", "examples/whatnext.inp"}) {
     EXPECT_EQ(slurp(kSource + "/" + page).find("MODEL.md"), std::string::npos) << page;
   }
 }
@@ -180,8 +183,8 @@ TEST_F(Docs, InputsPageNamesEveryOutputColumnAndKey) {
   EXPECT_GT(keys.size(), 30u);
   for (const std::string& key : keys) EXPECT_TRUE(documented.count(key)) << "JSON key " << key;
 
-  const CliResult r = whatnext("sweep --example 2 --vary geometry.rope_length=0.62:0.7:2 --out " +
-                               (dir_ / "s.csv").string());
+  const CliResult r =
+      whatnext("sweep --example 2 --vary geometry.rope_length=0.62:0.7:2 --out " + (dir_ / "s.csv").string());
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string csv = slurp(dir_ / "s.csv");
   const auto columns = split(csv.substr(0, csv.find('\n')), ',');

@@ -74,8 +74,8 @@ TEST(Radio, TimeByHandAfterTheLidLatches) {
 }
 
 TEST(Radio, ExampleFileMatchesTheSwitch) {
-  const wn::Scenario file =
-      wn::build_scenario(wn::load_config_file(std::string(WHATNEXT_SOURCE_DIR) + "/examples/example1-radio.toml"));
+  const wn::Scenario file = wn::build_scenario(
+      wn::load_config_file(std::string(WHATNEXT_SOURCE_DIR) + "/examples/example1-radio.toml"));
   const wn::Result a = wn::simulate(file);
   const wn::Result b = wn::simulate(example(1, {"radio.enabled=true", "run.t_max=3"}));
   ASSERT_EQ(a.outcome().type, wn::EventType::radio_on);
@@ -112,8 +112,9 @@ TEST(Balloon, ModelsDivideTheLiftByTheirMass) {
   // 10 g of rubber on a 0.2 m balloon: V = 4/3 pi 0.008.
   const double v = 4.0 / 3.0 * kPi * 0.008;
   const double m_he = 0.18 * v, m_air = 1.29 * v, m_r = 0.01;
-  EXPECT_NEAR(example(1, {"balloon.model=added-mass", "balloon.rubber_mass=0.01"}).machine.balloon_acceleration(),
-              9.81 * (m_air - m_he - m_r) / (m_he + 0.5 * m_air + m_r), 1e-12);
+  EXPECT_NEAR(
+      example(1, {"balloon.model=added-mass", "balloon.rubber_mass=0.01"}).machine.balloon_acceleration(),
+      9.81 * (m_air - m_he - m_r) / (m_he + 0.5 * m_air + m_r), 1e-12);
 }
 
 TEST(Balloon, DragGivesTheTerminalSpeedOfTheForceBalance) {
@@ -205,8 +206,9 @@ TEST(HeavySeesaw, UniformBarDefaultsAndParallelAxis) {
 // --- the energy ledger ----------------------------------------------------------------------------
 
 TEST(Ledger, BooksBalanceWithEverySwitchOn) {
-  const std::vector<std::string> all = {"radio.enabled=true", "balloon.drag=true", "balloon.rubber_mass=0.003",
-                                        "balloon.model=added-mass", "damping.lid_hinge=0.02"};
+  const std::vector<std::string> all = {"radio.enabled=true", "balloon.drag=true",
+                                        "balloon.rubber_mass=0.003", "balloon.model=added-mass",
+                                        "damping.lid_hinge=0.02"};
   for (int n = 1; n <= 4; ++n) {
     for (bool heavy : {false, true}) {
       std::vector<std::string> sets = all;
@@ -257,24 +259,25 @@ class BadInput : public whatnext::test_support::CliTest {};
 TEST_F(BadInput, EachNewRuleIsOneLineExitTwoAndNoFile) {
   const fs::path out = dir_ / "bad.json";
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"radio.string_length=0.5", "radio.string_length"},       // straight at the start
+      {"radio.string_length=0.5", "radio.string_length"},  // straight at the start
       {"radio.string_length=-1", "radio.string_length"},
       {"radio.enabled=3", "radio.enabled"},
       {"radio.switch_offset=1", "radio.switch_offset"},
       {"balloon.model=magic", "balloon.model"},
       {"balloon.rubber_mass=-0.1", "balloon.rubber_mass"},
-      {"balloon.rubber_mass=1", "balloon.rubber_mass"},          // too heavy to rise
+      {"balloon.rubber_mass=1", "balloon.rubber_mass"},  // too heavy to rise
       {"balloon.drag_coefficient=0", "balloon.drag_coefficient"},
       {"damping.pivot=-1", "damping.pivot"},
       {"damping.lid_hinge=-0.5", "damping.lid_hinge"},
       {"seesaw.left_arm=0", "seesaw.left_arm"},
       {"seesaw.mass=-1", "seesaw.mass"},
-      {"seesaw.mass=1", "seesaw.mass"},                          // endless arm and no inertia
-      {"seesaw.inertia=0.1", "seesaw.inertia"},                   // no mass
+      {"seesaw.mass=1", "seesaw.mass"},          // endless arm and no inertia
+      {"seesaw.inertia=0.1", "seesaw.inertia"},  // no mass
   };
   for (const auto& [set, key] : cases) {
     fs::remove(out);
-    const whatnext::test_support::CliResult r = whatnext("run --example 1 --set " + set + " --events " + out.string());
+    const whatnext::test_support::CliResult r =
+        whatnext("run --example 1 --set " + set + " --events " + out.string());
     EXPECT_EQ(r.code, 2) << set;
     EXPECT_NE(r.err.find(key), std::string::npos) << set << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << set << ": " << r.err;
@@ -325,8 +328,9 @@ TEST(NoSomersaults, NoSeesawWithMassEverTurnsPastTheVertical) {
     const double mass = 0.02 + 0.03 * (i % 6), arm = 0.8 + 0.3 * (i % 7), bag = 0.5 + 0.5 * (i % 5);
     wn::Scenario sc;
     try {
-      sc = example(1 + i % 2, {"seesaw.mass=" + std::to_string(mass), "seesaw.left_arm=" + std::to_string(arm),
-                               "masses.sandbag=" + std::to_string(bag), "run.t_max=3"});
+      sc =
+          example(1 + i % 2, {"seesaw.mass=" + std::to_string(mass), "seesaw.left_arm=" + std::to_string(arm),
+                              "masses.sandbag=" + std::to_string(bag), "run.t_max=3"});
     } catch (const wn::InputError&) {
       continue;
     }

@@ -59,7 +59,8 @@ int run_to_end(const std::vector<std::string>& args) {
 
 const std::vector<Job>& jobs() {
   static const std::vector<Job> all = {
-      {"run", {"run", "-q", "--example", "@M", "--csv", "@r.csv", "--dat", "@r.dat", "--events", "@r.json"},
+      {"run",
+       {"run", "-q", "--example", "@M", "--csv", "@r.csv", "--dat", "@r.dat", "--events", "@r.json"},
        {"r.csv", "r.dat", "r.json"}},
       {"sweep",
        {"sweep", "--example", "@M", "--threads", "1", "--vary", "geometry.rope_length=0.9:1.1:12", "--vary",
@@ -118,7 +119,8 @@ class Faults : public whatnext::test_support::CliTest {
       const bool map = job.partial_rows && name == "h.png" && got.size() > 16 &&
                        got.compare(got.size() - 8, 8, "IEND\xae\x42\x60\x82") == 0;
       if (map) continue;
-      EXPECT_TRUE(rows) << name << " is neither the old file nor the new one (" << it->second.size() << " bytes)";
+      EXPECT_TRUE(rows) << name << " is neither the old file nor the new one (" << it->second.size()
+                        << " bytes)";
     }
   }
   std::map<std::string, std::map<int, std::map<std::string, std::string>>> refs_;
@@ -181,8 +183,8 @@ TEST_F(Faults, AFullDiskNeverDamagesAFile) {
   }
   // Standard output on a full disk: exit code 1, not a truncated file and success.
   fill(disk.dir / "filler", 0);
-  const CliResult r =
-      whatnext("(" + std::string(WHATNEXT_CLI) + " examples 2 > " + (disk.dir / "m.toml").string() + ")", false);
+  const CliResult r = whatnext(
+      "(" + std::string(WHATNEXT_CLI) + " examples 2 > " + (disk.dir / "m.toml").string() + ")", false);
   EXPECT_EQ(r.code, 1) << r.err;
 }
 
@@ -194,16 +196,18 @@ TEST_F(Faults, TwoWritersOfOneNameLeaveOneCompleteFile) {
   const std::string csv = (dir_ / "same.csv").string();
   std::map<std::string, std::string> want;
   for (const char* step : {"0.0001", "0.0002"}) {
-    ASSERT_EQ(run_to_end({"run", "-q", "--example", "3", "--set", std::string("run.output_step=") + step, "--csv",
-                          csv}),
+    ASSERT_EQ(run_to_end({"run", "-q", "--example", "3", "--set", std::string("run.output_step=") + step,
+                          "--csv", csv}),
               0);
     want[step] = slurp(csv);
   }
   for (int trial = 0; trial < 4; ++trial) {
     SCOPED_TRACE(trial);
-    const pid_t a = spawn_whatnext({"run", "-q", "--example", "3", "--set", "run.output_step=0.0001", "--csv", csv});
+    const pid_t a =
+        spawn_whatnext({"run", "-q", "--example", "3", "--set", "run.output_step=0.0001", "--csv", csv});
     std::this_thread::sleep_for(std::chrono::milliseconds(10 * trial));
-    const pid_t b = spawn_whatnext({"run", "-q", "--example", "3", "--set", "run.output_step=0.0002", "--csv", csv});
+    const pid_t b =
+        spawn_whatnext({"run", "-q", "--example", "3", "--set", "run.output_step=0.0002", "--csv", csv});
     int sa = 0, sb = 0, missing = 0;
     while (waitpid(a, &sa, WNOHANG) == 0 || waitpid(b, &sb, WNOHANG) == 0) {
       if (!fs::exists(csv)) ++missing;
@@ -231,7 +235,8 @@ TEST_F(Faults, RandomSignalsLeaveOldOrNewFilesAndNoTemporary) {
     fs::create_directories(timing);
     const auto t0 = std::chrono::steady_clock::now();
     ASSERT_EQ(run_to_end(args_for(job, 3, timing)), 0);
-    const auto took = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0);
+    const auto took =
+        std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - t0);
     for (int trial = 0; trial < 5; ++trial) {
       const fs::path d = dir_ / "sig" / job.name;
       fs::create_directories(d);

@@ -83,7 +83,7 @@ TEST_F(Files, TheOldFileStaysUntilTheNewOneReplacesIt) {
 // `whatnext examples 2 > my-machine.toml` on a full disk).
 TEST_F(Files, AFailedWriteToStandardOutputIsExitCodeOne) {
   for (const char* args : {"run --example 1", "run -q --example 1", "examples 1", "examples", "keys", "help",
-                                  "run -q --example 1 --events -", "--version"}) {
+                           "run -q --example 1 --events -", "--version"}) {
     SCOPED_TRACE(args);
     const CliResult r = whatnext("(" + std::string(WHATNEXT_CLI) + " " + args + " > /dev/full)", false);
     EXPECT_EQ(r.code, 1) << r.err;
@@ -108,7 +108,8 @@ TEST_F(Files, FiguresAreTheSameBytesInEveryTimeZone) {
     svgs.push_back(slurp(fs::path(out) / "overview.svg"));
     // And a second run a moment later: the clock does not show either.
     if (pdfs.size() == 2) {
-      const CliResult again = whatnext("TZ=Europe/Berlin " + cli + " plot -q --example 1 --format pdf --out " + out, false);
+      const CliResult again =
+          whatnext("TZ=Europe/Berlin " + cli + " plot -q --example 1 --format pdf --out " + out, false);
       ASSERT_EQ(again.code, 0) << again.err;
       EXPECT_EQ(slurp(fs::path(out) / "overview.pdf"), pdfs.back());
     }

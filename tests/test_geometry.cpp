@@ -136,14 +136,15 @@ TEST(Knot, TransferAtTheLidsMiddleByHand) {
     const double ex = m.hinge.x + a * std::cos(phi_l), eh = m.hinge.h + a * std::sin(phi_l);
     EXPECT_NEAR(std::hypot(rx - ex, rh - eh), m.rope_length, 1e-12) << "the knot is on the rope's end";
     const double dx = rx - ex, dh = rh - eh;
-    const double num = dx * (-rh) + dh * rx;                                       // (R - E) . R'
+    const double num = dx * (-rh) + dh * rx;                                      // (R - E) . R'
     const double den = dx * (-a * std::sin(phi_l)) + dh * (a * std::cos(phi_l));  // (R - E) . E'
     EXPECT_NEAR(rope.transfer(phi_s, phi_l).k, num / den, 1e-9 * (1.0 + std::fabs(num / den))) << deg;
     // And against the closure itself: phiL(phiS) differentiated numerically.
     const double h = 1e-6;
     double lo = 0.0, hi = 0.0;
     ASSERT_TRUE(rope.lid_angle_for(phi_s - h, lo) && rope.lid_angle_for(phi_s + h, hi));
-    EXPECT_NEAR(rope.transfer(phi_s, phi_l).k, (hi - lo) / (2.0 * h), 1e-6 * (1.0 + std::fabs(num / den))) << deg;
+    EXPECT_NEAR(rope.transfer(phi_s, phi_l).k, (hi - lo) / (2.0 * h), 1e-6 * (1.0 + std::fabs(num / den)))
+        << deg;
     ++checked;
   }
   EXPECT_GT(checked, 10);

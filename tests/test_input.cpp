@@ -192,8 +192,7 @@ TEST_P(BadValue, IsRejectedWithOneClearLine) {
 INSTANTIATE_TEST_SUITE_P(
     Rules, BadValue,
     ::testing::Values(
-        BadCase{"masses.sandbag=0", "masses.sandbag", "> 0"},
-        BadCase{"masses.lid=-1", "masses.lid", "-1"},
+        BadCase{"masses.sandbag=0", "masses.sandbag", "> 0"}, BadCase{"masses.lid=-1", "masses.lid", "-1"},
         BadCase{"geometry.rope_length=0", "geometry.rope_length", "> 0"},
         BadCase{"geometry.seesaw_right_arm=-0.6", "seesaw_right_arm", "-0.6"},
         BadCase{"geometry.lid_half_length=nan", "lid_half_length", "finite"},
@@ -203,8 +202,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"geometry.rope_length=0.5", "geometry.rope_length", "shorter"},
         BadCase{"geometry.rope_length=5", "geometry.rope_length", "never be straight"},
         BadCase{"start.sandbag_height=-1", "start.sandbag_height", "under the seesaw"},
-        BadCase{"start.sandbag_x=0.2", "start.sandbag_x", "0.2"},
-        BadCase{"run.t_max=0", "run.t_max", "> 0"},
+        BadCase{"start.sandbag_x=0.2", "start.sandbag_x", "0.2"}, BadCase{"run.t_max=0", "run.t_max", "> 0"},
         BadCase{"run.step=-0.001", "run.step", "-0.001"},
         BadCase{"run.output_step=0", "run.output_step", "> 0"},
         BadCase{"run.integrator=leapfrog", "run.integrator", "leapfrog"},
@@ -236,7 +234,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"masses.sandbag=9007199254740993", "masses.sandbag", "(given 9007199254740993)"}),
     [](const ::testing::TestParamInfo<BadCase>& info) {
       std::string name;
-      for (const char* p = info.param.set; *p; ++p) name += std::isalnum(static_cast<unsigned char>(*p)) ? *p : '_';
+      for (const char* p = info.param.set; *p; ++p)
+        name += std::isalnum(static_cast<unsigned char>(*p)) ? *p : '_';
       return name + "_" + std::to_string(info.index);
     });
 
@@ -262,7 +261,8 @@ TEST(Toml, UnknownKeysAreNamedWithTheirLine) {
 
 TEST(Toml, HingeFormsAreExclusive) {
   try {
-    wn::build_scenario(wn::parse_toml("[geometry]\nhinge_distance = 0.8\nhinge_offset = [0.7, 0.3]\n", "h.toml"));
+    wn::build_scenario(
+        wn::parse_toml("[geometry]\nhinge_distance = 0.8\nhinge_offset = [0.7, 0.3]\n", "h.toml"));
     FAIL();
   } catch (const wn::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("hinge_offset"), std::string::npos) << e.what();
@@ -328,8 +328,9 @@ void expect_one_line(const std::function<void()>& f, const std::string& must_men
 TEST(Messages, ValuesWithControlBytesStayOnOneLine) {
   expect_one_line([] { wn::build_scenario(wn::parse_toml("[run]\nintegrator = \"a\\nb\"\n", "t.toml")); },
                   "given 'a\\nb'");
-  expect_one_line([] { wn::build_scenario(wn::parse_toml("[geometry]\nhinge_offset = [nan, 1]\n", "t.toml")); },
-                  "[nan, 1]");
+  expect_one_line(
+      [] { wn::build_scenario(wn::parse_toml("[geometry]\nhinge_offset = [nan, 1]\n", "t.toml")); },
+      "[nan, 1]");
   expect_one_line([] { wn::parse_toml("[\"a\\u001bb\"]\nx = 1\n", "t.toml"); }, "a\\x1bb");
   expect_one_line([] { wn::parse_toml("x = \"\x01\"\n", "t\nname.toml"); }, "t\\nname.toml");
   wn::Config cfg = wn::example_config(1);
@@ -424,7 +425,6 @@ TEST(Keys, EveryKeyHasAUnitKindAndADefaultToShow) {
   EXPECT_EQ(wn::nearest_word("xyzzy", {"run", "plot", "sweep"}), "");
 }
 
-
 // --- the message cases of issue 22 ---------------------------------------------------------------
 
 // The message of the InputError that f throws ("" if none).
@@ -440,7 +440,10 @@ std::string message_of(const std::function<void()>& f) {
 // A NUL inside a number ends no number: "0.5<NUL>9" was read as 0.5.
 TEST(Inp, ANulInsideANumberIsRefused) {
   std::string text = kTemplateInp;
-  text.replace(text.find("0.6 ; ms"), 3, std::string("0.5\0" "9", 5));
+  text.replace(text.find("0.6 ; ms"), 3,
+               std::string("0.5\0"
+                           "9",
+                           5));
   const std::string m = message_of([&] { wn::parse_inp(text, "nul.inp"); });
   EXPECT_NE(m.find("line 10"), std::string::npos) << m;
   EXPECT_NE(m.find("\\x00"), std::string::npos) << m;

@@ -57,10 +57,11 @@ TEST(EulerConvergence, ErrorShrinksAboutLinearlyWithTheStep) {
     double sum = 0.0;
     int count = 0;
     for (double m : {1.0, 1.07, 1.13, 1.19, 1.27}) {
-      const std::vector<double> t = mechanical_times(
-          run(2, {"run.integrator=\"euler\"", "run.step=" + std::to_string(level * m)}));
+      const std::vector<double> t =
+          mechanical_times(run(2, {"run.integrator=\"euler\"", "run.step=" + std::to_string(level * m)}));
       EXPECT_EQ(t.size(), ref.size());
-      for (std::size_t i = 0; i < std::min(t.size(), ref.size()); ++i) sum += std::fabs(t[i] - ref[i]), ++count;
+      for (std::size_t i = 0; i < std::min(t.size(), ref.size()); ++i)
+        sum += std::fabs(t[i] - ref[i]), ++count;
     }
     xs.push_back(std::log(level));
     ys.push_back(std::log(sum / count));

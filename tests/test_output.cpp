@@ -56,13 +56,33 @@ std::vector<double> hard_doubles(std::size_t n) {
     if (std::isfinite(v)) out.push_back(v);
     both(std::ldexp(static_cast<double>(rng() >> 11) * 0x1.0p-53, static_cast<int>(rng() % 80) - 40));
     both(static_cast<double>(rng() % 20'000'000) / 2000.0);  // halves of the third decimal
-    both(static_cast<double>(rng() % 2'000'000'000) / 2.0 * std::pow(10.0, static_cast<int>(rng() % 30) - 20));
+    both(static_cast<double>(rng() % 2'000'000'000) / 2.0 *
+         std::pow(10.0, static_cast<int>(rng() % 30) - 20));
     both(static_cast<double>(rng() % 100'000) * 0.00025);
     both(std::ldexp(static_cast<double>(rng() % 8192), -static_cast<int>(rng() % 16)));  // exact ties
   }
-  for (double v : {0.0, -0.0, 0.0625, 0.1875, 9999.999, 9999.9995, -999.9995, 99999.9995, 1e4, 1e5, 1e9,
-                   999999999.5, 1e-4, 9.99999999e-5, 1e-5, 1e22, 1e23, 5e-324, 2.2250738585072014e-308,
-                   1.7976931348623157e308, 1234567.125, 1234567.375}) {
+  for (double v : {0.0,
+                   -0.0,
+                   0.0625,
+                   0.1875,
+                   9999.999,
+                   9999.9995,
+                   -999.9995,
+                   99999.9995,
+                   1e4,
+                   1e5,
+                   1e9,
+                   999999999.5,
+                   1e-4,
+                   9.99999999e-5,
+                   1e-5,
+                   1e22,
+                   1e23,
+                   5e-324,
+                   2.2250738585072014e-308,
+                   1.7976931348623157e308,
+                   1234567.125,
+                   1234567.375}) {
     both(v);
   }
   return out;
@@ -244,10 +264,14 @@ TEST(Samples, PositionsAreTheFullSamplesPositionsBitForBit) {
         ASSERT_EQ(a.mode, b.mode) << where;
         ASSERT_EQ(a.rope_taut, b.rope_taut) << where;
         ASSERT_EQ(a.on_seesaw, b.on_seesaw) << where;
-        for (const auto& [name, x, y] : {std::tuple{"t", a.t, b.t}, {"x", a.x, b.x}, {"h", a.h, b.h}, {"r", a.r, b.r},
-                                        {"phi_s", a.phi_s, b.phi_s}, {"phi_l", a.phi_l, b.phi_l},
-                                        {"balloon_h", a.balloon_h, b.balloon_h},
-                                        {"balloon_limit", a.balloon_limit, b.balloon_limit}}) {
+        for (const auto& [name, x, y] : {std::tuple{"t", a.t, b.t},
+                                         {"x", a.x, b.x},
+                                         {"h", a.h, b.h},
+                                         {"r", a.r, b.r},
+                                         {"phi_s", a.phi_s, b.phi_s},
+                                         {"phi_l", a.phi_l, b.phi_l},
+                                         {"balloon_h", a.balloon_h, b.balloon_h},
+                                         {"balloon_limit", a.balloon_limit, b.balloon_limit}}) {
           ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0) << where << ": " << name << " " << x << " vs " << y;
         }
         EXPECT_EQ(b.tension, 0.0) << where;  // positions only: no contact problem solved

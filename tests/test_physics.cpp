@@ -33,8 +33,8 @@ double max_relative_drift(const wn::Recorder& rec, wn::Mode mode, int& samples_c
       ++ev;
     }
     if (!have_ref || s.mode != mode || ref_mode != mode) continue;
-    const double scale = s.sandbag_kinetic + std::fabs(s.sandbag_potential) + s.lid_kinetic +
-                         std::fabs(s.lid_potential);
+    const double scale =
+        s.sandbag_kinetic + std::fabs(s.sandbag_potential) + s.lid_kinetic + std::fabs(s.lid_potential);
     worst = std::max(worst, std::fabs(s.energy() - e0) / scale);
     ++samples_checked;
   }
@@ -76,8 +76,8 @@ struct ImpactCase {
   double r, phi_s, phi_l, v_par, v_perp, w, k;
 };
 
-ImpactCase make_case(const wn::Model& model, double phi_s_deg, double r, double v_par,
-                     double v_perp, double w) {
+ImpactCase make_case(const wn::Model& model, double phi_s_deg, double r, double v_par, double v_perp,
+                     double w) {
   ImpactCase c;
   c.r = r;
   c.phi_s = phi_s_deg * kDeg;
@@ -98,7 +98,7 @@ ImpactCase make_case(const wn::Model& model, double phi_s_deg, double r, double 
 class ImpactLawTest : public ::testing::Test {
  protected:
   void run_cases(wn::ImpactLaw law, const std::function<void(const ImpactCase&, const wn::Kinematics&,
-                                                              double e_before, double e_after)>& check) {
+                                                             double e_before, double e_after)>& check) {
     wn::Scenario sc = example(1);
     sc.run.impact_law = law;
     const wn::Model model(sc);
@@ -142,33 +142,36 @@ TEST_F(ImpactLawTest, RopeLawKeepsEquationSevenAndNeverGainsEnergy) {
 }
 
 TEST_F(ImpactLawTest, KineticEnergyLawKeepsEnergy) {
-  run_cases(wn::ImpactLaw::kinetic_energy, [&](const ImpactCase&, const wn::Kinematics&, double eb, double ea) {
-    EXPECT_NEAR(ea, eb, 1e-11 * (1.0 + std::fabs(eb)));
-  });
+  run_cases(wn::ImpactLaw::kinetic_energy,
+            [&](const ImpactCase&, const wn::Kinematics&, double eb, double ea) {
+              EXPECT_NEAR(ea, eb, 1e-11 * (1.0 + std::fabs(eb)));
+            });
 }
 
 TEST_F(ImpactLawTest, AngularMomentumSumLawKeepsTheSum) {
-  run_cases(wn::ImpactLaw::angular_momentum_sum, [&](const ImpactCase& c, const wn::Kinematics& a, double, double) {
-    const double before = m_s * c.r * c.v_perp + i_l * c.w;
-    const double after = m_s * c.r * c.r * a.dphi_s + i_l * a.dphi_l;
-    EXPECT_NEAR(after, before, 1e-12 * (1.0 + std::fabs(before)));
-  });
+  run_cases(wn::ImpactLaw::angular_momentum_sum,
+            [&](const ImpactCase& c, const wn::Kinematics& a, double, double) {
+              const double before = m_s * c.r * c.v_perp + i_l * c.w;
+              const double after = m_s * c.r * c.r * a.dphi_s + i_l * a.dphi_l;
+              EXPECT_NEAR(after, before, 1e-12 * (1.0 + std::fabs(before)));
+            });
 }
 
 TEST_F(ImpactLawTest, LinearMomentumLawKeepsLinearMomentum) {
-  run_cases(wn::ImpactLaw::linear_momentum, [&](const ImpactCase& c, const wn::Kinematics& a, double, double) {
-    // Sandbag velocity before from (v_par, v_perp); lid centre of mass moves at r_L phiL'.
-    const double cs = std::cos(c.phi_s), sn = std::sin(c.phi_s);
-    const double vx0 = -c.v_par * cs + c.v_perp * sn, vh0 = -c.v_par * sn - c.v_perp * cs;
-    const double px0 = m_s * vx0 - m_l * r_l * std::sin(c.phi_l) * c.w;
-    const double ph0 = m_s * vh0 + m_l * r_l * std::cos(c.phi_l) * c.w;
-    const double px1 = m_s * a.vx - m_l * r_l * std::sin(a.phi_l) * a.dphi_l;
-    const double ph1 = m_s * a.vh + m_l * r_l * std::cos(a.phi_l) * a.dphi_l;
-    // The 2x2 system can be nearly singular (the law is unphysical); scale by the parts' size.
-    const double scale = 1.0 + m_s * std::hypot(a.vx, a.vh) + m_l * r_l * std::fabs(a.dphi_l);
-    EXPECT_NEAR(px1, px0, 1e-10 * scale) << wn::to_string(c.hs.d.mode());
-    EXPECT_NEAR(ph1, ph0, 1e-10 * scale);
-  });
+  run_cases(wn::ImpactLaw::linear_momentum,
+            [&](const ImpactCase& c, const wn::Kinematics& a, double, double) {
+              // Sandbag velocity before from (v_par, v_perp); lid centre of mass moves at r_L phiL'.
+              const double cs = std::cos(c.phi_s), sn = std::sin(c.phi_s);
+              const double vx0 = -c.v_par * cs + c.v_perp * sn, vh0 = -c.v_par * sn - c.v_perp * cs;
+              const double px0 = m_s * vx0 - m_l * r_l * std::sin(c.phi_l) * c.w;
+              const double ph0 = m_s * vh0 + m_l * r_l * std::cos(c.phi_l) * c.w;
+              const double px1 = m_s * a.vx - m_l * r_l * std::sin(a.phi_l) * a.dphi_l;
+              const double ph1 = m_s * a.vh + m_l * r_l * std::cos(a.phi_l) * a.dphi_l;
+              // The 2x2 system can be nearly singular (the law is unphysical); scale by the parts' size.
+              const double scale = 1.0 + m_s * std::hypot(a.vx, a.vh) + m_l * r_l * std::fabs(a.dphi_l);
+              EXPECT_NEAR(px1, px0, 1e-10 * scale) << wn::to_string(c.hs.d.mode());
+              EXPECT_NEAR(ph1, ph0, 1e-10 * scale);
+            });
 }
 
 TEST(ClosedForm, FreeFallOntoTheSeesaw) {
@@ -254,7 +257,8 @@ wn::Config placed_on_a_taut_rope(double phi_s_deg, double r, wn::Config cfg = wn
   wn::set_number(cfg, "start.sandbag_x", -r * std::cos(phi_s));
   wn::set_number(cfg, "start.sandbag_height", -r * std::sin(phi_s));
   const wn::Scenario probe = wn::build_scenario(cfg);
-  wn::set_number(cfg, "geometry.rope_length", wn::RopeGeometry(probe.machine).span(phi_s, probe.start.lid_angle));
+  wn::set_number(cfg, "geometry.rope_length",
+                 wn::RopeGeometry(probe.machine).span(phi_s, probe.start.lid_angle));
   return cfg;
 }
 
@@ -268,7 +272,8 @@ TEST(ClosedForm, SandbagSlidesOnTheHeldSeesawUntilTheLidLifts) {
   const wn::RopeGeometry rope(m);
   const double phi_l0 = sc.start.lid_angle;
   const double k = rope.transfer(phi_s, phi_l0).k;
-  const double r_star = k * m.lid_mass * m.lid_half_length * std::cos(phi_l0) / (m.sandbag_mass * std::cos(phi_s));
+  const double r_star =
+      k * m.lid_mass * m.lid_half_length * std::cos(phi_l0) / (m.sandbag_mass * std::cos(phi_s));
   ASSERT_GT(r_star, r0);
   const double t_star = std::sqrt(2.0 * (r_star - r0) / (m.gravity * std::sin(phi_s)));
   const wn::Result res = wn::simulate(sc);
@@ -291,8 +296,9 @@ TEST(Balloon, LeavesAtOnceWhenTheLidStartsFasterThanItCanFollow) {
   const wn::Machine& m = sc.machine;
   const double phi_l0 = sc.start.lid_angle, g = m.gravity;
   const double k = wn::RopeGeometry(m).transfer(phi_s, phi_l0).k;
-  const double dd_s = (m.sandbag_mass * g * r * std::cos(phi_s) - m.lid_mass * g * m.lid_half_length * std::cos(phi_l0) * k) /
-                      (m.sandbag_mass * r * r + m.lid_inertia() * k * k);
+  const double dd_s =
+      (m.sandbag_mass * g * r * std::cos(phi_s) - m.lid_mass * g * m.lid_half_length * std::cos(phi_l0) * k) /
+      (m.sandbag_mass * r * r + m.lid_inertia() * k * k);
   const double limit_acc = m.balloon_radius * k * dd_s / (1.0 + std::sin(phi_l0));
   ASSERT_GT(limit_acc, m.balloon_acceleration());
   const wn::Result res = wn::simulate(sc);

@@ -58,8 +58,9 @@ class Abuse : public whatnext::test_support::CliTest {
 
 TEST_F(Abuse, ControlBytesInValuesAreEscapedOnOneLine) {
   const std::string csv = path("r.csv");
-  expect_rejected("run " + write("a.toml", "[run]\nintegrator = \"a\\nb\\u001b[31m\"\n").string() + " --csv " + csv,
-                  "a\\nb\\x1b[31m", {csv});
+  expect_rejected(
+      "run " + write("a.toml", "[run]\nintegrator = \"a\\nb\\u001b[31m\"\n").string() + " --csv " + csv,
+      "a\\nb\\x1b[31m", {csv});
   expect_rejected("run " + write("b.toml", "[geometry]\nhinge_offset = [nan, 1]\n").string(), "hinge_offset");
   std::string inp = "1.0\n-0.3\n\x1b[2J-25\n";
   expect_rejected("run " + write("c.inp", inp).string(), "\\x1b[2J-25");
@@ -99,7 +100,8 @@ TEST_F(Abuse, HugeIntegersAndWrongKindsNameTheRule) {
                   "huge.inp line 3 (phiS): start.seesaw_angle must be a finite number (given 1d999)");
   expect_rejected("run " + write("big.toml", "[run]\ntolerance = -12345678901234567\n").string(),
                   "big.toml:2: run.tolerance must be in [1e-15, 0.001] (given -12345678901234567)");
-  expect_rejected("run --example 1 --set radio.enabled=yes", "radio.enabled must be true or false (given 'yes')");
+  expect_rejected("run --example 1 --set radio.enabled=yes",
+                  "radio.enabled must be true or false (given 'yes')");
   expect_rejected("run --example 1 --set geometry.hinge_offset=left", "must be a pair of numbers");
   expect_rejected("run --example 1 --set masses.sandbag=", "give a value");
   expect_rejected("run --example 1 --set =3", "expected KEY=VALUE");
@@ -109,16 +111,20 @@ TEST_F(Abuse, HugeIntegersAndWrongKindsNameTheRule) {
 // --width = 3.5" or "Value abc not in range 2 to 100000"); a whole number may be written 1e3.
 TEST_F(Abuse, NumericOptionsNameTheRuleAndTheValue) {
   const fs::path figs = dir_ / "figs", gif = dir_ / "a.gif", toml = dir_ / "b.toml";
-  expect_rejected("plot --example 1 --width 3.5 --out " + figs.string(), "--width: must be a whole number (given '3.5')",
-                  {figs});
-  expect_rejected("animate --example 1 --fps 25x --out " + gif.string(), "--fps: must be a number (given '25x')", {gif});
-  expect_rejected("animate --example 1 --width '' --out " + gif.string(), "--width: must be a whole number (given '')",
-                  {gif});
-  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --grid abc --out " + toml.string(),
-                  "--grid: must be a whole number from 2 to 100000 (given 'abc')", {toml});
-  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --starts 0 --out " + toml.string(),
-                  "--starts: must be a whole number from 1 to 100 (given '0')", {toml});
-  const CliResult ok = whatnext("plot --example 1 -q --format png --width 1e3 --height 6.5e2 --out " + figs.string());
+  expect_rejected("plot --example 1 --width 3.5 --out " + figs.string(),
+                  "--width: must be a whole number (given '3.5')", {figs});
+  expect_rejected("animate --example 1 --fps 25x --out " + gif.string(),
+                  "--fps: must be a number (given '25x')", {gif});
+  expect_rejected("animate --example 1 --width '' --out " + gif.string(),
+                  "--width: must be a whole number (given '')", {gif});
+  expect_rejected(
+      "optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --grid abc --out " + toml.string(),
+      "--grid: must be a whole number from 2 to 100000 (given 'abc')", {toml});
+  expect_rejected(
+      "optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --starts 0 --out " + toml.string(),
+      "--starts: must be a whole number from 1 to 100 (given '0')", {toml});
+  const CliResult ok =
+      whatnext("plot --example 1 -q --format png --width 1e3 --height 6.5e2 --out " + figs.string());
   EXPECT_EQ(ok.code, 0) << ok.err;
   EXPECT_TRUE(fs::exists(figs / "overview.png"));
 }
@@ -129,7 +135,8 @@ TEST_F(Abuse, MisplacedArgumentsAreNamed) {
   expect_rejected("run --example 1 --set masses.lid=1 masses.sandbag=2", "write --set before each");
   const std::string ev = path("ev.json");
   expect_rejected("run --example 1 --event " + ev, "did you mean '--events'?", {ev});
-  expect_rejected("sweep --example 1 --vary masses.lid=1:2:2 --outt " + path("s.csv"), "did you mean '--out'?");
+  expect_rejected("sweep --example 1 --vary masses.lid=1:2:2 --outt " + path("s.csv"),
+                  "did you mean '--out'?");
 }
 
 // --- inputs that are not input files -----------------------------------------------------------
@@ -164,7 +171,8 @@ TEST_F(Abuse, PipesAreReadButAnIdleOneIsNotWaitedForEver) {
 }
 
 TEST_F(Abuse, InpFilesAreReadStrictly) {
-  const std::string base = "1.0\n-0.3\n-25.0\n5.0\n0.8\n1.0\n27.0\n0.2\n0.6\n0.6\n0.5\n1.29\n0.18\n1.0\n0.001\n";
+  const std::string base =
+      "1.0\n-0.3\n-25.0\n5.0\n0.8\n1.0\n27.0\n0.2\n0.6\n0.6\n0.5\n1.29\n0.18\n1.0\n0.001\n";
   ASSERT_EQ(whatnext("run -q " + write("ok.inp", base + "\n\n").string()).code, 0);
   expect_rejected("run " + write("extra.inp", base + "7\n").string(), "line 16");
   std::string comma = base;
@@ -182,7 +190,8 @@ TEST_F(Abuse, InpFilesAreReadStrictly) {
 // nothing. Which absurd fixed steps do this depends on the last bits of the contact forces: rk4
 // with a 1 s step on example 4 did until the forces came from the flow's accelerations.
 TEST_F(Abuse, ARunThatStopsAdvancingEndsWithAnError) {
-  const std::string sets = "--example 3 --set run.integrator=rk4 --set run.step=0.719 --set start.seesaw_angle=29.24";
+  const std::string sets =
+      "--example 3 --set run.integrator=rk4 --set run.step=0.719 --set start.seesaw_angle=29.24";
   const CliResult r = whatnext("run " + sets + " --csv " + path("r.csv") + " --events " + path("e.json"));
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_TRUE(one_printable_line(r.err)) << r.err;
@@ -195,7 +204,8 @@ TEST_F(Abuse, ARunThatStopsAdvancingEndsWithAnError) {
 TEST_F(Abuse, InputsWhereTheModelBreaksAreRefused) {
   const std::string csv = path("r.csv");
   expect_rejected("run --example 1 --set masses.sandbag=1e308 --csv " + csv, "masses.sandbag", {csv});
-  expect_rejected("run --example 1 --set geometry.lid_half_length=3e-4 --csv " + csv, "lid_half_length", {csv});
+  expect_rejected("run --example 1 --set geometry.lid_half_length=3e-4 --csv " + csv, "lid_half_length",
+                  {csv});
   expect_rejected("run --example 1 --set run.tolerance=1e-24", "run.tolerance must be in [1e-15, 0.001]");
   expect_rejected("run --example 1 --set run.tolerance=0.01", "run.tolerance");
   expect_rejected("run --example 1 --set run.t_max=1e9", "run.t_max");
@@ -204,7 +214,8 @@ TEST_F(Abuse, InputsWhereTheModelBreaksAreRefused) {
 TEST_F(Abuse, SweepValuesStayFiniteOverTheWholeRangeOfDoubles) {
   // Each machine is invalid (and says why in its row), but no varied value may overflow.
   const fs::path csv = dir_ / "s.csv";
-  const CliResult r = whatnext("sweep --example 1 --vary masses.sandbag=-1.7e308:1.7e308:3 --out " + csv.string());
+  const CliResult r =
+      whatnext("sweep --example 1 --vary masses.sandbag=-1.7e308:1.7e308:3 --out " + csv.string());
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string text = slurp(csv);
   EXPECT_EQ(text.find("inf"), std::string::npos) << text;
@@ -218,27 +229,32 @@ TEST_F(Abuse, SweepValuesStayFiniteOverTheWholeRangeOfDoubles) {
 TEST_F(Abuse, BadOutputsAreFoundBeforeAnyWork) {
   const std::string good = path("good.csv"), json = path("e.json");
   fs::create_directories(dir_ / "existing");
-  expect_rejected("run --example 1 --csv " + good + " --events " + path("existing"), "is a directory", {good});
-  expect_rejected("run --example 1 --csv " + good + " --events " + good, "the same file", {good});
-  expect_rejected("run --example 1 --csv " + good + " --dat " + dir_.string() + "/./good.csv", "the same file",
+  expect_rejected("run --example 1 --csv " + good + " --events " + path("existing"), "is a directory",
                   {good});
+  expect_rejected("run --example 1 --csv " + good + " --events " + good, "the same file", {good});
+  expect_rejected("run --example 1 --csv " + good + " --dat " + dir_.string() + "/./good.csv",
+                  "the same file", {good});
   expect_rejected("run --example 1 --csv " + good + " --events ''", "give a file name", {good});
-  expect_rejected("run --example 1 --csv /nonexistent-dir/x.csv --events " + json, "cannot write here", {json});
+  expect_rejected("run --example 1 --csv /nonexistent-dir/x.csv --events " + json, "cannot write here",
+                  {json});
   // A directory for --plots is not made when another output is bad, and made ones go again.
   expect_rejected("run --example 1 --plots " + path("newdir") + " --csv /nonexistent-dir/x.csv", "x.csv",
                   {dir_ / "newdir"});
-  expect_rejected("run --example 1 --plots " + path("made/deeper") + " --animate /nonexistent-dir/x.gif", "x.gif",
-                  {dir_ / "made"});
+  expect_rejected("run --example 1 --plots " + path("made/deeper") + " --animate /nonexistent-dir/x.gif",
+                  "x.gif", {dir_ / "made"});
   const std::string out = path("s.csv");
   expect_rejected("sweep --example 1 --vary masses.lid=0.2:1:3 --out " + path("existing"), "is a directory");
   expect_rejected("sweep --example 1 --vary masses.lid=0.2:1:3 --out ''", "give a file name");
   const std::string png = path("h.png");
   expect_rejected("sweep --example 1 --vary masses.lid=0.2:1:3 --vary masses.sandbag=1:2:2 --out " + png +
-                      " --heatmap " + png, "the same file", {png});
+                      " --heatmap " + png,
+                  "the same file", {png});
   expect_rejected("sweep --example 1 --vary masses.lid=0.2:1:3 --vary masses.sandbag=1:2:2 --out " + out +
-                      " --heatmap " + path("h.jpg"), "PNG", {out, dir_ / "h.jpg"});
-  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --out " + path("existing"),
-                  "is a directory");
+                      " --heatmap " + path("h.jpg"),
+                  "PNG", {out, dir_ / "h.jpg"});
+  expect_rejected(
+      "optimize --example 1 --vary masses.lid=0.2:1 --minimize lid_open --out " + path("existing"),
+      "is a directory");
 }
 
 // No output may overwrite the machine it is made from (`run m.toml --csv m.toml` replaced the
@@ -246,16 +262,20 @@ TEST_F(Abuse, BadOutputsAreFoundBeforeAnyWork) {
 // figures are compared with --csv, --dat and --events too.
 TEST_F(Abuse, OutputsNeverOverwriteTheInputOrEachOther) {
   const std::string machine = slurp(WHATNEXT_SOURCE_DIR "/examples/example2.toml");
-  const fs::path m = write("m.toml", machine), inp = write("w.inp", slurp(WHATNEXT_SOURCE_DIR "/examples/whatnext.inp"));
+  const fs::path m = write("m.toml", machine),
+                 inp = write("w.inp", slurp(WHATNEXT_SOURCE_DIR "/examples/whatnext.inp"));
   fs::create_symlink("m.toml", dir_ / "link.toml");
   expect_rejected("run " + m.string() + " --csv " + m.string(), "is the input file");
   expect_rejected("run " + (dir_ / "link.toml").string() + " --events " + m.string(), "is the input file");
-  expect_rejected("run " + m.string() + " --csv " + path("r.csv") + " --events " + (dir_ / "link.toml").string(),
-                  "is the input file", {dir_ / "r.csv"});
+  expect_rejected(
+      "run " + m.string() + " --csv " + path("r.csv") + " --events " + (dir_ / "link.toml").string(),
+      "is the input file", {dir_ / "r.csv"});
   expect_rejected("run " + inp.string() + " --dat " + inp.string(), "is the input file");
-  expect_rejected("optimize " + m.string() + " --vary masses.lid=0.2:1 --minimize lid_open --out " + m.string(),
+  expect_rejected(
+      "optimize " + m.string() + " --vary masses.lid=0.2:1 --minimize lid_open --out " + m.string(),
+      "is the input file");
+  expect_rejected("sweep " + m.string() + " --vary masses.lid=0.2:1:3 --out " + m.string(),
                   "is the input file");
-  expect_rejected("sweep " + m.string() + " --vary masses.lid=0.2:1:3 --out " + m.string(), "is the input file");
   EXPECT_EQ(slurp(m), machine);
   expect_rejected("run --example 1 --csv " + path("x.gif") + " --animate " + path("x.gif"),
                   "--animate " + path("x.gif") + ": is the same file as --csv", {dir_ / "x.gif"});
@@ -263,8 +283,8 @@ TEST_F(Abuse, OutputsNeverOverwriteTheInputOrEachOther) {
   expect_rejected("run --example 1 --csv " + path("pd/overview.png") + " --plots " + path("pd"),
                   "is the same file as --csv", {dir_ / "pd" / "overview.png"});
   // Outputs beside the figures, and /dev/null for several, are fine.
-  const CliResult ok = whatnext("run -q " + m.string() + " --csv " + path("figs/run.csv") + " --plots " + path("figs") +
-                                " --events /dev/null --dat /dev/null");
+  const CliResult ok = whatnext("run -q " + m.string() + " --csv " + path("figs/run.csv") + " --plots " +
+                                path("figs") + " --events /dev/null --dat /dev/null");
   EXPECT_EQ(ok.code, 2) << ok.err;  // figs/ does not exist yet when --csv is checked
   ASSERT_TRUE(fs::create_directory(dir_ / "figs"));
   const CliResult ok2 = whatnext("run -q " + m.string() + " --csv " + path("figs/run.csv") + " --plots " +
@@ -357,7 +377,8 @@ TEST(Writers, ANonFiniteStateIsAFailedRunNotAFile) {
 // and why, exit code 1, and no file or temporary left (SIGXFSZ killed whatnext and left r.csv.part).
 TEST_F(Abuse, FileSizeLimitFailsTheWriteCleanly) {
   const std::string cli = WHATNEXT_CLI;
-  for (const std::string& job : {"run -q --example 3 --csv " + path("r.csv"), "animate -q --example 3 --out " + path("a.gif")}) {
+  for (const std::string& job :
+       {"run -q --example 3 --csv " + path("r.csv"), "animate -q --example 3 --out " + path("a.gif")}) {
     SCOPED_TRACE(job);
     const CliResult r = whatnext("ulimit -f 64; " + cli + " " + job, false);
     EXPECT_EQ(r.code, 1) << r.err;
@@ -376,7 +397,8 @@ TEST_F(Abuse, OutOfMemoryIsOneLineAndNoFile) {
 #endif
   const CliResult r = whatnext("ulimit -v 300000; " + std::string(WHATNEXT_CLI) +
                                    " sweep --example 2 --vary geometry.rope_length=0.64:0.80:4000 --vary "
-                                   "start.sandbag_height=0.3:1.2:4000 --force-large --out " + path("s.csv"),
+                                   "start.sandbag_height=0.3:1.2:4000 --force-large --out " +
+                                   path("s.csv"),
                                false);
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_TRUE(one_printable_line(r.err)) << r.err;
@@ -390,7 +412,8 @@ TEST_F(Abuse, OutOfMemoryIsOneLineAndNoFile) {
 // whatnext aborted).
 TEST_F(Abuse, ClosedStandardErrorIsNoCrash) {
   const CliResult r = whatnext(std::string(WHATNEXT_CLI) + " run --example 1 --set masses.sandbag=-1 --csv " +
-                               path("r.csv") + " 2>&-; echo $?", false);
+                                   path("r.csv") + " 2>&-; echo $?",
+                               false);
   EXPECT_EQ(r.code, 0);
   EXPECT_EQ(r.out, "2\n");
   EXPECT_FALSE(fs::exists(dir_ / "r.csv"));
@@ -400,15 +423,17 @@ TEST_F(Abuse, ClosedStandardErrorIsNoCrash) {
 
 TEST_F(Abuse, HugeOutputsNeedToBeAskedFor) {
   const std::string csv = path("r.csv");
-  expect_rejected("run --example 1 --set masses.sandbag=0.001 --set run.t_max=9999 --csv " + csv, "--force-large",
-                  {csv});
+  expect_rejected("run --example 1 --set masses.sandbag=0.001 --set run.t_max=9999 --csv " + csv,
+                  "--force-large", {csv});
   // The size in words one can read: "would write about 4.0 GB" (it said "would writes").
   expect_rejected("run --example 1 --set run.t_max=9999 --dat " + csv, "would write about", {csv});
-  expect_rejected("animate --example 1 --set run.t_max=9999 --out " + path("a.gif"), "would hold in memory about",
-                  {dir_ / "a.gif"});
-  expect_rejected("sweep --example 1 --samples 20000000 --vary masses.lid=0.2:1 --vary masses.sandbag=0.2:1 "
-                  "--vary start.sandbag_x=-1:-0.1 --vary start.sandbag_height=0.5:2 --out " + csv,
-                  "--force-large", {csv});
+  expect_rejected("animate --example 1 --set run.t_max=9999 --out " + path("a.gif"),
+                  "would hold in memory about", {dir_ / "a.gif"});
+  expect_rejected(
+      "sweep --example 1 --samples 20000000 --vary masses.lid=0.2:1 --vary masses.sandbag=0.2:1 "
+      "--vary start.sandbag_x=-1:-0.1 --vary start.sandbag_height=0.5:2 --out " +
+          csv,
+      "--force-large", {csv});
   expect_rejected("plot --example 1 --set run.t_max=9999 --out " + path("p"), "--force-large", {dir_ / "p"});
 }
 
@@ -416,22 +441,23 @@ TEST_F(Abuse, HugeOutputsNeedToBeAskedFor) {
 
 TEST_F(Abuse, OptionsThatWouldBeIgnoredOrMeaninglessAreRefused) {
   const std::string csv = path("s.csv"), toml = path("b.toml");
-  expect_rejected("sweep --example 1 --samples 10 --vary masses.lid=0.2:1:5 --out " + csv, "without a count", {csv});
+  expect_rejected("sweep --example 1 --samples 10 --vary masses.lid=0.2:1:5 --out " + csv, "without a count",
+                  {csv});
   expect_rejected("optimize --example 1 --vary masses.lid=0.2:1:5 --minimize lid_open --out " + toml,
                   "without a count", {toml});
   expect_rejected("sweep --example 1 --vary masses.lid=0.2:1:3 --vary masses.sandbag=1:2:2 --heatmap " +
                       path("h.png") + " --heatmap-value radio_on --out " + csv,
                   "radio is off", {csv, dir_ / "h.png"});
-  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize radio_on --out " + toml, "radio is off",
-                  {toml});
+  expect_rejected("optimize --example 1 --vary masses.lid=0.2:1 --minimize radio_on --out " + toml,
+                  "radio is off", {toml});
 }
 
 TEST_F(Abuse, MaximisingATimeThatOnlyTheRunsEndLimitsFindsNoOptimum) {
   // Example 2 with longer ropes opens the lid ever later, up to ropes that never open it: the
   // "latest lid_open" is wherever the run's end cuts it off.
   const fs::path toml = dir_ / "best.toml";
-  const CliResult r =
-      whatnext("optimize --example 2 --vary geometry.rope_length=0.62:1.0 --maximize lid_open --out " + toml.string());
+  const CliResult r = whatnext(
+      "optimize --example 2 --vary geometry.rope_length=0.62:1.0 --maximize lid_open --out " + toml.string());
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("run.t_max"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(toml));
@@ -447,7 +473,8 @@ TEST_F(Abuse, InterruptedRunsLeaveNoTemporary) {
     const fs::path csv = dir_ / "r.csv", fifo = dir_ / "fifo";
     fs::remove(fifo);
     ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
-    const pid_t pid = spawn_whatnext({"run", "--example", "1", "--csv", csv.string(), "--events", fifo.string()});
+    const pid_t pid =
+        spawn_whatnext({"run", "--example", "1", "--csv", csv.string(), "--events", fifo.string()});
     const int status = interrupt_when(pid, csv.string() + ".part", sig);
     EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == sig) << sig << " " << status;
     EXPECT_TRUE(whatnext::test_support::temps_of(csv).empty()) << sig;
@@ -478,8 +505,9 @@ TEST_F(Abuse, InterruptedOptimisationLeavesNoTemporary) {
 TEST_F(Abuse, TerminatedOrHungUpSweepsKeepAValidPartialCsv) {
   for (const int sig : {SIGTERM, SIGHUP}) {
     const fs::path csv = dir_ / ("s" + std::to_string(sig) + ".csv");
-    const pid_t pid = spawn_whatnext({"sweep", "--example", "3", "--vary", "geometry.rope_length=0.9:1.1:200",
-                                      "--vary", "masses.lid=0.3:0.7:200", "--threads", "1", "--out", csv.string()});
+    const pid_t pid =
+        spawn_whatnext({"sweep", "--example", "3", "--vary", "geometry.rope_length=0.9:1.1:200", "--vary",
+                        "masses.lid=0.3:0.7:200", "--threads", "1", "--out", csv.string()});
     const int status = interrupt_when(pid, csv.string() + ".part", sig);
     ASSERT_TRUE(WIFEXITED(status)) << status;
     EXPECT_EQ(WEXITSTATUS(status), 128 + sig);

@@ -64,7 +64,9 @@ struct RandomMachine {
 class Draw {
  public:
   explicit Draw(std::uint64_t seed) : rng_(seed) {}
-  double uniform(double lo, double hi) { return lo + (hi - lo) * static_cast<double>(rng_() >> 11) * 0x1.0p-53; }
+  double uniform(double lo, double hi) {
+    return lo + (hi - lo) * static_cast<double>(rng_() >> 11) * 0x1.0p-53;
+  }
   double factor(double most) { return std::exp(uniform(-std::log(most), std::log(most))); }  // log-uniform
   bool chance(double p) { return uniform(0.0, 1.0) < p; }
   int pick(int n) { return static_cast<int>(rng_() % static_cast<std::uint64_t>(n)); }
@@ -131,7 +133,8 @@ struct Failures {
   std::map<std::string, std::set<int>> machines;
   void add(const std::string& kind, const RandomMachine& m, const std::string& detail) {
     if (!machines[kind].insert(m.index).second) return;
-    if (shown[kind].size() < 3) shown[kind].push_back(fmt::format("#{}: {}   # {}", m.index, m.command(), detail));
+    if (shown[kind].size() < 3)
+      shown[kind].push_back(fmt::format("#{}: {}   # {}", m.index, m.command(), detail));
   }
   void merge_line(const RandomMachine& m, const std::string& line) {
     const auto tab = line.find('\t');
@@ -159,13 +162,13 @@ class Checker : public Observer {
     if (!e.impact) return;
     const ImpactLaw law = sc_.run.impact_law;
     const double gain = e.energy_after - e.energy_before;
-    const std::string what = fmt::format("{} at t = {}: {} J -> {} J", to_string(e.type), e.t, e.energy_before,
-                                         e.energy_after);
+    const std::string what =
+        fmt::format("{} at t = {}: {} J -> {} J", to_string(e.type), e.t, e.energy_before, e.energy_after);
     if ((law == ImpactLaw::rope || law == ImpactLaw::kinetic_energy) && gain > 1e-9) {
       f_.add(fmt::format("an impact gains energy under {}", to_string(law)), m_, what);
     }
-    const bool governed = e.type == EventType::rope_taut ||
-                          (e.type == EventType::sandbag_lands && e.mode_before == Mode::M2);
+    const bool governed =
+        e.type == EventType::rope_taut || (e.type == EventType::sandbag_lands && e.mode_before == Mode::M2);
     // A landing on a heavy seesaw whose rope takes no jerk (it goes slack at the same instant) is
     // the arm's perfectly inelastic stop, which no impact law governs: it is judged when the next
     // event shows whether the rope went slack.
@@ -188,9 +191,9 @@ class Checker : public Observer {
 
  private:
   void check(const Snapshot& s, const std::string& where) {
-    const double values[] = {s.t,     s.x,       s.h,      s.r,         s.dr,      s.phi_s, s.dphi_s,
-                             s.phi_l, s.dphi_l,  s.balloon_h, s.balloon_v, s.tension, s.energy(),
-                             s.ledger_residual()};
+    const double values[] = {
+        s.t,     s.x,      s.h,         s.r,         s.dr,      s.phi_s,    s.dphi_s,
+        s.phi_l, s.dphi_l, s.balloon_h, s.balloon_v, s.tension, s.energy(), s.ledger_residual()};
     for (const double v : values) {
       if (!std::isfinite(v)) {
         f_.add("a state is not finite", m_, fmt::format("{} at t = {}", where, s.t));
@@ -206,19 +209,22 @@ class Checker : public Observer {
         std::fmax(1e-6, dt * dt * 3.0 * sc_.machine.gravity / (4.0 * sc_.machine.lid_half_length));
     const double slack = sc_.run.integrator == IntegratorKind::adaptive ? 1e-9 : fixed_step_slack;
     if (s.phi_l < sc_.start.lid_angle - slack || s.phi_l > kPi / 2 + slack) {
-      f_.add("the lid leaves [phiL0, 90 deg]", m_, fmt::format("{} at t = {}: phiL = {} deg", where, s.t, s.phi_l / kDeg));
+      f_.add("the lid leaves [phiL0, 90 deg]", m_,
+             fmt::format("{} at t = {}: phiL = {} deg", where, s.t, s.phi_l / kDeg));
     }
     // With the sandbag on it the run stops where the seesaw turns vertical; an unloaded seesaw
     // with mass may swing on past it (nothing models the ground; docs/extensions.md).
     if (s.on_seesaw && std::fabs(s.phi_s) > kPi / 2 + 1e-9) {
-      f_.add("the seesaw leaves [-90, 90] deg", m_, fmt::format("{} at t = {}: phiS = {} deg", where, s.t, s.phi_s / kDeg));
+      f_.add("the seesaw leaves [-90, 90] deg", m_,
+             fmt::format("{} at t = {}: phiS = {} deg", where, s.t, s.phi_s / kDeg));
     }
     // The ledger closes to 1e-9 of the energies in play: J for the paper's machines, but a sandbag
     // that falls for a minute carries tens of kJ in kinetic and potential energy, and the laws
     // other than rope and kinetic-energy can multiply the energy many times over.
-    const double parts = std::fabs(s.sandbag_kinetic) + std::fabs(s.sandbag_potential) + std::fabs(s.lid_kinetic) +
-                         std::fabs(s.lid_potential) + std::fabs(s.seesaw_kinetic) + std::fabs(s.seesaw_potential) +
-                         std::fabs(s.balloon_kinetic) + std::fabs(s.balloon_potential);
+    const double parts = std::fabs(s.sandbag_kinetic) + std::fabs(s.sandbag_potential) +
+                         std::fabs(s.lid_kinetic) + std::fabs(s.lid_potential) + std::fabs(s.seesaw_kinetic) +
+                         std::fabs(s.seesaw_potential) + std::fabs(s.balloon_kinetic) +
+                         std::fabs(s.balloon_potential);
     scale_ = std::fmax(scale_, std::fmax(std::fabs(s.initial_total), parts));
     if (sc_.run.integrator == IntegratorKind::adaptive && std::fabs(s.ledger_residual()) > 1e-9 * scale_) {
       f_.add("the ledger does not close to 1e-9 J", m_,
@@ -282,7 +288,8 @@ ChildReport run_in_child(const Scenario& sc, const RandomMachine& m, double limi
   close(fds[1]);
   std::string got;
   for (;;) {
-    const double left = limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double left =
+        limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     pollfd p{fds[0], POLLIN, 0};
     if (left <= 0.0 || poll(&p, 1, static_cast<int>(left * 1000.0) + 1) == 0) {
       kill(pid, SIGKILL);
@@ -353,18 +360,22 @@ TEST_F(Soak, RandomMachinesKeepThePromiseAndThePhysics) {
     std::string args = fmt::format("run -q --example {}", m.example);
     for (const std::string& s : m.sets) args += " --set '" + s + "'";
     const fs::path csv = dir_ / "m.csv", json = dir_ / "m.json", dat = dir_ / "m.dat";
-    const CliResult r = whatnext("timeout " + std::to_string(static_cast<int>(kLimit)) + " " + WHATNEXT_CLI + " " +
-                                 args + " --csv " + csv.string() + " --events " + json.string() + " --dat " +
-                                 dat.string(), false);
+    const CliResult r =
+        whatnext("timeout " + std::to_string(static_cast<int>(kLimit)) + " " + WHATNEXT_CLI + " " + args +
+                     " --csv " + csv.string() + " --events " + json.string() + " --dat " + dat.string(),
+                 false);
     if (r.code == 2) {
-      if (std::count(r.err.begin(), r.err.end(), '\n') != 1) failures.add("exit 2 without one line", m, r.err);
-      if (fs::exists(csv) || fs::exists(json) || fs::exists(dat)) failures.add("exit 2 writes a file", m, r.err);
+      if (std::count(r.err.begin(), r.err.end(), '\n') != 1)
+        failures.add("exit 2 without one line", m, r.err);
+      if (fs::exists(csv) || fs::exists(json) || fs::exists(dat))
+        failures.add("exit 2 writes a file", m, r.err);
       if (valid) failures.add("the command refuses what the library accepts", m, r.err);
     } else if (r.code == 0) {
       for (const fs::path& p : {csv, json, dat}) {
         const std::string text = slurp(p);
         for (const char* bad : {"nan", "inf", "null"}) {
-          if (text.find(bad) != std::string::npos) failures.add(fmt::format("'{}' in {}", bad, p.filename().string()), m, "");
+          if (text.find(bad) != std::string::npos)
+            failures.add(fmt::format("'{}' in {}", bad, p.filename().string()), m, "");
         }
       }
       const auto doc = nlohmann::json::parse(slurp(json), nullptr, false);

@@ -76,8 +76,9 @@ TEST_F(SweepCli, CsvIsByteIdenticalForOneAndTwoThreads) {
   EXPECT_NE(a.find(",lid_open,"), std::string::npos);
   EXPECT_NE(a.find(",timeout,"), std::string::npos);
 
-  const std::string lhs = "sweep --example 2 --vary masses.sandbag=0.3:1 --vary start.sandbag_height=0.3:1 "
-                          "--samples 97 --seed 11";
+  const std::string lhs =
+      "sweep --example 2 --vary masses.sandbag=0.3:1 --vary start.sandbag_height=0.3:1 "
+      "--samples 97 --seed 11";
   ASSERT_EQ(whatnext(lhs + " --threads 1 --out " + (dir_ / "l1.csv").string()).code, 0);
   ASSERT_EQ(whatnext(lhs + " --threads 2 --out " + (dir_ / "l2.csv").string()).code, 0);
   EXPECT_EQ(slurp(dir_ / "l1.csv"), slurp(dir_ / "l2.csv"));
@@ -86,7 +87,9 @@ TEST_F(SweepCli, CsvIsByteIdenticalForOneAndTwoThreads) {
 TEST_F(SweepCli, HeatMapIsAPngAndTheSameForAnyThreadCount) {
   const std::string args = "sweep --example 1 --vary masses.sandbag=0.1:1.5:10 --vary masses.lid=0.2:2:10";
   const fs::path a = dir_ / "a.png", b = dir_ / "b.png";
-  ASSERT_EQ(whatnext(args + " --threads 1 --out " + (dir_ / "a.csv").string() + " --heatmap " + a.string()).code, 0);
+  ASSERT_EQ(
+      whatnext(args + " --threads 1 --out " + (dir_ / "a.csv").string() + " --heatmap " + a.string()).code,
+      0);
   const CliResult r = whatnext(args + " --threads 2 --out " + (dir_ / "b.csv").string() + " --heatmap " +
                                b.string() + " --heatmap-value outcome_t");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -95,15 +98,19 @@ TEST_F(SweepCli, HeatMapIsAPngAndTheSameForAnyThreadCount) {
   EXPECT_FALSE(fs::exists(a.string() + ".part"));
   EXPECT_NE(pa, pb);  // a different value is drawn
   ASSERT_EQ(whatnext(args + " --threads 2 --out " + (dir_ / "c.csv").string() + " --heatmap " +
-                     (dir_ / "c.png").string()).code, 0);
+                     (dir_ / "c.png").string())
+                .code,
+            0);
   EXPECT_EQ(slurp(dir_ / "c.png"), pa);
 }
 
 TEST_F(SweepCli, RowsMatchSingleRuns) {
   // The sweep's row for a machine must say what `whatnext run` says for the same machine, its times
   // within the sweep's event-time accuracy (default 1e-8 s; the run's default tolerance is tighter).
-  ASSERT_EQ(whatnext("sweep --example 2 --vary geometry.rope_length=0.62:0.66:3 --out " +
-                     (dir_ / "s.csv").string()).code, 0);
+  ASSERT_EQ(
+      whatnext("sweep --example 2 --vary geometry.rope_length=0.62:0.66:3 --out " + (dir_ / "s.csv").string())
+          .code,
+      0);
   const auto lines = split(slurp(dir_ / "s.csv"), '\n');
   const auto header = split(lines[0], ',');
   const auto col = [&](const std::string& name) {
@@ -132,7 +139,8 @@ TEST_F(SweepCli, BadVarySpecsAreRejectedWithOneLineAndNoFile) {
   expect_rejected(base + "--vary geometry.rope_lenght=0.6:0.7:3", "did you mean 'geometry.rope_length'");
   expect_rejected(base + "--vary geometry.rope_length=0.7:0.6:3", "A <= B");
   expect_rejected(base + "--vary geometry.rope_length=0.6:0.7:0", "N must be a whole number from 1 to 10^9");
-  expect_rejected(base + "--vary geometry.rope_length=0.6:0.7:4294967295", "N must be a whole number from 1 to 10^9");
+  expect_rejected(base + "--vary geometry.rope_length=0.6:0.7:4294967295",
+                  "N must be a whole number from 1 to 10^9");
   expect_rejected(base + "--vary geometry.rope_length=0.6:0.7:2.5", "N must be");
   expect_rejected(base + "--vary geometry.rope_length=0.6:abc:3", "B must be a finite number (given 'abc')");
   expect_rejected(base + "--vary geometry.rope_length=0.6:0.7", "needs the number of values N");
@@ -147,8 +155,8 @@ TEST_F(SweepCli, BadVarySpecsAreRejectedWithOneLineAndNoFile) {
 
 TEST_F(SweepCli, InvalidMachinesGetTheirReasonAndTheSweepGoesOn) {
   // Ropes shorter than the start distance (0.639 m) are invalid inputs; the others run.
-  const CliResult r = whatnext("sweep --example 2 --vary geometry.rope_length=0.5:0.7:5 --out " +
-                               (dir_ / "s.csv").string());
+  const CliResult r =
+      whatnext("sweep --example 2 --vary geometry.rope_length=0.5:0.7:5 --out " + (dir_ / "s.csv").string());
   ASSERT_EQ(r.code, 0) << r.err;
   const auto lines = split(slurp(dir_ / "s.csv"), '\n');
   ASSERT_EQ(lines.size(), 7u);  // header, five rows, the empty piece after the last newline
@@ -209,8 +217,15 @@ TEST_F(SweepCli, InterruptKeepsAValidFileOfFinishedRows) {
 // Issue 23: a sweep killed (SIGKILL, like a power cut but without losing what was written),
 // stopped by Ctrl-C or cut off mid-line, then resumed, ends with the bytes of an uninterrupted run.
 TEST_F(SweepCli, ResumedSweepsEndWithTheBytesOfAnUninterruptedOne) {
-  const std::vector<std::string> args{"sweep", "--example", "3", "--vary", "geometry.rope_length=0.9:1.1:30",
-                                      "--vary", "masses.lid=0.3:0.7:31", "--threads", "2"};
+  const std::vector<std::string> args{"sweep",
+                                      "--example",
+                                      "3",
+                                      "--vary",
+                                      "geometry.rope_length=0.9:1.1:30",
+                                      "--vary",
+                                      "masses.lid=0.3:0.7:31",
+                                      "--threads",
+                                      "2"};
   const auto with = [&](std::vector<std::string> extra) {
     std::vector<std::string> a = args;
     a.insert(a.end(), extra.begin(), extra.end());
@@ -227,8 +242,8 @@ TEST_F(SweepCli, ResumedSweepsEndWithTheBytesOfAnUninterruptedOne) {
     // Beyond what the .part holds already (a resumed sweep starts from it), so that each run gets on.
     std::error_code ec;
     const std::size_t before = fs::exists(part) ? static_cast<std::size_t>(fs::file_size(part, ec)) : 0;
-    const std::size_t at =
-        before + std::uniform_int_distribution<std::size_t>(1, (want.size() - std::min(want.size(), before)) * 3 / 4 + 1)(rng);
+    const std::size_t at = before + std::uniform_int_distribution<std::size_t>(
+                                        1, (want.size() - std::min(want.size(), before)) * 3 / 4 + 1)(rng);
     const pid_t pid = whatnext::test_support::spawn_whatnext(a);
     for (int i = 0; i < 20000; ++i) {
       const auto size = fs::file_size(part, ec);
@@ -271,7 +286,8 @@ TEST_F(SweepCli, ResumedSweepsEndWithTheBytesOfAnUninterruptedOne) {
 }
 
 TEST_F(SweepCli, ResumeRefusesAnotherSweepsFile) {
-  const std::string base = "sweep --example 2 --vary geometry.rope_length=0.64:0.8:7 --vary masses.lid=0.3:0.5:3";
+  const std::string base =
+      "sweep --example 2 --vary geometry.rope_length=0.64:0.8:7 --vary masses.lid=0.3:0.5:3";
   const fs::path csv = dir_ / "s.csv";
   ASSERT_EQ(whatnext(base + " --out " + csv.string()).code, 0);
   // Cut to half, as a stopped sweep would have left it.
@@ -289,7 +305,8 @@ TEST_F(SweepCli, ResumeRefusesAnotherSweepsFile) {
   };
   refused("sweep --example 2 --vary geometry.rope_length=0.64:0.8:7 --vary masses.sandbag=0.3:0.5:3",
           "other columns");
-  refused("sweep --example 2 --vary geometry.rope_length=0.64:0.8:8 --vary masses.lid=0.3:0.5:3", "other values");
+  refused("sweep --example 2 --vary geometry.rope_length=0.64:0.8:8 --vary masses.lid=0.3:0.5:3",
+          "other values");
   refused(base + " --accuracy 1e-4", "gives another row");
   refused("sweep --example 1 --vary geometry.rope_length=0.64:0.8:7 --vary masses.lid=0.3:0.5:3",
           "gives another row");
@@ -303,11 +320,13 @@ TEST_F(SweepCli, ResumeRefusesAnotherSweepsFile) {
 
 // Issue 23: a Monte Carlo over building tolerances.
 TEST_F(SweepCli, SpreadDrawsAroundTheMachineTheSameForAnyThreadCount) {
-  const std::string base = "sweep --example 1 --spread masses.lid=+-0.05 --spread geometry.rope_length=±0.004 "
-                           "--samples 2000 --seed 5";
-  const CliResult one = whatnext(base + " --spread-dist uniform --threads 1 --out " + (dir_ / "u1.csv").string());
-  const CliResult two = whatnext(base + " --spread-dist uniform --threads 2 --out " + (dir_ / "u2.csv").string() +
-                                 " --histogram " + (dir_ / "h.png").string());
+  const std::string base =
+      "sweep --example 1 --spread masses.lid=+-0.05 --spread geometry.rope_length=±0.004 "
+      "--samples 2000 --seed 5";
+  const CliResult one =
+      whatnext(base + " --spread-dist uniform --threads 1 --out " + (dir_ / "u1.csv").string());
+  const CliResult two = whatnext(base + " --spread-dist uniform --threads 2 --out " +
+                                 (dir_ / "u2.csv").string() + " --histogram " + (dir_ / "h.png").string());
   ASSERT_EQ(one.code, 0) << one.err;
   ASSERT_EQ(two.code, 0) << two.err;
   EXPECT_EQ(slurp(dir_ / "u1.csv"), slurp(dir_ / "u2.csv"));
@@ -332,7 +351,8 @@ TEST_F(SweepCli, SpreadDrawsAroundTheMachineTheSameForAnyThreadCount) {
   EXPECT_LT(lo, lid - 0.049);
   EXPECT_GT(hi, lid + 0.049);
   // The summary counts what the CSV holds.
-  EXPECT_NE(one.out.find(fmt::format("the lid opens in {} of 2000 machines", opened)), std::string::npos) << one.out;
+  EXPECT_NE(one.out.find(fmt::format("the lid opens in {} of 2000 machines", opened)), std::string::npos)
+      << one.out;
 
   // Normal: the sample's standard deviation is the X given (2000 draws: within 5 %).
   ASSERT_EQ(whatnext(base + " --out " + (dir_ / "n.csv").string()).code, 0);
@@ -456,7 +476,8 @@ TEST(Optimize, LandsInTheBestCellOfAFineGrid) {
   std::int64_t best = -1;
   for (std::int64_t i = 0; i < fine.size(); ++i) {
     const double v = value_of(grid.rows[static_cast<std::size_t>(i)], "final_r");
-    if (!std::isnan(v) && (best < 0 || v < value_of(grid.rows[static_cast<std::size_t>(best)], "final_r"))) best = i;
+    if (!std::isnan(v) && (best < 0 || v < value_of(grid.rows[static_cast<std::size_t>(best)], "final_r")))
+      best = i;
   }
   ASSERT_GT(best, 0);
   ASSERT_LT(best, fine.size() - 1);  // interior, or the test shows nothing
@@ -490,8 +511,8 @@ TEST(Optimize, LandsInTheBestCellOfAFineGrid) {
 
 TEST_F(SweepCli, OptimizeWritesATomlThatRunAccepts) {
   const fs::path best = dir_ / "best.toml";
-  const CliResult r = whatnext("optimize --example 2 --vary start.sandbag_x=-0.6:-0.1 --minimize final_r --out " +
-                               best.string());
+  const CliResult r = whatnext(
+      "optimize --example 2 --vary start.sandbag_x=-0.6:-0.1 --minimize final_r --out " + best.string());
   ASSERT_EQ(r.code, 0) << r.err;
   const Scenario sc = build_scenario(load_config_file(best.string()));
   EXPECT_NEAR(sc.start.sandbag_x, -0.18, 0.02);  // the interior minimum, not a bound
@@ -500,8 +521,8 @@ TEST_F(SweepCli, OptimizeWritesATomlThatRunAccepts) {
   EXPECT_NE(run.out.find("lid open"), std::string::npos) << run.out;
   // An unknown outcome is bad input: exit 2, one line, no file.
   const fs::path none = dir_ / "none.toml";
-  const CliResult bad = whatnext("optimize --example 2 --vary start.sandbag_x=-0.6:-0.1 --minimize lid_opn --out " +
-                                 none.string());
+  const CliResult bad = whatnext(
+      "optimize --example 2 --vary start.sandbag_x=-0.6:-0.1 --minimize lid_opn --out " + none.string());
   EXPECT_EQ(bad.code, 2);
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
   EXPECT_FALSE(fs::exists(none));
@@ -552,7 +573,8 @@ TEST(FastPaths, MaxSpanIsTheLargestSpanOnAFineGrid) {
       const double reach = g.max_span(l0 * M_PI / 180.0);
       double seen = 0.0;
       for (double s = -90.0; s <= 90.0; s += 0.25) {
-        for (double l = l0; l <= 90.0; l += 0.25) seen = std::max(seen, g.span(s * M_PI / 180.0, l * M_PI / 180.0));
+        for (double l = l0; l <= 90.0; l += 0.25)
+          seen = std::max(seen, g.span(s * M_PI / 180.0, l * M_PI / 180.0));
       }
       EXPECT_GE(reach, seen - 1e-12) << h[0] << "," << h[1] << " " << l0;
       EXPECT_LT(reach, seen + 1e-4) << h[0] << "," << h[1] << " " << l0;
@@ -575,16 +597,29 @@ TEST(SweepAccuracy, HardMachinesAreWithinTheAccuracyOfATightRun) {
     std::vector<std::string> sets;
   };
   const std::vector<Case> cases = {
-      {2, {{"seesaw.mass", 0.11070548188725124}, {"start.sandbag_height", 0.446580145760092},
-           {"geometry.rope_length", 0.786430666080599}}, {"seesaw.left_arm=0.5"}},
-      {2, {{"seesaw.mass", 0.20336852818276074}, {"start.sandbag_height", 0.31259320364957666},
-           {"geometry.rope_length", 0.7857435531480605}}, {"seesaw.left_arm=0.5"}},
-      {1, {{"damping.pivot", 0.05576786618150246}, {"start.sandbag_height", 0.7898134865054538}},
+      {2,
+       {{"seesaw.mass", 0.11070548188725124},
+        {"start.sandbag_height", 0.446580145760092},
+        {"geometry.rope_length", 0.786430666080599}},
+       {"seesaw.left_arm=0.5"}},
+      {2,
+       {{"seesaw.mass", 0.20336852818276074},
+        {"start.sandbag_height", 0.31259320364957666},
+        {"geometry.rope_length", 0.7857435531480605}},
+       {"seesaw.left_arm=0.5"}},
+      {1,
+       {{"damping.pivot", 0.05576786618150246}, {"start.sandbag_height", 0.7898134865054538}},
        {"damping.lid_hinge=0.01", "seesaw.mass=0.3", "seesaw.left_arm=0.5"}},
-      {1, {{"geometry.hinge_distance", 1.0401089952734088}, {"start.sandbag_height", 0.5513692974389532},
-           {"geometry.seesaw_right_arm", 0.5033296979237536}}, {"balloon.drag=true"}},
-      {2, {{"seesaw.mass", 0.6058892883660594}, {"start.sandbag_height", 0.4640060268221484},
-           {"geometry.rope_length", 0.6536329474411826}}, {"seesaw.left_arm=0.5"}},
+      {1,
+       {{"geometry.hinge_distance", 1.0401089952734088},
+        {"start.sandbag_height", 0.5513692974389532},
+        {"geometry.seesaw_right_arm", 0.5033296979237536}},
+       {"balloon.drag=true"}},
+      {2,
+       {{"seesaw.mass", 0.6058892883660594},
+        {"start.sandbag_height", 0.4640060268221484},
+        {"geometry.rope_length", 0.6536329474411826}},
+       {"seesaw.left_arm=0.5"}},
   };
   const double accuracy = whatnext::explore::kDefaultAccuracy;
   for (const Case& c : cases) {
@@ -609,7 +644,8 @@ TEST(SweepAccuracy, HardMachinesAreWithinTheAccuracyOfATightRun) {
       if (std::isnan(first[i])) first[i] = e.t;
     }
     for (std::size_t i = 0; i < first.size(); ++i) {
-      ASSERT_EQ(std::isnan(o.first[i]), std::isnan(first[i])) << to_string(event_types()[i]) << ", " << keys[0];
+      ASSERT_EQ(std::isnan(o.first[i]), std::isnan(first[i]))
+          << to_string(event_types()[i]) << ", " << keys[0];
       if (!std::isnan(first[i])) {
         EXPECT_NEAR(o.first[i], first[i], accuracy) << to_string(event_types()[i]);
       }

@@ -179,9 +179,7 @@ bool touches(const Box& b, const std::vector<std::pair<double, double>>& line) {
   }
   return false;
 }
-bool overlaps(const Box& a, const Box& b) {
-  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
-}
+bool overlaps(const Box& a, const Box& b) { return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1; }
 bool within(const Box& a, const Box& b) {
   return a.x0 >= b.x0 && a.x1 <= b.x1 && a.y0 >= b.y0 && a.y1 <= b.y1;
 }
@@ -229,7 +227,8 @@ TEST(VizPlots, FigureSetDecodesWithSizeAndContent) {
   opts.title = "example 1";
   const auto files = write_run_figures(record(example(1)), dir.string(), opts);
   ASSERT_EQ(files.size(), 7u * 3u);
-  for (const char* name : {"sandbag_x", "sandbag_h", "trajectory", "angles", "balloon", "energy", "overview"}) {
+  for (const char* name :
+       {"sandbag_x", "sandbag_h", "trajectory", "angles", "balloon", "energy", "overview"}) {
     SCOPED_TRACE(name);
     const bool overview = std::string(name) == "overview";
     const Png png = read_png(dir / (std::string(name) + ".png"));
@@ -279,7 +278,8 @@ TEST(VizPlots, TextNeverHidesDataOrOtherText) {
 TEST(VizPlots, AxisTitleClearsTheTickNumbers) {
   std::vector<std::pair<std::string, Scenario>> runs;
   for (int n = 1; n <= 4; ++n) runs.emplace_back("example " + std::to_string(n), example(n));
-  runs.emplace_back("radio", build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml")));
+  runs.emplace_back("radio",
+                    build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml")));
   int panels = 0;
   for (const auto& [name, sc] : runs) {
     SCOPED_TRACE(name);
@@ -335,7 +335,8 @@ TEST(VizPlots, AxisTitleClearsTheTickNumbers) {
 // A long input name shrinks the titles that would not fit; the titles of one page then share that
 // size (with the radio example's path, three of the overview's six titles were smaller).
 TEST(VizPlots, TitlesOfAPageShareOneSize) {
-  const Scenario radio = build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"));
+  const Scenario radio =
+      build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"));
   FigureOptions opts;
   opts.formats = {Format::png};
   opts.title = "examples/example1-radio.toml";
@@ -494,8 +495,7 @@ TEST(VizPlots, IntegratorComparisonAndBadInput) {
   const Png png = read_png(dir / "compare_integrator.png");
   EXPECT_EQ(png.width, 400);
   EXPECT_GT(png.count({214, 39, 40}), 30);  // the fixed-step energy curve
-  EXPECT_THROW(write_integrator_comparison(example(1), IntegratorKind::adaptive, 0.001,
-                                           dir.string(), opts),
+  EXPECT_THROW(write_integrator_comparison(example(1), IntegratorKind::adaptive, 0.001, dir.string(), opts),
                InputError);
   EXPECT_THROW(write_run_figures(record(example(1)), "/proc/whatnext/no", opts), InputError);
   std::vector<Format> f;
@@ -593,8 +593,8 @@ TEST(VizAnimation, ProgressIsReportedForEveryFrame) {
 // across nearly all of the drawing area, in both directions.
 TEST(VizAnimation, TheMachineFillsThePicture) {
   Scenario radio_sc = build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"));
-  std::vector<Recording> runs{record(example(1)), record(example(2)), record(example(3)),
-                              record(example(4)), record(radio_sc)};
+  std::vector<Recording> runs{record(example(1)), record(example(2)), record(example(3)), record(example(4)),
+                              record(radio_sc)};
   for (const Recording& rec : runs) {
     SCOPED_TRACE(rec.t_end());
     AnimationOptions o;
@@ -635,7 +635,8 @@ TEST(VizAnimation, SlackRopeStaysOutOfTheBox) {
     for (int x = 0; x < view.width; ++x) {
       // Back to metres: inside the walls and more than a rope's width under the lid.
       const double px = (x - view.origin_x) / view.scale, ph = (view.origin_y - y) / view.scale;
-      if (px < m.hinge.x + wall / view.scale || px > m.hinge.x + 2.0 * m.lid_half_length - wall / view.scale) continue;
+      if (px < m.hinge.x + wall / view.scale || px > m.hinge.x + 2.0 * m.lid_half_length - wall / view.scale)
+        continue;
       const double lid_h = m.hinge.h + (px - m.hinge.x) * (edge.h - m.hinge.h) / (edge.x - m.hinge.x);
       if (ph > lid_h - wall / view.scale || ph < m.hinge.h - 2.0 * m.lid_half_length) continue;
       ++inside;
@@ -661,8 +662,8 @@ TEST(VizAnimation, SlackRopeHangsFreeOfTheOpenLid) {
     if (e.type == EventType::lid_open) open = e.t;
   }
   ASSERT_GT(open, 0.0);
-  for (const auto& [rec, t] : {std::pair<const Recording*, double>{&ex1, open}, {&radio, open + 0.05},
-                               {&radio, open + 0.25}}) {
+  for (const auto& [rec, t] :
+       {std::pair<const Recording*, double>{&ex1, open}, {&radio, open + 0.05}, {&radio, open + 0.25}}) {
     SCOPED_TRACE(t);
     const Machine& m = rec->scenario.machine;
     const View view = make_view(*rec, 480, 0);
@@ -691,7 +692,8 @@ TEST(VizAnimation, SlackRopeHangsFreeOfTheOpenLid) {
 // With the radio, the lid latches at lid_open and the sandbag flies free; the seesaw keeps its
 // angle, and the arm the length it had (it does not shrink back to a stub).
 TEST(VizAnimation, ArmKeepsItsLengthAfterTheRadiosLatch) {
-  const Recording rec = record(build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml")));
+  const Recording rec =
+      record(build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml")));
   const View view = make_view(rec, 480, 0);
   double latch = -1.0;
   for (const Event& e : rec.result.events) {
@@ -757,7 +759,8 @@ TEST(VizAnimation, RopeIsNeverDrawnLongerThanItself) {
     const double span = geo.span(s.phi_s, s.phi_l);
     const Vec2 r = geo.seesaw_end(s.phi_s), e = geo.lid_edge(s.phi_l);
     if (s.t < latch) continue;
-    EXPECT_LE(polyline_length(path), m.rope_length + 1e-9) << polyline_length(path) - m.rope_length << " m too long";
+    EXPECT_LE(polyline_length(path), m.rope_length + 1e-9)
+        << polyline_length(path) - m.rope_length << " m too long";
     widest = std::max(widest, span);
     if (span > m.rope_length + 1e-6) {
       ++hanging;
@@ -804,7 +807,8 @@ TEST(VizAnimation, LetGoRopeHangsFromTheLid) {
   int on_chord = 0;
   for (int k = 20; k <= 80; k += 2) on_chord += dark(r + (k / 100.0) * (e - r));
   EXPECT_EQ(on_chord, 0);
-  for (double below : {0.1, 0.3, 0.5}) EXPECT_TRUE(dark(e - Vec2{0.0, below})) << below << " m below the lid's edge";
+  for (double below : {0.1, 0.3, 0.5})
+    EXPECT_TRUE(dark(e - Vec2{0.0, below})) << below << " m below the lid's edge";
 }
 
 // Before the latch the drawing takes the rope's ends where the model puts them, and the model keeps
@@ -813,9 +817,13 @@ TEST(VizAnimation, LetGoRopeHangsFromTheLid) {
 // angles interpolated, may have them farther apart, but by 3.3e-5 m at most (example 3): a
 // hundredth of a pixel.
 TEST(VizAnimation, BeforeTheLatchTheRopeIsAsLongAsItself) {
-  std::vector<Recording> runs{record(example(1)), record(example(2)), record(example(3)), record(example(4)),
-                              record(build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"))),
-                              heavy_radio()};
+  std::vector<Recording> runs{
+      record(example(1)),
+      record(example(2)),
+      record(example(3)),
+      record(example(4)),
+      record(build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"))),
+      heavy_radio()};
   for (const Recording& rec : runs) {
     const Machine& m = rec.scenario.machine;
     const RopeGeometry geo(m);
@@ -886,12 +894,12 @@ TEST(VizAnimation, GifDecodesAndShowsTheSandbagWhereTheSimulationPutsIt) {
     const int x = static_cast<int>(p.x), y = static_cast<int>(p.y);
     ASSERT_TRUE(x >= 0 && x < o.width && y >= view.top && y < view.bottom) << "t = " << f.t;
     const Rgb c = gif.frames[i][y * o.width + x];
-    EXPECT_TRUE(same(c, kSandbagColour)) << "frame " << i << " t = " << f.t << " at " << x << ","
-                                         << y << ": " << int(c.r) << "," << int(c.g) << "," << int(c.b);
+    EXPECT_TRUE(same(c, kSandbagColour)) << "frame " << i << " t = " << f.t << " at " << x << "," << y << ": "
+                                         << int(c.r) << "," << int(c.g) << "," << int(c.b);
     // ... and not where it was at the start (the frame really moved).
     const Pixel p0 = to_pixel(view, {frames[0].state.x, frames[0].state.h});
-    EXPECT_FALSE(same(gif.frames[i][static_cast<int>(p0.y) * o.width + static_cast<int>(p0.x)],
-                      kSandbagColour));
+    EXPECT_FALSE(
+        same(gif.frames[i][static_cast<int>(p0.y) * o.width + static_cast<int>(p0.x)], kSandbagColour));
     ++probed;
   }
   EXPECT_EQ(probed, 3);
@@ -945,14 +953,15 @@ TEST(VizAnimation, RopeIsStraightWhenTautAndSagsWhenSlack) {
 TEST(VizCli, RunWritesPlotsAndAnimationAndRejectsBadOptions) {
   const fs::path dir = fresh_dir("cli");
   const std::string cli = WHATNEXT_CLI;
-  const std::string ok = cli + " run --example 2 -q --plots " + (dir / "plots").string() +
-                         " --animate " + (dir / "ex2.gif").string() + " > /dev/null";
+  const std::string ok = cli + " run --example 2 -q --plots " + (dir / "plots").string() + " --animate " +
+                         (dir / "ex2.gif").string() + " > /dev/null";
   ASSERT_EQ(std::system(ok.c_str()), 0);
   EXPECT_TRUE(fs::exists(dir / "plots" / "overview.png"));
   EXPECT_EQ(read_gif(dir / "ex2.gif").width, AnimationOptions{}.width);
   const std::string bad = cli + " animate --example 2 --out " + (dir / "x.avi").string() + " 2> /dev/null";
   EXPECT_EQ(WEXITSTATUS(std::system(bad.c_str())), 2);
-  const std::string bad2 = cli + " plot --example 2 --out " + dir.string() + " --compare nothing 2> /dev/null";
+  const std::string bad2 =
+      cli + " plot --example 2 --out " + dir.string() + " --compare nothing 2> /dev/null";
   EXPECT_EQ(WEXITSTATUS(std::system(bad2.c_str())), 2);
   EXPECT_FALSE(fs::exists(dir / "x.avi"));
 }
@@ -966,8 +975,8 @@ TEST(VizCli, AnimateReportsProgressAndCapsTheGifFrameRate) {
   EXPECT_FALSE(fs::exists(dir / "fast.gif"));
   EXPECT_NE(slurp(dir / "fast.err").find("--fps"), std::string::npos);
   // Not a terminal: a line every 100 frames and one at the end.
-  const std::string ok = cli + " animate --example 2 --width 200 --out " + (dir / "ok.gif").string() +
-                         " > " + (dir / "ok.out").string() + " 2> " + (dir / "ok.err").string();
+  const std::string ok = cli + " animate --example 2 --width 200 --out " + (dir / "ok.gif").string() + " > " +
+                         (dir / "ok.out").string() + " 2> " + (dir / "ok.err").string();
   ASSERT_EQ(std::system(ok.c_str()), 0);
   const std::string err = slurp(dir / "ok.err"), out = slurp(dir / "ok.out");
   const int frames = std::stoi(out.substr(out.find(": ") + 2));

@@ -43,7 +43,7 @@ struct ConfigValue {
 
 class Config {
  public:
-  std::string source;  // shown in messages
+  std::string source;                                      // shown in messages
   std::map<std::string, ConfigValue, std::less<>> values;  // found by string_view too
   bool has(std::string_view key) const { return values.count(key) != 0; }
 };

@@ -40,7 +40,7 @@ struct Event {
   bool impact = false;         // velocities jumped under the impact law
   double energy_before = 0.0;  // machine energy just before and after the jump [J]
   double energy_after = 0.0;
-  Snapshot after;              // state right after the event
+  Snapshot after;  // state right after the event
   // How far t may be off for the integrator's tolerance alone [s] (adaptive runs; 0 where the
   // event is not found on a crossing): a slow crossing is an uncertain one. See Crossing.
   double time_uncertainty = 0.0;

@@ -59,9 +59,9 @@ class RopeGeometry {
   // (the other follows from the triangle, not from trigonometric functions).
   struct Linkage {
     double cos_s = 1.0, sin_s = 0.0, cos_l = 1.0, sin_l = 0.0;
-    Transfer transfer;       // k = dphiL/dphiS, k'
-    double ds = 0.0;         // 1/k = dphiS/dphiL
-    double dds = 0.0;        // d2phiS/dphiL2
+    Transfer transfer;  // k = dphiL/dphiS, k'
+    double ds = 0.0;    // 1/k = dphiS/dphiL
+    double dds = 0.0;   // d2phiS/dphiL2
     double phi_s() const { return std::atan2(sin_s, cos_s); }
     double phi_l() const { return std::atan2(sin_l, cos_l); }  // in (-pi, pi]: continuous
   };
@@ -72,8 +72,8 @@ class RopeGeometry {
   // From the lid's angle: the seesaw on a side of the line P-E (the chart in which a lid near
   // its dead centre, k -> infinity, moves smoothly). |cos rho| is clamped likewise.
   Linkage from_lid(double cos_l, double sin_l, int side, bool derivatives = true) const;
-  // Where the lid stands against the straight rope: < 0 below it (the physical branch, docs/model.md §3), 0 along
-  // it (the dead centre: the rope would touch the hinge), > 0 on the mirror side. Dimensionless.
+  // Where the lid stands against the straight rope: < 0 below it (the physical branch, docs/model.md §3), 0
+  // along it (the dead centre: the rope would touch the hinge), > 0 on the mirror side. Dimensionless.
   double lid_side_of_rope(Vec2 u_s, Vec2 u_l) const;
   double lid_side_of_rope(double phi_s, double phi_l) const {
     return lid_side_of_rope(polar(1.0, phi_s), polar(1.0, phi_l));

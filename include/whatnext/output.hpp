@@ -73,12 +73,13 @@ class AtomicFile {
     int_type overflow(int_type ch) override;
     int sync() override;
     std::streamsize xsputn(const char* s, std::streamsize n) override;
+
    private:
     bool drain();
     char buffer_[1 << 16];
   };
   std::string option_, path_, target_, tmp_, tmp_name_;
-  int dir_fd_ = -1;  // target's folder (the temporary's), for renameat and unlinkat
+  int dir_fd_ = -1;       // target's folder (the temporary's), for renameat and unlinkat
   bool through_ = false;  // written in place (no temporary)
   bool owns_fd_ = false;
   bool committed_ = false;

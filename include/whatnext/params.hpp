@@ -36,23 +36,23 @@ struct Machine {
   double helium_density = 0.18;   // [kg/m^3]
   double balloon_radius = 0.2;    // r_B [m]
   BalloonModel balloon_model = BalloonModel::program;
-  double gravity = 9.81;          // [m/s^2]
+  double gravity = 9.81;  // [m/s^2]
   // The radio: its switch (relative to the pivot) and the balloon's string, tied to the switch.
   // The balloon rises from the box's centre, (hinge.x + r_L, hinge.h + balloon height).
   Vec2 radio_switch{1.8, -0.36};
-  double string_length = 1.0;     // [m]
+  double string_length = 1.0;  // [m]
 
   // Extensions beyond the paper (docs/extensions.md). Every default is the paper's machine.
-  bool radio = false;                      // run on after lid_open until the radio switches on
-  double balloon_rubber_mass = 0.0;        // [kg]
-  double balloon_drag_coefficient = 0.0;   // Cd of quadratic air drag; 0: no drag
-  double pivot_damping = 0.0;              // viscous torque -c phiS' at the pivot [N m s/rad]
-  double lid_hinge_damping = 0.0;          // viscous torque -c phiL' at the lid hinge [N m s/rad]
+  bool radio = false;                     // run on after lid_open until the radio switches on
+  double balloon_rubber_mass = 0.0;       // [kg]
+  double balloon_drag_coefficient = 0.0;  // Cd of quadratic air drag; 0: no drag
+  double pivot_damping = 0.0;             // viscous torque -c phiS' at the pivot [N m s/rad]
+  double lid_hinge_damping = 0.0;         // viscous torque -c phiL' at the lid hinge [N m s/rad]
   double seesaw_left_arm = std::numeric_limits<double>::infinity();  // pivot to left end [m]
-  double seesaw_mass = 0.0;                // [kg]
-  double seesaw_inertia = 0.0;             // about the pivot [kg m^2]; > 0 makes the seesaw "heavy"
-  double seesaw_com_offset = 0.0;          // centre of mass along the bar, + towards r_H [m]
-  double rope_on_lid = 0.0;                // the rope's knot, from the hinge along the lid [m]; 0: the free edge
+  double seesaw_mass = 0.0;                                          // [kg]
+  double seesaw_inertia = 0.0;     // about the pivot [kg m^2]; > 0 makes the seesaw "heavy"
+  double seesaw_com_offset = 0.0;  // centre of mass along the bar, + towards r_H [m]
+  double rope_on_lid = 0.0;        // the rope's knot, from the hinge along the lid [m]; 0: the free edge
 
   // Where the rope is tied to the lid, from the hinge: a = 2 r_L at the free edge (the paper's).
   double rope_knot() const { return rope_on_lid > 0.0 ? rope_on_lid : 2.0 * lid_half_length; }
@@ -71,19 +71,19 @@ struct Machine {
 
 // Where everything starts. The lid starts at rest, the sandbag at rest.
 struct Start {
-  double sandbag_x = -0.3;     // [m], left of the pivot
-  double sandbag_h = 1.0;      // [m], above the left arm
-  double seesaw_angle = 0.0;   // phiS0 [rad], positive = left arm down
-  double lid_angle = 0.0;      // phiL0 [rad]; also the lid's lowest angle
+  double sandbag_x = -0.3;    // [m], left of the pivot
+  double sandbag_h = 1.0;     // [m], above the left arm
+  double seesaw_angle = 0.0;  // phiS0 [rad], positive = left arm down
+  double lid_angle = 0.0;     // phiL0 [rad]; also the lid's lowest angle
 };
 
 struct RunSettings {
   IntegratorKind integrator = IntegratorKind::adaptive;
-  double step = 1e-3;           // fixed step for euler/rk4 [s]
-  double tolerance = 1e-12;     // adaptive: absolute and relative error per step
+  double step = 1e-3;                   // fixed step for euler/rk4 [s]
+  double tolerance = 1e-12;             // adaptive: absolute and relative error per step
   double event_time_tolerance = 1e-12;  // adaptive: events are located to this [s] (not an input key)
-  double t_max = 5.0;           // [s]
-  double output_step = 1e-3;    // sampling of CSV/.dat rows [s]
+  double t_max = 5.0;                   // [s]
+  double output_step = 1e-3;            // sampling of CSV/.dat rows [s]
   ImpactLaw impact_law = ImpactLaw::rope;
   double vertical_margin = 0.9 * 3.14159265358979323846 / 180.0;  // [rad], pi/200 like the paper
 };

@@ -92,14 +92,14 @@ struct Snapshot {
   double phi_l = 0, dphi_l = 0, ddphi_l = 0;  // lid
   double balloon_h = 0, balloon_v = 0;        // balloon centre, from the hinge level
   double balloon_limit = 0, balloon_limit_rate = 0;
-  double tension = 0;                         // rope tension [N]
+  double tension = 0;  // rope tension [N]
   double sandbag_kinetic = 0, sandbag_potential = 0, lid_kinetic = 0, lid_potential = 0;
-  double normal_force = 0;                    // arm on the sandbag [N] (0 when off the arm)
-  double box_reaction = 0;                    // box on the resting lid [N m] (0 when swinging)
+  double normal_force = 0;  // arm on the sandbag [N] (0 when off the arm)
+  double box_reaction = 0;  // box on the resting lid [N m] (0 when swinging)
   // Energy ledger (docs/extensions.md). Potentials: zero at the pivot level (sandbag, seesaw), at
   // the hinge (lid) and, for the balloon's net lift, at the hinge level.
   double seesaw_kinetic = 0, seesaw_potential = 0, balloon_kinetic = 0, balloon_potential = 0;
-  double lost_impacts = 0, lost_balloon_catch = 0;           // booked at jumps
+  double lost_impacts = 0, lost_balloon_catch = 0;                         // booked at jumps
   double dissipated_pivot = 0, dissipated_hinge = 0, dissipated_drag = 0;  // integrated
   double lid_push_work = 0;  // work done on the balloon by the lid that does not feel it
   double initial_total = 0;

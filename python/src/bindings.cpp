@@ -94,13 +94,15 @@ MachineHandle with_set(const MachineHandle& base, const std::vector<std::string>
 py::tuple machine_state(const MachineHandle& m) {
   py::list values;
   for (const auto& [key, v] : m.config.values) {
-    values.append(py::make_tuple(key, static_cast<int>(v.type), v.number, v.text, v.pair[0], v.pair[1], v.origin));
+    values.append(
+        py::make_tuple(key, static_cast<int>(v.type), v.number, v.text, v.pair[0], v.pair[1], v.origin));
   }
   return py::make_tuple(1, m.config.source, values, m.origin, m.sets);
 }
 
 MachineHandle machine_from_state(const py::tuple& state) {
-  if (state.size() != 5 || state[0].cast<int>() != 1) throw std::runtime_error("whatnext: not a pickled Machine");
+  if (state.size() != 5 || state[0].cast<int>() != 1)
+    throw std::runtime_error("whatnext: not a pickled Machine");
   Config config;
   config.source = state[1].cast<std::string>();
   for (const py::handle item : state[2].cast<py::list>()) {
@@ -114,7 +116,8 @@ MachineHandle machine_from_state(const py::tuple& state) {
     v.origin = t[6].cast<std::string>();
     config.values[t[0].cast<std::string>()] = std::move(v);
   }
-  return make_machine(std::move(config), state[3].cast<std::string>(), state[4].cast<std::vector<std::string>>());
+  return make_machine(std::move(config), state[3].cast<std::string>(),
+                      state[4].cast<std::vector<std::string>>());
 }
 
 // The keys the input gives, in inputs.md's units (degrees for angles), as Python values.
@@ -181,11 +184,13 @@ py::array adopt(std::vector<T>&& v, py::dtype dtype) {
 py::array name_array(const std::vector<std::string_view>& names) {
   std::size_t width = 1;
   for (std::string_view s : names) width = std::max(width, s.size());
-  py::array a(py::dtype(fmt::format("<U{}", width)), std::vector<py::ssize_t>{static_cast<py::ssize_t>(names.size())});
+  py::array a(py::dtype(fmt::format("<U{}", width)),
+              std::vector<py::ssize_t>{static_cast<py::ssize_t>(names.size())});
   auto* p = static_cast<std::uint32_t*>(a.mutable_data());
   std::fill(p, p + names.size() * width, 0u);
   for (std::size_t i = 0; i < names.size(); ++i) {
-    for (std::size_t j = 0; j < names[i].size(); ++j) p[i * width + j] = static_cast<unsigned char>(names[i][j]);
+    for (std::size_t j = 0; j < names[i].size(); ++j)
+      p[i * width + j] = static_cast<unsigned char>(names[i][j]);
   }
   return a;
 }
@@ -202,7 +207,8 @@ py::array text_array(const std::vector<std::string>& texts) {
     if (!decoded[i]) throw py::error_already_set();
     width = std::max(width, static_cast<std::size_t>(PyUnicode_GetLength(decoded[i].ptr())));
   }
-  py::array a(py::dtype(fmt::format("<U{}", width)), std::vector<py::ssize_t>{static_cast<py::ssize_t>(texts.size())});
+  py::array a(py::dtype(fmt::format("<U{}", width)),
+              std::vector<py::ssize_t>{static_cast<py::ssize_t>(texts.size())});
   auto* p = static_cast<Py_UCS4*>(a.mutable_data());
   std::fill(p, p + texts.size() * width, Py_UCS4{0});
   for (std::size_t i = 0; i < texts.size(); ++i) {
@@ -286,7 +292,8 @@ py::dict state_of(const Snapshot& s) {
   d["t_s"] = s.t;
   d["mode"] = py::str(std::string(to_string(s.mode)));
   d["rope_taut"] = s.rope_taut;
-  for (std::size_t c = 0; c < kNumericCount; ++c) d[py::str(names[std::size(kLeading) + c])] = kStateColumns[c].value(s);
+  for (std::size_t c = 0; c < kNumericCount; ++c)
+    d[py::str(names[std::size(kLeading) + c])] = kStateColumns[c].value(s);
   return d;
 }
 
@@ -354,8 +361,9 @@ void check_sweep_keys(const std::vector<std::string>& keys) {
   for (const std::string& k : keys) {
     if (!find_key(k)) {
       const std::string near = nearest_key(k);
-      throw InputError(near.empty() ? fmt::format("sweep: unknown key '{}'", printable(k))
-                                    : fmt::format("sweep: unknown key '{}' (did you mean '{}'?)", printable(k), near));
+      throw InputError(near.empty()
+                           ? fmt::format("sweep: unknown key '{}'", printable(k))
+                           : fmt::format("sweep: unknown key '{}' (did you mean '{}'?)", printable(k), near));
     }
     try {
       Config probe;
@@ -372,8 +380,8 @@ void check_sweep_keys(const std::vector<std::string>& keys) {
 // not depend on the thread count. Each machine runs to the event-time accuracy given
 // (explore::apply_accuracy; none: the machine's own run settings).
 std::vector<explore::Outcome> run_points(const MachineHandle& m, const std::vector<std::string>& keys,
-                                         std::int64_t first, std::int64_t n, const PointFn& point, int threads,
-                                         std::optional<double> accuracy_given) {
+                                         std::int64_t first, std::int64_t n, const PointFn& point,
+                                         int threads, std::optional<double> accuracy_given) {
   if (accuracy_given) explore::check_accuracy(*accuracy_given, "sweep: accuracy");
   const double accuracy = accuracy_given.value_or(0.0);
   std::vector<explore::Outcome> rows(static_cast<std::size_t>(n));
@@ -450,7 +458,8 @@ py::dict sweep_columns(const std::vector<std::string>& keys, std::int64_t first,
   }
   py::dict out;
   out["index"] = adopt(std::move(index), py::dtype::of<std::int64_t>());
-  for (std::size_t k = 0; k < keys.size(); ++k) out[py::str(keys[k])] = adopt(std::move(values[k]), py::dtype::of<double>());
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    out[py::str(keys[k])] = adopt(std::move(values[k]), py::dtype::of<double>());
   out["outcome"] = name_array(outcome);
   out["outcome_t"] = adopt(std::move(outcome_t), py::dtype::of<double>());
   out["final_r"] = adopt(std::move(final_r), py::dtype::of<double>());
@@ -475,18 +484,21 @@ py::dict sweep_grid(const MachineHandle& m, const std::vector<std::string>& keys
   std::int64_t n = 1;
   for (std::size_t k = 0; k < keys.size(); ++k) {
     if (axes[k].ndim() != 1 || axes[k].size() == 0) {
-      throw InputError(fmt::format("sweep: {} needs a one-dimensional sequence of at least one value", keys[k]));
+      throw InputError(
+          fmt::format("sweep: {} needs a one-dimensional sequence of at least one value", keys[k]));
     }
     grid[k].assign(axes[k].data(), axes[k].data() + axes[k].size());
     const auto size = static_cast<std::int64_t>(grid[k].size());
     if (n > explore::kMaxMachines / size) {
-      throw InputError(fmt::format("sweep: the grid has more than {} machines; use fewer values", explore::kMaxMachines));
+      throw InputError(
+          fmt::format("sweep: the grid has more than {} machines; use fewer values", explore::kMaxMachines));
     }
     n *= size;
   }
   if (stop < 0) stop = n;
   if (start < 0 || start > stop || stop > n) {
-    throw std::invalid_argument(fmt::format("sweep: machines {}..{} are not within the grid's {}", start, stop, n));
+    throw std::invalid_argument(
+        fmt::format("sweep: machines {}..{} are not within the grid's {}", start, stop, n));
   }
   const PointFn point = [&grid](std::int64_t i, double* out) {
     for (std::size_t d = grid.size(); d-- > 0;) {
@@ -526,7 +538,8 @@ py::array lhs_points(const std::vector<std::string>& keys, const std::vector<dou
   explore::Plan plan;
   plan.samples = samples;
   plan.seed = seed;
-  for (std::size_t k = 0; k < keys.size(); ++k) plan.ranges.push_back(explore::Range{keys[k], lo[k], hi[k], 0});
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    plan.ranges.push_back(explore::Range{keys[k], lo[k], hi[k], 0});
   const explore::Machines machines(plan);
   py::array_t<double> out({static_cast<py::ssize_t>(samples), static_cast<py::ssize_t>(keys.size())});
   double* p = out.mutable_data();
@@ -542,14 +555,14 @@ py::bytes sweep_csv(const std::vector<std::string>& keys, const py::dict& column
     if (!columns.contains(name)) throw std::invalid_argument("to_csv: no column " + name);
     return py::array(columns[py::str(name)]);
   };
-  auto numbers = [&](const std::string& name) {
-    return Axis::ensure(column(name));
-  };
-  const auto index = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(column("index"));
+  auto numbers = [&](const std::string& name) { return Axis::ensure(column(name)); };
+  const auto index =
+      py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(column("index"));
   const std::int64_t n = index.size();
   std::vector<Axis> values;
   for (const std::string& k : keys) values.push_back(numbers(k));
-  const Axis outcome_t = numbers("outcome_t"), final_r = numbers("final_r"), final_phi = numbers("final_phi_l_deg");
+  const Axis outcome_t = numbers("outcome_t"), final_r = numbers("final_r"),
+             final_phi = numbers("final_phi_l_deg");
   std::vector<Axis> first;
   for (EventType t : types) first.push_back(numbers(std::string(to_string(t))));
   const py::list outcome = column("outcome").attr("tolist")();
@@ -568,7 +581,8 @@ py::bytes sweep_csv(const std::vector<std::string>& keys, const py::dict& column
     o.error = error[static_cast<std::size_t>(i)].cast<std::string>();
     o.first.assign(types.size(), kNaN);
     if (o.valid) {
-      const auto it = std::find_if(types.begin(), types.end(), [&](EventType t) { return to_string(t) == name; });
+      const auto it =
+          std::find_if(types.begin(), types.end(), [&](EventType t) { return to_string(t) == name; });
       if (it == types.end()) throw std::invalid_argument("to_csv: unknown outcome " + name);
       o.outcome = *it;
       o.outcome_t = outcome_t.at(i), o.final_r = final_r.at(i), o.final_phi_l_deg = final_phi.at(i);
@@ -583,7 +597,8 @@ py::bytes sweep_csv(const std::vector<std::string>& keys, const py::dict& column
 // The n values of the CLI's --vary KEY=a:b:n grid, computed by the library (the same doubles).
 py::array grid_values(double a, double b, int n) {
   if (!(std::isfinite(a) && std::isfinite(b) && a <= b) || n < 1) {
-    throw InputError(fmt::format("grid: needs finite a <= b and n >= 1 (given a = {}, b = {}, n = {})", a, b, n));
+    throw InputError(
+        fmt::format("grid: needs finite a <= b and n >= 1 (given a = {}, b = {}, n = {})", a, b, n));
   }
   explore::Plan plan;
   plan.ranges.push_back(explore::Range{"grid", a, b, n});
@@ -615,15 +630,21 @@ PYBIND11_MODULE(_core, mod) {
                              [](const MachineHandle& m) { return m.scenario.machine.seesaw_right_arm; })
       .def(py::pickle(&machine_state, &machine_from_state));
 
-  mod.def("example", [](int n) { return make_machine(example_config(n), fmt::format("example {}", n)); },
-          py::arg("n"));
-  mod.def("load", [](const std::string& path) { return make_machine(load_config_file(path), path); },
-          py::arg("path"));
-  mod.def("parse", [](const std::string& text, const std::string& source) {
-    return make_machine(parse_toml(text, source), source);
-  }, py::arg("text"), py::arg("source"));
-  mod.def("defaults", [](const std::string& source) { return make_machine(parse_toml("", source), source); },
-          py::arg("source"));
+  mod.def(
+      "example", [](int n) { return make_machine(example_config(n), fmt::format("example {}", n)); },
+      py::arg("n"));
+  mod.def(
+      "load", [](const std::string& path) { return make_machine(load_config_file(path), path); },
+      py::arg("path"));
+  mod.def(
+      "parse",
+      [](const std::string& text, const std::string& source) {
+        return make_machine(parse_toml(text, source), source);
+      },
+      py::arg("text"), py::arg("source"));
+  mod.def(
+      "defaults", [](const std::string& source) { return make_machine(parse_toml("", source), source); },
+      py::arg("source"));
   mod.def("known_keys", [] {
     py::list out;
     for (const KeySpec& k : known_keys()) {
@@ -634,8 +655,8 @@ PYBIND11_MODULE(_core, mod) {
   mod.def("simulate", &run_machine, py::arg("machine"), py::arg("samples"));
   mod.def("sweep_grid", &sweep_grid, py::arg("machine"), py::arg("keys"), py::arg("axes"), py::arg("threads"),
           py::arg("accuracy"), py::arg("start"), py::arg("stop"));
-  mod.def("sweep_points", &sweep_points, py::arg("machine"), py::arg("keys"), py::arg("points"), py::arg("first"),
-          py::arg("threads"), py::arg("accuracy"));
+  mod.def("sweep_points", &sweep_points, py::arg("machine"), py::arg("keys"), py::arg("points"),
+          py::arg("first"), py::arg("threads"), py::arg("accuracy"));
   mod.def("lhs_points", &lhs_points, py::arg("keys"), py::arg("lo"), py::arg("hi"), py::arg("samples"),
           py::arg("seed"));
   mod.def("sweep_csv", &sweep_csv, py::arg("keys"), py::arg("columns"));

@@ -153,7 +153,8 @@ Impact solve_impact(const System& sys, Set touching, const Choice& choice) {
     for (int i = 0; i < sys.contacts; ++i) {
       if (!has(touching, i)) continue;
       cand.rate[i] = has(s, i) ? 0.0 : sys.rate(i, cand.velocity);
-      if (has(s, i) ? cand.impulse[i] < -choice.impulse_tol : cand.rate[i] < -choice.closing_tol) return false;
+      if (has(s, i) ? cand.impulse[i] < -choice.impulse_tol : cand.rate[i] < -choice.closing_tol)
+        return false;
     }
     cand.ok = true;
     cand.impulsive = s;

@@ -25,9 +25,9 @@ constexpr bool has(Set s, int i) { return (s >> i) & 1u; }
 
 struct System {
   int coords = 0, contacts = 0;
-  Coords mass{};      // diagonal of the mass matrix; 0: massless
-  Coords force{};     // generalized forces (gravity, dampers) at this state
-  Coords velocity{};  // generalized velocities
+  Coords mass{};                              // diagonal of the mass matrix; 0: massless
+  Coords force{};                             // generalized forces (gravity, dampers) at this state
+  Coords velocity{};                          // generalized velocities
   std::array<Coords, kMaxContacts> normal{};  // W_i = d gap_i / dq
   PerContact curvature{};  // gap_i'' = W_i . q'' + curvature_i (the velocity-product terms)
   double rate(int i, const Coords& v) const;  // gap_i' = W_i . v
@@ -47,11 +47,11 @@ struct Choice {
 };
 
 struct Impact {
-  bool ok = false;      // false: no set satisfies the conditions (degenerate geometry)
-  Set impulsive = 0;    // contacts that end the impact closed (zero gap rate)
+  bool ok = false;       // false: no set satisfies the conditions (degenerate geometry)
+  Set impulsive = 0;     // contacts that end the impact closed (zero gap rate)
   PerContact impulse{};  // >= 0 on impulsive contacts
-  Coords velocity{};    // after the impact
-  PerContact rate{};    // gap rates after the impact, of every touching contact
+  Coords velocity{};     // after the impact
+  PerContact rate{};     // gap rates after the impact, of every touching contact
 };
 
 // Perfectly inelastic impact of the touching contacts: closed ones get impulses >= 0 and end with
@@ -61,7 +61,7 @@ Impact solve_impact(const System& sys, Set touching, const Choice& choice);
 struct Motion {
   bool ok = false;
   Set active = 0;
-  PerContact force{};         // multipliers of the active contacts (>= 0)
+  PerContact force{};  // multipliers of the active contacts (>= 0)
   Coords acceleration{};
   PerContact gap_acceleration{};  // of every candidate (0 on active ones)
 };

@@ -1,4 +1,5 @@
-// The contact decision at an event: which contacts touch, the impact on velocities, the motion on accelerations, and the report of what changed.
+// The contact decision at an event: which contacts touch, the impact on velocities, the motion on
+// accelerations, and the report of what changed.
 #include "model.hpp"
 
 #include <cmath>
@@ -29,8 +30,8 @@ contact::Set Model::touching(const Discrete& d, const Kinematics& k) const {
   return s;
 }
 
-contact::Choice Model::choice(const Discrete& d, const contact::System& sys, const Kinematics& k,
-                              int trigger, Trend trend) const {
+contact::Choice Model::choice(const Discrete& d, const contact::System& sys, const Kinematics& k, int trigger,
+                              Trend trend) const {
   contact::Choice c;
   // Where the physics leaves a choice (only a massless seesaw does: contacts with zero force
   // either way), each contact stays as it was, the one that triggered the event goes the way it
@@ -69,7 +70,6 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
   return c;
 }
 
-
 Kinematics Model::touch_exactly(const Discrete& d, contact::Set touch, Kinematics k) const {
   using contact::has;
   const bool resting = has(touch, kLid);
@@ -83,8 +83,8 @@ Kinematics Model::touch_exactly(const Discrete& d, contact::Set touch, Kinematic
         k.phi_l = phi;
         k.cos_l = std::cos(phi), k.sin_l = std::sin(phi);
       }
-    } else if (rope_.seesaw_angle_for(k.phi_l, RopeGeometry::side_of(rope_.lid_edge(k.phi_l),
-                                                                       rope_.seesaw_end(k.phi_s)), phi) &&
+    } else if (rope_.seesaw_angle_for(
+                   k.phi_l, RopeGeometry::side_of(rope_.lid_edge(k.phi_l), rope_.seesaw_end(k.phi_s)), phi) &&
                std::fabs(phi - k.phi_s) < 1e-3) {
       // The lid rests: the seesaw turns onto the straight rope, a massless one with the sandbag
       // it carries (turned about the pivot with it).
@@ -143,7 +143,8 @@ void Model::resolve(HybridState& hs, const Kinematics& k_event, int trigger, Tre
   report_changes(hs, x, before, out);
 }
 
-Model::Decision Model::decide_touching(const Discrete& d, const Kinematics& k_event, int trigger, Trend trend) const {
+Model::Decision Model::decide_touching(const Discrete& d, const Kinematics& k_event, int trigger,
+                                       Trend trend) const {
   Decision x;
   x.trigger = trigger;
   x.trend = trend;
@@ -180,7 +181,9 @@ void Model::apply_impact_law(Decision& x) const {
   const ImpactLaw chosen = sc_.run.impact_law;
   if (!x.impulsive(kRope) || chosen == ImpactLaw::rope) return;
   if (x.impulsive(kLid)) {
-    x.law_note = "the jerk also presses the lid onto the box, which no single law covers: perfectly inelastic (rope law)";
+    x.law_note =
+        "the jerk also presses the lid onto the box, which no single law covers: perfectly inelastic (rope "
+        "law)";
     return;
   }
   contact::Coords ul = x.u;
@@ -197,8 +200,9 @@ void Model::apply_impact_law(Decision& x) const {
     ok = ok && rl[i] >= -x.ch.closing_tol;
   }
   if (!ok) {
-    x.law_note = "the law would drive a touching contact (the lid into the box, or the sandbag into the arm): "
-                 "perfectly inelastic (rope law)";
+    x.law_note =
+        "the law would drive a touching contact (the lid into the box, or the sandbag into the arm): "
+        "perfectly inelastic (rope law)";
     return;
   }
   x.u = ul, x.rate = rl;

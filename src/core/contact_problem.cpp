@@ -1,4 +1,5 @@
-// The contact problem of one instant, in the coordinates (x, h, phiS, phiL), and the forces of the closed contacts.
+// The contact problem of one instant, in the coordinates (x, h, phiS, phiL), and the forces of the closed
+// contacts.
 #include "model.hpp"
 
 #include <cmath>

@@ -35,10 +35,12 @@ Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr,
   return remember(swing_memo_, flags, r, phi_s, dr, dphi_s, compute_swing(on, taut, r, phi_s, dr, dphi_s));
 }
 
-Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side) const {
+Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l,
+                                    int side) const {
   const int flags = (on ? 1 : 0) | (side > 0 ? 2 : 0);
   if (recall(lid_swing_memo_, flags, r, phi_l, dr, dphi_l)) return lid_swing_memo_.value;
-  return remember(lid_swing_memo_, flags, r, phi_l, dr, dphi_l, compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side));
+  return remember(lid_swing_memo_, flags, r, phi_l, dr, dphi_l,
+                  compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side));
 }
 
 Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, double dr,
@@ -128,8 +130,9 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     if (d.heavy && !(d.taut && d.lid_resting)) {  // the unloaded heavy seesaw swings
       dy[slot::seesaw_phi] = y[slot::seesaw_dphi];
       dy[slot::seesaw_dphi] =
-          d.lid_chart && d.taut ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side).ddphi_l
-                      : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi]).ddphi_s;
+          d.lid_chart && d.taut
+              ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side).ddphi_l
+              : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi]).ddphi_s;
     }
   }
   if (!d.balloon_stuck) {

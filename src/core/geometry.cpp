@@ -11,7 +11,7 @@ constexpr double kPi = 2.0 * kHalfPi;
 // atan2(R - H) - sigma leaves (-pi, pi] only when R is left of the hinge and below it (steep
 // starts); the lid's angle is continuous, so bring it back.
 double wrap(double a) { return a <= -kPi ? a + 2.0 * kPi : (a > kPi ? a - 2.0 * kPi : a); }
-}
+}  // namespace
 
 double RopeGeometry::gap(double phi_s, double phi_l) const {
   const Vec2 d = seesaw_end(phi_s) - lid_edge(phi_l);
@@ -107,8 +107,8 @@ RopeGeometry::Partials RopeGeometry::partials_at(Vec2 r, Vec2 el) const {
   const Vec2 d = r - (hinge_ + el);
   const Vec2 r_s{-r.h, r.x};
   const Vec2 e_l{-el.h, el.x};
-  return {2.0 * dot(d, r_s), -2.0 * dot(d, e_l), 2.0 * (dot(r_s, r_s) - dot(d, r)),
-          -2.0 * dot(r_s, e_l), 2.0 * (dot(e_l, e_l) + dot(d, el))};
+  return {2.0 * dot(d, r_s), -2.0 * dot(d, e_l), 2.0 * (dot(r_s, r_s) - dot(d, r)), -2.0 * dot(r_s, e_l),
+          2.0 * (dot(e_l, e_l) + dot(d, el))};
 }
 
 Transfer RopeGeometry::transfer_at(Vec2 r, Vec2 el) const {
@@ -172,13 +172,9 @@ double RopeGeometry::max_span(double phi_l_min) const {
   return best;
 }
 
-double BalloonLimit::height_at(double cos_l, double sin_l) const {
-  return -radius * cos_l / (1.0 + sin_l);
-}
+double BalloonLimit::height_at(double cos_l, double sin_l) const { return -radius * cos_l / (1.0 + sin_l); }
 
-double BalloonLimit::rate_at(double sin_l, double dphi_l) const {
-  return radius * dphi_l / (1.0 + sin_l);
-}
+double BalloonLimit::rate_at(double sin_l, double dphi_l) const { return radius * dphi_l / (1.0 + sin_l); }
 
 double BalloonLimit::acceleration_at(double cos_l, double sin_l, double dphi_l, double ddphi_l) const {
   const double s = 1.0 + sin_l;

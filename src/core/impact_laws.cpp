@@ -1,4 +1,5 @@
-// The paper's four impact laws: the velocities after the rope's jerk under each (docs/model.md, "Impact laws").
+// The paper's four impact laws: the velocities after the rope's jerk under each (docs/model.md, "Impact
+// laws").
 #include "model.hpp"
 
 #include <cmath>
@@ -38,7 +39,10 @@ bool Model::law_velocity(const Kinematics& k, bool bag, contact::Coords& u, std:
     case ImpactLaw::linear_momentum: {
       if (!bag) {  // no sandbag in the impact: nothing for this law to say; inelastic instead
         dphi_s = rope_num / rope_den;
-        if (note) *note = "no sandbag takes part in this jerk, so linear momentum says nothing: perfectly inelastic (rope law)";
+        if (note)
+          *note =
+              "no sandbag takes part in this jerk, so linear momentum says nothing: perfectly inelastic "
+              "(rope law)";
         break;
       }
       // Linear momentum of sandbag and lid centre of mass before = after (2x2 in r', phiS').

@@ -69,7 +69,6 @@ bool finite(const State& y) {
 }
 }  // namespace detail
 
-
 // Output times n * step; next is the index of the next sample still to be written.
 struct OutputGrid {
   double step = 0.0;  // <= 0: no samples
@@ -136,19 +135,16 @@ class StepGrowth : public boost::numeric::odeint::default_step_adjuster<double, 
 // root bracket share the stepper's dense-output state; cut into functions they would pass a dozen
 // references to each other, and this is the hot loop the benchmarks time.
 template <class System, class Sample>
-Crossing integrate_adaptive(const System& sys, typename System::state_type& y, double& t,
-                            double t_end, double tolerance, double max_dt, double time_tolerance,
-                            std::int64_t max_steps, OutputGrid& grid, Sample&& sample,
-                            StepStats& stats) {
+Crossing integrate_adaptive(const System& sys, typename System::state_type& y, double& t, double t_end,
+                            double tolerance, double max_dt, double time_tolerance, std::int64_t max_steps,
+                            OutputGrid& grid, Sample&& sample, StepStats& stats) {
   namespace odeint = boost::numeric::odeint;
   using state_type = typename System::state_type;
   using guard_type = typename System::guard_type;
   using error_stepper = odeint::runge_kutta_dopri5<state_type>;
-  using controlled =
-      odeint::controlled_runge_kutta<error_stepper, odeint::default_error_checker<double, odeint::array_algebra,
-                                                                                   odeint::default_operations>,
-                                     detail::StepGrowth, odeint::initially_resizer,
-                                     odeint::explicit_error_stepper_fsal_tag>;
+  using controlled = odeint::controlled_runge_kutta<
+      error_stepper, odeint::default_error_checker<double, odeint::array_algebra, odeint::default_operations>,
+      detail::StepGrowth, odeint::initially_resizer, odeint::explicit_error_stepper_fsal_tag>;
   odeint::dense_output_runge_kutta<controlled> stepper(
       controlled(typename controlled::error_checker_type(tolerance, tolerance), detail::StepGrowth(max_dt)));
   double dt0 = std::fmin(max_dt, std::fmax(1e-6, 0.05 * std::pow(tolerance, 0.2)));
@@ -261,7 +257,8 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
           auto f = [&](double t2) { return guard_at(i, t2); };
           const auto bracket = boost::math::tools::toms748_solve(f, ta, tt, g0[i], gv, stop, iterations);
           const double root = f(bracket.first) >= 0.0 ? bracket.first : bracket.second;
-          if (hit < 0 || root < t_hit) hit = static_cast<int>(i), t_hit = root, rate_hit = (gv - g0[i]) / (tt - ta);
+          if (hit < 0 || root < t_hit)
+            hit = static_cast<int>(i), t_hit = root, rate_hit = (gv - g0[i]) / (tt - ta);
           break;
         }
       }
@@ -293,7 +290,8 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
       detail::sample_until<System>(grid, t_hit, eval, sample);
       stepper.calc_state(t_hit, y);
       t = t_hit;
-      return {Crossing::event, hit, t_hit, rate_hit, detail::time_uncertainty(sys, y, hit, tolerance, rate_hit)};
+      return {Crossing::event, hit, t_hit, rate_hit,
+              detail::time_uncertainty(sys, y, hit, tolerance, rate_hit)};
     }
     detail::sample_until<System>(grid, tb, eval, sample);
     g0 = g1;
@@ -312,9 +310,8 @@ Crossing integrate_adaptive(const System& sys, typename System::state_type& y, d
 // the step's linear interpolation, so a contact is not entered by a whole step's overshoot.
 // Samples are the step-end states at or after each grid time, one per step, and the start.
 template <class Stepper, class System, class Sample>
-Crossing integrate_fixed(const System& sys, typename System::state_type& y, double& t,
-                         double t_end, double dt, OutputGrid& grid, Sample&& sample,
-                         StepStats& stats) {
+Crossing integrate_fixed(const System& sys, typename System::state_type& y, double& t, double t_end,
+                         double dt, OutputGrid& grid, Sample&& sample, StepStats& stats) {
   using guard_type = typename System::guard_type;
   Stepper stepper;
   guard_type g0, g1;

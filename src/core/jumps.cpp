@@ -100,7 +100,6 @@ void Model::place(HybridState& hs, const Kinematics& k) const {
   hs.y[slot::seesaw_dphi] = rate;
 }
 
-
 Event Model::make_event(EventType type, HybridState& hs, Mode before, Mode after) const {
   book(hs);
   Event e;
@@ -117,8 +116,8 @@ void Model::free_balloon(HybridState& hs, const Kinematics& k, double v) const {
   hs.y[slot::balloon_v] = v;
 }
 
-void Model::release_balloon_if_lid_jumped(HybridState& hs, double limit_rate_before,
-                                          const Books& opened, std::vector<Event>& out) const {
+void Model::release_balloon_if_lid_jumped(HybridState& hs, double limit_rate_before, const Books& opened,
+                                          std::vector<Event>& out) const {
   if (!hs.d.balloon_stuck) return;
   const Kinematics k = kinematics(hs.d, hs.y);
   const double rate = limit_.rate(k.phi_l, k.dphi_l);
@@ -148,7 +147,8 @@ void Model::balloon_meets_lid(HybridState& hs, const Kinematics& k0, double limi
   hs.d.balloon_stuck = true;
   out.push_back(make_event(EventType::balloon_caught, hs, before, before));
   // Caught by a lid that accelerates away faster than the balloon can: it touches and parts.
-  const double ahead = limit_.acceleration(k0.phi_l, k0.dphi_l, k0.ddphi_l) - balloon_acceleration(limit_rate0);
+  const double ahead =
+      limit_.acceleration(k0.phi_l, k0.dphi_l, k0.ddphi_l) - balloon_acceleration(limit_rate0);
   if (ahead > 0.0) {
     free_balloon(hs, k0, limit_rate0);
     hs.d.armed[kGuardBalloon] = {2, -0.5 * ahead, guard_floor(kGuardBalloon, hs.d)};
@@ -217,9 +217,7 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
       if (!hs.d.taut && !rope_.lid_below_rope(k0.phi_s, k0.phi_l)) return stop(EventType::rope_locked);
       resolve(hs, k0, kRope, hs.d.taut ? Trend::releasing : Trend::closing, out);
       break;
-    case kGuardLid:
-      resolve(hs, k0, kLid, hs.d.lid_resting ? Trend::releasing : Trend::closing, out);
-      break;
+    case kGuardLid: resolve(hs, k0, kLid, hs.d.lid_resting ? Trend::releasing : Trend::closing, out); break;
     case kGuardArmEnd:  // off the end of a finite arm, velocity kept; it never lands again
       resolve(hs, k0, kBag, Trend::forced_off, out);
       break;

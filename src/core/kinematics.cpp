@@ -101,7 +101,8 @@ struct Model::KinematicsPass {
     const double c = k.cos_s, s = k.sin_s;
     k.x = -k.r * c;
     k.h = -k.r * s;
-    if (rates && layout == Layout::held_by_rope) k.ddr = m.along_arm_acceleration(k.r, s, 0.0);  // M5: the arm is fixed
+    if (rates && layout == Layout::held_by_rope)
+      k.ddr = m.along_arm_acceleration(k.r, s, 0.0);  // M5: the arm is fixed
     if (rates) {
       k.vx = -k.dr * c + k.r * s * k.dphi_s;
       k.vh = -k.dr * s - k.r * c * k.dphi_s;

@@ -18,14 +18,12 @@ double Model::radio_gap(double balloon_h) const {
 }
 
 double Model::energy(const Kinematics& k) const {
-  return 0.5 * m_s_ * (k.vx * k.vx + k.vh * k.vh) + m_s_ * g_ * k.h +
-         0.5 * i_l_ * k.dphi_l * k.dphi_l + m_l_ * g_ * r_l_ * std::sin(k.phi_l) +
-         0.5 * i_s_ * k.dphi_s * k.dphi_s + w_s_ * g_ * std::sin(k.phi_s);
+  return 0.5 * m_s_ * (k.vx * k.vx + k.vh * k.vh) + m_s_ * g_ * k.h + 0.5 * i_l_ * k.dphi_l * k.dphi_l +
+         m_l_ * g_ * r_l_ * std::sin(k.phi_l) + 0.5 * i_s_ * k.dphi_s * k.dphi_s +
+         w_s_ * g_ * std::sin(k.phi_s);
 }
 
-double Model::balloon_energy(double h, double v) const {
-  return 0.5 * m_b_ * v * v - m_b_ * a_b_ * h;
-}
+double Model::balloon_energy(double h, double v) const { return 0.5 * m_b_ * v * v - m_b_ * a_b_ * h; }
 
 double Model::lid_push_now(const Discrete& d, const Kinematics& k, const State& y) const {
   // While stuck the balloon's energy changes only by the lid's push and the air drag.
@@ -77,7 +75,6 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
   s.initial_total = b.initial_total;
   return s;
 }
-
 
 void Model::open_books(HybridState& hs, const Kinematics& k) const {
   Books& b = hs.d.books;

@@ -24,11 +24,11 @@ namespace whatnext {
 // then decided by the contact problem, not by the guard. The order is the priority for events
 // found at the same instant.
 enum Guard : int {
-  kGuardBag,        // sandbag: height above the arm's line, or minus the arm's push on it
-  kGuardRope,       // rope: |R - E| - l_R, or minus its tension
-  kGuardLid,        // lid: phiL0 - phiL, or minus the box's push on it
-  kGuardArmEnd,     // sandbag on a finite arm reaches its end
-  kGuardBalloon,    // free balloon reaches the lid, or the lid pulls away faster than it can follow
+  kGuardBag,      // sandbag: height above the arm's line, or minus the arm's push on it
+  kGuardRope,     // rope: |R - E| - l_R, or minus its tension
+  kGuardLid,      // lid: phiL0 - phiL, or minus the box's push on it
+  kGuardArmEnd,   // sandbag on a finite arm reaches its end
+  kGuardBalloon,  // free balloon reaches the lid, or the lid pulls away faster than it can follow
   kGuardLidOpen,
   kGuardSeesawVertical,
   kGuardAtPivot,
@@ -52,8 +52,8 @@ struct Kinematics {
   double x = 0, h = 0, vx = 0, vh = 0;
   double r = 0, dr = 0, ddr = 0, phi_s = 0, dphi_s = 0, ddphi_s = 0;  // ddr: on the arm only
   double phi_l = 0, dphi_l = 0, ddphi_l = 0;
-  double balloon_h = 0, balloon_v = 0;  // the balloon's centre from the hinge level
-  Transfer transfer;  // valid while the rope is taut
+  double balloon_h = 0, balloon_v = 0;                // the balloon's centre from the hinge level
+  Transfer transfer;                                  // valid while the rope is taut
   double cos_s = 1, sin_s = 0, cos_l = 1, sin_l = 0;  // of phi_s and phi_l, computed once
 };
 
@@ -160,7 +160,9 @@ class Model {
   }
   double lid_free_acceleration(double phi_l, double dphi_l) const;
   // r'' of the sandbag on the arm (eq. 5): gravity along the arm and the centrifugal term.
-  double along_arm_acceleration(double r, double sin_s, double dphi_s) const { return g_ * sin_s + r * dphi_s * dphi_s; }
+  double along_arm_acceleration(double r, double sin_s, double dphi_s) const {
+    return g_ * sin_s + r * dphi_s * dphi_s;
+  }
   double radio_gap(double balloon_h) const;
   void dissipation(const Discrete& d, const Kinematics& k, State& dy) const;
   // The sandbag's height above the arm's line and its distance along it from the pivot.
@@ -178,23 +180,23 @@ class Model {
   struct Decision {
     int trigger = -1;
     Trend trend = Trend::closing;
-    contact::Set s0 = 0;       // closed before the event
-    contact::Set touch = 0;    // touching at the event (closed, or open with zero gap)
-    Kinematics k0;             // the event's state, moved onto the touching contacts
-    contact::System sys;       // the contact problem there
-    contact::Choice ch;        // its preferences and tolerances
-    contact::Impact imp;       // the inelastic impact
-    contact::Coords u{};       // velocities after the impact (by the chosen law)
-    contact::PerContact rate{};  // gap rates after it
-    bool impacted = false;     // some impulse beyond rounding
+    contact::Set s0 = 0;              // closed before the event
+    contact::Set touch = 0;           // touching at the event (closed, or open with zero gap)
+    Kinematics k0;                    // the event's state, moved onto the touching contacts
+    contact::System sys;              // the contact problem there
+    contact::Choice ch;               // its preferences and tolerances
+    contact::Impact imp;              // the inelastic impact
+    contact::Coords u{};              // velocities after the impact (by the chosen law)
+    contact::PerContact rate{};       // gap rates after it
+    bool impacted = false;            // some impulse beyond rounding
     ImpactLaw law = ImpactLaw::rope;  // the law the velocities follow
     std::string_view law_note;        // why that is not the run's impact_law, where it is not
-    contact::Set held = 0;     // touching with zero gap rate after the impact
-    Kinematics k1;             // the state with the impact's velocities
-    contact::Motion mot;       // the motion on accelerations
-    contact::Set s2 = 0;       // the contacts that carry the motion on
-    GuardStart released[3];    // how each contact's gap opens if it is released
-    Kinematics k2;             // the state the motion goes on from
+    contact::Set held = 0;            // touching with zero gap rate after the impact
+    Kinematics k1;                    // the state with the impact's velocities
+    contact::Motion mot;              // the motion on accelerations
+    contact::Set s2 = 0;              // the contacts that carry the motion on
+    GuardStart released[3];           // how each contact's gap opens if it is released
+    Kinematics k2;                    // the state the motion goes on from
     bool impulsive(int i) const { return contact::has(imp.impulsive, i) && imp.impulse[i] > ch.impulse_tol; }
   };
   Decision decide_touching(const Discrete& d, const Kinematics& k_event, int trigger, Trend trend) const;
@@ -208,20 +210,21 @@ class Model {
   contact::Set touching(const Discrete& d, const Kinematics& k) const;
   // The positions moved onto the touching contacts (their gaps exactly zero), velocities kept.
   Kinematics touch_exactly(const Discrete& d, contact::Set touch, Kinematics k) const;
-  contact::Choice choice(const Discrete& d, const contact::System& sys, const Kinematics& k,
-                         int trigger, Trend trend) const;
+  contact::Choice choice(const Discrete& d, const contact::System& sys, const Kinematics& k, int trigger,
+                         Trend trend) const;
   // The chosen impact law's velocities for a rope impulse (docs/model.md §7); false where they are
   // not finite (then the perfectly inelastic ones stand).
   // note: set where the law itself falls back to the rope law.
-  bool law_velocity(const Kinematics& k, bool bag, contact::Coords& u, std::string_view* note = nullptr) const;
+  bool law_velocity(const Kinematics& k, bool bag, contact::Coords& u,
+                    std::string_view* note = nullptr) const;
   void set_contacts(Discrete& d, contact::Set s, const Kinematics& k) const;
   static contact::Set active_set(const Discrete& d);
   // Writes the continuous state for hs.d's layout from full kinematics.
   void place(HybridState& hs, const Kinematics& k) const;
   static Kinematics with_velocity(Kinematics k, const contact::Coords& u);
   Event make_event(EventType type, HybridState& hs, Mode before, Mode after) const;
-  void release_balloon_if_lid_jumped(HybridState& hs, double limit_rate_before,
-                                     const Books& opened, std::vector<Event>& out) const;
+  void release_balloon_if_lid_jumped(HybridState& hs, double limit_rate_before, const Books& opened,
+                                     std::vector<Event>& out) const;
   void free_balloon(HybridState& hs, const Kinematics& k, double v) const;
   // The balloon guard fired: a stuck balloon left behind, or a free one caught by the lid.
   void balloon_meets_lid(HybridState& hs, const Kinematics& k0, double limit_rate0, Mode before,

@@ -10,7 +10,8 @@ namespace whatnext::model_detail {
 
 constexpr double kHalfPi = 1.57079632679489661923;
 constexpr double kContact = 1e-9;  // docs/model.md §4: touching (on the arm, rope straight) within 1e-9 m
-constexpr double kNoEnd = std::numeric_limits<double>::infinity();  // the paper's endless arm (docs/model.md §1)
+constexpr double kNoEnd =
+    std::numeric_limits<double>::infinity();  // the paper's endless arm (docs/model.md §1)
 // Lead of an armed guard whose first non-zero derivative is not known (a force that just reached
 // zero): only its sign matters to the integrators.
 constexpr double kUnknownLead = -1e-300;
@@ -30,6 +31,8 @@ inline EventType change_event(int contact, bool closes) {
   }
 }
 
-inline Mode mode_of(Set s) { return Discrete::mode_of(contact::has(s, kBag), contact::has(s, kRope), contact::has(s, kLid)); }
+inline Mode mode_of(Set s) {
+  return Discrete::mode_of(contact::has(s, kBag), contact::has(s, kRope), contact::has(s, kLid));
+}
 
 }  // namespace whatnext::model_detail

@@ -11,8 +11,7 @@ namespace whatnext {
 
 namespace {
 template <class E, std::size_t N>
-bool parse_from(const std::array<std::pair<E, std::string_view>, N>& table, std::string_view text,
-                E& out) {
+bool parse_from(const std::array<std::pair<E, std::string_view>, N>& table, std::string_view text, E& out) {
   for (const auto& [value, name] : table) {
     if (name == text) {
       out = value;
@@ -90,10 +89,8 @@ bool is_stop(EventType type) {
     case EventType::rope_locked:
     case EventType::radio_on:
     case EventType::timeout:
-    case EventType::event_limit:
-      return true;
-    default:
-      return false;
+    case EventType::event_limit: return true;
+    default: return false;
   }
 }
 

@@ -16,7 +16,7 @@ struct MachineSystem {
   using guard_type = GuardValues;
   const Model* model;
   Discrete d;
-  Observer* observer = nullptr;       // asked to keep going every 256 steps (guards() runs once a step)
+  Observer* observer = nullptr;  // asked to keep going every 256 steps (guards() runs once a step)
   std::uint32_t* steps = nullptr;
   void operator()(const State& y, State& dy, double /*t*/) const { model->flow(d, y, dy); }
   void guards(const State& y, GuardValues& g, GuardValues* rates = nullptr) const {
@@ -127,26 +127,28 @@ Result simulate(const Scenario& sc, Observer* observer) {
                                res.stats);
         break;
       case IntegratorKind::euler:
-        c = integrate_fixed<odeint::euler<State>>(sys, hs.y, t, t_end, sc.run.step, grid, sample,
-                                                  res.stats);
+        c = integrate_fixed<odeint::euler<State>>(sys, hs.y, t, t_end, sc.run.step, grid, sample, res.stats);
         break;
       case IntegratorKind::rk4:
-        c = integrate_fixed<odeint::runge_kutta4<State>>(sys, hs.y, t, t_end, sc.run.step, grid,
-                                                         sample, res.stats);
+        c = integrate_fixed<odeint::runge_kutta4<State>>(sys, hs.y, t, t_end, sc.run.step, grid, sample,
+                                                         res.stats);
         break;
     }
     if (observer) hand_over();  // the piece's samples, before its events
     if (c.kind == Crossing::non_finite) fail("the motion turned non-finite", c.t, hs.d.mode());
     if (c.kind == Crossing::step_limit) {
-      fail("the integrator used its budget of 5e6 steps (loosen run.tolerance or shorten run.t_max)",
-           c.t, hs.d.mode());
+      fail("the integrator used its budget of 5e6 steps (loosen run.tolerance or shorten run.t_max)", c.t,
+           hs.d.mode());
     }
     hs.t = t;
     no_progress = t > last_t ? 0 : no_progress + 1;
     last_t = t;
     if (no_progress > kMaxPiecesWithoutProgress) {
-      fail("the run stopped advancing (the same instant's contacts decided again and again; a fixed step may be "
-           "too long for this machine)", hs.t, hs.d.mode());
+      fail(
+          "the run stopped advancing (the same instant's contacts decided again and again; a fixed step may "
+          "be "
+          "too long for this machine)",
+          hs.t, hs.d.mode());
     }
     fresh.clear();
     bool stop = false;

@@ -108,7 +108,8 @@ double reported_uncertainty(const Result& res, double accuracy) {
     if (e.type == EventType::event_limit) continue;
     const bool first = idx < seen.size() && !seen[idx];
     if (idx < seen.size()) seen[idx] = 1;
-    if (first || k + 1 == res.events.size() || e.time_uncertainty > accuracy) u = std::fmax(u, e.time_uncertainty);
+    if (first || k + 1 == res.events.size() || e.time_uncertainty > accuracy)
+      u = std::fmax(u, e.time_uncertainty);
   }
   return u;
 }
@@ -142,7 +143,8 @@ double difference(const Reported& a, const Reported& b) {
 }
 
 // Runs one machine in a scratch config that already holds the base values.
-Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const double* values, double accuracy) {
+Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const double* values,
+                    double accuracy) {
   Outcome o;
   o.first.assign(event_types().size(), kNaN);
   try {
@@ -154,7 +156,8 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
     require_finite(res);  // a NaN state is a failed run, not a row of nan
     if (accuracy > 0.0 && !tolerance_given && sc.run.integrator == IntegratorKind::adaptive) {
       const Machine& m = sc.machine;
-      const bool carries_errors = m.seesaw_inertia > 0.0 || m.pivot_damping > 0.0 || m.lid_hinge_damping > 0.0;
+      const bool carries_errors =
+          m.seesaw_inertia > 0.0 || m.pivot_damping > 0.0 || m.lid_hinge_damping > 0.0;
       double u = reported_uncertainty(res, accuracy);
       if (carries_errors) {
         Reported before = reported(res);
@@ -173,7 +176,8 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
         for (int again = 0; again < kMaxReruns && u > kUncertaintyTrigger * accuracy &&
                             sc.run.tolerance > kTightestTolerance;
              ++again) {
-          sc.run.tolerance = std::fmax(kTightestTolerance, sc.run.tolerance * kUncertaintyTarget * accuracy / u);
+          sc.run.tolerance =
+              std::fmax(kTightestTolerance, sc.run.tolerance * kUncertaintyTarget * accuracy / u);
           sc.run.event_time_tolerance = std::fmin(sc.run.event_time_tolerance, sc.run.tolerance / 10.0);
           res = simulate(sc);
           require_finite(res);
@@ -206,9 +210,9 @@ namespace {
 void check_numeric_key(const std::string& key, const std::string& where) {
   if (!find_key(key)) {
     const std::string near = nearest_key(key);
-    throw InputError(near.empty()
-                         ? fmt::format("{}: unknown key '{}'", where, printable(key))
-                         : fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, printable(key), near));
+    throw InputError(
+        near.empty() ? fmt::format("{}: unknown key '{}'", where, printable(key))
+                     : fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, printable(key), near));
   }
   try {  // set_number knows which kinds of key hold one number (text, pairs and flags do not)
     Config probe;
@@ -230,7 +234,8 @@ double normal(std::mt19937_64& rng) {
 Spread parse_spread(std::string_view spec, std::string_view option) {
   const std::string where = fmt::format("{} {}", option, printable(spec));
   const auto eq = spec.find('=');
-  if (eq == std::string_view::npos) throw InputError(fmt::format("{}: expected KEY=±X (given no '=')", where));
+  if (eq == std::string_view::npos)
+    throw InputError(fmt::format("{}: expected KEY=±X (given no '=')", where));
   Spread s;
   s.key = std::string(trim(spec.substr(0, eq)));
   check_numeric_key(s.key, where);
@@ -241,8 +246,8 @@ Spread parse_spread(std::string_view spec, std::string_view option) {
   } else if (rest.substr(0, 2) == "+-") {
     rest.remove_prefix(2);
   } else {
-    throw InputError(fmt::format("{}: expected KEY=±X (or KEY=+-X): ± before the spread X (given '{}')", where,
-                                 printable(rest)));
+    throw InputError(fmt::format("{}: expected KEY=±X (or KEY=+-X): ± before the spread X (given '{}')",
+                                 where, printable(rest)));
   }
   if (!parse_double(rest, s.x)) {
     throw InputError(fmt::format("{}: X must be a finite number (given '{}')", where, printable(trim(rest))));
@@ -263,9 +268,10 @@ double base_value(const Config& config, const std::string& key, std::string_view
   const KeySpec* spec = find_key(key);
   double v = 0.0;
   if (it == config.values.end() && spec && parse_double(spec->default_text, v)) return v;
-  throw InputError(fmt::format("{} {}: the machine does not give {} as a number (its default is '{}'); give it "
-                               "with --set {}=VALUE",
-                               option, key, key, spec ? spec->default_text : "?", key));
+  throw InputError(
+      fmt::format("{} {}: the machine does not give {} as a number (its default is '{}'); give it "
+                  "with --set {}=VALUE",
+                  option, key, key, spec ? spec->default_text : "?", key));
 }
 
 Range parse_range(std::string_view spec, std::string_view option, bool need_count) {
@@ -294,10 +300,12 @@ Range parse_range(std::string_view spec, std::string_view option, bool need_coun
     throw InputError(fmt::format("{}: expected {}: a grid needs the number of values N", where, form));
   }
   if (!parse_double(parts[0], r.lo)) {
-    throw InputError(fmt::format("{}: A must be a finite number (given '{}')", where, printable(trim(parts[0]))));
+    throw InputError(
+        fmt::format("{}: A must be a finite number (given '{}')", where, printable(trim(parts[0]))));
   }
   if (!parse_double(parts[1], r.hi)) {
-    throw InputError(fmt::format("{}: B must be a finite number (given '{}')", where, printable(trim(parts[1]))));
+    throw InputError(
+        fmt::format("{}: B must be a finite number (given '{}')", where, printable(trim(parts[1]))));
   }
   if (r.lo > r.hi) {
     throw InputError(fmt::format("{}: needs A <= B (given A = {}, B = {})", where, num(r.lo), num(r.hi)));
@@ -324,8 +332,8 @@ Machines::Machines(const Plan& plan) : plan_(plan) {
   for (std::size_t i = 0; i < plan_.ranges.size(); ++i) {
     for (std::size_t j = 0; j < i; ++j) {
       if (plan_.ranges[i].key == plan_.ranges[j].key) {
-        throw InputError(fmt::format("--vary: each key may be varied once ({} is given twice)",
-                                     plan_.ranges[i].key));
+        throw InputError(
+            fmt::format("--vary: each key may be varied once ({} is given twice)", plan_.ranges[i].key));
       }
     }
   }
@@ -365,8 +373,8 @@ Machines::Machines(const Plan& plan) : plan_(plan) {
       }
       const Range& r = plan_.ranges[d];
       for (std::int64_t i = 0; i < size_; ++i) {
-        const double u = (static_cast<double>(perm[static_cast<std::size_t>(i)]) + unit(rng)) /
-                         static_cast<double>(size_);
+        const double u =
+            (static_cast<double>(perm[static_cast<std::size_t>(i)]) + unit(rng)) / static_cast<double>(size_);
         lhs_[static_cast<std::size_t>(i) * dims + d] = between(r.lo, r.hi, u);
       }
     }
@@ -375,11 +383,12 @@ Machines::Machines(const Plan& plan) : plan_(plan) {
   size_ = 1;
   for (const Range& r : plan_.ranges) {
     if (r.n < 1) {
-      throw InputError(fmt::format("--vary {}: a grid needs KEY=A:B:N with N >= 1 (or use --samples)", r.key));
+      throw InputError(
+          fmt::format("--vary {}: a grid needs KEY=A:B:N with N >= 1 (or use --samples)", r.key));
     }
     if (size_ > kMaxMachines / r.n) {
-      throw InputError(fmt::format("--vary: the grid has more than {} machines; use fewer values",
-                                   kMaxMachines));
+      throw InputError(
+          fmt::format("--vary: the grid has more than {} machines; use fewer values", kMaxMachines));
     }
     size_ *= r.n;
   }
@@ -408,7 +417,7 @@ double Machines::grid_value(std::size_t d, std::int64_t j) const {
   // The ends are exactly A and B; a single value is A. Inner values are rounded to 15 digits,
   // so 0.62:0.9:29 gives 0.82 rather than the 0.8200000000000001 that the arithmetic makes.
   const Range& r = plan_.ranges[d];
-  return r.n == 1 ? r.lo
+  return r.n == 1       ? r.lo
          : j == r.n - 1 ? r.hi
                         : tidy(between(r.lo, r.hi, static_cast<double>(j) / static_cast<double>(r.n - 1)));
 }
@@ -430,8 +439,8 @@ const std::vector<EventType>& event_types() {
 
 void check_accuracy(double accuracy, std::string_view option) {
   if (!(accuracy >= kMinAccuracy && accuracy <= kMaxAccuracy)) {
-    throw InputError(fmt::format("{}: must be in [{:g}, {:g}] s (given {})", option, kMinAccuracy, kMaxAccuracy,
-                                 accuracy));
+    throw InputError(fmt::format("{}: must be in [{:g}, {:g}] s (given {})", option, kMinAccuracy,
+                                 kMaxAccuracy, accuracy));
   }
 }
 
@@ -440,7 +449,8 @@ void apply_accuracy(Scenario& scenario, double accuracy, bool tolerance_given) {
   scenario.run.event_time_tolerance = accuracy / 1000.0;
 }
 
-Outcome evaluate(const Config& base, const std::vector<std::string>& keys, const double* values, double accuracy) {
+Outcome evaluate(const Config& base, const std::vector<std::string>& keys, const double* values,
+                 double accuracy) {
   Config work = base;
   return evaluate_in(work, keys, values, accuracy);
 }
@@ -456,9 +466,10 @@ void check_value_name(std::string_view name, std::string_view option) {
     if (v == name) return;
   }
   const std::string near = nearest_word(name, value_names());
-  throw InputError(fmt::format("{} {}: unknown value{} (use outcome_t, final_r, final_phi_l_deg or an event name "
-                               "such as lid_open)", option, printable(name),
-                               near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near)));
+  throw InputError(
+      fmt::format("{} {}: unknown value{} (use outcome_t, final_r, final_phi_l_deg or an event name "
+                  "such as lid_open)",
+                  option, printable(name), near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near)));
 }
 
 double value_of(const Outcome& o, std::string_view name) {
@@ -535,7 +546,8 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   // CSV) do not depend on which thread ran which machine. A finished block is marked done under
   // the lock, which also hands its lines to the calling thread.
   constexpr std::int64_t kBlock = 8, kWake = 256;
-  std::atomic<std::int64_t> next{already}, completed{already + known}, written{already}, invalid{0}, failed_runs{0};
+  std::atomic<std::int64_t> next{already}, completed{already + known}, written{already}, invalid{0},
+      failed_runs{0};
   int running = 0;
   std::mutex m;
   std::condition_variable cv;
@@ -544,7 +556,8 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   std::exception_ptr failure;
   std::atomic<bool> failed{false};
   auto stopped = [&] {
-    return failed.load(std::memory_order_relaxed) || (options.stop && options.stop->load(std::memory_order_relaxed));
+    return failed.load(std::memory_order_relaxed) ||
+           (options.stop && options.stop->load(std::memory_order_relaxed));
   };
   auto worker = [&] {
     try {
@@ -570,7 +583,8 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
           for (std::int64_t j = start; j < i; ++j) res.done[static_cast<std::size_t>(j)] = 1;
         }
         // A few hundred lines waiting: time for the writer (cheap when it is awake already).
-        if (options.csv && completed.load(std::memory_order_relaxed) - written.load(std::memory_order_relaxed) >= kWake) {
+        if (options.csv &&
+            completed.load(std::memory_order_relaxed) - written.load(std::memory_order_relaxed) >= kWake) {
           cv.notify_one();
         }
         if (stopped()) break;
@@ -584,7 +598,8 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
     --running;
     cv.notify_all();
   };
-  const int threads = static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>(options.threads, total)));
+  const int threads =
+      static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>(options.threads, total)));
   running = threads;
   std::vector<std::thread> pool;
   pool.reserve(static_cast<std::size_t>(threads));
@@ -712,17 +727,20 @@ Resumable read_resumable(std::string_view text, const Machines& machines, const 
   const auto eol = text.find('\n');
   if (eol == std::string_view::npos) {  // killed before the header was complete: nothing to keep
     if (header.compare(0, text.size(), text) != 0 && text.find('\0') == std::string_view::npos) {
-      throw InputError(fmt::format("{}: is not a CSV of this sweep (its first line is '{}'); give another --out "
-                                   "or drop --resume", what, printable(text, 60)));
+      throw InputError(
+          fmt::format("{}: is not a CSV of this sweep (its first line is '{}'); give another --out "
+                      "or drop --resume",
+                      what, printable(text, 60)));
     }
     return r;
   }
   const std::string_view first = text.substr(0, eol + 1);
   if (first != header) {
-    throw InputError(fmt::format("{}: was written by a sweep over other columns (it varies {}; this sweep varies {}); "
-                                 "give another --out or drop --resume",
-                                 what, header_keys(first.substr(0, first.size() - 1)),
-                                 header_keys(std::string_view(header).substr(0, header.size() - 1))));
+    throw InputError(
+        fmt::format("{}: was written by a sweep over other columns (it varies {}; this sweep varies {}); "
+                    "give another --out or drop --resume",
+                    what, header_keys(first.substr(0, first.size() - 1)),
+                    header_keys(std::string_view(header).substr(0, header.size() - 1))));
   }
   r.header = true;
   r.prefix_bytes = first.size();
@@ -738,20 +756,23 @@ Resumable read_resumable(std::string_view text, const Machines& machines, const 
     if (line.find('\0') != std::string_view::npos) break;
     std::int64_t index = 0;
     std::size_t k = 0;
-    while (k < line.size() && line[k] >= '0' && line[k] <= '9' && k < 12) index = index * 10 + (line[k++] - '0');
+    while (k < line.size() && line[k] >= '0' && line[k] <= '9' && k < 12)
+      index = index * 10 + (line[k++] - '0');
     if (k == 0 || k >= line.size() || line[k] != ',') break;
     if (index <= previous || index >= machines.size()) {
-      throw InputError(fmt::format("{}: holds a row for machine {}{}, which this sweep does not have there; the "
-                                   "file is another sweep's (other --vary, --samples or --seed): give another "
-                                   "--out or drop --resume",
-                                   what, index, index <= previous ? " out of order" : ""));
+      throw InputError(
+          fmt::format("{}: holds a row for machine {}{}, which this sweep does not have there; the "
+                      "file is another sweep's (other --vary, --samples or --seed): give another "
+                      "--out or drop --resume",
+                      what, index, index <= previous ? " out of order" : ""));
     }
     const std::string start = row_start(machines, index, values);
     if (line.compare(0, start.size(), start) != 0) {
-      throw InputError(fmt::format("{}: its row for machine {} has other values than this sweep's ({}); the file "
-                                   "is another sweep's (other --vary, --samples or --seed): give another --out or "
-                                   "drop --resume",
-                                   what, index, printable(start.substr(0, start.size() - 1), 80)));
+      throw InputError(
+          fmt::format("{}: its row for machine {} has other values than this sweep's ({}); the file "
+                      "is another sweep's (other --vary, --samples or --seed): give another --out or "
+                      "drop --resume",
+                      what, index, printable(start.substr(0, start.size() - 1), 80)));
     }
     const std::string_view rest = line.substr(start.size());
     if (rest.rfind("invalid,", 0) == 0) ++r.invalid;
@@ -772,14 +793,16 @@ Resumable read_resumable(std::string_view text, const Machines& machines, const 
     // Running the first and the last kept machine again checks what the rows do not show: the
     // machine the values were set on and the accuracy.
     const std::vector<std::string> keys = machines.plan().keys();
-    for (const auto& [index, line] : {std::pair(check_first, check_first_line), std::pair(check_last, check_last_line)}) {
+    for (const auto& [index, line] :
+         {std::pair(check_first, check_first_line), std::pair(check_last, check_last_line)}) {
       machines.point(index, values.data());
       const std::string again = csv_row(index, values, evaluate(base, keys, values.data(), accuracy));
       if (again != line) {
-        throw InputError(fmt::format("{}: machine {} gives another row now than in the file; the file is another "
-                                     "sweep's (another machine, --set or --accuracy): give another --out or drop "
-                                     "--resume",
-                                     what, index));
+        throw InputError(
+            fmt::format("{}: machine {} gives another row now than in the file; the file is another "
+                        "sweep's (another machine, --set or --accuracy): give another --out or drop "
+                        "--resume",
+                        what, index));
       }
     }
   }
@@ -797,7 +820,8 @@ std::string csv_row(std::int64_t index, const std::vector<double>& values, const
   if (o.valid) {
     put(",");
     put(to_string(o.outcome));
-    fmt::format_to(std::back_inserter(line), FMT_COMPILE(",{},{},{}"), o.outcome_t, o.final_r, o.final_phi_l_deg);
+    fmt::format_to(std::back_inserter(line), FMT_COMPILE(",{},{},{}"), o.outcome_t, o.final_r,
+                   o.final_phi_l_deg);
     for (double t : o.first) {
       put(",");
       if (!std::isnan(t)) fmt::format_to(std::back_inserter(line), FMT_COMPILE("{}"), t);
@@ -812,6 +836,5 @@ std::string csv_row(std::int64_t index, const std::vector<double>& values, const
   }
   return std::string(line.data(), line.size());
 }
-
 
 }  // namespace whatnext::explore

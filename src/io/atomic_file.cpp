@@ -80,11 +80,12 @@ namespace {
 int descriptor_path(const std::string& p) {
   if (p == "/dev/stdout") return 1;
   if (p == "/dev/stderr") return 2;
-  for (const std::string& prefix : {std::string("/dev/fd/"), std::string("/proc/self/fd/"),
-                                   fmt::format("/proc/{}/fd/", ::getpid())}) {
+  for (const std::string& prefix :
+       {std::string("/dev/fd/"), std::string("/proc/self/fd/"), fmt::format("/proc/{}/fd/", ::getpid())}) {
     if (p.size() > prefix.size() && p.compare(0, prefix.size(), prefix) == 0) {
       const std::string num = p.substr(prefix.size());
-      if (num.size() < 6 && std::all_of(num.begin(), num.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+      if (num.size() < 6 &&
+          std::all_of(num.begin(), num.end(), [](char c) { return c >= '0' && c <= '9'; })) {
         return std::stoi(num);
       }
     }
@@ -153,7 +154,7 @@ int create_temp(int dir_fd, const std::string& target, std::string& tmp, std::st
   const fs::path p(target);
   std::string base = p.filename().string();
   if (base.size() > 200) base.resize(200);  // within NAME_MAX with the marks around it
-  timespec now {};
+  timespec now{};
   ::clock_gettime(CLOCK_REALTIME, &now);
   std::uint64_t x = (static_cast<std::uint64_t>(::getpid()) << 32) ^ static_cast<std::uint64_t>(now.tv_nsec) ^
                     (static_cast<std::uint64_t>(now.tv_sec) << 20);
@@ -205,7 +206,8 @@ void AtomicFile::fail(const std::string& why) const {
   throw InputError(fmt::format("{} {}: {}", option_, path_.empty() ? "''" : printable(path_, 96), why));
 }
 
-AtomicFile::AtomicFile(std::string path, std::string option) : option_(std::move(option)), path_(std::move(path)) {
+AtomicFile::AtomicFile(std::string path, std::string option)
+    : option_(std::move(option)), path_(std::move(path)) {
   const Target t = resolve(path_, [this](const std::string& why) { fail(why); });
   const struct stat& st = t.st;
   if (t.fd >= 0) {
@@ -311,7 +313,8 @@ void AtomicFile::commit() {
   // rename() replaces the old file in one step: the name holds the old file or the new one, never
   // none and never a part, and of two writers of one name the later rename wins whole.
   const std::string target_name = fs::path(target_).filename().string();
-  if (::renameat(dir_fd_, tmp_name_.c_str(), dir_fd_, target_name.c_str()) != 0) write_failed(std::strerror(errno));
+  if (::renameat(dir_fd_, tmp_name_.c_str(), dir_fd_, target_name.c_str()) != 0)
+    write_failed(std::strerror(errno));
   committed_ = true;
   auto& paths = interrupts().paths;
   const auto it = std::find(paths.rbegin(), paths.rend(), tmp_);
@@ -346,13 +349,13 @@ void AtomicFile::check_written_by_name() const {
   if (n != want) write_failed("cannot read it back");
   const auto ends = [&](std::string_view ext) {
     return target_.size() >= ext.size() &&
-           std::equal(ext.rbegin(), ext.rend(), target_.rbegin(), [](char a, char b) {
-             return a == std::tolower(static_cast<unsigned char>(b));
-           });
+           std::equal(ext.rbegin(), ext.rend(), target_.rbegin(),
+                      [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); });
   };
   while (!tail.empty() && std::isspace(static_cast<unsigned char>(tail.back()))) tail.pop_back();
   bool complete = !tail.empty();
-  if (ends(".png")) complete = tail.size() >= 8 && tail.compare(tail.size() - 8, 8, "IEND\xae\x42\x60\x82") == 0;
+  if (ends(".png"))
+    complete = tail.size() >= 8 && tail.compare(tail.size() - 8, 8, "IEND\xae\x42\x60\x82") == 0;
   if (ends(".svg")) complete = tail.size() >= 6 && tail.compare(tail.size() - 6, 6, "</svg>") == 0;
   if (ends(".pdf")) complete = tail.find("%%EOF") != std::string::npos;
   if (!complete) {
@@ -375,9 +378,11 @@ void AtomicFile::check_distinct(const std::vector<const AtomicFile*>& files) {
       const AtomicFile& b = *files[j];
       if (a.null_device_ && b.null_device_) continue;
       const bool same_existing = a.ino_ != 0 && a.dev_ == b.dev_ && a.ino_ == b.ino_;
-      const bool same_new = a.ino_ == 0 && b.ino_ == 0 && !a.target_.empty() &&
-                            fs::absolute(a.target_).lexically_normal() == fs::absolute(b.target_).lexically_normal();
-      if (same_existing || same_new) a.fail(fmt::format("is the same file as {}; give each output its own", b.option_));
+      const bool same_new =
+          a.ino_ == 0 && b.ino_ == 0 && !a.target_.empty() &&
+          fs::absolute(a.target_).lexically_normal() == fs::absolute(b.target_).lexically_normal();
+      if (same_existing || same_new)
+        a.fail(fmt::format("is the same file as {}; give each output its own", b.option_));
     }
   }
 }

@@ -17,17 +17,19 @@ void check_bar_inertia(const Reader& in, const Machine& m) {
   const char* key = in.find("seesaw.left_arm") ? "seesaw.left_arm" : "seesaw.mass";
   const double given = key[7] == 'l' ? m.seesaw_left_arm : m.seesaw_mass;
   if (!(std::fabs(m.seesaw_inertia) <= kMaxInertia)) {
-    in.fail(key, fmt::format("makes the seesaw (a uniform bar of seesaw.mass = {} kg from -seesaw.left_arm to r_H) "
-                             "an inertia of {:.4g} kg m^2 about the pivot; at most {} kg m^2 is within the range the "
-                             "model is made for (given {})",
-                             fmt_num(m.seesaw_mass), m.seesaw_inertia, fmt_num(kMaxInertia), in.shown(key, given)));
+    in.fail(key, fmt::format(
+                     "makes the seesaw (a uniform bar of seesaw.mass = {} kg from -seesaw.left_arm to r_H) "
+                     "an inertia of {:.4g} kg m^2 about the pivot; at most {} kg m^2 is within the range the "
+                     "model is made for (given {})",
+                     fmt_num(m.seesaw_mass), m.seesaw_inertia, fmt_num(kMaxInertia), in.shown(key, given)));
   }
   const double least = m.seesaw_mass * m.seesaw_com_offset * m.seesaw_com_offset;
   if (in.find("seesaw.com_offset") && m.seesaw_inertia < least * (1.0 - 1e-12)) {
     in.fail("seesaw.com_offset",
-            fmt::format("is too far from the pivot for the bar's inertia {:.4g} kg m^2 (mass * com_offset^2 = {:.4g} "
-                        "kg m^2 is more): give seesaw.inertia too (given {})",
-                        m.seesaw_inertia, least, in.shown("seesaw.com_offset", m.seesaw_com_offset)));
+            fmt::format(
+                "is too far from the pivot for the bar's inertia {:.4g} kg m^2 (mass * com_offset^2 = {:.4g} "
+                "kg m^2 is more): give seesaw.inertia too (given {})",
+                m.seesaw_inertia, least, in.shown("seesaw.com_offset", m.seesaw_com_offset)));
   }
 }
 
@@ -57,7 +59,8 @@ void build_extensions(const Reader& in, Machine& m) {
     const double most = (m.air_density - m.helium_density) * m.balloon_volume();
     in.fail("balloon.rubber_mass",
             fmt::format("must be below the lift {:.4g} kg (displaced air minus helium) so that the balloon "
-                        "rises (given {})", most, fmt_num(m.balloon_rubber_mass)));
+                        "rises (given {})",
+                        most, fmt_num(m.balloon_rubber_mass)));
   }
   const bool drag_given = in.find("balloon.drag_coefficient") != nullptr;
   const bool drag = flag(in, "balloon.drag", drag_given);
@@ -78,7 +81,8 @@ void build_extensions(const Reader& in, Machine& m) {
   in.plausible("seesaw.mass", m.seesaw_mass, 0.0, kMaxMass);
   const bool bar = !in.find("seesaw.inertia") || !in.find("seesaw.com_offset");
   if (m.seesaw_mass > 0.0 && bar && !std::isfinite(m.seesaw_left_arm)) {
-    in.fail("seesaw.mass", "needs seesaw.left_arm (a uniform bar) or both seesaw.inertia and seesaw.com_offset");
+    in.fail("seesaw.mass",
+            "needs seesaw.left_arm (a uniform bar) or both seesaw.inertia and seesaw.com_offset");
   }
   if ((in.find("seesaw.inertia") || in.find("seesaw.com_offset")) && !in.find("seesaw.mass")) {
     in.fail(in.find("seesaw.inertia") ? "seesaw.inertia" : "seesaw.com_offset",
@@ -88,7 +92,8 @@ void build_extensions(const Reader& in, Machine& m) {
     // Uniform bar from -L to r_H: centre (r_H - L) / 2, I = m (L^3 + r_H^3) / (3 (L + r_H)).
     const double l = m.seesaw_left_arm, rh = m.seesaw_right_arm;
     const double bar_com = std::isfinite(l) ? 0.5 * (rh - l) : 0.0;
-    const double bar_inertia = std::isfinite(l) ? m.seesaw_mass * (l * l * l + rh * rh * rh) / (3.0 * (l + rh)) : 0.0;
+    const double bar_inertia =
+        std::isfinite(l) ? m.seesaw_mass * (l * l * l + rh * rh * rh) / (3.0 * (l + rh)) : 0.0;
     m.seesaw_com_offset = in.offset("seesaw.com_offset", bar_com);
     m.seesaw_inertia = in.number("seesaw.inertia", bar_inertia);
     if (!in.find("seesaw.inertia")) check_bar_inertia(in, m);
@@ -115,17 +120,20 @@ void check_extension_start(const Reader& in, const Scenario& sc) {
   const double along = -st.sandbag_x * c - st.sandbag_h * s;
   const double above = -st.sandbag_x * s + st.sandbag_h * c;
   if (std::isfinite(m.seesaw_left_arm) && std::fabs(above) <= 1e-9 && along > m.seesaw_left_arm) {
-    in.fail("seesaw.left_arm", fmt::format("is shorter than the sandbag's start on the arm ({:.4g} m < {:.4g} m)",
-                                           m.seesaw_left_arm, along));
+    in.fail("seesaw.left_arm",
+            fmt::format("is shorter than the sandbag's start on the arm ({:.4g} m < {:.4g} m)",
+                        m.seesaw_left_arm, along));
   }
   if (m.radio) {
     const BalloonLimit limit{m.balloon_radius};
     const Vec2 balloon{m.hinge.x + m.lid_half_length, m.hinge.h + limit.height(st.lid_angle)};
     const double reach = norm(balloon - m.radio_switch);
     if (reach >= m.string_length) {
-      in.fail("radio.string_length",
-              fmt::format("is already straight at the start: the balloon is {:.4g} m from the switch (given {:.4g} m)",
-                          reach, m.string_length));
+      in.fail(
+          "radio.string_length",
+          fmt::format(
+              "is already straight at the start: the balloon is {:.4g} m from the switch (given {:.4g} m)",
+              reach, m.string_length));
     }
   }
 }

@@ -21,8 +21,10 @@ void read_geometry(const Reader& in, const Config& cfg, Machine& m) {
   if (in.find("geometry.rope_on_lid")) {  // the knot along the lid (docs/model.md §3); on the lid
     m.rope_on_lid = in.length("geometry.rope_on_lid", 2.0 * m.lid_half_length);
     if (m.rope_on_lid > 2.0 * m.lid_half_length) {
-      in.fail("geometry.rope_on_lid", fmt::format("must be on the lid, at most its length 2 r_L = {} m from the hinge "
-                                                  "(given {} m)", fmt_num(2.0 * m.lid_half_length), fmt_num(m.rope_on_lid)));
+      in.fail("geometry.rope_on_lid",
+              fmt::format("must be on the lid, at most its length 2 r_L = {} m from the hinge "
+                          "(given {} m)",
+                          fmt_num(2.0 * m.lid_half_length), fmt_num(m.rope_on_lid)));
     }
   }
   if (cfg.has("geometry.hinge_offset")) {
@@ -33,13 +35,15 @@ void read_geometry(const Reader& in, const Config& cfg, Machine& m) {
     // Within rounding of the minimum counts as the minimum: a hinge given as distance and angle
     // at exactly kMinLength is written back by to_toml as an offset whose norm may be an ulp less.
     if (norm(v) < kMinLength * (1.0 - 1e-12)) {
-      in.fail("geometry.hinge_offset", fmt::format("must put the hinge at least {} m from the pivot (given [{}, {}])",
-                                                   fmt_num(kMinLength), fmt_num(v.x), fmt_num(v.h)));
+      in.fail("geometry.hinge_offset",
+              fmt::format("must put the hinge at least {} m from the pivot (given [{}, {}])",
+                          fmt_num(kMinLength), fmt_num(v.x), fmt_num(v.h)));
     }
     m.hinge = {v.x, -v.h};
   } else {
     const double f = in.length("geometry.hinge_distance", 0.8);
-    const double gamma = in.in_range("geometry.hinge_angle", 27.0, -180.0, true, 180.0, true) * units::kRadiansPerDegree;
+    const double gamma =
+        in.in_range("geometry.hinge_angle", 27.0, -180.0, true, 180.0, true) * units::kRadiansPerDegree;
     m.hinge = {f * std::cos(gamma), -f * std::sin(gamma)};
   }
 }
@@ -59,16 +63,18 @@ void read_bodies(const Reader& in, Machine& m) {
   m.balloon_radius = in.length("balloon.radius", m.lid_half_length);
   const std::string bmodel = in.text("balloon.model", "program");
   if (!parse_balloon_model(bmodel, m.balloon_model)) {
-    in.fail("balloon.model", fmt::format("must be program, lagrangian or added-mass (given '{}')", printable(bmodel)));
+    in.fail("balloon.model",
+            fmt::format("must be program, lagrangian or added-mass (given '{}')", printable(bmodel)));
   }
   m.gravity = in.positive("run.gravity", 9.81);
   in.plausible("run.gravity", m.gravity, kMinGravity, kMaxGravity);
   build_extensions(in, m);
   if (m.balloon_acceleration() > kMaxBalloonG * m.gravity) {
     in.fail("air.helium_density",
-            fmt::format("gives the free balloon an acceleration of {:.4g} g; at most {} g is within the range the "
-                        "model is made for (given {} kg/m^3)", m.balloon_acceleration() / m.gravity,
-                        fmt_num(kMaxBalloonG), fmt_num(m.helium_density)));
+            fmt::format(
+                "gives the free balloon an acceleration of {:.4g} g; at most {} g is within the range the "
+                "model is made for (given {} kg/m^3)",
+                m.balloon_acceleration() / m.gravity, fmt_num(kMaxBalloonG), fmt_num(m.helium_density)));
   }
 }
 
@@ -76,7 +82,8 @@ void read_bodies(const Reader& in, Machine& m) {
 void read_start(const Reader& in, Start& st) {
   st.sandbag_x = in.number("start.sandbag_x", -0.3);
   st.sandbag_h = in.offset("start.sandbag_height", 1.0);
-  st.seesaw_angle = in.in_range("start.seesaw_angle", -25.0, -90.0, false, 90.0, false) * units::kRadiansPerDegree;
+  st.seesaw_angle =
+      in.in_range("start.seesaw_angle", -25.0, -90.0, false, 90.0, false) * units::kRadiansPerDegree;
   st.lid_angle = in.in_range("start.lid_angle", 5.0, 0.0, true, 90.0, false) * units::kRadiansPerDegree;
 }
 
@@ -89,7 +96,8 @@ void read_run(const Reader& in, const Machine& m, RunSettings& run) {
   // Tighter than 1e-15 the error estimate is rounding noise and the steps shrink without end;
   // looser than 1e-3 events are located on a state that is wrong in the third digit.
   run.tolerance = in.in_range("run.tolerance", 1e-12, kMinTolerance, true, kMaxTolerance, true);
-  run.vertical_margin = in.in_range("run.vertical_margin", 0.9, 0.0, true, 90.0, false) * units::kRadiansPerDegree;
+  run.vertical_margin =
+      in.in_range("run.vertical_margin", 0.9, 0.0, true, 90.0, false) * units::kRadiansPerDegree;
   const std::string integ = in.text("run.integrator", "adaptive");
   if (!parse_integrator(integ, run.integrator)) {
     in.fail("run.integrator", fmt::format("must be adaptive, euler or rk4 (given '{}')", printable(integ)));
@@ -101,26 +109,30 @@ void read_run(const Reader& in, const Machine& m, RunSettings& run) {
                         printable(law)));
   }
   if (run.integrator != IntegratorKind::adaptive && run.t_max / run.step > kMaxSteps) {
-    in.fail("run.step", fmt::format("gives {:.3g} steps up to run.t_max = {} s; at most {:.0e} are allowed (given {})",
-                                    run.t_max / run.step, fmt_num(run.t_max), kMaxSteps, fmt_num(run.step)));
+    in.fail("run.step",
+            fmt::format("gives {:.3g} steps up to run.t_max = {} s; at most {:.0e} are allowed (given {})",
+                        run.t_max / run.step, fmt_num(run.t_max), kMaxSteps, fmt_num(run.step)));
   }
   if (run.integrator != IntegratorKind::adaptive) {
     // An explicit fixed step is unstable when a damper takes the motion's speed away within one
     // step: the lid then swings through its rest to -243 deg. Stay below the decay time I / c.
     const auto stable = [&](const char* damper, double c, double inertia) {
       if (c * run.step > inertia) {
-        in.fail("run.step", fmt::format("is longer than the {:.3g} s in which {} = {} N m s/rad stops the part it "
-                                        "damps: the fixed step is unstable (use a shorter step or the adaptive "
-                                        "integrator; given {} s)", inertia / c, damper, fmt_num(c), fmt_num(run.step)));
+        in.fail("run.step",
+                fmt::format("is longer than the {:.3g} s in which {} = {} N m s/rad stops the part it "
+                            "damps: the fixed step is unstable (use a shorter step or the adaptive "
+                            "integrator; given {} s)",
+                            inertia / c, damper, fmt_num(c), fmt_num(run.step)));
       }
     };
     stable("damping.lid_hinge", m.lid_hinge_damping, m.lid_inertia());
     if (m.heavy_seesaw()) stable("damping.pivot", m.pivot_damping, m.seesaw_inertia);
   }
   if (run.t_max / run.output_step > kMaxSamples) {
-    in.fail("run.output_step", fmt::format("gives {:.3g} rows up to run.t_max = {} s; at most {:.0e} are allowed (given {})",
-                                           run.t_max / run.output_step, fmt_num(run.t_max), kMaxSamples,
-                                           fmt_num(run.output_step)));
+    in.fail(
+        "run.output_step",
+        fmt::format("gives {:.3g} rows up to run.t_max = {} s; at most {:.0e} are allowed (given {})",
+                    run.t_max / run.output_step, fmt_num(run.t_max), kMaxSamples, fmt_num(run.output_step)));
   }
 }
 
@@ -148,21 +160,26 @@ void check_start(const Reader& in, const Scenario& sc) {
   if (span0 > m.rope_length + 1e-9) {
     in.fail("geometry.rope_length",
             fmt::format("is shorter than the distance from the seesaw's end to the lid's edge at the start "
-                        "({:.4g} m < {:.4g} m)", m.rope_length, span0));
+                        "({:.4g} m < {:.4g} m)",
+                        m.rope_length, span0));
   }
   // A rope straight at the start must run above the hinge: with the lid above it, it would run
   // under the hinge, through the box (the closure's mirror branch).
   if (span0 >= m.rope_length - 1e-9 && !rope.lid_below_rope(st.seesaw_angle, st.lid_angle)) {
-    in.fail("start.lid_angle",
-            fmt::format("puts the lid above the rope, which is straight at the start (geometry.rope_length = {} m "
-                        "at start.seesaw_angle = {} deg) and would run under the hinge, through the box (given {} deg)",
-                        fmt_num(m.rope_length), fmt_num(st.seesaw_angle / units::kRadiansPerDegree), fmt_num(st.lid_angle / units::kRadiansPerDegree)));
+    in.fail(
+        "start.lid_angle",
+        fmt::format(
+            "puts the lid above the rope, which is straight at the start (geometry.rope_length = {} m "
+            "at start.seesaw_angle = {} deg) and would run under the hinge, through the box (given {} deg)",
+            fmt_num(m.rope_length), fmt_num(st.seesaw_angle / units::kRadiansPerDegree),
+            fmt_num(st.lid_angle / units::kRadiansPerDegree)));
   }
   const double reach = rope.max_span(st.lid_angle);
   if (m.rope_length > reach) {
     in.fail("geometry.rope_length",
             fmt::format("can never be straight: the seesaw's end and the lid's edge are never more than "
-                        "{:.4g} m apart (given {:.4g} m)", reach, m.rope_length));
+                        "{:.4g} m apart (given {:.4g} m)",
+                        reach, m.rope_length));
   }
 }
 

@@ -76,12 +76,12 @@ void CsvWriter::on_sample(const Snapshot& s) {
 }
 
 void CsvWriter::on_samples(const SampleBatch& batch) {
-  rows_->write(batch.size(), [&](std::size_t i, char* out) { return format_csv(batch.snapshot(i), "", out); });
+  rows_->write(batch.size(),
+               [&](std::size_t i, char* out) { return format_csv(batch.snapshot(i), "", out); });
 }
 
 void CsvWriter::on_event(const Event& e) {
   rows_->write(1, [&](std::size_t, char* out) { return format_csv(e.after, to_string(e.type), out); });
 }
-
 
 }  // namespace whatnext

@@ -23,7 +23,8 @@ char* format_dat(const Snapshot& s, bool slack, char* out) {
   for (const double v : values) sum += v - v;
   if (sum != 0.0) not_finite(s);
   char* p = out;
-  for (const double v : values) p = numtext::put_f8_3(p, v == 0.0 ? 0.0 : v);  // fortran_f(v, 8, 3): no -0.000
+  for (const double v : values)
+    p = numtext::put_f8_3(p, v == 0.0 ? 0.0 : v);  // fortran_f(v, 8, 3): no -0.000
   std::memcpy(p, slack ? "   1.000" : "   0.000", 8);
   std::memcpy(p + 8, s.rope_taut ? "   1.000" : "   0.000", 8);
   p[16] = '\n';
@@ -59,6 +60,5 @@ void DatWriter::on_samples(const SampleBatch& batch) {
 void DatWriter::on_event(const Event& e) {
   if (e.type == EventType::rope_slack) slack_since_last_row_ = true;
 }
-
 
 }  // namespace whatnext

@@ -13,22 +13,15 @@ using namespace io;
 namespace {
 // Where the energy is and where it went (docs/extensions.md "Energy ledger").
 nlohmann::json ledger(const Snapshot& s) {
-  return nlohmann::json{{"sandbag_kinetic", clean(s.sandbag_kinetic)},
-                        {"sandbag_potential", clean(s.sandbag_potential)},
-                        {"seesaw_kinetic", clean(s.seesaw_kinetic)},
-                        {"seesaw_potential", clean(s.seesaw_potential)},
-                        {"lid_kinetic", clean(s.lid_kinetic)},
-                        {"lid_potential", clean(s.lid_potential)},
-                        {"balloon_kinetic", clean(s.balloon_kinetic)},
-                        {"balloon_potential", clean(s.balloon_potential)},
-                        {"lost_impacts", clean(s.lost_impacts)},
-                        {"lost_balloon_catch", clean(s.lost_balloon_catch)},
-                        {"dissipated_pivot", clean(s.dissipated_pivot)},
-                        {"dissipated_lid_hinge", clean(s.dissipated_hinge)},
-                        {"dissipated_drag", clean(s.dissipated_drag)},
-                        {"lid_push_on_balloon", clean(s.lid_push_work)},
-                        {"initial_total", clean(s.initial_total)},
-                        {"residual", s.ledger_residual()}};
+  return nlohmann::json{
+      {"sandbag_kinetic", clean(s.sandbag_kinetic)},   {"sandbag_potential", clean(s.sandbag_potential)},
+      {"seesaw_kinetic", clean(s.seesaw_kinetic)},     {"seesaw_potential", clean(s.seesaw_potential)},
+      {"lid_kinetic", clean(s.lid_kinetic)},           {"lid_potential", clean(s.lid_potential)},
+      {"balloon_kinetic", clean(s.balloon_kinetic)},   {"balloon_potential", clean(s.balloon_potential)},
+      {"lost_impacts", clean(s.lost_impacts)},         {"lost_balloon_catch", clean(s.lost_balloon_catch)},
+      {"dissipated_pivot", clean(s.dissipated_pivot)}, {"dissipated_lid_hinge", clean(s.dissipated_hinge)},
+      {"dissipated_drag", clean(s.dissipated_drag)},   {"lid_push_on_balloon", clean(s.lid_push_work)},
+      {"initial_total", clean(s.initial_total)},       {"residual", s.ledger_residual()}};
 }
 }  // namespace
 
@@ -69,13 +62,13 @@ std::string events_json(const Result& result, const Scenario& sc, const std::str
     events.push_back(std::move(j));
   }
   const Event& last = result.outcome();
-  json doc{{"input", source},
-           {"impact_law", std::string(to_string(sc.run.impact_law))},
-           {"integrator", std::string(to_string(sc.run.integrator))},
-           {"outcome", {{"type", std::string(to_string(last.type))},
-                        {"t", last.t},
-                        {"sentence", outcome_sentence(result)}}},
-           {"events", std::move(events)}};
+  json doc{
+      {"input", source},
+      {"impact_law", std::string(to_string(sc.run.impact_law))},
+      {"integrator", std::string(to_string(sc.run.integrator))},
+      {"outcome",
+       {{"type", std::string(to_string(last.type))}, {"t", last.t}, {"sentence", outcome_sentence(result)}}},
+      {"events", std::move(events)}};
   return doc.dump(2) + "\n";
 }
 

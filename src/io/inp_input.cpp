@@ -46,13 +46,20 @@ Config parse_inp(std::string_view text, const std::string& source) {
   // The paper's whatnext.inp: one number per line in this order, anything after it (past a blank,
   // ';' or '!') a comment; blank lines are skipped, as Fortran's read does. Nothing may follow.
   static const char* const kFields[15][2] = {
-      {"start.sandbag_height", "hs"},      {"start.sandbag_x", "xs"},
-      {"start.seesaw_angle", "phiS"},      {"start.lid_angle", "phiL"},
-      {"geometry.hinge_distance", "f"},    {"geometry.rope_length", "lR"},
-      {"geometry.hinge_angle", "gamma"},   {"geometry.lid_half_length", "rL"},
-      {"geometry.seesaw_right_arm", "rH"}, {"masses.sandbag", "ms"},
-      {"masses.lid", "mL"},                {"air.density", "rhoair"},
-      {"air.helium_density", "rhohe"},     {"run.t_max", "tmax"},
+      {"start.sandbag_height", "hs"},
+      {"start.sandbag_x", "xs"},
+      {"start.seesaw_angle", "phiS"},
+      {"start.lid_angle", "phiL"},
+      {"geometry.hinge_distance", "f"},
+      {"geometry.rope_length", "lR"},
+      {"geometry.hinge_angle", "gamma"},
+      {"geometry.lid_half_length", "rL"},
+      {"geometry.seesaw_right_arm", "rH"},
+      {"masses.sandbag", "ms"},
+      {"masses.lid", "mL"},
+      {"air.density", "rhoair"},
+      {"air.helium_density", "rhohe"},
+      {"run.t_max", "tmax"},
       {"run.step", "dt"},
   };
   Config cfg;
@@ -69,11 +76,13 @@ Config parse_inp(std::string_view text, const std::string& source) {
     const std::string origin = fmt::format("{} line {}", cfg.source, line_no);
     const std::size_t end = scan_real(line, first);
     // strchr finds a NUL too, as the string's end: "0.5<NUL>9" is refused, not read as 0.5.
-    const bool separated = end < line.size() ? line[end] != '\0' && std::strchr(" \t\r;!", line[end]) != nullptr : true;
+    const bool separated =
+        end < line.size() ? line[end] != '\0' && std::strchr(" \t\r;!", line[end]) != nullptr : true;
     if (end == first || !separated) {
-      throw InputError(fmt::format("{}: expected a number for {} ({}), got '{}'{}", origin, kFields[field][1],
-                                   kFields[field][0], printable(line.substr(first)),
-                                   end > first && line[end] == ',' ? " (a decimal comma? write a point)" : ""));
+      throw InputError(
+          fmt::format("{}: expected a number for {} ({}), got '{}'{}", origin, kFields[field][1],
+                      kFields[field][0], printable(line.substr(first)),
+                      end > first && line[end] == ',' ? " (a decimal comma? write a point)" : ""));
     }
     std::string token = line.substr(first, end - first);
     std::replace(token.begin(), token.end(), 'd', 'e');  // Fortran's 1.0d0
@@ -93,8 +102,10 @@ Config parse_inp(std::string_view text, const std::string& source) {
   while (std::getline(in, line)) {
     ++line_no;
     if (!blank(line)) {
-      throw InputError(fmt::format("{} line {}: a whatnext.inp holds exactly 15 numbers; this line is one too "
-                                   "many ('{}')", cfg.source, line_no, printable(line)));
+      throw InputError(
+          fmt::format("{} line {}: a whatnext.inp holds exactly 15 numbers; this line is one too "
+                      "many ('{}')",
+                      cfg.source, line_no, printable(line)));
     }
   }
   // The paper writes a .dat row every time step.

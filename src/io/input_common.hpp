@@ -15,7 +15,6 @@
 
 namespace whatnext::io {
 
-
 inline std::string fmt_num(double v) { return fmt::format("{}", v); }
 
 // InputError "WHERE: unknown key 'KEY'", with the nearest known key when one is close (keys.cpp).

@@ -27,14 +27,16 @@ const std::vector<KeySpec> kKeys = {
     {"balloon.radius", KeyKind::length, "m", "r_B", "r_L"},
     {"balloon.model", KeyKind::text, "",
      "program (a = g (rho_air - rho_He) / rho_air), lagrangian (/ rho_He) or added-mass "
-     "(/ (rho_He + rho_air / 2))", "program"},
+     "(/ (rho_He + rho_air / 2))",
+     "program"},
     {"balloon.rubber_mass", KeyKind::mass, "kg", "the balloon's rubber: weight and inertia", "0"},
     {"balloon.drag", KeyKind::flag, "", "true: quadratic air drag 1/2 rho_air Cd pi r_B^2 v|v|", "false"},
-    {"balloon.drag_coefficient", KeyKind::positive, "", "Cd of the air drag (a sphere); giving it turns drag on",
-     "0.47"},
+    {"balloon.drag_coefficient", KeyKind::positive, "",
+     "Cd of the air drag (a sphere); giving it turns drag on", "0.47"},
     {"radio.enabled", KeyKind::flag, "",
      "true: after lid_open run on until the balloon's string switches the radio on (any other radio key "
-     "turns it on too)", "false"},
+     "turns it on too)",
+     "false"},
     {"radio.switch_offset", KeyKind::pair, "m",
      "[dx, dh]: the radio's switch dx right of and dh above the box's top-right corner", "[0.5, 0]"},
     {"radio.string_length", KeyKind::length, "m", "the balloon's string, centre to switch", "1.0"},
@@ -54,9 +56,10 @@ const std::vector<KeySpec> kKeys = {
     {"run.output_step", KeyKind::time, "s", "spacing of CSV/.dat rows", "0.001"},
     {"run.integrator", KeyKind::text, "", "adaptive, euler or rk4", "adaptive"},
     {"run.step", KeyKind::time, "s", "time step of euler and rk4", "0.001"},
-    {"run.tolerance", KeyKind::positive, "", "adaptive: error tolerance per step (abs. and rel.), 1e-15 to 1e-3",
-     "1e-12"},
-    {"run.impact_law", KeyKind::text, "", "rope, angular-momentum-sum, kinetic-energy or linear-momentum", "rope"},
+    {"run.tolerance", KeyKind::positive, "",
+     "adaptive: error tolerance per step (abs. and rel.), 1e-15 to 1e-3", "1e-12"},
+    {"run.impact_law", KeyKind::text, "", "rope, angular-momentum-sum, kinetic-energy or linear-momentum",
+     "rope"},
     {"run.vertical_margin", KeyKind::angle, "deg", "stop this far before 90 deg", "0.9"},
     {"run.gravity", KeyKind::acceleration, "m/s^2", "g", "9.81"},
 };
@@ -83,7 +86,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 namespace io {
 [[noreturn]] void unknown_key(const std::string& where, std::string_view key) {
   const std::string near = nearest_key(key);
-  if (near.empty() || near == key) throw InputError(fmt::format("{}: unknown key '{}'", where, printable(key)));
+  if (near.empty() || near == key)
+    throw InputError(fmt::format("{}: unknown key '{}'", where, printable(key)));
   throw InputError(fmt::format("{}: unknown key '{}' (did you mean '{}'?)", where, printable(key), near));
 }
 }  // namespace io

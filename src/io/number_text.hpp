@@ -149,7 +149,7 @@ inline char* put_g9(char* out, double v) {
   }
   // The nine digits; the fixed-size copies below read up to d[whole + 8], whole <= 9.
   char d[24] = {};
-  int len = kDigits;   // without the trailing zeros
+  int len = kDigits;  // without the trailing zeros
   if constexpr (std::endian::native == std::endian::little) {
     d[0] = static_cast<char>('0' + n / 100'000'000);
     const std::uint64_t rest = detail::ascii8(static_cast<std::uint32_t>(n % 100'000'000));

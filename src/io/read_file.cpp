@@ -42,7 +42,8 @@ std::string read_file(const std::string& path) {
   }
   if (S_ISDIR(st.st_mode)) throw InputError(fmt::format("{}: is a directory, not an input file", shown));
   if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) {
-    throw InputError(fmt::format("{}: is a device, not an input file (give a machine's TOML or .inp file)", shown));
+    throw InputError(
+        fmt::format("{}: is a device, not an input file (give a machine's TOML or .inp file)", shown));
   }
   if (S_ISFIFO(st.st_mode)) {
     pollfd p{fd, POLLIN, 0};
@@ -57,8 +58,8 @@ std::string read_file(const std::string& path) {
   }
   ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
   const auto too_big = [&] {
-    return InputError(fmt::format("{}: an input file has at most {} bytes; this one has more", shown,
-                                  kMaxInputBytes));
+    return InputError(
+        fmt::format("{}: an input file has at most {} bytes; this one has more", shown, kMaxInputBytes));
   };
   if (S_ISREG(st.st_mode) && static_cast<std::uintmax_t>(st.st_size) > kMaxInputBytes) throw too_big();
   std::string text;
@@ -66,7 +67,8 @@ std::string read_file(const std::string& path) {
   for (;;) {
     const ssize_t n = ::read(fd, buf, sizeof buf);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw InputError(fmt::format("{}: cannot read the input file: {}", shown, std::strerror(errno)));
+    if (n < 0)
+      throw InputError(fmt::format("{}: cannot read the input file: {}", shown, std::strerror(errno)));
     if (n == 0) break;
     text.append(buf, static_cast<std::size_t>(n));
     if (text.size() > kMaxInputBytes) throw too_big();
@@ -82,9 +84,8 @@ Config load_config_file(const std::string& path) {
   const auto first = text.find_first_not_of(" \t\r\n", text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0);
   const bool looks_inp =
       (path.size() >= 4 && path.compare(path.size() - 4, 4, ".inp") == 0) ||
-      (first != std::string::npos &&
-       (std::isdigit(static_cast<unsigned char>(text[first])) || text[first] == '-' ||
-        text[first] == '+' || text[first] == '.'));
+      (first != std::string::npos && (std::isdigit(static_cast<unsigned char>(text[first])) ||
+                                      text[first] == '-' || text[first] == '+' || text[first] == '.'));
   return looks_inp ? parse_inp(text, path) : parse_toml(text, path);
 }
 

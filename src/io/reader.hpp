@@ -20,16 +20,16 @@ constexpr double kMaxSamples = 1e7;  // output rows
 // Where the model is made for (docs/inputs.md "Limits"): a tabletop machine. Far outside, lengths
 // fall below the contact tolerance (1e-9 m) or the rounding of the others, energies overflow, and
 // the integrator cannot meet its tolerance in any number of steps.
-constexpr double kMinLength = 1e-3, kMaxLength = 1e3;      // [m]
-constexpr double kMinMass = 1e-3, kMaxMass = 1e3;          // [kg]
-constexpr double kMinDensity = 1e-3, kMaxDensity = 1e3;    // [kg/m^3]
-constexpr double kMinGravity = 1e-2, kMaxGravity = 1e3;    // [m/s^2]
-constexpr double kMaxTime = 1e4;                           // run.t_max [s]
+constexpr double kMinLength = 1e-3, kMaxLength = 1e3;    // [m]
+constexpr double kMinMass = 1e-3, kMaxMass = 1e3;        // [kg]
+constexpr double kMinDensity = 1e-3, kMaxDensity = 1e3;  // [kg/m^3]
+constexpr double kMinGravity = 1e-2, kMaxGravity = 1e3;  // [m/s^2]
+constexpr double kMaxTime = 1e4;                         // run.t_max [s]
 constexpr double kMinTolerance = 1e-15, kMaxTolerance = 1e-3;
-constexpr double kMaxBalloonG = 1e3;                       // free balloon's acceleration [g]
-constexpr double kMaxDrag = 10.0;                          // drag coefficient
-constexpr double kMaxDamping = 1e3;                        // [N m s/rad]
-constexpr double kMaxInertia = 1e4;                        // seesaw [kg m^2]
+constexpr double kMaxBalloonG = 1e3;  // free balloon's acceleration [g]
+constexpr double kMaxDrag = 10.0;     // drag coefficient
+constexpr double kMaxDamping = 1e3;   // [N m s/rad]
+constexpr double kMaxInertia = 1e4;   // seesaw [kg m^2]
 
 // --- validation helpers ---------------------------------------------------------------------
 
@@ -62,7 +62,8 @@ struct Reader {
   double number(std::string_view key, double fallback) const {
     const ConfigValue* v = find(key);
     if (!v) return fallback;
-    if (!std::isfinite(v->number)) fail(key, fmt::format("must be a finite number (given {})", shown(key, v->number)));
+    if (!std::isfinite(v->number))
+      fail(key, fmt::format("must be a finite number (given {})", shown(key, v->number)));
     return v->number;
   }
   double positive(std::string_view key, double fallback) const {
@@ -79,8 +80,8 @@ struct Reader {
     const bool ok = (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
     if (!ok) {
       const std::string u = unit(key);
-      fail(key, fmt::format("must be in {}{}, {}{}{} (given {})", lo_closed ? "[" : "(", fmt_num(lo), fmt_num(hi),
-                            hi_closed ? "]" : ")", u.empty() ? "" : " " + u, shown(key, x)));
+      fail(key, fmt::format("must be in {}{}, {}{}{} (given {})", lo_closed ? "[" : "(", fmt_num(lo),
+                            fmt_num(hi), hi_closed ? "]" : ")", u.empty() ? "" : " " + u, shown(key, x)));
     }
     return x;
   }
@@ -88,8 +89,8 @@ struct Reader {
   void plausible(std::string_view key, double x, double lo, double hi) const {
     if (!(x >= lo && x <= hi)) {
       const std::string u = unit(key);
-      fail(key, fmt::format("must be within [{}, {}]{}, the range the model is made for (given {})", fmt_num(lo),
-                            fmt_num(hi), u.empty() ? "" : " " + u, shown(key, x)));
+      fail(key, fmt::format("must be within [{}, {}]{}, the range the model is made for (given {})",
+                            fmt_num(lo), fmt_num(hi), u.empty() ? "" : " " + u, shown(key, x)));
     }
   }
   double length(std::string_view key, double fallback) const {
@@ -128,7 +129,6 @@ struct Reader {
     return v ? v->text : fallback;
   }
 };
-
 
 // The switches beyond the paper (build_extensions.cpp).
 void build_extensions(const Reader& in, Machine& m);

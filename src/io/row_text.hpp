@@ -52,7 +52,9 @@ class RowText {
   // rows before its chunk are written, and the exception is rethrown here.
   template <class F>
   void write(std::size_t n, const F& row) {
-    write(n, Row{&row, [](const void* c, std::size_t i, char* out) { return (*static_cast<const F*>(c))(i, out); }});
+    write(n, Row{&row, [](const void* c, std::size_t i, char* out) {
+                   return (*static_cast<const F*>(c))(i, out);
+                 }});
   }
 
  private:
@@ -122,7 +124,8 @@ class RowText {
   std::size_t write_done(std::size_t from, std::size_t chunks) {
     for (; from < chunks && state_[from].load(std::memory_order_acquire) == done; ++from) {
       const auto bytes = static_cast<std::streamsize>(end_[from] - slot_[from].get());
-      if (!out_.good() || !buf_ || buf_->sputn(slot_[from].get(), bytes) != bytes) out_.setstate(std::ios::badbit);
+      if (!out_.good() || !buf_ || buf_->sputn(slot_[from].get(), bytes) != bytes)
+        out_.setstate(std::ios::badbit);
     }
     return from;
   }
@@ -178,7 +181,7 @@ class RowText {
   std::array<std::unique_ptr<char[]>, kChunks> slot_{};
   std::mutex lock_;
   std::condition_variable wake_;
-  std::uint32_t round_ = 0;  // under lock_
+  std::uint32_t round_ = 0;        // under lock_
   std::atomic<bool> stop_{false};  // set under lock_
   std::thread helper_;
 };

@@ -22,25 +22,31 @@ std::string outcome_sentence(const Result& result) {
   const Event& e = result.outcome();
   const Snapshot& s = e.after;
   switch (e.type) {
-    case EventType::lid_open:
-      return fmt::format("lid open at {:.3f} s", e.t);
+    case EventType::lid_open: return fmt::format("lid open at {:.3f} s", e.t);
     case EventType::seesaw_vertical:
       if (!s.on_seesaw) {  // a seesaw with mass that lost its sandbag (no somersaults, docs/model.md §6)
-        return fmt::format("seesaw vertical at {:.3f} s without the sandbag (it is {:.4g} m from the pivot); the "
-                           "lid never opens (it is at {:.1f} deg)", e.t, s.r, s.phi_l * units::kDegreesPerRadian);
+        return fmt::format(
+            "seesaw vertical at {:.3f} s without the sandbag (it is {:.4g} m from the pivot); the "
+            "lid never opens (it is at {:.1f} deg)",
+            e.t, s.r, s.phi_l * units::kDegreesPerRadian);
       }
-      return fmt::format("seesaw vertical at {:.3f} s with the sandbag {:.4g} m out; the lid never "
-                         "opens (it is at {:.1f} deg)", e.t, s.r, s.phi_l * units::kDegreesPerRadian);
+      return fmt::format(
+          "seesaw vertical at {:.3f} s with the sandbag {:.4g} m out; the lid never "
+          "opens (it is at {:.1f} deg)",
+          e.t, s.r, s.phi_l * units::kDegreesPerRadian);
     case EventType::sandbag_at_pivot:
-      return fmt::format("sandbag reaches the pivot at {:.3f} s; the lid has not opened (it is at "
-                         "{:.1f} deg)", e.t, s.phi_l * units::kDegreesPerRadian);
+      return fmt::format(
+          "sandbag reaches the pivot at {:.3f} s; the lid has not opened (it is at "
+          "{:.1f} deg)",
+          e.t, s.phi_l * units::kDegreesPerRadian);
     case EventType::rope_locked:
       // Either the lid or the seesaw's arm has come in line with the straight rope (docs/model.md):
       // the linkage cannot move on; which of the two is not in the result, so the line names both.
-      return fmt::format("linkage locked at {:.3f} s: the straight rope is in line with the lid or the seesaw's "
-                         "arm; the lid is at {:.1f} deg", e.t, s.phi_l * units::kDegreesPerRadian);
-    case EventType::radio_on:
-      return fmt::format("radio on at t = {:.3f} s", e.t);
+      return fmt::format(
+          "linkage locked at {:.3f} s: the straight rope is in line with the lid or the seesaw's "
+          "arm; the lid is at {:.1f} deg",
+          e.t, s.phi_l * units::kDegreesPerRadian);
+    case EventType::radio_on: return fmt::format("radio on at t = {:.3f} s", e.t);
     case EventType::timeout:
       // With the radio the lid may have opened (and latched) before: say so, not "no outcome".
       for (const Event& open : result.events) {
@@ -52,8 +58,7 @@ std::string outcome_sentence(const Result& result) {
                          s.phi_l * units::kDegreesPerRadian);
     case EventType::event_limit:
       return fmt::format("stopped after {} events at {:.3f} s", result.events.size(), e.t);
-    default:
-      return fmt::format("{} at {:.3f} s", to_string(e.type), e.t);
+    default: return fmt::format("{} at {:.3f} s", to_string(e.type), e.t);
   }
 }
 
@@ -74,7 +79,8 @@ std::string impact_text(const Event& e, const Scenario& sc) {
   std::string out = fmt::format("energy {:.4f} J -> {:.4f} J", e.energy_before, e.energy_after);
   const std::string impulses = impulse_text(e);
   if (!impulses.empty()) out += "; impulse " + impulses;
-  if (!e.law_note.empty()) out += fmt::format("; not the {} law: {}", to_string(sc.run.impact_law), e.law_note);
+  if (!e.law_note.empty())
+    out += fmt::format("; not the {} law: {}", to_string(sc.run.impact_law), e.law_note);
   return out;
 }
 }  // namespace
@@ -90,8 +96,8 @@ std::string timeline_text(const Result& result, const Scenario& sc, const std::s
                     e.mode_before == e.mode_after
                         ? std::string(to_string(e.mode_after))
                         : fmt::format("{}>{}", to_string(e.mode_before), to_string(e.mode_after)),
-                    fmt::format("{:.3f}", s.phi_s * units::kDegreesPerRadian), fmt::format("{:.3f}", s.phi_l * units::kDegreesPerRadian),
-                    fmt::format("{:.4f}", s.r),
+                    fmt::format("{:.3f}", s.phi_s * units::kDegreesPerRadian),
+                    fmt::format("{:.3f}", s.phi_l * units::kDegreesPerRadian), fmt::format("{:.4f}", s.r),
                     e.impact ? impact_text(e, sc) : ""});
   }
   std::array<std::size_t, 7> width{12, 16, 7, 9, 9, 9, 0};
@@ -101,8 +107,9 @@ std::string timeline_text(const Result& result, const Scenario& sc, const std::s
   std::string out = fmt::format("whatnext: {} (impact law {}, integrator {})\n", source,
                                 to_string(sc.run.impact_law), to_string(sc.run.integrator));
   for (const auto& row : rows) {
-    std::string line = fmt::format("{:>{}}  {:<{}} {:<{}} {:>{}} {:>{}} {:>{}}", row[0], width[0], row[1], width[1],
-                                   row[2], width[2], row[3], width[3], row[4], width[4], row[5], width[5]);
+    std::string line =
+        fmt::format("{:>{}}  {:<{}} {:<{}} {:>{}} {:>{}} {:>{}}", row[0], width[0], row[1], width[1], row[2],
+                    width[2], row[3], width[3], row[4], width[4], row[5], width[5]);
     if (!row[6].empty()) line += "  " + row[6];
     out += line + "\n";
   }

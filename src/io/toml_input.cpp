@@ -20,7 +20,8 @@ namespace {
 // does not read as the node's value.
 std::string literal_of(const toml::node& node, std::string_view source, double value) {
   const toml::source_region& where = node.source();
-  if (source.empty() || where.begin.line != where.end.line || where.end.column <= where.begin.column) return {};
+  if (source.empty() || where.begin.line != where.end.line || where.end.column <= where.begin.column)
+    return {};
   std::size_t at = 0;
   for (auto line = where.begin.line; line > 1 && at != std::string_view::npos; --line) {
     at = source.find('\n', at);
@@ -35,18 +36,21 @@ std::string literal_of(const toml::node& node, std::string_view source, double v
   }
   char* end = nullptr;
   const double read = std::strtod(digits.c_str(), &end);
-  if (digits.empty() || *end != '\0' || !(read == value || (std::isnan(read) && std::isnan(value)))) return {};
+  if (digits.empty() || *end != '\0' || !(read == value || (std::isnan(read) && std::isnan(value))))
+    return {};
   return printable(text, 40);
 }
 
 // TOML integers become doubles too (rounded when they have more than 53 bits). `literal` gets the
 // number as written, for messages ("given 9007199254740993", not ...992; "given 1e-400", not 0).
-bool number_of(const toml::node& node, double& out, std::string* literal = nullptr, std::string_view source = {}) {
+bool number_of(const toml::node& node, double& out, std::string* literal = nullptr,
+               std::string_view source = {}) {
   if (const auto* i = node.as_integer()) {
     out = static_cast<double>(i->get());
     if (literal) {
       *literal = literal_of(node, source, out);
-      if (literal->empty()) *literal = std::fabs(out) >= 9007199254740992.0 ? std::to_string(i->get()) : fmt_num(out);
+      if (literal->empty())
+        *literal = std::fabs(out) >= 9007199254740992.0 ? std::to_string(i->get()) : fmt_num(out);
     }
     return true;
   }
@@ -84,8 +88,8 @@ void store(Config& cfg, const std::string& key, const toml::node& node, const st
     v.number = node.as_boolean()->get() ? 1.0 : 0.0;
   } else if (spec->kind == KeyKind::text) {
     if (!node.is_string()) {
-      throw InputError(fmt::format("{}: {} must be a text value, one of: {} (given {})", origin, key, spec->help,
-                                   shown_node(node)));
+      throw InputError(fmt::format("{}: {} must be a text value, one of: {} (given {})", origin, key,
+                                   spec->help, shown_node(node)));
     }
     v.type = ConfigValue::Type::text;
     v.text = node.as_string()->get();
@@ -98,7 +102,8 @@ void store(Config& cfg, const std::string& key, const toml::node& node, const st
                                    spec->unit, shown_node(node)));
     }
     v.type = ConfigValue::Type::pair;
-    if ((!lit[0].empty() && lit[0] != fmt_num(v.pair[0])) || (!lit[1].empty() && lit[1] != fmt_num(v.pair[1]))) {
+    if ((!lit[0].empty() && lit[0] != fmt_num(v.pair[0])) ||
+        (!lit[1].empty() && lit[1] != fmt_num(v.pair[1]))) {
       v.text = fmt::format("[{}, {}]", lit[0].empty() ? fmt_num(v.pair[0]) : lit[0],
                            lit[1].empty() ? fmt_num(v.pair[1]) : lit[1]);
     }
@@ -148,10 +153,10 @@ Config parse_toml(std::string_view text, const std::string& source) {
     const toml::table* table = node.as_table();
     if (!table && find_key(sect)) {
       // "masses.sandbag" = 0.5: quoted, the dot is part of one key's name, not a section's.
-      throw InputError(fmt::format("{}: key \"{}\" is quoted, so its dot does not make a section: write {} = ... "
-                                   "without the quotes, or the name after the dot under [{}]",
-                                   line_origin(cfg.source, node), printable(sect), printable(sect),
-                                   sect.substr(0, sect.find('.'))));
+      throw InputError(fmt::format(
+          "{}: key \"{}\" is quoted, so its dot does not make a section: write {} = ... "
+          "without the quotes, or the name after the dot under [{}]",
+          line_origin(cfg.source, node), printable(sect), printable(sect), sect.substr(0, sect.find('.'))));
     }
     if (!table) unknown_key(line_origin(cfg.source, node), sect);
     if (table->empty()) check_section(line_origin(cfg.source, node), sect);

@@ -32,10 +32,11 @@ std::string to_toml(const Scenario& sc, const Config* given) {
   line("seesaw_right_arm", m.seesaw_right_arm);
   line("lid_half_length", m.lid_half_length);
   line("rope_length", m.rope_length);
-  // An angle as input reads it (degrees times units::kRadiansPerDegree): the shortest degrees that give the same radians,
-  // so that 27 stays 27 and not 27.000000000000004.
+  // An angle as input reads it (degrees times units::kRadiansPerDegree): the shortest degrees that give the
+  // same radians, so that 27 stays 27 and not 27.000000000000004.
   auto angle_line = [&](std::string_view key, double radians) {
-    const auto d = fewest_digits(radians / units::kRadiansPerDegree, radians, [](double deg) { return deg * units::kRadiansPerDegree; });
+    const auto d = fewest_digits(radians / units::kRadiansPerDegree, radians,
+                                 [](double deg) { return deg * units::kRadiansPerDegree; });
     line(key, d ? *d : radians / units::kRadiansPerDegree);
   };
   if (given && !given->has("geometry.hinge_offset")) {

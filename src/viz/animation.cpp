@@ -84,9 +84,9 @@ std::uint8_t palette_index(std::uint32_t argb) {
 
 // ---- colours of the drawing (all on the palette) ----
 constexpr Rgb kWhite{255, 255, 255}, kBlack{0, 0, 0}, kDark{51, 42, 51}, kGrey{96, 96, 96},
-    kMidGrey{160, 160, 160}, kLightGrey{224, 224, 224}, kSeesaw{153, 85, 51},
-    kBoxWall{153, 127, 51}, kBoxInside{255, 255, 204}, kLid{51, 85, 153}, kRadio{51, 42, 102},
-    kDial{204, 212, 255}, kEventRed{204, 0, 0}, kBagText{153, 85, 0}, kCursor{0, 85, 204};
+    kMidGrey{160, 160, 160}, kLightGrey{224, 224, 224}, kSeesaw{153, 85, 51}, kBoxWall{153, 127, 51},
+    kBoxInside{255, 255, 204}, kLid{51, 85, 153}, kRadio{51, 42, 102}, kDial{204, 212, 255},
+    kEventRed{204, 0, 0}, kBagText{153, 85, 0}, kCursor{0, 85, 204};
 
 void set(cairo_t* cr, Rgb c) { cairo_set_source_rgb(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0); }
 
@@ -293,7 +293,8 @@ std::string_view short_words(EventType type) {
 // How fast the run goes by, relative to real time, in words a viewer can check against a clock.
 std::string speed_words(double speed, bool quiet) {
   const std::string pre = quiet ? "quiet stretch, faster: " : "";
-  if (speed < 1.0 - 1e-9) return pre + fmt::format("slow motion, 1 s of the run = {:.3g} s here", 1.0 / speed);
+  if (speed < 1.0 - 1e-9)
+    return pre + fmt::format("slow motion, 1 s of the run = {:.3g} s here", 1.0 / speed);
   if (speed > 1.0 + 1e-9) return pre + fmt::format("fast forward, 1 s here = {:.3g} s of the run", speed);
   return pre + "real time";
 }
@@ -500,13 +501,10 @@ bool is_mp4(const std::string& path, const std::string& option) {
   for (char c : ext) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (lower == ".mp4") return true;
   if (lower == ".gif") return false;
-  throw InputError(
-      fmt::format("{}: the animation must be a .gif or .mp4 file, got '{}'", option, path));
+  throw InputError(fmt::format("{}: the animation must be a .gif or .mp4 file, got '{}'", option, path));
 }
 
-Pixel to_pixel(const View& v, Vec2 p) {
-  return {v.origin_x + p.x * v.scale, v.origin_y - p.h * v.scale};
-}
+Pixel to_pixel(const View& v, Vec2 p) { return {v.origin_x + p.x * v.scale, v.origin_y - p.h * v.scale}; }
 
 View make_view(const Recording& rec, int width, int height) {
   const Machine& m = rec.scenario.machine;
@@ -534,7 +532,7 @@ View make_view(const Recording& rec, int width, int height) {
   const double bag = 0.05;  // the sandbag's drawn radius [m] (at least 6 px)
   for (const Snapshot& s : rec.states) {
     box.add(geo.seesaw_end(s.phi_s));
-    box.add(geo.lid_edge(s.phi_l));  // the rope's knot
+    box.add(geo.lid_edge(s.phi_l));                              // the rope's knot
     box.add(m.hinge + polar(2.0 * m.lid_half_length, s.phi_l));  // the lid's free edge
     box.add(polar(-v.left_arm, s.phi_s));
     landed = landed || s.on_seesaw;
@@ -629,7 +627,7 @@ std::vector<Vec2> rope_path(const Recording& rec, const Snapshot& s) {
   // seesaw swinging back brings its end near enough again.
   bool off = beyond_rope(geo, s);
   for (auto it = std::lower_bound(rec.states.begin(), rec.states.end(), latch,
-                                  [](const Snapshot& q, double t) { return q.t < t; });
+                                  [](const Snapshot&q, double t) { return q.t < t; });
        !off && it != rec.states.end() && it->t <= s.t; ++it) {
     off = beyond_rope(geo, *it);
   }
@@ -658,8 +656,14 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   cairo_paint(cr);
 
   auto px = [&](Vec2 p) { return to_pixel(v, p); };
-  auto move = [&](Vec2 p) { const Pixel q = px(p); cairo_move_to(cr, q.x, q.y); };
-  auto line = [&](Vec2 p) { const Pixel q = px(p); cairo_line_to(cr, q.x, q.y); };
+  auto move = [&](Vec2 p) {
+    const Pixel q = px(p);
+    cairo_move_to(cr, q.x, q.y);
+  };
+  auto line = [&](Vec2 p) {
+    const Pixel q = px(p);
+    cairo_line_to(cr, q.x, q.y);
+  };
   auto width_m = [&](double metres, double min_px) {
     cairo_set_line_width(cr, std::max(min_px, metres * v.scale));
   };
@@ -725,12 +729,13 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
 
   // Radio with its switch, where the balloon's string is tied.
   set(cr, kRadio);
-  cairo_rectangle(cr, px({radio.x0, radio.h1}).x, px({radio.x0, radio.h1}).y,
-                  (radio.x1 - radio.x0) * v.scale, (radio.h1 - radio.h0) * v.scale);
+  cairo_rectangle(cr, px({radio.x0, radio.h1}).x, px({radio.x0, radio.h1}).y, (radio.x1 - radio.x0) * v.scale,
+                  (radio.h1 - radio.h0) * v.scale);
   cairo_fill(cr);
   set(cr, kDial);
-  circle({0.5 * (radio.x0 + radio.x1), 0.5 * (radio.h0 + radio.h1)},
-         0.3 * (radio.x1 - radio.x0) * v.scale * std::min(1.0, (radio.h1 - radio.h0) / (radio.x1 - radio.x0)));
+  circle(
+      {0.5 * (radio.x0 + radio.x1), 0.5 * (radio.h0 + radio.h1)},
+      0.3 * (radio.x1 - radio.x0) * v.scale * std::min(1.0, (radio.h1 - radio.h0) / (radio.x1 - radio.x0)));
   cairo_fill(cr);
   set(cr, kDark);
   width_m(0.012, 2.0);
@@ -781,8 +786,8 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   // Sandbag, centred on the simulated point.
   const Pixel bag = px({s.x, s.h});
   const double bag_r = std::max(6.0, 0.05 * v.scale);
-  const bool bag_visible = bag.x >= -bag_r && bag.x <= v.width + bag_r && bag.y >= v.top - bag_r &&
-                           bag.y <= v.bottom + bag_r;
+  const bool bag_visible =
+      bag.x >= -bag_r && bag.x <= v.width + bag_r && bag.y >= v.top - bag_r && bag.y <= v.bottom + bag_r;
   if (bag_visible) {
     set(cr, kSandbagColour);
     cairo_new_sub_path(cr);
@@ -940,8 +945,8 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   const unsigned char* data = cairo_image_surface_get_data(surface);
   const int stride = cairo_image_surface_get_stride(surface);
   for (int y = 0; y < v.height; ++y) {
-    std::copy_n(reinterpret_cast<const std::uint32_t*>(data + static_cast<std::size_t>(y) * stride),
-                v.width, img.pixels.begin() + static_cast<std::ptrdiff_t>(y) * v.width);
+    std::copy_n(reinterpret_cast<const std::uint32_t*>(data + static_cast<std::size_t>(y) * stride), v.width,
+                img.pixels.begin() + static_cast<std::ptrdiff_t>(y) * v.width);
   }
   cairo_surface_destroy(surface);
   return img;
@@ -963,22 +968,24 @@ void write_png(const Image& image, const std::string& path) {
                 reinterpret_cast<std::uint32_t*>(buffer.data() + static_cast<std::size_t>(y) * stride));
   }
   const auto file = AtomicFile::during_work(path, "--dump-frames");
-  cairo_surface_t* s = cairo_image_surface_create_for_data(buffer.data(), CAIRO_FORMAT_RGB24,
-                                                           image.width, image.height, stride);
+  cairo_surface_t* s = cairo_image_surface_create_for_data(buffer.data(), CAIRO_FORMAT_RGB24, image.width,
+                                                           image.height, stride);
   const cairo_status_t st = cairo_surface_write_to_png_stream(s, png_to_stream, &file->stream());
   cairo_surface_destroy(s);
   file->flush();  // a failed write: its reason (a full disk)
   if (st != CAIRO_STATUS_SUCCESS) {
-    throw OutputError(fmt::format("--dump-frames {}: writing failed: {}", printable(path, 96),
-                                  cairo_status_to_string(st)));
+    throw OutputError(
+        fmt::format("--dump-frames {}: writing failed: {}", printable(path, 96), cairo_status_to_string(st)));
   }
   file->commit();
 }
 
 void check_animation_target(const std::string& path, const std::string& option) {
   if (is_mp4(path, option) && find_on_path("ffmpeg").empty()) {
-    throw InputError(fmt::format("{}: writing '{}' needs ffmpeg on PATH, and there is none "
-                                 "(write a .gif instead)", option, path));
+    throw InputError(
+        fmt::format("{}: writing '{}' needs ffmpeg on PATH, and there is none "
+                    "(write a .gif instead)",
+                    option, path));
   }
   const std::string dir = fs::path(path).parent_path().string();
   if (const int err = can_create_in(dir.empty() ? "." : dir)) {
@@ -990,9 +997,9 @@ namespace {
 // MP4 through ffmpeg, which writes the temporary by name; every frame's write into its pipe and its
 // exit status are checked, and a pipe ffmpeg closed early is an error, not SIGPIPE.
 template <class Dump>
-int write_mp4(const Recording& rec, const View& view, const std::vector<Frame>& frames, const AnimationOptions& opts,
-              const std::string& ffmpeg, const std::string& path, const std::string& option, const Dump& dump,
-              const std::function<void(int, int)>& progress) {
+int write_mp4(const Recording& rec, const View& view, const std::vector<Frame>& frames,
+              const AnimationOptions& opts, const std::string& ffmpeg, const std::string& path,
+              const std::string& option, const Dump& dump, const std::function<void(int, int)>& progress) {
   const int total = static_cast<int>(frames.size());
   const auto file = AtomicFile::during_work(path, option);
   // Raw BGRA frames (Cairo's ARGB32 in memory on little-endian machines) into ffmpeg; held
@@ -1001,7 +1008,8 @@ int write_mp4(const Recording& rec, const View& view, const std::vector<Frame>& 
       "{} -loglevel error -y -f rawvideo -pix_fmt bgra -s {}x{} -r {:g} -i - "
       "-vf pad=ceil(iw/2)*2:ceil(ih/2)*2 -c:v libx264 -pix_fmt yuv420p -f mp4 {}",
       shell_quote(ffmpeg), view.width, view.height, opts.fps, shell_quote(file->temp_path()));
-  struct sigaction ignore {}, before {};
+  struct sigaction ignore {
+  }, before{};
   ignore.sa_handler = SIG_IGN;
   ::sigaction(SIGPIPE, &ignore, &before);
   struct Restore {
@@ -1020,7 +1028,8 @@ int write_mp4(const Recording& rec, const View& view, const std::vector<Frame>& 
     shown += f.delay;
     const long until = std::lround(shown * opts.fps);
     for (; ok && written < std::max(until, written + 1); ++written) {
-      ok = std::fwrite(img.pixels.data(), sizeof(std::uint32_t), img.pixels.size(), pipe) == img.pixels.size();
+      ok =
+          std::fwrite(img.pixels.data(), sizeof(std::uint32_t), img.pixels.size(), pipe) == img.pixels.size();
     }
     ++index;
     if (progress) progress(index, total);
@@ -1028,7 +1037,8 @@ int write_mp4(const Recording& rec, const View& view, const std::vector<Frame>& 
   }
   ok = std::fflush(pipe) == 0 && ok;
   if (::pclose(pipe) != 0 || !ok) {
-    throw OutputError(fmt::format("{} {}: writing failed: ffmpeg could not write it", option, printable(path, 96)));
+    throw OutputError(
+        fmt::format("{} {}: writing failed: ffmpeg could not write it", option, printable(path, 96)));
   }
   file->commit();
   return total;
@@ -1065,7 +1075,8 @@ int write_animation(const Recording& rec, const std::string& path, const Animati
   int fd = file->descriptor();
   g_gif_errno = 0;
   auto failed = [&](int err) {  // the work is done: a write error, not bad input (exit code 1)
-    return OutputError(fmt::format("{} {}: writing failed: {}", option, printable(path, 96), std::strerror(err)));
+    return OutputError(
+        fmt::format("{} {}: writing failed: {}", option, printable(path, 96), std::strerror(err)));
   };
   try {
     GifEncoder gif(fd, view.width, view.height);

@@ -43,7 +43,8 @@ void fill_rect(double x0, double x1, double y0, double y1) {
 
 // Cell edges of a grid range: each value sits in the middle of its cell.
 void cell_edges(const Range& r, double& lo, double& width) {
-  width = r.n > 1 ? (r.hi - r.lo) / (r.n - 1) : (r.hi > r.lo ? r.hi - r.lo : std::fmax(1e-3, std::fabs(r.lo) * 0.1));
+  width = r.n > 1 ? (r.hi - r.lo) / (r.n - 1)
+                  : (r.hi > r.lo ? r.hi - r.lo : std::fmax(1e-3, std::fabs(r.lo) * 0.1));
   lo = r.lo - 0.5 * width;
 }
 }  // namespace
@@ -139,7 +140,8 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
     plpsty(3);
     for (std::int64_t i = 0; i < machines.size(); ++i) {
       const Outcome& o = result.rows[static_cast<std::size_t>(i)];
-      if (!result.done[static_cast<std::size_t>(i)] || !o.valid || !std::isnan(value_of(o, "lid_open"))) continue;
+      if (!result.done[static_cast<std::size_t>(i)] || !o.valid || !std::isnan(value_of(o, "lid_open")))
+        continue;
       any_closed = true;
       const double cx = x0 + wx * static_cast<double>(i / ry.n), cy = y0 + wy * static_cast<double>(i % ry.n);
       fill_rect(cx, cx + wx, cy, cy + wy);
@@ -148,12 +150,14 @@ void draw_heatmap(const std::string& path, const Machines& machines, const Sweep
   }
   plcol0(kInk);
   plbox("bcnst", 0.0, 0, "bcnstv", 0.0, 0);
-  pllab(key_with_unit(rx.key).c_str(), key_with_unit(ry.key).c_str(), fmt::format("{} by {} and {}", with_unit(value), rx.key, ry.key).c_str());
+  pllab(key_with_unit(rx.key).c_str(), key_with_unit(ry.key).c_str(),
+        fmt::format("{} by {} and {}", with_unit(value), rx.key, ry.key).c_str());
   std::string legend;
   // "before the run ended": a grey machine may well get there given a longer run.t_max.
   if (any_never) legend += fmt::format("grey: no {} before the run ended", value);
   if (any_closed) legend += fmt::format("{}hatched: the lid did not open", legend.empty() ? "" : "   ");
-  if (any_invalid) legend += fmt::format("{}black: invalid inputs or failed runs", legend.empty() ? "" : "   ");
+  if (any_invalid)
+    legend += fmt::format("{}black: invalid inputs or failed runs", legend.empty() ? "" : "   ");
   if (!legend.empty()) plmtex("b", 5.2, 0.0, 0.0, legend.c_str());
 
   // Colour bar: a column of thin slices over the value's range.

@@ -8,8 +8,8 @@
 namespace whatnext::viz::placement {
 
 // Does the segment (ax, ay)-(cx, cy) cross the box [x0, x1] x [y0, y1]? (Liang-Barsky clipping.)
-inline bool segment_crosses_box(double x0, double y0, double x1, double y1, double ax, double ay,
-                                double cx, double cy) {
+inline bool segment_crosses_box(double x0, double y0, double x1, double y1, double ax, double ay, double cx,
+                                double cy) {
   double t0 = 0.0, t1 = 1.0;
   const double dx = cx - ax, dy = cy - ay;
   const double p[4] = {-dx, dx, -dy, dy};
@@ -19,8 +19,10 @@ inline bool segment_crosses_box(double x0, double y0, double x1, double y1, doub
       if (q[i] < 0.0) return false;
     } else {
       const double r = q[i] / p[i];
-      if (p[i] < 0.0) t0 = std::max(t0, r);
-      else t1 = std::min(t1, r);
+      if (p[i] < 0.0)
+        t0 = std::max(t0, r);
+      else
+        t1 = std::min(t1, r);
       if (t0 > t1) return false;
     }
   }
@@ -30,8 +32,8 @@ inline bool segment_crosses_box(double x0, double y0, double x1, double y1, doub
 // Centres for labels of widths w that want to sit at centres c (in increasing order), in one row
 // between lo and hi and at least gap apart, each as near its wish as the others allow. False if
 // they do not fit.
-inline bool pack_row(const std::vector<double>& c, const std::vector<double>& w, double lo,
-                     double hi, double gap, std::vector<double>& pos) {
+inline bool pack_row(const std::vector<double>& c, const std::vector<double>& w, double lo, double hi,
+                     double gap, std::vector<double>& pos) {
   const std::size_t n = c.size();
   pos.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {

@@ -59,9 +59,21 @@ enum Colour : int {
   kColourCount = kModeFirst + 5
 };
 constexpr std::array<std::array<int, 3>, kColourCount> kPalette{{
-    {255, 255, 255}, {0, 0, 0},       {110, 110, 110}, {31, 119, 180},  {230, 120, 20},
-    {44, 160, 44},   {214, 39, 40},   {148, 103, 189}, {140, 86, 75},   {215, 215, 215},
-    {255, 236, 179}, {255, 205, 210}, {200, 230, 201}, {187, 222, 251}, {225, 200, 240},
+    {255, 255, 255},
+    {0, 0, 0},
+    {110, 110, 110},
+    {31, 119, 180},
+    {230, 120, 20},
+    {44, 160, 44},
+    {214, 39, 40},
+    {148, 103, 189},
+    {140, 86, 75},
+    {215, 215, 215},
+    {255, 236, 179},
+    {255, 205, 210},
+    {200, 230, 201},
+    {187, 222, 251},
+    {225, 200, 240},
 }};
 
 struct Curve {
@@ -87,13 +99,13 @@ struct Panel {
   std::string title, xlabel, ylabel;
   std::vector<Curve> curves;
   std::vector<Mark> marks;
-  std::vector<EventGroup> events;  // vertical lines on a time axis, numbered 1, 2, ...
-  std::vector<ModeSpan> modes;     // strip above the plot
+  std::vector<EventGroup> events;                      // vertical lines on a time axis, numbered 1, 2, ...
+  std::vector<ModeSpan> modes;                         // strip above the plot
   std::vector<std::pair<double, std::string>> hlines;  // reference levels
   double x0 = 0.0, x1 = 1.0;
   bool fixed_x = false;
-  bool to_scale = false;     // same metres per millimetre on both axes, or say in the title
-  bool show_legend = true;   // false: another panel of the page shows the same legend
+  bool to_scale = false;           // same metres per millimetre on both axes, or say in the title
+  bool show_legend = true;         // false: another panel of the page shows the same legend
   std::size_t legend_columns = 0;  // 0: as many as fit
 };
 
@@ -169,9 +181,7 @@ Box text_box(const std::string& s, double x, double y, double just, double h) {
   return {x - just * w, y - below * h, x + (1.0 - just) * w, y + 0.55 * h};
 }
 
-bool overlap(const Box& a, const Box& b) {
-  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
-}
+bool overlap(const Box& a, const Box& b) { return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1; }
 bool inside(const Box& in, const Box& out) {
   return in.x0 >= out.x0 && in.x1 <= out.x1 && in.y0 >= out.y0 && in.y1 <= out.y1;
 }
@@ -416,9 +426,8 @@ PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_b
 
   const double tag_band = tag_rows ? tag_rows * tag_row + leader : 0.3 * ch;
   g.bands = 0.8 * ch + title_h * 1.45 + 0.3 * ch +
-                       (legend_lines.empty() ? 0.0 : legend_lines.size() * legend_line + 0.3 * ch) +
-                       (p.modes.empty() ? 0.0 : 1.25 * ch) +
-                       tag_band;
+            (legend_lines.empty() ? 0.0 : legend_lines.size() * legend_line + 0.3 * ch) +
+            (p.modes.empty() ? 0.0 : 1.25 * ch) + tag_band;
   g.axes.y1 = r.y1 - std::max(g.bands, min_bands);
   const double ah = g.axes.y1 - g.axes.y0;
 
@@ -569,7 +578,8 @@ PanelGeometry layout_panel(const Panel& p, const Box& r, double ch, double min_b
         if (!free_spot(t.box, obstacles)) continue;
         if (ring > 1) {
           // The leader must not cross a curve either.
-          const Point end{std::clamp(at.first, t.box.x0, t.box.x1), std::clamp(at.second, t.box.y0, t.box.y1)};
+          const Point end{std::clamp(at.first, t.box.x0, t.box.x1),
+                          std::clamp(at.second, t.box.y0, t.box.y1)};
           const Point from{at.first + 0.35 * ch * ux, at.second + 0.35 * ch * uy};
           bool crosses = false;
           for (const Polyline& line : curves_only) {
@@ -648,7 +658,8 @@ PageGeometry layout_page(const Page& page) {
     double y = 0.6 * ch + (key.rows.size() - 1) * line_h + 0.85 * kh;
     key_top = y + 0.55 * kh + 0.6 * ch;
     for (const auto& line : key.rows) {
-      for (std::size_t i : line) pg.texts.push_back(make_text(PlacedText::key, items[i], key.x(i), y, 0.0, kh));
+      for (std::size_t i : line)
+        pg.texts.push_back(make_text(PlacedText::key, items[i], key.x(i), y, 0.0, kh));
       y -= line_h;
     }
   }
@@ -668,15 +679,16 @@ PageGeometry layout_page(const Page& page) {
     std::vector<double> bands(page.ny, 0.0), left = col_left;
     pg.panels.clear();
     for (std::size_t i = 0; i < page.panels.size(); ++i) {
-      pg.panels.push_back(
-          layout_panel(page.panels[i], cell(i), ch, row_bands[i / page.nx], col_left[i % page.nx], title_cap));
+      pg.panels.push_back(layout_panel(page.panels[i], cell(i), ch, row_bands[i / page.nx],
+                                       col_left[i % page.nx], title_cap));
       double& b = bands[i / page.nx];
       b = std::max(b, pg.panels.back().bands);
       double& l = left[i % page.nx];
       l = std::max(l, pg.panels.back().left_needed);
     }
     double smallest = 0.0;
-    for (const PanelGeometry& g : pg.panels) smallest = smallest > 0.0 ? std::min(smallest, g.title_h) : g.title_h;
+    for (const PanelGeometry& g : pg.panels)
+      smallest = smallest > 0.0 ? std::min(smallest, g.title_h) : g.title_h;
     if (bands == row_bands && left == col_left && (title_cap > 0.0 || pg.panels.size() < 2)) break;
     title_cap = smallest;
     for (std::size_t r = 0; r < bands.size(); ++r) row_bands[r] = std::max(row_bands[r], bands[r]);
@@ -712,7 +724,8 @@ PageLayout public_layout(const Page& page, const PageGeometry& pg) {
 // same whatever the date and the time zone.
 void pin_pdf_date(const std::string& path, const std::string& shown) {
   const auto failed = [&] {
-    return OutputError(fmt::format("--out {}: writing failed: {}", printable(shown, 96), std::strerror(errno)));
+    return OutputError(
+        fmt::format("--out {}: writing failed: {}", printable(shown, 96), std::strerror(errno)));
   };
   std::ifstream in(path, std::ios::binary);
   std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -887,8 +900,8 @@ void draw_panel(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) 
 }
 
 // Draws one page in every requested format; files appear only when complete.
-std::vector<std::string> write_page(const std::string& dir, const Page& page,
-                                    const FigureOptions& opts, std::vector<PageLayout>* layouts) {
+std::vector<std::string> write_page(const std::string& dir, const Page& page, const FigureOptions& opts,
+                                    std::vector<PageLayout>* layouts) {
   const PageGeometry pg = layout_page(page);
   if (layouts) layouts->push_back(public_layout(page, pg));
   std::vector<std::string> written;
@@ -941,8 +954,8 @@ Curve styled(std::string label, int colour, int style, double width) {
 }
 
 Curve series(const Recording& rec, const std::function<double(const Snapshot&)>& x,
-             const std::function<double(const Snapshot&)>& y, std::string label, int colour,
-             int style = 1, double width = 2.0) {
+             const std::function<double(const Snapshot&)>& y, std::string label, int colour, int style = 1,
+             double width = 2.0) {
   Curve c = styled(std::move(label), colour, style, width);
   for (std::size_t i : thin(rec)) {
     c.x.push_back(x(rec.states[i]));
@@ -982,8 +995,7 @@ Panel time_panel(const Recording& rec, std::string title, std::string ylabel) {
 }
 
 // Total energy with its jumps at impacts drawn as vertical steps.
-Curve total_energy(const Recording& rec, std::string label, int colour, int style = 1,
-                   double width = 2.5) {
+Curve total_energy(const Recording& rec, std::string label, int colour, int style = 1, double width = 2.5) {
   Curve c = styled(std::move(label), colour, style, width);
   for (std::size_t i : thin(rec)) {
     const Snapshot& s = rec.states[i];
@@ -1003,11 +1015,13 @@ std::vector<Panel> run_panels(const Recording& rec, const std::string& title) {
   std::vector<Panel> panels;
 
   Panel x = time_panel(rec, pre + "sandbag, horizontal position", "x [m] (from the pivot)");
-  x.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.x; }, "", kBlue));
+  x.curves.push_back(series(
+      rec, time_of, [](const Snapshot& s) { return s.x; }, "", kBlue));
   panels.push_back(x);
 
   Panel h = time_panel(rec, pre + "sandbag, height", "h [m] (above the pivot)");
-  h.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.h; }, "", kBlue));
+  h.curves.push_back(series(
+      rec, time_of, [](const Snapshot& s) { return s.h; }, "", kBlue));
   panels.push_back(h);
 
   Panel tr;
@@ -1016,8 +1030,7 @@ std::vector<Panel> run_panels(const Recording& rec, const std::string& title) {
   tr.ylabel = "h [m] (above the pivot)";
   tr.to_scale = true;
   tr.curves.push_back(series(
-      rec, [](const Snapshot& s) { return s.x; }, [](const Snapshot& s) { return s.h; },
-      "sandbag", kBlue));
+      rec, [](const Snapshot& s) { return s.x; }, [](const Snapshot& s) { return s.h; }, "sandbag", kBlue));
   {
     // The seesaw at the start, for orientation.
     const Snapshot& s0 = rec.states.front();
@@ -1036,18 +1049,21 @@ std::vector<Panel> run_panels(const Recording& rec, const std::string& title) {
   panels.push_back(tr);
 
   Panel ang = time_panel(rec, pre + "seesaw and lid angles", "angle [deg]");
-  ang.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_s * units::kDegreesPerRadian; },
-                              "φ#dS#u seesaw (+ = left arm down)", kBlue));
-  ang.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_l * units::kDegreesPerRadian; },
-                              "φ#dL#u lid", kOrange));
+  ang.curves.push_back(series(
+      rec, time_of, [](const Snapshot& s) { return s.phi_s * units::kDegreesPerRadian; },
+      "φ#dS#u seesaw (+ = left arm down)", kBlue));
+  ang.curves.push_back(series(
+      rec, time_of, [](const Snapshot& s) { return s.phi_l * units::kDegreesPerRadian; }, "φ#dL#u lid",
+      kOrange));
   ang.hlines.push_back({90.0, "90°: vertical"});
   panels.push_back(ang);
 
   Panel bal = time_panel(rec, pre + "balloon", "height [m] (from the box top)");
-  bal.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.balloon_h; },
-                              "balloon h#dB#u", kBlue));
-  bal.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.balloon_limit; },
-                              "limit under the lid h#dlim#u", kOrange, 2, 2.0));
+  bal.curves.push_back(series(
+      rec, time_of, [](const Snapshot& s) { return s.balloon_h; }, "balloon h#dB#u", kBlue));
+  bal.curves.push_back(series(
+      rec, time_of, [](const Snapshot& s) { return s.balloon_limit; }, "limit under the lid h#dlim#u",
+      kOrange, 2, 2.0));
   panels.push_back(bal);
 
   Panel en = time_panel(rec, pre + "mechanical energy", "energy [J]");
@@ -1118,10 +1134,14 @@ bool parse_formats(std::string_view text, std::vector<Format>& out) {
   std::string item;
   while (std::getline(ss, item, ',')) {
     Format f;
-    if (item == "png") f = Format::png;
-    else if (item == "svg") f = Format::svg;
-    else if (item == "pdf") f = Format::pdf;
-    else return false;
+    if (item == "png")
+      f = Format::png;
+    else if (item == "svg")
+      f = Format::svg;
+    else if (item == "pdf")
+      f = Format::pdf;
+    else
+      return false;
     if (std::find(formats.begin(), formats.end(), f) == formats.end()) formats.push_back(f);
   }
   if (formats.empty()) return false;
@@ -1134,24 +1154,23 @@ void prepare_output_dir(const std::string& dir, std::string_view option) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir)) {
-    throw InputError(fmt::format("{}: cannot create directory '{}'{}{}", option, dir,
-                                 ec ? ": " : "", ec ? ec.message() : ""));
+    throw InputError(fmt::format("{}: cannot create directory '{}'{}{}", option, dir, ec ? ": " : "",
+                                 ec ? ec.message() : ""));
   }
-  if (can_create_in(dir) != 0) throw InputError(fmt::format("{}: cannot write into directory '{}'", option, dir));
+  if (can_create_in(dir) != 0)
+    throw InputError(fmt::format("{}: cannot write into directory '{}'", option, dir));
 }
 
 std::vector<std::string> write_run_figures(const Recording& rec, const std::string& dir,
-                                           const FigureOptions& opts,
-                                           std::vector<PageLayout>* layouts) {
+                                           const FigureOptions& opts, std::vector<PageLayout>* layouts) {
   prepare_output_dir(dir, "--out");
   const std::vector<Panel> panels = run_panels(rec, opts.title);
   const std::vector<EventGroup> key = group_events(rec.result);
-  static const char* const names[] = {"sandbag_x", "sandbag_h", "trajectory",
-                                      "angles",    "balloon",   "energy"};
+  static const char* const names[] = {"sandbag_x", "sandbag_h", "trajectory", "angles", "balloon", "energy"};
   std::vector<std::string> written;
   for (std::size_t i = 0; i < panels.size(); ++i) {
-    auto w = write_page(dir, make_page(names[i], opts.width, opts.height, 1, 1, {panels[i]}, key),
-                        opts, layouts);
+    auto w =
+        write_page(dir, make_page(names[i], opts.width, opts.height, 1, 1, {panels[i]}, key), opts, layouts);
     written.insert(written.end(), w.begin(), w.end());
   }
   Page overview = make_page("overview", opts.width * 9 / 5, opts.height * 3 / 2, 3, 2, panels, key);
@@ -1162,8 +1181,7 @@ std::vector<std::string> write_run_figures(const Recording& rec, const std::stri
 }
 
 std::vector<std::string> write_law_comparison(const Scenario& scenario, const std::string& dir,
-                                              const FigureOptions& opts,
-                                              std::vector<PageLayout>* layouts) {
+                                              const FigureOptions& opts, std::vector<PageLayout>* layouts) {
   prepare_output_dir(dir, "--out");
   const std::string pre = opts.title.empty() ? "" : opts.title + ": ";
   Panel ps, pl;
@@ -1181,29 +1199,30 @@ std::vector<std::string> write_law_comparison(const Scenario& scenario, const st
   const int styles[] = {1, 2, 3, 4};
   double t_end = 0.0;
   int i = 0;
-  for (ImpactLaw law : {ImpactLaw::rope, ImpactLaw::angular_momentum_sum,
-                        ImpactLaw::kinetic_energy, ImpactLaw::linear_momentum}) {
+  for (ImpactLaw law : {ImpactLaw::rope, ImpactLaw::angular_momentum_sum, ImpactLaw::kinetic_energy,
+                        ImpactLaw::linear_momentum}) {
     Scenario sc = scenario;
     sc.run.impact_law = law;
     const Recording rec = record(sc);
     t_end = std::max(t_end, rec.t_end());
     const std::string label = fmt::format("{}: {}", law_words(law), outcome_words(rec.result));
-    ps.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_s * units::kDegreesPerRadian; },
-                               label, colours[i], styles[i]));
-    pl.curves.push_back(series(rec, time_of, [](const Snapshot& s) { return s.phi_l * units::kDegreesPerRadian; },
-                               label, colours[i], styles[i]));
+    ps.curves.push_back(series(
+        rec, time_of, [](const Snapshot& s) { return s.phi_s * units::kDegreesPerRadian; }, label, colours[i],
+        styles[i]));
+    pl.curves.push_back(series(
+        rec, time_of, [](const Snapshot& s) { return s.phi_l * units::kDegreesPerRadian; }, label, colours[i],
+        styles[i]));
     ps.curves.push_back(event_points(rec, false, colours[i]));
     pl.curves.push_back(event_points(rec, true, colours[i]));
     ++i;
   }
   for (Panel* p : {&ps, &pl}) p->x1 = t_end * 1.04;
-  return write_page(dir, make_page("compare_laws", opts.width, opts.height * 8 / 5, 1, 2, {ps, pl}),
-                    opts, layouts);
+  return write_page(dir, make_page("compare_laws", opts.width, opts.height * 8 / 5, 1, 2, {ps, pl}), opts,
+                    layouts);
 }
 
-std::vector<std::string> write_integrator_comparison(const Scenario& scenario,
-                                                     IntegratorKind fixed, double step,
-                                                     const std::string& dir,
+std::vector<std::string> write_integrator_comparison(const Scenario& scenario, IntegratorKind fixed,
+                                                     double step, const std::string& dir,
                                                      const FigureOptions& opts,
                                                      std::vector<PageLayout>* layouts) {
   if (fixed == IntegratorKind::adaptive) {
@@ -1232,8 +1251,8 @@ std::vector<std::string> write_integrator_comparison(const Scenario& scenario,
   auto phl = [](const Snapshot& s) { return s.phi_l * units::kDegreesPerRadian; };
   ang.curves.push_back(series(ra, time_of, phs, "φ#dS#u adaptive: " + outcome_words(ra.result), kBlue));
   ang.curves.push_back(series(ra, time_of, phl, "φ#dL#u adaptive", kOrange));
-  ang.curves.push_back(series(rf, time_of, phs, "φ#dS#u " + fixed_name + ": " + outcome_words(rf.result),
-                              kBlue, 2));
+  ang.curves.push_back(
+      series(rf, time_of, phs, "φ#dS#u " + fixed_name + ": " + outcome_words(rf.result), kBlue, 2));
   ang.curves.push_back(series(rf, time_of, phl, "φ#dL#u " + fixed_name, kOrange, 2));
   ang.curves.push_back(event_points(rf, false, kBlue));
   ang.curves.push_back(event_points(rf, true, kOrange));
@@ -1245,9 +1264,9 @@ std::vector<std::string> write_integrator_comparison(const Scenario& scenario,
   en.curves.clear();
   en.curves.push_back(total_energy(ra, "adaptive", kBlack));
   en.curves.push_back(total_energy(rf, fixed_name, kRed, 2, 2.0));
-  return write_page(dir, make_page("compare_integrator", opts.width, opts.height * 8 / 5, 1, 2,
-                                   {ang, en}, ang.events),
-                    opts, layouts);
+  return write_page(
+      dir, make_page("compare_integrator", opts.width, opts.height * 8 / 5, 1, 2, {ang, en}, ang.events),
+      opts, layouts);
 }
 
 }  // namespace whatnext::viz

@@ -41,8 +41,8 @@ Recording record(const Scenario& scenario) {
 Snapshot Recording::at(double t) const {
   if (states.empty()) return {};
   // The last state at or before t (the later one of equal times: after the event).
-  auto it = std::upper_bound(states.begin(), states.end(), t,
-                             [](double v, const Snapshot& s) { return v < s.t; });
+  auto it =
+      std::upper_bound(states.begin(), states.end(), t, [](double v, const Snapshot& s) { return v < s.t; });
   if (it == states.begin()) return states.front();
   const Snapshot& a = *(it - 1);
   if (it == states.end() || it->t <= a.t) {
@@ -54,12 +54,26 @@ Snapshot Recording::at(double t) const {
   const double w = (t - a.t) / (b.t - a.t);
   Snapshot s = a;
   s.t = t;
-  for (double Snapshot::*f :
-       {&Snapshot::x, &Snapshot::h, &Snapshot::vx, &Snapshot::vh, &Snapshot::r, &Snapshot::dr,
-        &Snapshot::phi_s, &Snapshot::dphi_s, &Snapshot::phi_l, &Snapshot::dphi_l,
-        &Snapshot::ddphi_l, &Snapshot::balloon_h, &Snapshot::balloon_v, &Snapshot::balloon_limit,
-        &Snapshot::balloon_limit_rate, &Snapshot::tension, &Snapshot::sandbag_kinetic,
-        &Snapshot::sandbag_potential, &Snapshot::lid_kinetic, &Snapshot::lid_potential}) {
+  for (double Snapshot::*f : {&Snapshot::x,
+                              &Snapshot::h,
+                              &Snapshot::vx,
+                              &Snapshot::vh,
+                              &Snapshot::r,
+                              &Snapshot::dr,
+                              &Snapshot::phi_s,
+                              &Snapshot::dphi_s,
+                              &Snapshot::phi_l,
+                              &Snapshot::dphi_l,
+                              &Snapshot::ddphi_l,
+                              &Snapshot::balloon_h,
+                              &Snapshot::balloon_v,
+                              &Snapshot::balloon_limit,
+                              &Snapshot::balloon_limit_rate,
+                              &Snapshot::tension,
+                              &Snapshot::sandbag_kinetic,
+                              &Snapshot::sandbag_potential,
+                              &Snapshot::lid_kinetic,
+                              &Snapshot::lid_potential}) {
     s.*f = lerp(a.*f, b.*f, w);
   }
   return s;

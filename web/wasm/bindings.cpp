@@ -90,20 +90,45 @@ struct Column {
   const char* name;
   double (*get)(const Snapshot&);
 };
-#define WHATNEXT_COLUMN(f) Column{#f, [](const Snapshot& s) { return static_cast<double>(s.f); }}
+#define WHATNEXT_COLUMN(f)                                         \
+  Column {                                                         \
+#f, [](const Snapshot& s) { return static_cast<double>(s.f); } \
+  }
 const Column kColumns[] = {
-    WHATNEXT_COLUMN(t), WHATNEXT_COLUMN(x), WHATNEXT_COLUMN(h), WHATNEXT_COLUMN(vx),
-    WHATNEXT_COLUMN(vh), WHATNEXT_COLUMN(r), WHATNEXT_COLUMN(dr), WHATNEXT_COLUMN(phi_s),
-    WHATNEXT_COLUMN(dphi_s), WHATNEXT_COLUMN(phi_l), WHATNEXT_COLUMN(dphi_l),
-    WHATNEXT_COLUMN(balloon_h), WHATNEXT_COLUMN(balloon_v), WHATNEXT_COLUMN(balloon_limit),
-    WHATNEXT_COLUMN(tension), WHATNEXT_COLUMN(normal_force), WHATNEXT_COLUMN(sandbag_kinetic),
-    WHATNEXT_COLUMN(sandbag_potential), WHATNEXT_COLUMN(lid_kinetic), WHATNEXT_COLUMN(lid_potential),
-    WHATNEXT_COLUMN(seesaw_kinetic), WHATNEXT_COLUMN(seesaw_potential),
-    WHATNEXT_COLUMN(balloon_kinetic), WHATNEXT_COLUMN(balloon_potential),
-    WHATNEXT_COLUMN(lost_impacts), WHATNEXT_COLUMN(lost_balloon_catch),
-    WHATNEXT_COLUMN(dissipated_pivot), WHATNEXT_COLUMN(dissipated_hinge),
-    WHATNEXT_COLUMN(dissipated_drag), WHATNEXT_COLUMN(lid_push_work), WHATNEXT_COLUMN(initial_total),
-    WHATNEXT_COLUMN(on_seesaw), WHATNEXT_COLUMN(rope_taut), WHATNEXT_COLUMN(lid_resting),
+    WHATNEXT_COLUMN(t),
+    WHATNEXT_COLUMN(x),
+    WHATNEXT_COLUMN(h),
+    WHATNEXT_COLUMN(vx),
+    WHATNEXT_COLUMN(vh),
+    WHATNEXT_COLUMN(r),
+    WHATNEXT_COLUMN(dr),
+    WHATNEXT_COLUMN(phi_s),
+    WHATNEXT_COLUMN(dphi_s),
+    WHATNEXT_COLUMN(phi_l),
+    WHATNEXT_COLUMN(dphi_l),
+    WHATNEXT_COLUMN(balloon_h),
+    WHATNEXT_COLUMN(balloon_v),
+    WHATNEXT_COLUMN(balloon_limit),
+    WHATNEXT_COLUMN(tension),
+    WHATNEXT_COLUMN(normal_force),
+    WHATNEXT_COLUMN(sandbag_kinetic),
+    WHATNEXT_COLUMN(sandbag_potential),
+    WHATNEXT_COLUMN(lid_kinetic),
+    WHATNEXT_COLUMN(lid_potential),
+    WHATNEXT_COLUMN(seesaw_kinetic),
+    WHATNEXT_COLUMN(seesaw_potential),
+    WHATNEXT_COLUMN(balloon_kinetic),
+    WHATNEXT_COLUMN(balloon_potential),
+    WHATNEXT_COLUMN(lost_impacts),
+    WHATNEXT_COLUMN(lost_balloon_catch),
+    WHATNEXT_COLUMN(dissipated_pivot),
+    WHATNEXT_COLUMN(dissipated_hinge),
+    WHATNEXT_COLUMN(dissipated_drag),
+    WHATNEXT_COLUMN(lid_push_work),
+    WHATNEXT_COLUMN(initial_total),
+    WHATNEXT_COLUMN(on_seesaw),
+    WHATNEXT_COLUMN(rope_taut),
+    WHATNEXT_COLUMN(lid_resting),
     WHATNEXT_COLUMN(balloon_stuck),
     Column{"mode", [](const Snapshot& s) { return static_cast<double>(static_cast<int>(s.mode)); }},
     Column{"energy", [](const Snapshot& s) { return s.energy(); }},
@@ -195,12 +220,8 @@ val machine_object(const Scenario& sc) {
 val config_value(const ConfigValue& c) {
   val v = val::object();
   switch (c.type) {
-    case ConfigValue::Type::number:
-      v.set("number", c.number);
-      break;
-    case ConfigValue::Type::text:
-      v.set("text", c.text);
-      break;
+    case ConfigValue::Type::number: v.set("number", c.number); break;
+    case ConfigValue::Type::text: v.set("text", c.text); break;
     case ConfigValue::Type::pair: {
       val p = val::array();
       p.call<void>("push", c.pair[0]);
@@ -325,8 +346,8 @@ val csv(val input) {
 
 // Every input key, in documentation order: {key, kind, unit, help}.
 val keys() {
-  static const char* const kKinds[] = {"length", "mass",     "density", "angle", "time",
-                                       "acceleration", "positive", "text", "pair", "flag"};
+  static const char* const kKinds[] = {"length",       "mass",     "density", "angle", "time",
+                                       "acceleration", "positive", "text",    "pair",  "flag"};
   val out = val::array();
   for (const KeySpec& k : known_keys()) {
     val v = val::object();
@@ -379,7 +400,8 @@ val presets() {
                                   "example" + num + ".toml", "example " + num, "--example " + num));
   }
   const std::string radio = "examples/example1-radio.toml";
-  out.call<void>("push", preset("radio", "Example 1 with the radio", radio_example_toml(), radio, radio, radio));
+  out.call<void>("push",
+                 preset("radio", "Example 1 with the radio", radio_example_toml(), radio, radio, radio));
   return out;
 }
 

@@ -130,7 +130,7 @@ double value_of(const Outcome& o, std::string_view name);
 
 struct RunOptions {
   int threads = 1;
-  double accuracy = kDefaultAccuracy;  // event times [s]; see apply_accuracy
+  double accuracy = kDefaultAccuracy;       // event times [s]; see apply_accuracy
   const std::atomic<bool>* stop = nullptr;  // set (e.g. by SIGINT) to stop early
   // Called on the calling thread about ten times a second with (done, total).
   std::function<void(std::int64_t, std::int64_t)> progress;
@@ -155,8 +155,9 @@ struct RunOptions {
 
 struct SweepResult {
   std::vector<Outcome> rows;  // by machine index (empty unless RunOptions::keep_rows)
-  std::vector<std::string> lines;  // rows[i] as its CSV line, formatted by the workers (or empty: RunOptions::csv)
-  std::vector<char> done;     // done[i]: machine i has run (its outcome in rows[i] where kept)
+  std::vector<std::string>
+      lines;               // rows[i] as its CSV line, formatted by the workers (or empty: RunOptions::csv)
+  std::vector<char> done;  // done[i]: machine i has run (its outcome in rows[i] where kept)
   std::int64_t completed = 0;
   std::int64_t invalid = 0, failed = 0;  // of the completed machines: invalid inputs, failed runs
   bool interrupted = false;

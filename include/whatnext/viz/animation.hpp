@@ -13,13 +13,13 @@
 namespace whatnext::viz {
 
 struct AnimationOptions {
-  double slowmo = 12.0;     // one simulated second lasts this many seconds on screen
-  double fps = 25.0;        // frames per second on screen (a GIF: at most 50)
-  int width = 800;          // pixels
-  int height = 0;           // pixels; 0: as high as the machine needs at this width
-  double hold = 1.2;        // seconds each event's frame is held on screen
-  double max_length = 20.0; // seconds on screen, at most: quiet stretches (and, if need be, the
-                            // held frames and the slow motion) are shortened to fit
+  double slowmo = 12.0;      // one simulated second lasts this many seconds on screen
+  double fps = 25.0;         // frames per second on screen (a GIF: at most 50)
+  int width = 800;           // pixels
+  int height = 0;            // pixels; 0: as high as the machine needs at this width
+  double hold = 1.2;         // seconds each event's frame is held on screen
+  double max_length = 20.0;  // seconds on screen, at most: quiet stretches (and, if need be, the
+                             // held frames and the slow motion) are shortened to fit
 };
 // Throws InputError naming the option when a value is out of range.
 void validate(const AnimationOptions& opts);
@@ -28,12 +28,12 @@ void validate(const AnimationOptions& opts);
 // both axes.
 struct View {
   int width = 0, height = 0;
-  double scale = 1.0;             // pixels per metre
-  double origin_x = 0.0;          // pixel of the pivot
+  double scale = 1.0;     // pixels per metre
+  double origin_x = 0.0;  // pixel of the pivot
   double origin_y = 0.0;
-  int top = 0, bottom = 0;        // the drawing area is rows [top, bottom); text above, time bar below
-  double font = 12.0;             // text size [px]
-  double left_arm = 0.0;          // drawn length of the seesaw's left arm before the sandbag lands [m]
+  int top = 0, bottom = 0;  // the drawing area is rows [top, bottom); text above, time bar below
+  double font = 12.0;       // text size [px]
+  double left_arm = 0.0;    // drawn length of the seesaw's left arm before the sandbag lands [m]
 };
 struct Pixel {
   double x = 0.0, y = 0.0;
@@ -58,11 +58,11 @@ std::vector<Vec2> rope_path(const Recording& rec, const Snapshot& s);
 // One frame: a state to draw and how long it stays on screen.
 struct Frame {
   double t = 0.0;
-  double delay = 0.04;    // seconds on screen
+  double delay = 0.04;  // seconds on screen
   Snapshot state;
-  int event_group = -1;   // index into group_events(): this frame is held at that event
-  double speed = 1.0;     // simulated seconds per second on screen (1/slowmo when not fast-forwarding)
-  bool quiet = false;     // in a stretch without events, shown faster than the events
+  int event_group = -1;  // index into group_events(): this frame is held at that event
+  double speed = 1.0;    // simulated seconds per second on screen (1/slowmo when not fast-forwarding)
+  bool quiet = false;    // in a stretch without events, shown faster than the events
 };
 // The frames of the animation: equally spaced on screen, with simulated time slowed down by slowmo
 // and one held frame at every instant with events. A run that would last longer than max_length
@@ -83,8 +83,7 @@ struct Image {
   std::vector<std::uint32_t> pixels;
   Rgb at(int x, int y) const;
 };
-Image render_frame(const Recording& rec, const View& view, const Frame& frame,
-                   const AnimationOptions& opts);
+Image render_frame(const Recording& rec, const View& view, const Frame& frame, const AnimationOptions& opts);
 void write_png(const Image& image, const std::string& path);
 
 // Writes the animation to path: .gif with giflib, .mp4 through ffmpeg (InputError when ffmpeg is

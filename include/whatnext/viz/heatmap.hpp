@@ -17,7 +17,7 @@ void check_heatmap_plan(const explore::Plan& plan, std::string_view option);
 // (when the value is not lid_open itself), invalid machines and failed runs in black, machines not
 // run (an interrupted sweep) left white. Writes path as it draws: give it an AtomicFile's
 // temp_path() for a file that appears only when complete.
-void draw_heatmap(const std::string& path, const explore::Machines& machines, const explore::SweepResult& result,
-                  std::string_view value);
+void draw_heatmap(const std::string& path, const explore::Machines& machines,
+                  const explore::SweepResult& result, std::string_view value);
 
 }  // namespace whatnext::viz

@@ -9,7 +9,7 @@
 namespace whatnext::viz {
 
 struct HistogramText {
-  std::string title;   // above the plot
+  std::string title;    // above the plot
   std::string x_label;  // the value with its unit
   std::string note;     // below the plot: what is not counted (machines where it never happened)
 };

@@ -35,14 +35,14 @@ struct PlacedText {
   Box box;
 };
 struct PageLayout {
-  std::string name;                     // the file's name without extension, e.g. "angles"
-  double width = 0.0, height = 0.0;     // the page [mm]
-  std::vector<Box> axes;                // each panel's plot area: data is drawn only inside
-  std::vector<Box> windows;             // each panel's data range in its own units
-  std::vector<Box> axis_labels;         // where PLplot writes tick numbers and axis titles
-  std::vector<PlacedText> axis_texts;   // the y axes' tick numbers and titles, where PLplot writes them
-  std::vector<PlacedText> texts;        // every text whatnext places itself
-  std::vector<Box> legend_samples;      // the line samples of the legends
+  std::string name;                    // the file's name without extension, e.g. "angles"
+  double width = 0.0, height = 0.0;    // the page [mm]
+  std::vector<Box> axes;               // each panel's plot area: data is drawn only inside
+  std::vector<Box> windows;            // each panel's data range in its own units
+  std::vector<Box> axis_labels;        // where PLplot writes tick numbers and axis titles
+  std::vector<PlacedText> axis_texts;  // the y axes' tick numbers and titles, where PLplot writes them
+  std::vector<PlacedText> texts;       // every text whatnext places itself
+  std::vector<Box> legend_samples;     // the line samples of the legends
   std::vector<std::vector<std::pair<double, double>>> data;  // curves and dots as drawn [mm]
 };
 
@@ -61,9 +61,8 @@ std::vector<std::string> write_law_comparison(const Scenario& scenario, const st
 
 // The adaptive integrator against a fixed-step one (euler or rk4 with step dt): angles and total
 // energy of both: compare_integrator.*
-std::vector<std::string> write_integrator_comparison(const Scenario& scenario,
-                                                     IntegratorKind fixed, double step,
-                                                     const std::string& dir,
+std::vector<std::string> write_integrator_comparison(const Scenario& scenario, IntegratorKind fixed,
+                                                     double step, const std::string& dir,
                                                      const FigureOptions& opts,
                                                      std::vector<PageLayout>* layouts = nullptr);
 
