@@ -16,6 +16,7 @@ TEST(Columns, TheCsvHeaderIsTheTableOfColumns) {
   std::string header;
   for (std::string_view name : kLeadingColumns) header += std::string(name) + ",";
   for (const StateColumn& c : state_columns()) header += std::string(c.name) + ",";
+  for (std::string_view name : kImpulseColumns) header += std::string(name) + ",";
   header.pop_back();
   EXPECT_EQ(header, CsvWriter::header());
 }

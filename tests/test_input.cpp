@@ -281,7 +281,7 @@ TEST(Docs, EveryKeyIsDocumented) {
 }
 
 TEST(Examples, ExampleTwoWithTheTextsRoundedOffsetsIsImpossible) {
-  // MODEL.md: with 0.73 m / 0.33 m the 0.62 m rope is shorter than the initial 0.639 m.
+  // docs/model.md §11: with 0.73 m / 0.33 m the 0.62 m rope is shorter than the initial 0.639 m.
   wn::Config cfg = wn::example_config(2);
   wn::apply_set(cfg, "geometry.hinge_offset=[0.73, 0.33]");
   try {

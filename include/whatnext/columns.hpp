@@ -77,4 +77,9 @@ StateColumns state_columns();
 
 constexpr std::string_view kLeadingColumns[] = {"t_s", "event", "mode", "rope_taut"};
 
+// After the state's columns, an event row's impacts: each contact's impulse (docs/model.md §7),
+// 0 on sample rows and on events without an impact.
+inline constexpr std::string_view kImpulseColumns[] = {"impulse_sandbag_N_s", "impulse_rope_N_s",
+                                                       "impulse_lid_N_m_s"};
+
 }  // namespace whatnext

@@ -127,7 +127,7 @@ std::string impulse_text(const Event& e);
 std::string outcome_sentence(const Result& result);
 // The timeline printed by `whatnext run`.
 std::string timeline_text(const Result& result, const Scenario& scenario, const std::string& source);
-// {"outcome": {...}, "events": [...]} with MODEL.md's event names.
+// {"outcome": {...}, "events": [...]} with the event names of docs/model.md §6.
 std::string events_json(const Result& result, const Scenario& scenario, const std::string& source);
 
 // Keeps every sample and event in memory (for plots, animation and tests).

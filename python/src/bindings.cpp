@@ -163,12 +163,12 @@ const std::vector<std::string>& column_names() {
 
 void check_columns() {
   const auto& names = column_names();
-  bool ok = names.size() == std::size(kLeading) + kNumericCount;
+  bool ok = names.size() == std::size(kLeading) + kNumericCount + std::size(kImpulseColumns);
   for (std::size_t i = 0; ok && i < std::size(kLeading); ++i) ok = names[i] == kLeading[i];
   if (!ok) {
     throw std::runtime_error(fmt::format(
         "whatnext._core: the CSV has {} columns ({}), the module knows {}; the table is whatnext/columns.hpp",
-        names.size(), CsvWriter::header(), std::size(kLeading) + kNumericCount));
+        names.size(), CsvWriter::header(), std::size(kLeading) + kNumericCount + std::size(kImpulseColumns)));
   }
 }
 
@@ -252,8 +252,8 @@ class ColumnRecorder : public Interruptible {
     t_.reserve(rows), event_.reserve(rows), mode_.reserve(rows), taut_.reserve(rows);
     for (auto& c : numeric_) c.reserve(rows);
   }
-  void on_sample(const Snapshot& s) override { row(s, ""); }
-  void on_event(const Event& e) override { row(e.after, to_string(e.type)); }
+  void on_sample(const Snapshot& s) override { row(s, "", nullptr); }
+  void on_event(const Event& e) override { row(e.after, to_string(e.type), e.impact ? e.impulse.data() : nullptr); }
 
   py::dict take() {
     py::dict out;
@@ -267,11 +267,15 @@ class ColumnRecorder : public Interruptible {
     for (std::size_t c = 0; c < kNumericCount; ++c) {
       out[py::str(names[std::size(kLeading) + c])] = adopt(std::move(numeric_[c]), py::dtype::of<double>());
     }
+    for (std::size_t c = 0; c < std::size(kImpulseColumns); ++c) {
+      out[py::str(std::string(kImpulseColumns[c]))] = adopt(std::move(impulse_[c]), py::dtype::of<double>());
+    }
     return out;
   }
 
  private:
-  void row(const Snapshot& s, std::string_view event) {
+  void row(const Snapshot& s, std::string_view event, const double* impulses) {
+    for (std::size_t c = 0; c < std::size(kImpulseColumns); ++c) impulse_[c].push_back(impulses ? impulses[c] : 0.0);
     t_.push_back(s.t);
     event_.push_back(event);
     mode_.push_back(s.mode);
@@ -283,6 +287,7 @@ class ColumnRecorder : public Interruptible {
   std::vector<Mode> mode_;
   std::vector<std::uint8_t> taut_;  // numpy bool is one byte
   std::vector<std::vector<double>> numeric_;
+  std::vector<double> impulse_[std::size(kImpulseColumns)];
 };
 
 // An event's state with the CSV's column names.

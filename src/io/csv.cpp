@@ -24,7 +24,8 @@ char* put_text(char* out, std::string_view text) {
 // A CSV row's numbers after t, event, mode and rope_taut: the table of columns (columns.hpp).
 constexpr std::size_t kCsvNumbers = std::size(kStateColumns);
 // A comma and numtext::kG9Room characters per number (t and the others), and the two names.
-constexpr std::size_t kCsvMaxChars = (1 + kCsvNumbers + 1) * (1 + numtext::kG9Room) + 2 * 255 + 8;
+constexpr std::size_t kCsvMaxChars =
+    (1 + kCsvNumbers + std::size(kImpulseColumns) + 1) * (1 + numtext::kG9Room) + 2 * 255 + 8;
 
 // Every column of the table, expanded at compile time: the same code as writing them out by hand.
 template <std::size_t... I>
@@ -33,7 +34,8 @@ char* put_columns(const Snapshot& s, char* p, std::index_sequence<I...>) {
   return p;
 }
 
-char* format_csv(const Snapshot& s, std::string_view event, char* out) {
+// impulses: an impact's, per contact (kImpulseColumns); nullptr for none (zeros).
+char* format_csv(const Snapshot& s, std::string_view event, const double* impulses, char* out) {
   require_finite(s);
   const std::string_view mode = to_string(s.mode);
   if (event.size() > 255 || mode.size() > 255) throw std::logic_error("CsvWriter: a name is too long");
@@ -45,6 +47,14 @@ char* format_csv(const Snapshot& s, std::string_view event, char* out) {
   *p++ = ',';
   *p++ = s.rope_taut ? '1' : '0';
   p = put_columns(s, p, std::make_index_sequence<kCsvNumbers>());
+  if (impulses) {
+    for (std::size_t i = 0; i < std::size(kImpulseColumns); ++i) {
+      *p++ = ',';
+      p = numtext::put_g9(p, clean(impulses[i]));
+    }
+  } else {
+    p = put_text(p, ",0,0,0");
+  }
   *p++ = '\n';
   return p;
 }
@@ -65,6 +75,7 @@ const char* CsvWriter::header() {
     std::string h;
     for (std::string_view name : kLeadingColumns) h.append(name).append(",");
     for (const StateColumn& c : kStateColumns) h.append(c.name).append(",");
+    for (std::string_view name : kImpulseColumns) h.append(name).append(",");
     h.pop_back();
     return h;
   }();
@@ -72,16 +83,17 @@ const char* CsvWriter::header() {
 }
 
 void CsvWriter::on_sample(const Snapshot& s) {
-  rows_->write(1, [&](std::size_t, char* out) { return format_csv(s, "", out); });
+  rows_->write(1, [&](std::size_t, char* out) { return format_csv(s, "", nullptr, out); });
 }
 
 void CsvWriter::on_samples(const SampleBatch& batch) {
   rows_->write(batch.size(),
-               [&](std::size_t i, char* out) { return format_csv(batch.snapshot(i), "", out); });
+               [&](std::size_t i, char* out) { return format_csv(batch.snapshot(i), "", nullptr, out); });
 }
 
 void CsvWriter::on_event(const Event& e) {
-  rows_->write(1, [&](std::size_t, char* out) { return format_csv(e.after, to_string(e.type), out); });
+  const double* impulses = e.impact ? e.impulse.data() : nullptr;
+  rows_->write(1, [&](std::size_t, char* out) { return format_csv(e.after, to_string(e.type), impulses, out); });
 }
 
 }  // namespace whatnext

@@ -451,9 +451,12 @@
         note.dataset.index = String(i);
         const cell = note.insertCell();
         cell.colSpan = 6;
-        cell.textContent = cells.slice(6).join(' ').replace(/^energy /, `${T('energy')} `);
+        // The impact's energy and its impulses per contact (N s), in the page's words.
+        cell.textContent = cells.slice(6).join(' ').replace(/^energy /, `${T('energy')} `)
+          .replace(/; impulse (.*?)(;|$)/, (all, list, end) =>
+            `; ${T('impulse')} ${list.replace(/\b(sandbag|rope|lid)\b/g, (w) => T(w))}${end}`);
         // A negative energy is no error: the potential's zero is at the pivot's height.
-        if (/-\d/.test(cell.textContent)) {
+        if (/-\d/.test(cell.textContent.split(';')[0])) {
           const why = document.createElement('span');
           why.className = 'why';
           why.textContent = ` (${T('Energy from the pivot\'s height: below it, potential energy is negative.')})`;

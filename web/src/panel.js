@@ -17,6 +17,7 @@
   const kRanges = {
     'geometry.seesaw_right_arm': [0.2, 1.2], 'geometry.lid_half_length': [0.05, 0.5],
     'geometry.rope_length': [0.3, 2], 'geometry.hinge_distance': [0.3, 1.5], 'geometry.hinge_angle': [-30, 60],
+    'geometry.rope_on_lid': [0.02, 1],
     'masses.sandbag': [0.05, 5, 'log'], 'masses.lid': [0.05, 5, 'log'],
     'air.density': [0.5, 2], 'air.helium_density': [0.05, 1.2], 'balloon.radius': [0.05, 0.5],
     'balloon.rubber_mass': [0, 0.05], 'balloon.drag_coefficient': [0.05, 1.5], 'radio.string_length': [0.3, 3],

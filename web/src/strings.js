@@ -187,6 +187,7 @@
     'machine E': 'Maschine E', 'lost (impacts, damping)': 'verloren (Stöße, Dämpfung)', 'E + lost': 'E + verloren', 'rope tension': 'Seilkraft',
     dashed: 'gestrichelt',
     energy: 'Energie',
+    impulse: 'Kraftstoß', sandbag: 'Sandsack', rope: 'Seil', lid: 'Deckel',
     'each law in its colour: outlines in the drawing, dashes in the plots': 'jedes Gesetz in seiner Farbe: Umrisse in der Zeichnung, Striche in den Diagrammen',
   };
 
@@ -198,6 +199,7 @@
     'geometry.hinge_distance': ['Abstand des Scharniers', 'Achse bis zum Scharnier des Deckels'],
     'geometry.hinge_angle': ['Winkel des Scharniers', 'unter der Waagrechten, von der Achse aus'],
     'geometry.hinge_offset': ['Lage des Scharniers', '[dx, dh]: Scharnier dx rechts und dh unter der Achse (statt Abstand und Winkel)'],
+    'geometry.rope_on_lid': ['Knoten auf dem Deckel', 'wo das Seil angebunden ist: vom Scharnier aus entlang des Deckels (Abb. 3 des Artikels: r_L, die Mitte)'],
     'masses.sandbag': ['Sandsack', 'm_S: der Sandsack (eine Punktmasse)'],
     'masses.lid': ['Deckel', 'm_L: der Deckel (eine gleichmäßige Platte)'],
     'air.density': ['Dichte der Luft', 'Dichte der Luft'],

@@ -255,6 +255,15 @@ val event_object(const Event& e) {
   v.set("impact", e.impact);
   v.set("energy_before", e.energy_before);
   v.set("energy_after", e.energy_after);
+  if (e.impact) {  // each contact's impulse [N s; the lid's N m s] and the law applied
+    val p = val::object();
+    p.set("sandbag_N_s", e.impulse[0]);
+    p.set("rope_N_s", e.impulse[1]);
+    p.set("lid_N_m_s", e.impulse[2]);
+    v.set("impulses", p);
+    v.set("law_applied", std::string(to_string(e.law)));
+    v.set("law_note", std::string(e.law_note));
+  }
   v.set("stop", is_stop(e.type));
   v.set("words", viz::event_words(e, true));
   v.set("state", snapshot_object(e.after));
