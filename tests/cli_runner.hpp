@@ -77,7 +77,9 @@ inline pid_t spawn_whatnext(const std::vector<std::string>& args) {
 // (src/io/atomic_file.cpp).
 inline std::vector<fs::path> temps_of(const fs::path& target) {
   std::vector<fs::path> found;
-  const std::string prefix = "." + target.filename().string() + ".";
+  // Appended, not "." + string: GCC 12 warns falsely (-Wrestrict) about that concatenation.
+  std::string prefix = ".";
+  prefix.append(target.filename().string()).append(".");
   std::error_code ec;
   const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {

@@ -50,30 +50,75 @@ Snapshot SampleBatch::snapshot(std::size_t i) const {
   return model_->snapshot(times_[i], d_, states_[i], full_, /*memo=*/false);
 }
 
-Result simulate(const Scenario& sc, Observer* observer) {
-  namespace odeint = boost::numeric::odeint;
-  const Model model(sc);
-  Result res;
-  std::vector<Event> fresh;
-  HybridState hs = model.initial(fresh);
+namespace {
+
+// One run, in the stages every smooth piece goes through: settle what the instant decides at once,
+// integrate the piece (its samples handed over), check that it got somewhere, then the event that
+// ends it with everything that follows at the same instant, published with one state.
+class Runner {
+ public:
+  Runner(const Scenario& sc, Observer* observer)
+      : sc_(sc), observer_(observer), model_(sc), batch_(model_, observer && observer->sample_detail() == Observer::Detail::full) {}
+
+  Result run() {
+    std::vector<Event> fresh;
+    hs_ = model_.initial(fresh);
+    const bool stopped = settle(fresh, false);
+    publish(fresh);  // anything the start itself decides, at t = 0
+    if (stopped) return std::move(res_);
+    grid_ = OutputGrid{observer_ ? sc_.run.output_step : 0.0, 0};
+    if (grid_.step > 0.0) batch_.reserve(kBatch);
+    last_t_ = hs_.t;
+    for (;;) {
+      const Crossing c = integrate_piece();
+      check_progress(c);
+      fresh.clear();
+      const bool stop = end_piece(c, fresh);
+      for (double v : hs_.y)
+        if (!std::isfinite(v)) fail("the state turned non-finite", hs_.t, hs_.d.mode());
+      publish(fresh);
+      if (stop || event_limit_reached()) break;
+    }
+    return std::move(res_);
+  }
+
+ private:
+  // Samples are handed over in batches (a piece's, or kBatch of them): an observer may then make
+  // their rows on several threads. 2048 states are 213 KB, allocated once per run.
+  static constexpr std::size_t kBatch = 2048;
+  // Pieces in a row that end where they began: the automaton going round at one instant (rk4 with
+  // run.step = 1 s on example 4 did so for ever) is stopped instead of hanging.
+  static constexpr int kMaxPiecesWithoutProgress = 10'000;
+
   // Where a smooth piece starts, a guard that already reads >= 0 is never seen to cross. A stop
   // threshold passed, or a stuck balloon the lid already leaves, happens at once; a contact guard
   // at zero that the contact decision did not arm is armed here, so it is looked for just after.
-  auto start_piece = [&](std::vector<Event>& out) {
+  bool start_piece(std::vector<Event>& out) {
     GuardValues g;
-    model.guards(hs.d, hs.y, g);
+    model_.guards(hs_.d, hs_.y, g);
     for (int i = 0; i < kGuardCount; ++i) {
       const Guard gi = static_cast<Guard>(i);
       if (!(g[i] >= 0.0)) continue;
-      if (fires_at_once(gi) || (gi == kGuardBalloon && hs.d.balloon_stuck)) return model.jump(gi, hs, out);
-      if (hs.d.armed[i].order == 0) hs.d.armed[i] = {1, -1e-300, model.guard_floor(gi, hs.d)};
+      if (fires_at_once(gi) || (gi == kGuardBalloon && hs_.d.balloon_stuck)) return model_.jump(gi, hs_, out);
+      if (hs_.d.armed[i].order == 0) hs_.d.armed[i] = {1, -1e-300, model_.guard_floor(gi, hs_.d)};
     }
     return false;
-  };
+  }
+
+  // What happens at once after a jump (or at the start), a few rounds at most; true: the run ends.
+  bool settle(std::vector<Event>& out, bool stop) {
+    for (int round = 0; round < 8 && !stop; ++round) {
+      const std::size_t n = out.size();
+      stop = start_piece(out);
+      if (out.size() == n) break;
+    }
+    return stop;
+  }
+
   // Every event of one instant carries the state the motion goes on with after all of them.
-  auto publish = [&](std::vector<Event>& events) {
+  void publish(std::vector<Event>& events) {
     if (!events.empty()) {
-      const Snapshot final_state = model.snapshot(hs);
+      const Snapshot final_state = model_.snapshot(hs_);
       for (Event& e : events) {  // all of them at hs.t: the jumps' events carry no state of their own
         e.after = final_state;
         e.energy_after = final_state.energy();
@@ -81,108 +126,105 @@ Result simulate(const Scenario& sc, Observer* observer) {
       }
     }
     for (const Event& e : events) {
-      res.events.push_back(e);
-      if (observer) observer->on_event(e);
+      res_.events.push_back(e);
+      if (observer_) observer_->on_event(e);
     }
-  };
-  bool stopped = false;
-  for (int settle = 0; settle < 8 && !stopped; ++settle) {
-    const std::size_t n = fresh.size();
-    stopped = start_piece(fresh);
-    if (fresh.size() == n) break;
   }
-  publish(fresh);  // anything the start itself decides, at t = 0
-  if (stopped) return res;
-  OutputGrid grid{observer ? sc.run.output_step : 0.0, 0};
-  const bool full_samples = observer && observer->sample_detail() == Observer::Detail::full;
-  // Samples are handed over in batches (a piece's, or kBatch of them): an observer may then make
-  // their rows on several threads. 2048 states are 213 KB, allocated once per run.
-  constexpr std::size_t kBatch = 2048;
-  SampleBatch batch(model, full_samples);
-  if (grid.step > 0.0) batch.reserve(kBatch);
-  auto hand_over = [&] {
-    if (batch.size() > 0) observer->on_samples(batch);
-    batch.clear();
-  };
-  const double t_end = sc.run.t_max;
-  // Pieces in a row that end where they began: the automaton going round at one instant (rk4 with
-  // run.step = 1 s on example 4 did so for ever) is stopped instead of hanging.
-  constexpr int kMaxPiecesWithoutProgress = 10'000;
-  double last_t = hs.t;
-  int no_progress = 0;
-  std::uint32_t steps = 0;
-  for (;;) {
-    const MachineSystem sys{&model, hs.d, observer, &steps};
-    if (observer) batch.start(hs.d);
+
+  // One smooth piece with the run's integrator, up to the first guard that fires or t_max; its
+  // samples go to the observer before its events. hs_.y is left at the piece's end.
+  Crossing integrate_piece() {
+    namespace odeint = boost::numeric::odeint;
+    const MachineSystem sys{&model_, hs_.d, observer_, &steps_};
+    if (observer_) batch_.start(hs_.d);
     auto sample = [&](double t, const State& y) {
-      batch.add(t, y);
-      if (batch.size() == kBatch) hand_over();
+      batch_.add(t, y);
+      if (batch_.size() == kBatch) hand_over();
     };
     Crossing c;
-    double t = hs.t;
-    switch (sc.run.integrator) {
+    t_ = hs_.t;
+    const RunSettings& run = sc_.run;
+    switch (run.integrator) {
       case IntegratorKind::adaptive:
-        c = integrate_adaptive(sys, hs.y, t, t_end, sc.run.tolerance, kMaxAdaptiveStep,
-                               sc.run.event_time_tolerance, kMaxAdaptiveSteps - res.stats.steps, grid, sample,
-                               res.stats);
+        c = integrate_adaptive(sys, hs_.y, t_, run.t_max, run.tolerance, kMaxAdaptiveStep, run.event_time_tolerance,
+                               kMaxAdaptiveSteps - res_.stats.steps, grid_, sample, res_.stats);
         break;
       case IntegratorKind::euler:
-        c = integrate_fixed<odeint::euler<State>>(sys, hs.y, t, t_end, sc.run.step, grid, sample, res.stats);
+        c = integrate_fixed<odeint::euler<State>>(sys, hs_.y, t_, run.t_max, run.step, grid_, sample, res_.stats);
         break;
       case IntegratorKind::rk4:
-        c = integrate_fixed<odeint::runge_kutta4<State>>(sys, hs.y, t, t_end, sc.run.step, grid, sample,
-                                                         res.stats);
+        c = integrate_fixed<odeint::runge_kutta4<State>>(sys, hs_.y, t_, run.t_max, run.step, grid_, sample,
+                                                         res_.stats);
         break;
     }
-    if (observer) hand_over();  // the piece's samples, before its events
-    if (c.kind == Crossing::non_finite) fail("the motion turned non-finite", c.t, hs.d.mode());
+    if (observer_) hand_over();  // the piece's samples, before its events
+    return c;
+  }
+
+  void hand_over() {
+    if (batch_.size() > 0) observer_->on_samples(batch_);
+    batch_.clear();
+  }
+
+  // The piece ended somewhere the run can go on from, or the run fails with one line.
+  void check_progress(const Crossing& c) {
+    if (c.kind == Crossing::non_finite) fail("the motion turned non-finite", c.t, hs_.d.mode());
     if (c.kind == Crossing::step_limit) {
       fail("the integrator used its budget of 5e6 steps (loosen run.tolerance or shorten run.t_max)", c.t,
-           hs.d.mode());
+           hs_.d.mode());
     }
-    hs.t = t;
-    no_progress = t > last_t ? 0 : no_progress + 1;
-    last_t = t;
-    if (no_progress > kMaxPiecesWithoutProgress) {
-      fail(
-          "the run stopped advancing (the same instant's contacts decided again and again; a fixed step may "
-          "be "
-          "too long for this machine)",
-          hs.t, hs.d.mode());
-    }
-    fresh.clear();
-    bool stop = false;
-    if (c.kind == Crossing::end) {
-      model.timeout(hs, fresh);
-      stop = true;
-    } else {
-      stop = model.jump(static_cast<Guard>(c.guard), hs, fresh);
-      for (int settle = 0; settle < 8 && !stop; ++settle) {
-        const std::size_t n = fresh.size();
-        stop = start_piece(fresh);
-        if (fresh.size() == n) break;
-      }
-      // The chart's switch is no event; what it leads to at once is found on no crossing.
-      if (c.guard != kGuardChart) {
-        for (Event& e : fresh) e.time_uncertainty = c.uncertainty;
-      }
-    }
-    for (double v : hs.y)
-      if (!std::isfinite(v)) fail("the state turned non-finite", hs.t, hs.d.mode());
-    publish(fresh);
-    if (stop) break;
-    if (res.events.size() >= static_cast<std::size_t>(kMaxEvents)) {
-      Event e = res.events.back();
-      e.type = EventType::event_limit;
-      e.mode_before = e.mode_after;
-      e.impact = false;
-      e.energy_before = e.energy_after;
-      std::vector<Event> last{e};
-      publish(last);
-      break;
+    hs_.t = t_;
+    no_progress_ = t_ > last_t_ ? 0 : no_progress_ + 1;
+    last_t_ = t_;
+    if (no_progress_ > kMaxPiecesWithoutProgress) {
+      fail("the run stopped advancing (the same instant's contacts decided again and again; a fixed step may be "
+           "too long for this machine)",
+           hs_.t, hs_.d.mode());
     }
   }
-  return res;
-}
+
+  // The event that ended the piece (or t_max), and what follows from it at once; true: the run ends.
+  bool end_piece(const Crossing& c, std::vector<Event>& fresh) {
+    if (c.kind == Crossing::end) {
+      model_.timeout(hs_, fresh);
+      return true;
+    }
+    const bool stop = settle(fresh, model_.jump(static_cast<Guard>(c.guard), hs_, fresh));
+    // The chart's switch is no event; what it leads to at once is found on no crossing.
+    if (c.guard != kGuardChart) {
+      for (Event& e : fresh) e.time_uncertainty = c.uncertainty;
+    }
+    return stop;
+  }
+
+  // A safety stop against endless event chains.
+  bool event_limit_reached() {
+    if (res_.events.size() < static_cast<std::size_t>(kMaxEvents)) return false;
+    Event e = res_.events.back();
+    e.type = EventType::event_limit;
+    e.mode_before = e.mode_after;
+    e.impact = false;
+    e.energy_before = e.energy_after;
+    std::vector<Event> last{e};
+    publish(last);
+    return true;
+  }
+
+  const Scenario& sc_;
+  Observer* observer_;
+  const Model model_;
+  SampleBatch batch_;
+  Result res_;
+  HybridState hs_;
+  OutputGrid grid_;
+  double t_ = 0.0;       // where the current piece has got to
+  double last_t_ = 0.0;  // where the previous one ended
+  int no_progress_ = 0;
+  std::uint32_t steps_ = 0;  // for the observer's keep_going(), every 256 steps
+};
+
+}  // namespace
+
+Result simulate(const Scenario& sc, Observer* observer) { return Runner(sc, observer).run(); }
 
 }  // namespace whatnext
