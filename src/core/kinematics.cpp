@@ -29,7 +29,7 @@ struct Model::KinematicsPass {
   const Discrete& d;
   const State& y;
   bool rates, memo;
-  Kinematics k;
+  Kinematics& k;  // the caller's, returned without a copy
   bool trig_s = false, trig_l = false;  // cos and sin of phiS / phiL already known
 
   // The memos serve one thread's integration; samples made on other threads compute afresh.
@@ -209,7 +209,8 @@ struct Model::KinematicsPass {
 };
 
 Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool memo) const {
-  KinematicsPass pass{*this, d, y, rates, memo, Kinematics{}};
+  Kinematics k;
+  KinematicsPass pass{*this, d, y, rates, memo, k};
   const Layout layout = Model::layout(d);
   if (d.polar()) {
     pass.polar(layout);
@@ -217,7 +218,7 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool
     pass.cartesian(layout);
   }
   pass.finish();
-  return pass.k;
+  return k;
 }
 
 void Model::lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l) {
