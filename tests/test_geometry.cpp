@@ -166,3 +166,25 @@ TEST(Knot, AtTheFreeEdgeItIsThePapersRopeToTheLastBit) {
     EXPECT_EQ(a.transfer(deg * kDeg, pa).dk, b.transfer(deg * kDeg, pb).dk);
   }
 }
+
+TEST(InverseClosure, TheSeesawAngleIsInItsOwnRange) {
+  // A steep hinge (127 deg below the pivot's horizontal: up and to the left of it) puts atan2(E)
+  // and rho on opposite sides of -pi; their sum must still be the seesaw's angle in (-pi, pi]
+  // (the fuzzer found -292 deg for 68 deg, which the no-somersault guard read as past vertical).
+  wn::Config cfg = wn::example_config(3);
+  wn::apply_set(cfg, "geometry.hinge_angle=127");
+  const wn::Machine m = wn::build_scenario(cfg).machine;
+  const wn::RopeGeometry rope(m);
+  int found = 0;
+  for (double deg = 0.0; deg <= 89.0; deg += 0.5) {
+    for (int side : {-1, 1}) {
+      double phi_s = 0.0;
+      if (!rope.seesaw_angle_for(deg * kDeg, side, phi_s)) continue;
+      ++found;
+      EXPECT_GT(phi_s, -kDeg * 180.0) << deg << " " << side;
+      EXPECT_LE(phi_s, kDeg * 180.0) << deg << " " << side;
+      EXPECT_NEAR(rope.span(phi_s, deg * kDeg), m.rope_length, 1e-9);  // still the straight rope
+    }
+  }
+  EXPECT_GT(found, 10);
+}

@@ -47,7 +47,9 @@ bool RopeGeometry::seesaw_angle_for(double phi_l, int side, double& phi_s) const
   const Vec2 e = lid_edge(phi_l);
   const double c = cos_rho(phi_l);
   if (!(std::fabs(c) <= 1.0)) return false;
-  phi_s = std::atan2(e.h, e.x) + (side > 0 ? 1.0 : -1.0) * std::acos(c);
+  // The sum lies in (-2 pi, 2 pi]: wrapped into the seesaw's own range (-pi, pi], where the
+  // no-somersault guard reads it (a steep hinge gave -292 deg for what is 68 deg).
+  phi_s = wrap(std::atan2(e.h, e.x) + (side > 0 ? 1.0 : -1.0) * std::acos(c));
   return true;
 }
 
