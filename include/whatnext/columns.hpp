@@ -81,5 +81,7 @@ constexpr std::string_view kLeadingColumns[] = {"t_s", "event", "mode", "rope_ta
 // 0 on sample rows and on events without an impact.
 inline constexpr std::string_view kImpulseColumns[] = {"impulse_sandbag_N_s", "impulse_rope_N_s",
                                                        "impulse_lid_N_m_s"};
+// The same per contact i without the prefix: the key in the events JSON, Python and the page.
+constexpr std::string_view impulse_key(std::size_t i) { return kImpulseColumns[i].substr(8); }  // "impulse_"
 
 }  // namespace whatnext

@@ -335,9 +335,7 @@ py::dict run_machine(const MachineHandle& m, bool samples) {
     d["state"] = state_of(e.after);
     if (e.impact) {  // each contact's impulse and the law applied (docs/model.md §7)
       py::dict p;
-      p["sandbag_N_s"] = e.impulse[0];
-      p["rope_N_s"] = e.impulse[1];
-      p["lid_N_m_s"] = e.impulse[2];
+      for (std::size_t i = 0; i < e.impulse.size(); ++i) p[py::str(std::string(impulse_key(i)))] = e.impulse[i];
       d["impulses"] = p;
       d["law_applied"] = py::str(std::string(to_string(e.law)));
       d["law_note"] = py::str(std::string(e.law_note));

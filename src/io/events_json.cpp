@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "finite.hpp"
+#include "whatnext/columns.hpp"
 #include "whatnext/output.hpp"
 
 namespace whatnext {
@@ -52,9 +53,9 @@ std::string events_json(const Result& result, const Scenario& sc, const std::str
       j["energy_after"] = clean(e.energy_after);
       // Each contact's impulse (docs/model.md §7) and the law that set the velocities, with the
       // reason where it is not the run's impact_law.
-      j["impulses"] = json{{"sandbag_N_s", clean(e.impulse[0])},
-                           {"rope_N_s", clean(e.impulse[1])},
-                           {"lid_N_m_s", clean(e.impulse[2])}};
+      json impulses = json::object();
+      for (std::size_t i = 0; i < e.impulse.size(); ++i) impulses[std::string(impulse_key(i))] = clean(e.impulse[i]);
+      j["impulses"] = std::move(impulses);
       j["law_applied"] = std::string(to_string(e.law));
       if (!e.law_note.empty()) j["law_note"] = std::string(e.law_note);
     }

@@ -14,6 +14,7 @@
 
 #include "whatnext/config.hpp"
 #include "whatnext/events.hpp"
+#include "whatnext/columns.hpp"
 #include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
 #include "whatnext/viz/recording.hpp"
@@ -257,9 +258,7 @@ val event_object(const Event& e) {
   v.set("energy_after", e.energy_after);
   if (e.impact) {  // each contact's impulse [N s; the lid's N m s] and the law applied
     val p = val::object();
-    p.set("sandbag_N_s", e.impulse[0]);
-    p.set("rope_N_s", e.impulse[1]);
-    p.set("lid_N_m_s", e.impulse[2]);
+    for (std::size_t i = 0; i < e.impulse.size(); ++i) p.set(std::string(impulse_key(i)), e.impulse[i]);
     v.set("impulses", p);
     v.set("law_applied", std::string(to_string(e.law)));
     v.set("law_note", std::string(e.law_note));
