@@ -968,7 +968,13 @@
   new ResizeObserver(() => { sizeCanvas(); render(); }).observe($('canvas-box'));
   // A link pasted into this tab (or the address edited): open its machine as a new page would.
   // The page's own link updates (history.replaceState) do not fire this.
-  window.addEventListener('hashchange', () => location.reload());
+  // A change still waiting to be written into the link must not overwrite the pasted one on the
+  // way out (pagehide below), so it is dropped first.
+  window.addEventListener('hashchange', () => {
+    clearTimeout(urlTimer);
+    urlTimer = null;
+    location.reload();
+  });
   window.addEventListener('pagehide', () => { if (urlTimer !== null) writeUrl(); });
   new ResizeObserver(() => plots.resize()).observe($('plots'));
 
