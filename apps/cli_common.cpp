@@ -98,9 +98,13 @@ bool same(const Claim& a, const Claim& b) {
   return !a.where.empty() && a.where == b.where;
 }
 
+// 1-4, or 0 for a named preset (kNamedExamples).
 int example_number(const std::string& text) {
   if (text.size() == 1 && text[0] >= '1' && text[0] <= '4') return text[0] - '0';
-  throw InputError(fmt::format("--example: the paper has examples 1 to 4 (given '{}')", printable(text)));
+  for (std::string_view name : kNamedExamples)
+    if (text == name) return 0;
+  throw InputError(
+      fmt::format("--example: the examples are 1 to 4 (the paper's) and konstanz (given '{}')", printable(text)));
 }
 }  // namespace
 
@@ -116,8 +120,8 @@ LoadedInput load_input(const InputOptions& opts) {
   }
   if (!opts.example.empty()) {
     const int n = example_number(opts.example);
-    in.config = example_config(n);
-    in.source = fmt::format("example {}", n);
+    in.config = n > 0 ? example_config(n) : example_config(std::string_view(opts.example));
+    in.source = fmt::format("example {}", opts.example);
   } else if (!opts.file.empty()) {
     in.config = load_config_file(opts.file);
     in.source = printable(opts.file, 96);

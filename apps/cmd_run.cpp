@@ -77,7 +77,8 @@ void register_run(CLI::App& app, int& exit_code) {
     // Both make their rows on two threads: example 3 at the paper's step writes 80,000 rows, and
     // their positions and text cost ten times the run (docs/performance.md).
     if (csv_file) {
-      csv = std::make_unique<CsvWriter>(csv_file->stream(), Writing::parallel);
+      csv = std::make_unique<CsvWriter>(csv_file->stream(), Writing::parallel,
+                                        impulse_columns(in.scenario.machine));
       fan.add(csv.get());
     }
     if (dat_file) {

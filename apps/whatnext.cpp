@@ -53,20 +53,28 @@ int finish_stdout(CLI::App& app, const CLI::Error& e) {
 // `whatnext examples [N]`: the shipped examples, or one of them as TOML to copy.
 void register_examples(CLI::App& app) {
   auto n = std::make_shared<std::string>();
-  CLI::App* cmd = app.add_subcommand("examples", "list the paper's examples, or print example N as TOML");
+  CLI::App* cmd = app.add_subcommand("examples", "list the shipped examples, or print example N (1-4, konstanz) as TOML");
   cmd->add_option("N", *n, "print this example's TOML (to copy and change)");
   cmd->callback([n, cmd] {
     cli::check_leftovers(*cmd);
+    auto toml_of = [](const std::string& id) {
+      return id.size() == 1 && id[0] >= '1' && id[0] <= '4' ? example_toml(id[0] - '0')
+                                                             : example_toml(std::string_view(id));
+    };
     if (!n->empty()) {
-      if (n->size() != 1 || (*n)[0] < '1' || (*n)[0] > '4') {
-        throw InputError(fmt::format("examples: the paper has examples 1 to 4 (given '{}')", printable(*n)));
+      const std::string_view text = toml_of(*n);
+      if (text.empty()) {
+        throw InputError(fmt::format("examples: the examples are 1 to 4 (the paper's) and konstanz (given '{}')",
+                                     printable(*n)));
       }
-      fmt::print("{}", example_toml((*n)[0] - '0'));
+      fmt::print("{}", text);
       return;
     }
-    for (int i = 1; i <= 4; ++i) {
+    std::vector<std::string> ids{"1", "2", "3", "4"};
+    for (std::string_view name : kNamedExamples) ids.emplace_back(name);
+    for (const std::string& id : ids) {
       // The first sentence of each example's opening comment says what it is.
-      std::istringstream toml{std::string(example_toml(i))};
+      std::istringstream toml{std::string(toml_of(id))};
       std::string line, text;
       while (std::getline(toml, line) && line.rfind("# ", 0) == 0) {
         if (!text.empty()) text += ' ';
@@ -77,7 +85,7 @@ void register_examples(CLI::App& app) {
         end = text.find(". ", end + 1);
       text = text.substr(0, end);
       if (text.size() > 100 && text.find("; ") != std::string::npos) text = text.substr(0, text.find("; "));
-      fmt::print("{}  {}\n", i, text);
+      fmt::print("{}  {}\n", id, text);
     }
     fmt::print("Run one with `whatnext run --example N`; `whatnext examples N` prints it as TOML.\n");
   });

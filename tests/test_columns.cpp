@@ -18,7 +18,20 @@ TEST(Columns, TheCsvHeaderIsTheTableOfColumns) {
   for (const StateColumn& c : state_columns()) header += std::string(c.name) + ",";
   for (std::string_view name : kImpulseColumns) header += std::string(name) + ",";
   header.pop_back();
-  EXPECT_EQ(header, CsvWriter::header());
+  EXPECT_EQ(header, CsvWriter::header(std::size(kImpulseColumns)));
+}
+
+// The paper's machine has three contacts with impulses; the stop and the floor add theirs.
+TEST(Columns, OnlyTheBuiltMachineHasTheStopAndFloorImpulses) {
+  Machine m;
+  EXPECT_EQ(impulse_columns(m), 3u);
+  EXPECT_EQ(CsvWriter::header().substr(CsvWriter::header().rfind(',') + 1), "impulse_lid_N_m_s");
+  m.seesaw_left_arm = 0.5;
+  m.end_stop = true;
+  EXPECT_EQ(impulse_columns(m), 6u);
+  m.end_stop = false;
+  m.floor = true;
+  EXPECT_EQ(impulse_columns(m), 6u);
 }
 
 TEST(Columns, NamesAreUniqueAndEndInTheirUnit) {

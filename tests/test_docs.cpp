@@ -166,8 +166,8 @@ TEST_F(Docs, UserPagesCiteNoMissingSpecification) {
 // inputs.md names every column of the run's CSV and of a sweep's CSV, and every key of the JSON.
 TEST_F(Docs, InputsPageNamesEveryOutputColumnAndKey) {
   const std::set<std::string> documented = backticked(slurp(kSource + "/docs/inputs.md"));
-  const auto header = split(CsvWriter::header(), ',');
-  EXPECT_EQ(header.size(), 35u);  // 4 leading, 28 of the state, 3 impulses
+  const auto header = split(CsvWriter::header(std::size(kImpulseColumns)), ',');
+  EXPECT_EQ(header.size(), 38u);  // 4 leading, 28 of the state, 6 impulses (3 with the paper's contacts)
   for (const std::string& column : header) EXPECT_TRUE(documented.count(column)) << "CSV column " << column;
 
   const Scenario ex1 = build_scenario(example_config(1));

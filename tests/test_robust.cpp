@@ -130,7 +130,7 @@ TEST_F(Abuse, NumericOptionsNameTheRuleAndTheValue) {
 }
 
 TEST_F(Abuse, MisplacedArgumentsAreNamed) {
-  expect_rejected("run --example 0", "examples 1 to 4 (given '0')");
+  expect_rejected("run --example 0", "examples are 1 to 4 (the paper's) and konstanz (given '0')");
   expect_rejected("run --example x", "(given 'x')");
   expect_rejected("run --example 1 --set masses.lid=1 masses.sandbag=2", "write --set before each");
   const std::string ev = path("ev.json");

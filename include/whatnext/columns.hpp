@@ -6,6 +6,9 @@
 #include <cstddef>
 #include <string_view>
 
+#include <iterator>
+
+#include "whatnext/params.hpp"
 #include "whatnext/state.hpp"
 #include "whatnext/units.hpp"
 
@@ -78,9 +81,16 @@ StateColumns state_columns();
 constexpr std::string_view kLeadingColumns[] = {"t_s", "event", "mode", "rope_taut"};
 
 // After the state's columns, an event row's impacts: each contact's impulse (docs/model.md §7),
-// 0 on sample rows and on events without an impact.
-inline constexpr std::string_view kImpulseColumns[] = {"impulse_sandbag_N_s", "impulse_rope_N_s",
-                                                       "impulse_lid_N_m_s"};
+// 0 on sample rows and on events without an impact. The paper's machine has the first three
+// contacts; the built machine's end stop and floor (docs/extensions.md) add the others, and only
+// its outputs have their columns (impulse_columns).
+inline constexpr std::string_view kImpulseColumns[] = {
+    "impulse_sandbag_N_s", "impulse_rope_N_s",          "impulse_lid_N_m_s",
+    "impulse_stop_N_s",    "impulse_floor_seesaw_N_s",  "impulse_floor_sandbag_N_s"};
+constexpr std::size_t kPaperImpulses = 3;
+inline std::size_t impulse_columns(const Machine& m) {
+  return m.built_contacts() ? std::size(kImpulseColumns) : kPaperImpulses;
+}
 // The same per contact i without the prefix: the key in the events JSON, Python and the page.
 constexpr std::string_view impulse_key(std::size_t i) { return kImpulseColumns[i].substr(8); }  // "impulse_"
 

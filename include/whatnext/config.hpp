@@ -57,6 +57,11 @@ Config parse_inp(std::string_view text, const std::string& source);
 // The paper's example n (1..4), as shipped in examples/exampleN.toml.
 Config example_config(int n);
 std::string_view example_toml(int n);
+// The named presets beyond the paper's four: "konstanz" (examples/konstanz.toml, the machine the
+// students built, the paper's Fig. 3/4). example_toml(name) is empty for any other name.
+constexpr std::string_view kNamedExamples[] = {"konstanz"};
+Config example_config(std::string_view name);
+std::string_view example_toml(std::string_view name);
 // Applies "KEY=VALUE" (VALUE as in TOML; bare words are text). Throws InputError.
 void apply_set(Config& config, std::string_view assignment);
 // Sets a numeric key directly (no parsing; for sweeps and optimisation). Throws InputError for an

@@ -20,11 +20,18 @@ enum class EventType {
   balloon_free,
   sandbag_falls_off,  // extensions: slides off the end of a finite left arm
   sandbag_leaves,     // extensions: the arm's normal force on the sandbag reaches zero (heavy seesaw)
+  sandbag_at_stop,    // built machine: the sandbag reaches the end stop and rides there
+  sandbag_leaves_stop,
+  seesaw_on_floor,    // built machine: an end of the seesaw reaches the floor and stays there
+  seesaw_lifts,       // ... and leaves it
+  sandbag_on_floor,   // built machine: the sandbag lands on the floor
+  sandbag_bounces,    // ... and leaves it again (floor.restitution > 0)
   lid_open,
   seesaw_vertical,
   sandbag_at_pivot,
   rope_locked,  // the lid lies along the rope: the linkage cannot move on (not in the paper)
   radio_on,     // extensions: the balloon's string is straight and switches the radio on
+  switch_stays_off,  // built machine: the string is straight but pulls less than the switch needs
   timeout,
   event_limit,  // safety stop against endless event chains at one instant
 };
@@ -45,8 +52,10 @@ struct Event {
   // event is not found on a crossing): a slow crossing is an uncertain one. See Crossing.
   double time_uncertainty = 0.0;
   // Impacts only (impact == true): the impulse each contact gave, from the velocity jump
-  // (docs/model.md §7): the arm on the sandbag [N s], the rope [N s], the box on the lid [N m s].
-  std::array<double, 3> impulse{};
+  // (docs/model.md §7): the arm on the sandbag [N s], the rope [N s], the box on the lid [N m s];
+  // the built machine's end stop, the floor on the seesaw's end, the floor on the sandbag [N s]
+  // (the order of columns.hpp's kImpulseColumns).
+  std::array<double, 6> impulse{};
   // The law that set the velocities after a rope's jerk, and why it is not the run's impact_law
   // where it is not (empty otherwise): a law that cannot be applied is never replaced silently.
   ImpactLaw law = ImpactLaw::rope;

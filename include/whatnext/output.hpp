@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "whatnext/columns.hpp"
 #include "whatnext/simulate.hpp"
 
 namespace whatnext {
@@ -151,14 +152,16 @@ class RowText;  // output.cpp
 // CSV: a row per output sample and a row (with the event's name) after each event.
 class CsvWriter : public Observer {
  public:
-  explicit CsvWriter(std::ostream& out, Writing writing = Writing::at_once);
+  // impulses: how many of the impulse columns (columns.hpp impulse_columns(machine)).
+  explicit CsvWriter(std::ostream& out, Writing writing = Writing::at_once, std::size_t impulses = kPaperImpulses);
   ~CsvWriter() override;
   void on_sample(const Snapshot& s) override;
   void on_samples(const SampleBatch& batch) override;
   void on_event(const Event& e) override;
-  static const char* header();
+  static std::string header(std::size_t impulses = kPaperImpulses);
 
  private:
+  std::size_t impulses_;
   std::unique_ptr<RowText> rows_;
 };
 

@@ -53,9 +53,20 @@ struct Machine {
   double seesaw_inertia = 0.0;     // about the pivot [kg m^2]; > 0 makes the seesaw "heavy"
   double seesaw_com_offset = 0.0;  // centre of mass along the bar, + towards r_H [m]
   double rope_on_lid = 0.0;        // the rope's knot, from the hinge along the lid [m]; 0: the free edge
+  // The built machine (docs/extensions.md "The machine students build").
+  bool end_stop = false;           // an edge at the left arm's end: the sandbag rides there
+  bool floor = false;              // the floor through the box's bottom: arm ends and sandbag stand on it
+  double floor_restitution = 0.0;  // Newton's coefficient of impacts on the floor (0: inelastic)
+  double switch_force = 0.0;       // the radio's switch needs the string to pull this hard [N]; 0: any
 
   // Where the rope is tied to the lid, from the hinge: a = 2 r_L at the free edge (the paper's).
   double rope_knot() const { return rope_on_lid > 0.0 ? rope_on_lid : 2.0 * lid_half_length; }
+
+  // The floor's height relative to the pivot: the box (a cube of edge 2 r_L) stands on it.
+  double floor_height() const { return hinge.h - 2.0 * lid_half_length; }
+  // What the balloon's string pulls with once straight and holding the balloon still: its net lift.
+  double balloon_pull() const { return balloon_inertia() * balloon_acceleration(); }
+  bool built_contacts() const { return end_stop || floor; }
 
   // Uniform plate hinged at one edge: I = m (2 r_L)^2 / 3.
   double lid_inertia() const { return lid_mass * 4.0 * lid_half_length * lid_half_length / 3.0; }

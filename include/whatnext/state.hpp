@@ -31,7 +31,7 @@ struct GuardStart {
   double lead = 0.0;
   double floor = 0.0;
 };
-constexpr int kGuardSlots = 12;
+constexpr int kGuardSlots = 14;
 
 struct Discrete {
   bool on_seesaw = false;      // sandbag on the arm (massless seesaw: once landed, for good)
@@ -41,6 +41,12 @@ struct Discrete {
   bool fallen_off = false;     // sandbag slid off the arm's end: it never lands again
   bool latched = false;        // radio: lid latched open after lid_open, rope slack for good
   bool heavy = false;          // the seesaw has inertia (copied from the machine at the start)
+  // The built machine's contacts (docs/extensions.md): the sandbag held at the arm's end by the
+  // stop; the seesaw standing on the floor with its left (+1) or right (-1) end; the sandbag on
+  // the floor (it never lands on the arm again).
+  bool at_stop = false;
+  int grounded = 0;
+  bool bag_on_floor = false;
   double parked_seesaw = 0.0;  // seesaw angle while nothing moves it (M1) [rad]
   int side = 1;                // R's side of the line P-E, for the inverse closure phiS(phiL)
   // On the rope's closure (lid swinging on a straight rope, something with inertia on the seesaw)
@@ -57,7 +63,9 @@ struct Discrete {
   }
   // While the sandbag rides a taut rope, or a seesaw with inertia, its motion is polar (r, phiS);
   // otherwise Cartesian (on a massless seesaw with the rope slack that is free fall).
-  bool polar() const { return on_seesaw && (taut || heavy); }
+  // The stop and the floor make a massless seesaw's motion polar too: the sandbag at a fixed r, or
+  // the arm at a fixed angle.
+  bool polar() const { return on_seesaw && (taut || heavy || at_stop || grounded != 0); }
 };
 
 // Continuous state. Cartesian layout: x, h, x', h' of the sandbag; polar layout: r, phiS, r', phiS'

@@ -149,7 +149,8 @@ constexpr const char* kLeading[] = {"t_s", "event", "mode", "rope_taut"};
 const std::vector<std::string>& column_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> out;
-    std::string_view header = CsvWriter::header();
+    const std::string text = CsvWriter::header(std::size(kImpulseColumns));  // every column there is
+    std::string_view header = text;
     for (;;) {
       const auto comma = header.find(',');
       out.emplace_back(header.substr(0, comma));
@@ -168,7 +169,8 @@ void check_columns() {
   if (!ok) {
     throw std::runtime_error(fmt::format(
         "whatnext._core: the CSV has {} columns ({}), the module knows {}; the table is whatnext/columns.hpp",
-        names.size(), CsvWriter::header(), std::size(kLeading) + kNumericCount + std::size(kImpulseColumns)));
+        names.size(), CsvWriter::header(std::size(kImpulseColumns)),
+        std::size(kLeading) + kNumericCount + std::size(kImpulseColumns)));
   }
 }
 
@@ -247,7 +249,8 @@ class EventsOnly : public Interruptible {
 // Keeps the run's CSV rows as columns: a row per output sample and one right after each event.
 class ColumnRecorder : public Interruptible {
  public:
-  ColumnRecorder() : numeric_(kNumericCount) {}
+  // impulses: how many impulse columns the machine's CSV has (columns.hpp impulse_columns).
+  explicit ColumnRecorder(std::size_t impulses) : impulses_(impulses), numeric_(kNumericCount) {}
   void reserve(std::size_t rows) {
     t_.reserve(rows), event_.reserve(rows), mode_.reserve(rows), taut_.reserve(rows);
     for (auto& c : numeric_) c.reserve(rows);
@@ -267,7 +270,7 @@ class ColumnRecorder : public Interruptible {
     for (std::size_t c = 0; c < kNumericCount; ++c) {
       out[py::str(names[std::size(kLeading) + c])] = adopt(std::move(numeric_[c]), py::dtype::of<double>());
     }
-    for (std::size_t c = 0; c < std::size(kImpulseColumns); ++c) {
+    for (std::size_t c = 0; c < impulses_; ++c) {
       out[py::str(std::string(kImpulseColumns[c]))] = adopt(std::move(impulse_[c]), py::dtype::of<double>());
     }
     return out;
@@ -275,13 +278,14 @@ class ColumnRecorder : public Interruptible {
 
  private:
   void row(const Snapshot& s, std::string_view event, const double* impulses) {
-    for (std::size_t c = 0; c < std::size(kImpulseColumns); ++c) impulse_[c].push_back(impulses ? impulses[c] : 0.0);
+    for (std::size_t c = 0; c < impulses_; ++c) impulse_[c].push_back(impulses ? impulses[c] : 0.0);
     t_.push_back(s.t);
     event_.push_back(event);
     mode_.push_back(s.mode);
     taut_.push_back(s.rope_taut ? 1 : 0);
     for (std::size_t c = 0; c < kNumericCount; ++c) numeric_[c].push_back(kStateColumns[c].value(s));
   }
+  std::size_t impulses_;
   std::vector<double> t_;
   std::vector<std::string_view> event_;  // names live in the static names table
   std::vector<Mode> mode_;
@@ -304,7 +308,8 @@ py::dict state_of(const Snapshot& s) {
 
 py::dict run_machine(const MachineHandle& m, bool samples) {
   Result result;
-  ColumnRecorder rec;
+  const std::size_t impulses = impulse_columns(m.scenario.machine);
+  ColumnRecorder rec(impulses);
   EventsOnly events_only;
   try {
     py::gil_scoped_release nogil;
@@ -335,7 +340,7 @@ py::dict run_machine(const MachineHandle& m, bool samples) {
     d["state"] = state_of(e.after);
     if (e.impact) {  // each contact's impulse and the law applied (docs/model.md §7)
       py::dict p;
-      for (std::size_t i = 0; i < e.impulse.size(); ++i) p[py::str(std::string(impulse_key(i)))] = e.impulse[i];
+      for (std::size_t i = 0; i < impulses; ++i) p[py::str(std::string(impulse_key(i)))] = e.impulse[i];
       d["impulses"] = p;
       d["law_applied"] = py::str(std::string(to_string(e.law)));
       d["law_note"] = py::str(std::string(e.law_note));

@@ -149,9 +149,9 @@ Impact solve_impact(const System& sys, Set touching, const Choice& choice) {
   Impact best;
   in_order_of_preference(touching, choice, sys.contacts, [&](Set s) {
     Impact cand;
-    if (!solve_set(sys, s, true, cand.impulse, cand.velocity)) return false;
+    if (!choice.consistent(s) || !solve_set(sys, s, true, cand.impulse, cand.velocity)) return false;
     for (int i = 0; i < sys.contacts; ++i) {
-      if (!has(touching, i)) continue;
+      if (!has(touching, i) || !choice.present(s, i)) continue;
       cand.rate[i] = has(s, i) ? 0.0 : sys.rate(i, cand.velocity);
       if (has(s, i) ? cand.impulse[i] < -choice.impulse_tol : cand.rate[i] < -choice.closing_tol)
         return false;
@@ -168,9 +168,9 @@ Motion solve_motion(const System& sys, Set candidates, const Choice& choice) {
   Motion best;
   in_order_of_preference(candidates, choice, sys.contacts, [&](Set s) {
     Motion cand;
-    if (!solve_set(sys, s, false, cand.force, cand.acceleration)) return false;
+    if (!choice.consistent(s) || !solve_set(sys, s, false, cand.force, cand.acceleration)) return false;
     for (int i = 0; i < sys.contacts; ++i) {
-      if (!has(candidates, i)) continue;
+      if (!has(candidates, i) || !choice.present(s, i)) continue;
       if (has(s, i)) {
         if (cand.force[i] < -choice.force_tol) return false;
         continue;

@@ -16,7 +16,7 @@
 namespace whatnext::contact {
 
 constexpr int kMaxCoords = 4;
-constexpr int kMaxContacts = 3;
+constexpr int kMaxContacts = 7;
 
 using Coords = std::array<double, kMaxCoords>;
 using PerContact = std::array<double, kMaxContacts>;
@@ -44,6 +44,16 @@ struct Choice {
   double rate_tol = 1e-9;      // gap rates within rate_tol of 0 are zero (held, decided on forces)
   double closing_tol = 1e-12;  // an impact leaves no contact closing faster than this
   double accel_tol = 1e-9;     // gap accelerations >= -accel_tol count as separating or holding
+  // Contacts that exist only together with others (an edge on a surface: the end stop holds the
+  // sandbag only while it lies on the arm): in a set without all of needs[i], contact i is
+  // neither closed nor checked for separation.
+  std::array<Set, kMaxContacts> needs{};
+  bool present(Set s, int i) const { return (needs[i] & ~s) == 0; }
+  bool consistent(Set s) const {
+    for (int i = 0; i < kMaxContacts; ++i)
+      if (has(s, i) && !present(s, i)) return false;
+    return true;
+  }
 };
 
 struct Impact {

@@ -17,16 +17,29 @@ using namespace model_detail;
 contact::Set Model::touching(const Discrete& d, const Kinematics& k) const {
   // Open contacts whose gap is (numerically) closed as well: they take part in the decision.
   Set s = 0;
-  if (d.latched) return s;
-  if (!d.on_seesaw && !d.fallen_off) {
+  if (d.latched && contacts_ == 3) return s;
+  if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) {
     const double along = along_arm(k);
     if (std::fabs(height_above_arm(k)) <= kContact && along >= 0.0 && along <= arm_) s |= bit(kBag);
   }
+  if (d.latched) return s | touching_built(d, k);  // the rope let go for good, the lid held open
   if (!d.taut && std::fabs(rope_.span(k.phi_s, k.phi_l) - rope_.rope_length()) <= kContact &&
       rope_.lid_below_rope(k.phi_s, k.phi_l)) {
     s |= bit(kRope);
   }
   if (!d.lid_resting && k.phi_l - phi_l0_ <= kContact) s |= bit(kLid);
+  if (contacts_ > 3) s |= touching_built(d, k);
+  return s;
+}
+
+contact::Set Model::touching_built(const Discrete& d, const Kinematics& k) const {
+  Set s = 0;
+  if (stop_ && d.on_seesaw && !d.at_stop && std::fabs(arm_ - along_arm(k)) <= kContact) s |= bit(kStop);
+  if (!floor_) return s;
+  if (d.grounded <= 0 && std::fabs(-arm_ * k.sin_s - h_floor_) <= kContact) s |= bit(kFloorLeft);
+  const double right = sc_.machine.seesaw_right_arm;
+  if (d.grounded >= 0 && std::fabs(right * k.sin_s - h_floor_) <= kContact) s |= bit(kFloorRight);
+  if (!d.on_seesaw && !d.bag_on_floor && std::fabs(k.h - h_floor_) <= kContact) s |= bit(kBagFloor);
   return s;
 }
 
@@ -38,7 +51,7 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
   // tends, and a sandbag on a massless seesaw stays on it (docs/model.md §4: once landed, it stays; with
   // the rope slack that seesaw simply turns with the falling sandbag).
   const Set s0 = active_set(d);
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < contacts_; ++i) {
     c.want[i] = contact::has(s0, i) ? 1 : -1;
     c.weight[i] = 1;
   }
@@ -50,6 +63,7 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
     c.want[kBag] = 1;
     c.weight[kBag] = 16;
   }
+  c.needs[kStop] = bit(kBag);  // the stop is an edge of the arm
   // "Zero" on the scale of this machine and motion.
   const double len = length_scale_;
   double v = std::sqrt(g_ * len);
@@ -98,19 +112,45 @@ Kinematics Model::touch_exactly(const Discrete& d, contact::Set touch, Kinematic
     }
   }
   k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s);
+  const bool carries = has(touch, kBag) || d.on_seesaw;
+  if (has(touch, kFloorLeft)) ground(k, 1, carries);
+  if (has(touch, kFloorRight)) ground(k, -1, carries);
   if (has(touch, kBag)) {
     // The sandbag onto the arm's line, along its normal.
     const double above = height_above_arm(k);
     if (std::fabs(above) < 1e-3) k.x += above * k.sin_s, k.h -= above * k.cos_s;
   }
+  if (has(touch, kStop)) k.x = -arm_ * k.cos_s, k.h = -arm_ * k.sin_s;  // at the arm's end
+  if (has(touch, kBagFloor)) k.h = h_floor_;
   k.r = along_arm(k);
   return k;
 }
 
-void Model::set_contacts(Discrete& d, Set s, const Kinematics& k) const {
+void Model::ground(Kinematics& k, int side, bool carries) const {
+  // The seesaw turned onto the floor (a rounding's worth), with the sandbag it carries.
+  const double phi = grounded_angle(side);
+  if (carries) {
+    const double c = std::cos(phi - k.phi_s), s = std::sin(phi - k.phi_s);
+    const double x = k.x * c - k.h * s, h = k.x * s + k.h * c;
+    const double vx = k.vx * c - k.vh * s, vh = k.vx * s + k.vh * c;
+    k.x = x, k.h = h, k.vx = vx, k.vh = vh;
+  }
+  k.phi_s = phi;
+  k.cos_s = std::cos(phi), k.sin_s = std::sin(phi);
+}
+
+Discrete Model::with_contacts(Discrete d, Set s) {
   d.on_seesaw = contact::has(s, kBag);
   d.taut = contact::has(s, kRope);
   d.lid_resting = contact::has(s, kLid);
+  d.at_stop = contact::has(s, kStop) && d.on_seesaw;  // the stop is an edge of the arm
+  d.grounded = contact::has(s, kFloorLeft) ? 1 : (contact::has(s, kFloorRight) ? -1 : 0);
+  d.bag_on_floor = contact::has(s, kBagFloor);
+  return d;
+}
+
+void Model::set_contacts(Discrete& d, Set s, const Kinematics& k) const {
+  d = with_contacts(d, s);
   // The unloaded massless seesaw is parked where it is, or follows the lid; on the closure the
   // chart is the seesaw's angle while the lid moves no faster than it (|k| <= 1).
   if (!d.on_seesaw && !d.heavy) d.parked_seesaw = k.phi_s;
@@ -151,7 +191,11 @@ Model::Decision Model::decide_touching(const Discrete& d, const Kinematics& k_ev
   x.s0 = active_set(d);
   x.touch = x.s0 | touching(d, k_event);
   if (trend == Trend::closing) x.touch |= bit(trigger);
-  if (trend == Trend::forced_off) x.touch &= ~bit(trigger);
+  if (trend == Trend::forced_off) {
+    x.touch &= ~bit(trigger);
+    // Off the end of an arm that stands on the floor: the sandbag is on the floor at once.
+    if (floor_ && std::fabs(k_event.h - h_floor_) <= kContact) x.touch |= bit(kBagFloor);
+  }
   // The touching contacts are at zero gap by definition: take back the event's overshoot (the
   // event-time tolerance times the closing speed, or a fixed step's interpolation error) before
   // anything is decided, so that the impact happens where the contacts touch and a contact that
@@ -169,8 +213,47 @@ void Model::impact_on_velocities(const Discrete& d, Decision& x, double t) const
   if (!x.imp.ok) no_consistent("impact", t, d.mode());
   x.u = x.imp.velocity;
   x.rate = x.imp.rate;
+  if (e_floor_ > 0.0) rebound(x);
   x.impacted = false;
-  for (int i = 0; i < 3; ++i) x.impacted = x.impacted || x.impulsive(i);
+  for (int i = 0; i < contacts_; ++i) x.impacted = x.impacted || x.impulsive(i);
+}
+
+void Model::rebound(Decision& x) const {
+  // Newton's restitution on the floor: whatever stood on it leaves with -e times the speed it
+  // came with. Poisson's form of it: the floor's impulses once more, times e, on the masses (the
+  // floor needs a seesaw with mass, so each coordinate it acts on has one); then the touching
+  // contacts once more decide inelastically, so that a rebound never drives one into another.
+  const Set floor = bit(kFloorLeft) | bit(kFloorRight) | bit(kBagFloor);
+  if ((x.imp.impulsive & floor) == 0) return;
+  contact::System sys = x.sys;
+  for (int i : {kFloorLeft, kFloorRight, kBagFloor}) {
+    if (!x.impulsive(i)) continue;
+    for (int j = 0; j < sys.coords; ++j) {
+      if (sys.mass[j] > 0.0) x.u[j] += e_floor_ * x.imp.impulse[i] * sys.normal[i][j] / sys.mass[j];
+    }
+  }
+  sys.velocity = x.u;
+  const contact::Impact again = contact::solve_impact(sys, x.touch, x.ch);
+  if (!again.ok) return;  // then the inelastic impact stands
+  // Poisson's rebound with several contacts at once can come out with more kinetic energy than
+  // the machine brought in: then the inelastic impact stands (an impact never gains energy).
+  auto kinetic = [&](const contact::Coords& v) {
+    double e = 0.0;
+    for (int j = 0; j < sys.coords; ++j) e += 0.5 * sys.mass[j] * v[j] * v[j];
+    return e;
+  };
+  if (kinetic(again.velocity) > kinetic(x.sys.velocity)) return;
+  // The impulses of both phases; the floor's contacts that bounced gave one but are not held.
+  contact::Impact both = again;
+  for (int i = 0; i < contacts_; ++i) {
+    const bool floor_i = contact::has(floor, i);
+    both.impulse[i] = x.imp.impulse[i] * (1.0 + (floor_i ? e_floor_ : 0.0)) + again.impulse[i];
+    if (floor_i && x.impulsive(i) && !contact::has(again.impulsive, i)) x.bounced |= bit(i);
+  }
+  both.impulsive = again.impulsive | x.bounced;
+  x.imp = both;
+  x.u = again.velocity;
+  x.rate = again.rate;
 }
 
 void Model::apply_impact_law(Decision& x) const {
@@ -180,6 +263,10 @@ void Model::apply_impact_law(Decision& x) const {
   using contact::has;
   const ImpactLaw chosen = sc_.run.impact_law;
   if (!x.impulsive(kRope) || chosen == ImpactLaw::rope) return;
+  if (x.bounced != 0) {
+    x.law_note = "the jerk comes with a bounce on the floor, which no single law covers: the rope law";
+    return;
+  }
   if (x.impulsive(kLid)) {
     x.law_note =
         "the jerk also presses the lid onto the box, which no single law covers: perfectly inelastic (rope "
@@ -194,7 +281,7 @@ void Model::apply_impact_law(Decision& x) const {
   }
   bool ok = true;
   contact::PerContact rl = x.rate;
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < contacts_; ++i) {
     if (!has(x.touch, i)) continue;
     rl[i] = has(x.imp.impulsive, i) ? 0.0 : x.sys.rate(i, ul);
     ok = ok && rl[i] >= -x.ch.closing_tol;
@@ -214,10 +301,11 @@ void Model::hold_after_impact(Decision& x) const {
   // Touching contacts with zero gap rate after the impact.
   using contact::has;
   x.held = 0;
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < contacts_; ++i) {
     // The lid's gap is an angle: its rate compared as the speed of the lid's far edge.
     const double speed = i == kLid ? 2.0 * r_l_ * x.rate[i] : x.rate[i];
-    if (has(x.touch, i) && (has(x.imp.impulsive, i) || speed <= x.ch.rate_tol)) x.held |= bit(i);
+    const bool stopped = has(x.imp.impulsive, i) && !has(x.bounced, i);
+    if (has(x.touch, i) && (stopped || speed <= x.ch.rate_tol)) x.held |= bit(i);
   }
 }
 
@@ -225,15 +313,13 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
   // Which of the held contacts carry the motion on: forces >= 0, released ones separating.
   using contact::has;
   x.k1 = with_velocity(x.k0, x.u);
-  Discrete dh = d;
-  dh.on_seesaw = has(x.held, kBag), dh.taut = has(x.held, kRope), dh.lid_resting = has(x.held, kLid);
-  const contact::System sys1 = contact_system(dh, x.k1);
+  const contact::System sys1 = contact_system(with_contacts(d, x.held), x.k1);
   x.mot = contact::solve_motion(sys1, x.held, x.ch);
   if (!x.mot.ok) no_consistent("set of contacts", t, d.mode());
   x.s2 = x.mot.active;
 
   // Released contacts: their gaps start at zero and open, by their rate or their acceleration.
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < contacts_; ++i) {
     if (!has(x.held, i)) {
       x.released[i] = {1, -x.rate[i]};
     } else if (x.mot.gap_acceleration[i] > x.ch.accel_tol) {
@@ -259,7 +345,7 @@ void Model::enter_contacts(HybridState& hs, const Decision& x) const {
   Discrete& d = hs.d;
   d.armed = {};
   set_contacts(d, x.s2, x.k2);
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < contacts_; ++i) {
     const Guard gi = guard_of(i);
     if (has(x.touch, i) && !has(x.s2, i)) {
       d.armed[gi] = x.released[i];
@@ -274,7 +360,7 @@ void Model::enter_contacts(HybridState& hs, const Decision& x) const {
   place(hs, x.k2);
 }
 
-std::array<double, 3> Model::impulses(const Decision& x) const {
+std::array<double, 6> Model::impulses(const Decision& x) const {
   // The impulses that make the velocity jump, M (u+ - u-) = sum_i W_i p_i: the inelastic impact's
   // own under the rope law, else the contacts' share of the chosen law's jump (least squares where
   // the law moves the machine in a way no contact impulse could: linear momentum).
@@ -286,8 +372,12 @@ std::array<double, 3> Model::impulses(const Decision& x) const {
     for (int j = 0; j < jump.coords; ++j) dv[j] = x.u[j] - x.sys.velocity[j];
     if (!contact::multipliers_for(jump, x.imp.impulsive, dv, p)) p = x.imp.impulse;
   }
-  std::array<double, 3> out{};
-  for (int i = 0; i < 3; ++i) out[i] = contact::has(x.imp.impulsive, i) ? p[i] : 0.0;
+  // Per contact, in the order of the event's impulses: either end of the seesaw on the floor is
+  // the floor's impulse on the seesaw.
+  std::array<double, 6> out{};
+  for (int i = 0; i < contacts_; ++i) {
+    if (contact::has(x.imp.impulsive, i)) out[i <= kFloorLeft ? i : i - 1] += p[i];
+  }
   return out;
 }
 
@@ -327,9 +417,16 @@ void Model::report_changes(HybridState& hs, const Decision& x, Mode before, std:
       emit(x.trend == Trend::forced_off ? EventType::sandbag_falls_off : change_event(trigger, false));
     }
   }
+  // A bounce on the floor touches and lets go in the same instant: reported as both, even where
+  // it is not the contact that triggered the event.
+  for (int i = 0; i < contacts_; ++i) {
+    if (!has(x.bounced, i) || has(cur, i)) continue;
+    cur |= bit(i);
+    emit(change_event(i, true));
+  }
   // The trigger's own change was reported first; a contact it closed may still let go below.
   auto step_to = [&](Set target, bool trigger_may_change) {
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < contacts_; ++i) {
       if (i == trigger && !trigger_may_change) continue;
       if (has(cur, i) == has(target, i)) continue;
       if (has(target, i)) {

@@ -46,15 +46,37 @@ contact::System Model::contact_system(const Discrete& d, const Kinematics& k) co
 
   s.normal[kLid] = {0.0, 0.0, 0.0, 1.0};
   s.curvature[kLid] = 0.0;
+  if (contacts_ > 3) built_contacts(s, k);
   return s;
 }
 
+void Model::built_contacts(contact::System& s, const Kinematics& k) const {
+  // The built machine's gaps (docs/extensions.md "The machine students build"), each >= 0 open:
+  //   end stop:     L - r = L + x cos phiS + h sin phiS          (multiplier: the stop's push, N)
+  //   floor, left:  -L sin phiS - h_floor   (the left end)       (multiplier: the floor's push, N)
+  //   floor, right: r_H sin phiS - h_floor  (the right end)
+  //   floor, bag:   h - h_floor
+  s.contacts = kContactCount;
+  const double cs = k.cos_s, sn = k.sin_s, w2 = k.dphi_s * k.dphi_s;
+  const double left = std::isfinite(arm_) ? arm_ : 0.0, right = sc_.machine.seesaw_right_arm;
+  s.normal[kStop] = {cs, sn, -k.x * sn + k.h * cs, 0.0};
+  s.curvature[kStop] = 2.0 * k.dphi_s * (-k.vx * sn + k.vh * cs) - (k.x * cs + k.h * sn) * w2;
+  s.normal[kFloorLeft] = {0.0, 0.0, -left * cs, 0.0};
+  s.curvature[kFloorLeft] = left * sn * w2;
+  s.normal[kFloorRight] = {0.0, 0.0, right * cs, 0.0};
+  s.curvature[kFloorRight] = -right * sn * w2;
+  s.normal[kBagFloor] = {0.0, 1.0, 0.0, 0.0};
+  s.curvature[kBagFloor] = 0.0;
+}
+
 contact::Set Model::active_set(const Discrete& d) {
-  return (d.on_seesaw ? bit(kBag) : 0u) | (d.taut ? bit(kRope) : 0u) | (d.lid_resting ? bit(kLid) : 0u);
+  return (d.on_seesaw ? bit(kBag) : 0u) | (d.taut ? bit(kRope) : 0u) | (d.lid_resting ? bit(kLid) : 0u) |
+         (d.at_stop ? bit(kStop) : 0u) | (d.grounded > 0 ? bit(kFloorLeft) : 0u) |
+         (d.grounded < 0 ? bit(kFloorRight) : 0u) | (d.bag_on_floor ? bit(kBagFloor) : 0u);
 }
 
 contact::Coords Model::accelerations(const Discrete& d, const Kinematics& k) const {
-  if (!d.polar()) return {0.0, -g_, k.ddphi_s, k.ddphi_l};  // the sandbag falls freely
+  if (!d.polar()) return {0.0, d.bag_on_floor ? 0.0 : -g_, k.ddphi_s, k.ddphi_l};  // falls, or lies
   // x = -r cos phiS, h = -r sin phiS: along the arm r'' - r phiS'^2, across it 2 r' phiS' + r phiS''.
   const double along = k.ddr - k.r * k.dphi_s * k.dphi_s, across = 2.0 * k.dr * k.dphi_s + k.r * k.ddphi_s;
   return {-along * k.cos_s + across * k.sin_s, -along * k.sin_s - across * k.cos_s, k.ddphi_s, k.ddphi_l};

@@ -101,7 +101,8 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
   if (d.polar()) {
     dy[slot::r] = y[slot::dr];
     dy[slot::phi_s] = y[slot::dphi_s];
-    if (d.taut && d.lid_resting) {  // M5: seesaw held by the rope, sandbag slides on the fixed arm
+    if ((d.taut && d.lid_resting) || d.grounded != 0) {
+      // M5 (the seesaw held by the rope) or on the floor: the sandbag slides on the fixed arm.
       dy[slot::dr] = along_arm_acceleration(y[slot::r], std::sin(y[slot::phi_s]), 0.0);
     } else if (d.lid_chart && d.taut) {  // M4 near the lid's dead centre: the lid's angle integrated
       const LidSwing p = swing_by_lid(true, y[slot::r], y[slot::phi_s], y[slot::dr], y[slot::dphi_s], d.side);
@@ -112,7 +113,8 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
       dy[slot::dr] = p.ddr;
       dy[slot::dphi_s] = p.ddphi_s;
     }
-    if (!d.taut && !d.lid_resting) {
+    if (d.at_stop) dy[slot::dr] = 0.0;  // held at the arm's end
+    if (!d.taut && !d.lid_resting && !d.latched) {
       dy[slot::phi_l] = y[slot::dphi_l];
       dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l]);
     }
@@ -121,13 +123,14 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     // fall written in Cartesian form: the same motion, regular at r = 0, and exact for any RK method.
     dy[slot::x] = y[slot::vx];
     dy[slot::h] = y[slot::vh];
-    dy[slot::vh] = -g_;
-    const bool lid_on_rope = d.heavy && d.taut;  // then the lid follows the heavy seesaw
+    dy[slot::vh] = d.bag_on_floor ? 0.0 : -g_;
+    // The lid follows a heavy seesaw on the rope, or hangs from one standing on the floor.
+    const bool lid_on_rope = (d.heavy || d.grounded != 0) && d.taut;
     if (!d.lid_resting && !d.latched && !lid_on_rope) {
       dy[slot::phi_l] = y[slot::dphi_l];
       dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l]);
     }
-    if (d.heavy && !(d.taut && d.lid_resting)) {  // the unloaded heavy seesaw swings
+    if (d.heavy && !(d.taut && d.lid_resting) && d.grounded == 0) {  // the unloaded heavy seesaw swings
       dy[slot::seesaw_phi] = y[slot::seesaw_dphi];
       dy[slot::seesaw_dphi] =
           d.lid_chart && d.taut

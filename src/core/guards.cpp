@@ -25,28 +25,34 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   if (rates && !d.balloon_stuck && !d.latched) {
     (*rates)[kGuardBalloon] = y[slot::balloon_v] - limit_.rate_at(k.sin_l, k.dphi_l);
   }
-  if (d.latched) return;  // the radio's wait: only the balloon matters now
+  // The radio's wait: only the balloon matters now; the built machine's seesaw and sandbag still
+  // move on its stop and floor.
+  if (d.latched && contacts_ == 3) return;
 
   // Open contacts: their gaps, negative while open.
-  if (!d.on_seesaw && !d.fallen_off) g[kGuardBag] = -height_above_arm(k);
+  if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) g[kGuardBag] = -height_above_arm(k);
   const Vec2 u_s{k.cos_s, k.sin_s}, u_l{k.cos_l, k.sin_l};
-  if (!d.taut) g[kGuardRope] = rope_.span(u_s, u_l) - rope_.rope_length();
-  if (!d.lid_resting) g[kGuardLid] = phi_l0_ - k.phi_l;
+  if (!d.taut && !d.latched) g[kGuardRope] = rope_.span(u_s, u_l) - rope_.rope_length();
+  if (!d.lid_resting && !d.latched) g[kGuardLid] = phi_l0_ - k.phi_l;
   // Closed contacts: minus their forces. A massless seesaw held by one contact alone carries no
   // force through it at all (identically zero: no guard); held by sandbag and rope together, the
   // arm's push is the tension times the coupling k (torque balance), so the sandbag's guard is
   // the sign of k and the rope's the tension.
-  const bool loaded = heavy_ || (d.on_seesaw && d.taut);
-  const bool forces = loaded && (d.on_seesaw || d.taut) &&
-                      (only < 0 || only == kGuardBag || only == kGuardRope || only == kGuardLid);
+  // The stop and the floor carry forces on a massless seesaw as well (a pendulum's rod, a seesaw
+  // standing on its end).
+  const bool held = d.at_stop || d.grounded != 0;
+  const bool loaded = heavy_ || (d.on_seesaw && d.taut) || held;
+  const bool forces = loaded && (d.on_seesaw || d.taut || held) &&
+                      (only < 0 || only == kGuardBag || only == kGuardRope || only == kGuardLid ||
+                       only == kGuardStop || only == kGuardFloor);
   const bool open = !(d.on_seesaw && d.taut && d.lid_resting);
   contact::System sys;
   if (forces || (rates && open)) sys = contact_system(d, k);
   if (rates && open) {
     // An open contact's guard is minus its gap, so its rate is minus the gap's rate W_i . v.
-    if (!d.on_seesaw && !d.fallen_off) (*rates)[kGuardBag] = -sys.rate(kBag, sys.velocity);
-    if (!d.taut) (*rates)[kGuardRope] = -sys.rate(kRope, sys.velocity);
-    if (!d.lid_resting) (*rates)[kGuardLid] = -k.dphi_l;
+    if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) (*rates)[kGuardBag] = -sys.rate(kBag, sys.velocity);
+    if (!d.taut && !d.latched) (*rates)[kGuardRope] = -sys.rate(kRope, sys.velocity);
+    if (!d.lid_resting && !d.latched) (*rates)[kGuardLid] = -k.dphi_l;
   }
   if (forces) {
     // The forces that make the flow's own accelerations (k has them).
@@ -54,20 +60,23 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
     if (contact::multipliers_for(sys, active_set(d), accelerations(d, k), f)) {
       // The sign of k is that of -W_RS (the rope's gap gradient along phiS), which stays finite
       // where k passes through infinity at the lid's dead centre.
-      if (d.on_seesaw) g[kGuardBag] = heavy_ ? -f[kBag] : sys.normal[kRope][2];
+      if (d.on_seesaw && (heavy_ || d.taut)) g[kGuardBag] = heavy_ ? -f[kBag] : sys.normal[kRope][2];
       if (d.taut) g[kGuardRope] = -f[kRope];
       if (d.lid_resting && d.taut) g[kGuardLid] = -f[kLid];
+      if (d.at_stop) g[kGuardStop] = -f[kStop];
+      if (d.grounded != 0) g[kGuardFloor] = -f[d.grounded > 0 ? kFloorLeft : kFloorRight];
     }
   }
+  if (contacts_ > 3) built_guards(d, k, sys, g, rates);
 
-  g[kGuardLidOpen] = k.phi_l - vertical_;  // a lid resting at or past it is open from the start
+  if (!d.latched) g[kGuardLidOpen] = k.phi_l - vertical_;  // a lid resting at or past it is open from the start
   if (on_closure(d)) {
     // The lid's dead centre: it reaches the rope's line (the rope would touch the hinge and then
     // run through the box). Crossed at a finite rate in the lid chart, so found exactly.
     if (only < 0 || only == kGuardRopeLocked) g[kGuardRopeLocked] = rope_.lid_side_of_rope(u_s, u_l);
     // Integrate the angle that moves slower: switch charts at |k| = 2 (seesaw) or 1/2 (lid).
     g[kGuardChart] = d.lid_chart ? std::fabs(1.0 / k.transfer.k) - 2.0 : std::fabs(k.transfer.k) - 2.0;
-  } else if (d.taut && !d.lid_resting && !d.latched) {
+  } else if (d.taut && !d.lid_resting && !d.latched && d.grounded == 0) {
     // The massless seesaw following the lid: R on the line from the pivot to E, where the seesaw
     // would have to turn infinitely fast.
     g[kGuardRopeLocked] = std::fabs(rope_.cos_rho(k.phi_l)) - (1.0 - 1e-9);
@@ -83,7 +92,29 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   // which nothing moves, is left out: its angle is the input's.
   const bool seesaw_moves = d.on_seesaw || d.heavy || d.taut;
   if (seesaw_moves) g[kGuardSeesawVertical] = std::fabs(k.phi_s) - vertical_;
-  if (d.on_seesaw && arm_ < kNoEnd) g[kGuardArmEnd] = k.r - arm_;
+  if (d.on_seesaw && arm_ < kNoEnd && !stop_) g[kGuardArmEnd] = k.r - arm_;
+}
+
+void Model::built_guards(const Discrete& d, const Kinematics& k, const contact::System& sys, GuardValues& g,
+                         GuardValues* rates) const {
+  // The open gaps of the stop and the floor; their forces while closed are set with the others'.
+  if (stop_ && d.on_seesaw && !d.at_stop) {
+    g[kGuardStop] = k.r - arm_;
+    if (rates) (*rates)[kGuardStop] = k.dr;
+  }
+  if (!floor_) return;
+  // The seesaw's end nearer the floor (only a seesaw that moves can reach it).
+  const bool seesaw_moves = d.on_seesaw || d.heavy || d.taut;
+  if (d.grounded == 0 && seesaw_moves) {
+    const double left = -arm_ * k.sin_s - h_floor_, right = sc_.machine.seesaw_right_arm * k.sin_s - h_floor_;
+    const int i = left <= right ? kFloorLeft : kFloorRight;
+    g[kGuardFloor] = -std::fmin(left, right);
+    if (rates && sys.contacts > 3) (*rates)[kGuardFloor] = -sys.rate(i, sys.velocity);
+  }
+  if (!d.on_seesaw && !d.bag_on_floor) {
+    g[kGuardBagFloor] = h_floor_ - k.h;
+    if (rates) (*rates)[kGuardBagFloor] = -k.vh;
+  }
 }
 
 double Model::guard_floor(Guard g, const Discrete& d) const {
@@ -95,6 +126,9 @@ double Model::guard_floor(Guard g, const Discrete& d) const {
       return heavy_ ? 1e-10 * weight : 1e-12;  // the arm's push, or the sign of k
     case kGuardRope: return d.taut ? 1e-10 * weight : 1e-12 * len;
     case kGuardLid: return d.lid_resting ? 1e-10 * weight * len : 1e-12;
+    case kGuardStop: return d.at_stop ? 1e-10 * weight : 1e-12 * len;
+    case kGuardFloor: return d.grounded != 0 ? 1e-10 * weight : 1e-12 * len;
+    case kGuardBagFloor: return 1e-12 * len;
     case kGuardBalloon: return d.balloon_stuck ? 1e-10 * g_ : 1e-12 * len;
     default: return 0.0;
   }

@@ -43,9 +43,14 @@ HybridState Model::initial(std::vector<Event>& out) const {
   }
   if (rope_.span(st.seesaw_angle, phi_l0_) >= rope_.rope_length() - kContact) touch |= bit(kRope);
   k = with_velocity(k, contact::Coords{});
+  if (contacts_ > 3) {  // a seesaw that starts standing on the floor (a sandbag on it at the stop)
+    Discrete dt = d;
+    dt.on_seesaw = contact::has(touch, kBag);
+    touch |= touching_built(dt, k);
+    k = touch_exactly(dt, touch, k);
+  }
   // Everything starts at rest, so only forces decide; what touches is kept where they allow it.
-  Discrete dt = d;
-  dt.on_seesaw = contact::has(touch, kBag), dt.taut = contact::has(touch, kRope);
+  const Discrete dt = with_contacts(d, touch);
   const contact::System sys = contact_system(dt, k);
   contact::Choice ch = choice(dt, sys, k, -1, Trend::closing);
   const contact::Motion mot = contact::solve_motion(sys, touch, ch);
@@ -54,7 +59,7 @@ HybridState Model::initial(std::vector<Event>& out) const {
   hs.y.fill(0.0);
   place(hs, k);
   hs.y[slot::balloon_h] = limit_.height(phi_l0_);
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < contacts_; ++i) {
     if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
     const Guard gi = guard_of(i);
     d.armed[gi] = mot.gap_acceleration[i] > ch.accel_tol ? GuardStart{2, -0.5 * mot.gap_acceleration[i]}
@@ -70,7 +75,7 @@ HybridState Model::initial(std::vector<Event>& out) const {
   // A rope or a sandbag that touches at the start but lets go at once is an event at t = 0 (a lid
   // that lifts at once just starts in M4).
   Set cur = touch;
-  for (int i : {kBag, kRope}) {
+  for (int i : {kBag, kRope, kFloorLeft, kFloorRight}) {
     if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
     const Mode from = mode_of(cur);
     cur &= ~bit(i);
@@ -83,11 +88,13 @@ void Model::place(HybridState& hs, const Kinematics& k) const {
   // In the lid chart the angle slots hold the lid's angle and rate instead of the seesaw's.
   const bool by_lid = hs.d.lid_chart && on_closure(hs.d);
   const double angle = by_lid ? k.phi_l : k.phi_s, rate = by_lid ? k.dphi_l : k.dphi_s;
+  // A closed stop or floor holds its coordinate exactly (its rate is zero within rounding).
+  const double held_rate = hs.d.grounded != 0 ? 0.0 : rate;
   if (hs.d.polar()) {
-    hs.y[slot::r] = k.r;
+    hs.y[slot::r] = hs.d.at_stop ? arm_ : k.r;
     hs.y[slot::phi_s] = angle;
-    hs.y[slot::dr] = k.dr;
-    hs.y[slot::dphi_s] = rate;
+    hs.y[slot::dr] = hs.d.at_stop ? 0.0 : k.dr;
+    hs.y[slot::dphi_s] = held_rate;
   } else {
     hs.y[slot::x] = k.x;
     hs.y[slot::h] = k.h;
@@ -95,9 +102,10 @@ void Model::place(HybridState& hs, const Kinematics& k) const {
     hs.y[slot::vh] = k.vh;
   }
   hs.y[slot::phi_l] = k.phi_l;
-  hs.y[slot::dphi_l] = k.dphi_l;
+  hs.y[slot::dphi_l] = hs.d.grounded != 0 && hs.d.taut ? 0.0 : k.dphi_l;
   hs.y[slot::seesaw_phi] = angle;
-  hs.y[slot::seesaw_dphi] = rate;
+  hs.y[slot::seesaw_dphi] = held_rate;
+  if (hs.d.bag_on_floor) hs.y[slot::vh] = 0.0;
 }
 
 Event Model::make_event(EventType type, HybridState& hs, Mode before, Mode after) const {
@@ -164,7 +172,9 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   hs.d.latched = true;
   hs.d.lid_resting = false;
   hs.d.taut = false;
-  hs.d.on_seesaw = false;
+  // The built machine's sandbag stays where it is (on the arm, at the stop): it has a floor to
+  // land on and the drawing shows it.
+  if (contacts_ == 3) hs.d.on_seesaw = false;
   hs.d.lid_chart = false;
   hs.d.parked_seesaw = k0.phi_s;
   Kinematics k = k0;
@@ -218,6 +228,16 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
       resolve(hs, k0, kRope, hs.d.taut ? Trend::releasing : Trend::closing, out);
       break;
     case kGuardLid: resolve(hs, k0, kLid, hs.d.lid_resting ? Trend::releasing : Trend::closing, out); break;
+    case kGuardStop: resolve(hs, k0, kStop, hs.d.at_stop ? Trend::releasing : Trend::closing, out); break;
+    case kGuardFloor:
+      if (hs.d.grounded != 0) {
+        resolve(hs, k0, hs.d.grounded > 0 ? kFloorLeft : kFloorRight, Trend::releasing, out);
+      } else {  // the end that reached the floor
+        const double left = -arm_ * k0.sin_s, right = sc_.machine.seesaw_right_arm * k0.sin_s;
+        resolve(hs, k0, left <= right ? kFloorLeft : kFloorRight, Trend::closing, out);
+      }
+      break;
+    case kGuardBagFloor: resolve(hs, k0, kBagFloor, Trend::closing, out); break;
     case kGuardArmEnd:  // off the end of a finite arm, velocity kept; it never lands again
       resolve(hs, k0, kBag, Trend::forced_off, out);
       break;
@@ -229,7 +249,10 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
     case kGuardSeesawVertical: return stop(EventType::seesaw_vertical);
     case kGuardAtPivot: return stop(EventType::sandbag_at_pivot);
     case kGuardRopeLocked: return stop(EventType::rope_locked);
-    case kGuardRadioOn: return stop(EventType::radio_on);
+    case kGuardRadioOn:
+      // The string straightens and holds the balloon: it pulls with the balloon's net lift.
+      return stop(sc_.machine.balloon_pull() >= sc_.machine.switch_force ? EventType::radio_on
+                                                                         : EventType::switch_stays_off);
     case kGuardChart:  // the same state in the other angle: no event
       hs.d.lid_chart = !hs.d.lid_chart;
       hs.d.side = RopeGeometry::side_of(rope_.lid_edge(k0.phi_l), rope_.seesaw_end(k0.phi_s));

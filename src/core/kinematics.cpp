@@ -14,6 +14,7 @@ using namespace model_detail;
 // accelerations. What every layout shares (the trig of both angles, the balloon) comes last.
 Model::Layout Model::layout(const Discrete& d) {
   if (d.polar()) {
+    if (d.grounded != 0) return Layout::grounded_carrying;
     if (!d.taut) return Layout::carried_slack;
     if (d.lid_resting) return Layout::held_by_rope;
     return d.lid_chart ? Layout::on_rope_by_lid : Layout::on_rope;
@@ -90,6 +91,7 @@ struct Model::KinematicsPass {
     if (rates) k.dr = y[slot::dr], k.dphi_s = y[slot::dphi_s];
     switch (layout) {
       case Layout::carried_slack: carried_slack(); break;
+      case Layout::grounded_carrying: on_the_floor(); break;
       case Layout::held_by_rope:
         k.phi_l = m.phi_l0_;
         if (rates) k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
@@ -101,8 +103,9 @@ struct Model::KinematicsPass {
     const double c = k.cos_s, s = k.sin_s;
     k.x = -k.r * c;
     k.h = -k.r * s;
-    if (rates && layout == Layout::held_by_rope)
-      k.ddr = m.along_arm_acceleration(k.r, s, 0.0);  // M5: the arm is fixed
+    if (rates && (layout == Layout::held_by_rope || layout == Layout::grounded_carrying))
+      k.ddr = m.along_arm_acceleration(k.r, s, 0.0);  // M5 or on the floor: the arm is fixed
+    if (d.at_stop) k.ddr = 0.0;                       // the stop holds the sandbag at the arm's end
     if (rates) {
       k.vx = -k.dr * c + k.r * s * k.dphi_s;
       k.vh = -k.dr * s - k.r * c * k.dphi_s;
@@ -118,6 +121,18 @@ struct Model::KinematicsPass {
       trig_s = true;
     }
     free_lid();
+  }
+  // The seesaw standing on the floor, at rest: the lid resting, hanging on the straight rope, or
+  // on its own.
+  void on_the_floor() {
+    k.dphi_s = 0.0;
+    if (!d.taut) return free_lid();
+    if (d.lid_resting) {
+      k.phi_l = m.phi_l0_;
+    } else {
+      placed(false, k.phi_s);
+    }
+    if (rates) k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
   }
   // M4 near the lid's dead centre: the angle slots hold the lid's angle and rate.
   void on_rope_by_lid() {
@@ -144,7 +159,7 @@ struct Model::KinematicsPass {
     if (rates) k.vx = y[slot::vx], k.vh = y[slot::vh];
     k.r = std::sqrt(k.x * k.x + k.h * k.h);
     if (rates) k.dr = k.r > 0.0 ? (k.x * k.vx + k.h * k.vh) / k.r : 0.0;
-    if (!(d.heavy && d.taut)) free_lid();
+    if (!((d.heavy || d.grounded != 0) && d.taut)) free_lid();
     switch (layout) {
       case Layout::falling_on_seesaw: falling_on_seesaw(); break;
       case Layout::unloaded_heavy: unloaded_heavy(); break;
@@ -167,7 +182,9 @@ struct Model::KinematicsPass {
   void unloaded_heavy() {
     k.phi_s = y[slot::seesaw_phi];
     if (rates) k.dphi_s = y[slot::seesaw_dphi];
-    if (d.taut && d.lid_resting) {
+    if (d.grounded != 0) {
+      if (d.taut) on_the_floor();
+    } else if (d.taut && d.lid_resting) {
       k.phi_l = m.phi_l0_;
       if (rates) k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
     } else if (d.lid_chart && d.taut) {
@@ -187,6 +204,7 @@ struct Model::KinematicsPass {
   // M2: the unloaded massless seesaw follows the lid, on its side of the line P-E.
   void following_lid() {
     k.phi_s = d.parked_seesaw;  // exact while the lid rests
+    if (d.grounded != 0) return on_the_floor();
     if (!d.lid_resting) m.rope_.seesaw_angle_for(k.phi_l, d.side, k.phi_s);
     if (rates) {
       k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);

@@ -12,7 +12,8 @@ using namespace model_detail;
 bool fires_at_once(Guard g) {
   // A contact guard at zero is a contact that touches (decided where the piece starts); the balloon
   // is decided by the model (Model::jump) since it is both kinds.
-  return !(g == kGuardBag || g == kGuardRope || g == kGuardLid || g == kGuardBalloon);
+  return !(g == kGuardBag || g == kGuardRope || g == kGuardLid || g == kGuardStop || g == kGuardFloor ||
+           g == kGuardBagFloor || g == kGuardBalloon);
 }
 
 Model::Model(const Scenario& scenario)
@@ -40,6 +41,15 @@ Model::Model(const Scenario& scenario)
       string_(scenario.machine.string_length),
       balloon_x_(scenario.machine.hinge.x + scenario.machine.lid_half_length),
       length_scale_(scenario.machine.seesaw_right_arm + 2.0 * scenario.machine.lid_half_length +
-                    scenario.machine.rope_length) {}
+                    scenario.machine.rope_length),
+      contacts_(scenario.machine.built_contacts() ? kContactCount : 3),
+      stop_(scenario.machine.end_stop),
+      floor_(scenario.machine.floor),
+      h_floor_(scenario.machine.floor_height()),
+      e_floor_(scenario.machine.floor_restitution),
+      // An end on the floor: -L sin phiS = h_floor (left), r_H sin phiS = h_floor (right); an arm
+      // too short to reach the floor never stands on it (NaN).
+      grounded_left_(std::asin(-h_floor_ / arm_)),
+      grounded_right_(std::asin(h_floor_ / scenario.machine.seesaw_right_arm)) {}
 
 }  // namespace whatnext

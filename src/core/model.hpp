@@ -27,6 +27,9 @@ enum Guard : int {
   kGuardBag,      // sandbag: height above the arm's line, or minus the arm's push on it
   kGuardRope,     // rope: |R - E| - l_R, or minus its tension
   kGuardLid,      // lid: phiL0 - phiL, or minus the box's push on it
+  kGuardStop,     // sandbag against the end stop: r - left_arm, or minus the stop's push
+  kGuardFloor,    // seesaw's ends: minus the nearer one's height above the floor, or minus its push
+  kGuardBagFloor, // sandbag off the arm: the floor's height minus its own
   kGuardArmEnd,   // sandbag on a finite arm reaches its end
   kGuardBalloon,  // free balloon reaches the lid, or the lid pulls away faster than it can follow
   kGuardLidOpen,
@@ -45,7 +48,19 @@ constexpr double kInactive = -std::numeric_limits<double>::infinity();
 bool fires_at_once(Guard g);
 
 // The contacts of the contact problem, and its coordinates (x, h of the sandbag, phiS, phiL).
-enum ContactIndex : int { kBag = 0, kRope = 1, kLid = 2 };
+// The built machine adds the end stop, the floor under either end of the seesaw and under the
+// sandbag (contacts 3-6, present only when the machine has them).
+enum ContactIndex : int {
+  kBag = 0,
+  kRope = 1,
+  kLid = 2,
+  kStop = 3,
+  kFloorLeft = 4,
+  kFloorRight = 5,
+  kBagFloor = 6,
+  kContactCount = 7
+};
+static_assert(kContactCount <= contact::kMaxContacts, "the contact problem holds every contact");
 
 // Full kinematics at one instant, whatever the layout of the continuous state.
 struct Kinematics {
@@ -85,6 +100,8 @@ class Model {
   void timeout(HybridState& hs, std::vector<Event>& out) const;
   // The rounding band of a guard in d (see GuardStart): values within it count as zero.
   double guard_floor(Guard g, const Discrete& d) const;
+  void built_guards(const Discrete& d, const Kinematics& k, const contact::System& sys, GuardValues& g,
+                    GuardValues* rates) const;
 
   // rates = false: where everything is (x, h, r, phiS, phiL with their cos and sin, the balloon's
   // height), the same numbers, without the rates, accelerations and the linkage's k (all zero).
@@ -95,6 +112,7 @@ class Model {
   // polar (r, phiS) while the sandbag rides the seesaw with something to carry it, else Cartesian.
   enum class Layout {
     carried_slack,      // a heavy seesaw carries the sandbag, the rope slack
+    grounded_carrying,  // the seesaw stands on the floor, the sandbag slides on its fixed arm
     held_by_rope,       // M5: the resting lid holds the seesaw through the rope
     on_rope,            // M4: the lid on the straight rope, the seesaw's angle integrated
     on_rope_by_lid,     // M4 near the lid's dead centre: the lid's angle integrated
@@ -110,6 +128,7 @@ class Model {
   // The contact problem at this instant: masses, forces, the contacts' gap gradients and
   // curvatures in the coordinates (x, h, phiS, phiL).
   contact::System contact_system(const Discrete& d, const Kinematics& k) const;
+  void built_contacts(contact::System& s, const Kinematics& k) const;
   // Forces of the closed contacts in d (arm on sandbag [N], rope tension [N], box on lid [N m]),
   // from the contact problem; false where d's contacts do not determine them (then all zero).
   bool contact_forces(const Discrete& d, const Kinematics& k, contact::PerContact& force) const;
@@ -156,7 +175,7 @@ class Model {
   struct KinematicsPass;  // kinematics.cpp: one evaluation, stage by stage
   // The lid swings on the straight rope, driven through it by something with inertia.
   static bool on_closure(const Discrete& d) {
-    return d.taut && !d.lid_resting && !d.latched && (d.on_seesaw || d.heavy);
+    return d.taut && !d.lid_resting && !d.latched && (d.on_seesaw || d.heavy) && d.grounded == 0;
   }
   double lid_free_acceleration(double phi_l, double dphi_l) const;
   // r'' of the sandbag on the arm (eq. 5): gravity along the arm and the centrifugal term.
@@ -191,11 +210,12 @@ class Model {
     bool impacted = false;            // some impulse beyond rounding
     ImpactLaw law = ImpactLaw::rope;  // the law the velocities follow
     std::string_view law_note;        // why that is not the run's impact_law, where it is not
+    contact::Set bounced = 0;         // the floor's contacts that gave an impulse and bounced off
     contact::Set held = 0;            // touching with zero gap rate after the impact
     Kinematics k1;                    // the state with the impact's velocities
     contact::Motion mot;              // the motion on accelerations
     contact::Set s2 = 0;              // the contacts that carry the motion on
-    GuardStart released[3];           // how each contact's gap opens if it is released
+    GuardStart released[kContactCount];  // how each contact's gap opens if it is released
     Kinematics k2;                    // the state the motion goes on from
     bool impulsive(int i) const { return contact::has(imp.impulsive, i) && imp.impulse[i] > ch.impulse_tol; }
   };
@@ -206,8 +226,12 @@ class Model {
   void motion_on_accelerations(const Discrete& d, Decision& x, double t) const;
   void enter_contacts(HybridState& hs, const Decision& x) const;
   void report_changes(HybridState& hs, const Decision& x, Mode before, std::vector<Event>& out) const;
-  std::array<double, 3> impulses(const Decision& x) const;
+  std::array<double, 6> impulses(const Decision& x) const;
   contact::Set touching(const Discrete& d, const Kinematics& k) const;
+  contact::Set touching_built(const Discrete& d, const Kinematics& k) const;
+  // d with exactly the contacts of s closed (the rest of d as it was).
+  static Discrete with_contacts(Discrete d, contact::Set s);
+  void rebound(Decision& x) const;  // restitution on the floor (impact_on_velocities)
   // The positions moved onto the touching contacts (their gaps exactly zero), velocities kept.
   Kinematics touch_exactly(const Discrete& d, contact::Set touch, Kinematics k) const;
   contact::Choice choice(const Discrete& d, const contact::System& sys, const Kinematics& k, int trigger,
@@ -247,6 +271,13 @@ class Model {
   Vec2 switch_;
   double string_, balloon_x_;
   double length_scale_;  // for the contact problem's tolerances
+  // The built machine: how many contacts the problem has (3 without stop and floor), the floor's
+  // height, the restitution of impacts on it, and the seesaw's angles standing on it.
+  int contacts_;
+  bool stop_, floor_;
+  double h_floor_, e_floor_, grounded_left_, grounded_right_;
+  double grounded_angle(int side) const { return side > 0 ? grounded_left_ : grounded_right_; }
+  void ground(Kinematics& k, int side, bool carries) const;
 };
 
 }  // namespace whatnext

@@ -20,14 +20,24 @@ using contact::Set;
 constexpr Set bit(int i) { return 1u << i; }
 
 inline Guard guard_of(int contact) {
-  return contact == kBag ? kGuardBag : (contact == kRope ? kGuardRope : kGuardLid);
+  switch (contact) {
+    case kBag: return kGuardBag;
+    case kRope: return kGuardRope;
+    case kLid: return kGuardLid;
+    case kStop: return kGuardStop;
+    case kBagFloor: return kGuardBagFloor;
+    default: return kGuardFloor;  // either end of the seesaw
+  }
 }
 
 inline EventType change_event(int contact, bool closes) {
   switch (contact) {
     case kBag: return closes ? EventType::sandbag_lands : EventType::sandbag_leaves;
     case kRope: return closes ? EventType::rope_taut : EventType::rope_slack;
-    default: return closes ? EventType::lid_rests : EventType::lid_lifts;
+    case kLid: return closes ? EventType::lid_rests : EventType::lid_lifts;
+    case kStop: return closes ? EventType::sandbag_at_stop : EventType::sandbag_leaves_stop;
+    case kBagFloor: return closes ? EventType::sandbag_on_floor : EventType::sandbag_bounces;
+    default: return closes ? EventType::seesaw_on_floor : EventType::seesaw_lifts;
   }
 }
 

@@ -44,7 +44,7 @@ constexpr std::array<std::pair<BalloonModel, std::string_view>, 3> kBalloonModel
     {BalloonModel::lagrangian, "lagrangian"},
     {BalloonModel::added_mass, "added-mass"},
 }};
-constexpr std::array<std::pair<EventType, std::string_view>, 16> kEvents{{
+constexpr std::array<std::pair<EventType, std::string_view>, 23> kEvents{{
     {EventType::sandbag_lands, "sandbag_lands"},
     {EventType::rope_taut, "rope_taut"},
     {EventType::rope_slack, "rope_slack"},
@@ -54,11 +54,18 @@ constexpr std::array<std::pair<EventType, std::string_view>, 16> kEvents{{
     {EventType::balloon_free, "balloon_free"},
     {EventType::sandbag_falls_off, "sandbag_falls_off"},
     {EventType::sandbag_leaves, "sandbag_leaves"},
+    {EventType::sandbag_at_stop, "sandbag_at_stop"},
+    {EventType::sandbag_leaves_stop, "sandbag_leaves_stop"},
+    {EventType::seesaw_on_floor, "seesaw_on_floor"},
+    {EventType::seesaw_lifts, "seesaw_lifts"},
+    {EventType::sandbag_on_floor, "sandbag_on_floor"},
+    {EventType::sandbag_bounces, "sandbag_bounces"},
     {EventType::lid_open, "lid_open"},
     {EventType::seesaw_vertical, "seesaw_vertical"},
     {EventType::sandbag_at_pivot, "sandbag_at_pivot"},
     {EventType::rope_locked, "rope_locked"},
     {EventType::radio_on, "radio_on"},
+    {EventType::switch_stays_off, "switch_stays_off"},
     {EventType::timeout, "timeout"},
     {EventType::event_limit, "event_limit"},
 }};
@@ -88,6 +95,7 @@ bool is_stop(EventType type) {
     case EventType::sandbag_at_pivot:
     case EventType::rope_locked:
     case EventType::radio_on:
+    case EventType::switch_stays_off:
     case EventType::timeout:
     case EventType::event_limit: return true;
     default: return false;

@@ -33,6 +33,31 @@ void check_bar_inertia(const Reader& in, const Machine& m) {
   }
 }
 
+
+// The built machine's stop and floor (docs/extensions.md "The machine students build").
+void build_built_machine(const Reader& in, Machine& m) {
+  m.end_stop = flag(in, "seesaw.end_stop", false);
+  const bool restitution_given = in.find("floor.restitution") != nullptr;
+  m.floor = flag(in, "floor.enabled", restitution_given);
+  if (!m.floor && restitution_given && in.find("floor.enabled")) {
+    in.fail("floor.enabled", "is false but floor.restitution is given: remove one");
+  }
+  m.floor_restitution = in.in_range("floor.restitution", 0.0, 0.0, true, 1.0, true);
+  // An endless arm has no end to stop the sandbag, and would touch the floor at any angle.
+  if (m.end_stop && !std::isfinite(m.seesaw_left_arm)) {
+    in.fail("seesaw.end_stop", "needs seesaw.left_arm (an endless arm has no end for the stop)");
+  }
+  if (m.floor && !std::isfinite(m.seesaw_left_arm)) {
+    in.fail("floor.enabled", "needs seesaw.left_arm (an endless arm would reach the floor at any angle)");
+  }
+  if (m.floor && !(m.floor_height() < 0.0)) {
+    in.fail("floor.enabled",
+            fmt::format("needs the floor below the pivot: the box's bottom is {:.4g} m above it (hinge height "
+                        "minus the box's edge 2 r_L)",
+                        m.floor_height()));
+  }
+}
+
 }  // namespace
 
 // The switches beyond the paper (docs/extensions.md); with none of their keys given the machine
@@ -44,8 +69,10 @@ void build_extensions(const Reader& in, Machine& m) {
   if (in.find("radio.switch_offset")) offset = in.pair("radio.switch_offset");
   m.radio_switch = m.hinge + Vec2{2.0 * m.lid_half_length, 0.0} + offset;
   m.string_length = in.length("radio.string_length", 1.0);
-  const bool any_radio = in.find("radio.switch_offset") || in.find("radio.string_length");
+  const bool any_radio = in.find("radio.switch_offset") || in.find("radio.string_length") ||
+                         in.find("radio.switch_force");
   m.radio = flag(in, "radio.enabled", any_radio);
+  m.switch_force = in.in_range("radio.switch_force", 0.0, 0.0, true, kMaxForce, true);
   if (!m.radio && any_radio && in.find("radio.enabled")) {
     in.fail("radio.enabled", "is false but other radio keys are given: remove them or enable the radio");
   }
@@ -105,6 +132,7 @@ void build_extensions(const Reader& in, Machine& m) {
                           fmt_num(m.seesaw_inertia)));
     }
   }
+  build_built_machine(in, m);
   if (m.pivot_damping > 0.0 && !m.heavy_seesaw()) {
     // A massless seesaw can only take the damper's torque from the sandbag pushing the arm, which
     // would have to pull whenever the seesaw turns back: no consistent motion (docs/extensions.md).
@@ -123,6 +151,21 @@ void check_extension_start(const Reader& in, const Scenario& sc) {
     in.fail("seesaw.left_arm",
             fmt::format("is shorter than the sandbag's start on the arm ({:.4g} m < {:.4g} m)",
                         m.seesaw_left_arm, along));
+  }
+  if (m.floor) {
+    // Nothing starts below the floor (a seesaw may start standing on it).
+    const double floor = m.floor_height();
+    const double left = -m.seesaw_left_arm * s - floor, right = m.seesaw_right_arm * s - floor;
+    if (std::fmin(left, right) < -1e-9) {
+      in.fail("start.seesaw_angle",
+              fmt::format("puts the seesaw's {} end {:.4g} m below the floor (floor.enabled; the floor is {:.4g} m "
+                          "below the pivot)",
+                          left < right ? "left" : "right", -std::fmin(left, right), -floor));
+    }
+    if (st.sandbag_h < floor) {
+      in.fail("start.sandbag_height", fmt::format("is below the floor ({:.4g} m < {:.4g} m; floor.enabled)",
+                                                  st.sandbag_h, floor));
+    }
   }
   if (m.radio) {
     const BalloonLimit limit{m.balloon_radius};

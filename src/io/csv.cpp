@@ -34,8 +34,9 @@ char* put_columns(const Snapshot& s, char* p, std::index_sequence<I...>) {
   return p;
 }
 
-// impulses: an impact's, per contact (kImpulseColumns); nullptr for none (zeros).
-char* format_csv(const Snapshot& s, std::string_view event, const double* impulses, char* out) {
+// impulses: an impact's, per contact (the first `count` of kImpulseColumns); nullptr for none (zeros).
+char* format_csv(const Snapshot& s, std::string_view event, const double* impulses, std::size_t count,
+                 char* out) {
   require_finite(s);
   const std::string_view mode = to_string(s.mode);
   if (event.size() > 255 || mode.size() > 255) throw std::logic_error("CsvWriter: a name is too long");
@@ -47,13 +48,13 @@ char* format_csv(const Snapshot& s, std::string_view event, const double* impuls
   *p++ = ',';
   *p++ = s.rope_taut ? '1' : '0';
   p = put_columns(s, p, std::make_index_sequence<kCsvNumbers>());
-  if (impulses) {
-    for (std::size_t i = 0; i < std::size(kImpulseColumns); ++i) {
-      *p++ = ',';
+  for (std::size_t i = 0; i < count; ++i) {
+    *p++ = ',';
+    if (impulses) {
       p = numtext::put_g9(p, clean(impulses[i]));
+    } else {
+      *p++ = '0';
     }
-  } else {
-    p = put_text(p, ",0,0,0");
   }
   *p++ = '\n';
   return p;
@@ -63,37 +64,36 @@ char* format_csv(const Snapshot& s, std::string_view event, const double* impuls
 
 // --- CSV ---------------------------------------------------------------------------------------
 
-CsvWriter::CsvWriter(std::ostream& out, Writing writing) {
-  out << header() << '\n';
+CsvWriter::CsvWriter(std::ostream& out, Writing writing, std::size_t impulses) : impulses_(impulses) {
+  out << header(impulses) << '\n';
   rows_ = std::make_unique<RowText>(out, writing, kCsvMaxChars);
 }
 
 CsvWriter::~CsvWriter() = default;
 
-const char* CsvWriter::header() {
-  static const std::string text = [] {
-    std::string h;
-    for (std::string_view name : kLeadingColumns) h.append(name).append(",");
-    for (const StateColumn& c : kStateColumns) h.append(c.name).append(",");
-    for (std::string_view name : kImpulseColumns) h.append(name).append(",");
-    h.pop_back();
-    return h;
-  }();
-  return text.c_str();
+std::string CsvWriter::header(std::size_t impulses) {
+  std::string h;
+  for (std::string_view name : kLeadingColumns) h.append(name).append(",");
+  for (const StateColumn& c : kStateColumns) h.append(c.name).append(",");
+  for (std::size_t i = 0; i < impulses; ++i) h.append(kImpulseColumns[i]).append(",");
+  h.pop_back();
+  return h;
 }
 
 void CsvWriter::on_sample(const Snapshot& s) {
-  rows_->write(1, [&](std::size_t, char* out) { return format_csv(s, "", nullptr, out); });
+  rows_->write(1, [&](std::size_t, char* out) { return format_csv(s, "", nullptr, impulses_, out); });
 }
 
 void CsvWriter::on_samples(const SampleBatch& batch) {
   rows_->write(batch.size(),
-               [&](std::size_t i, char* out) { return format_csv(batch.snapshot(i), "", nullptr, out); });
+               [&](std::size_t i, char* out) { return format_csv(batch.snapshot(i), "", nullptr, impulses_, out); });
 }
 
 void CsvWriter::on_event(const Event& e) {
   const double* impulses = e.impact ? e.impulse.data() : nullptr;
-  rows_->write(1, [&](std::size_t, char* out) { return format_csv(e.after, to_string(e.type), impulses, out); });
+  rows_->write(1, [&](std::size_t, char* out) {
+    return format_csv(e.after, to_string(e.type), impulses, impulses_, out);
+  });
 }
 
 }  // namespace whatnext

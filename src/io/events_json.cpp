@@ -54,7 +54,8 @@ std::string events_json(const Result& result, const Scenario& sc, const std::str
       // Each contact's impulse (docs/model.md §7) and the law that set the velocities, with the
       // reason where it is not the run's impact_law.
       json impulses = json::object();
-      for (std::size_t i = 0; i < e.impulse.size(); ++i) impulses[std::string(impulse_key(i))] = clean(e.impulse[i]);
+      for (std::size_t i = 0; i < impulse_columns(sc.machine); ++i)
+        impulses[std::string(impulse_key(i))] = clean(e.impulse[i]);
       j["impulses"] = std::move(impulses);
       j["law_applied"] = std::string(to_string(e.law));
       if (!e.law_note.empty()) j["law_note"] = std::string(e.law_note);

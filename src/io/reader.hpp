@@ -30,6 +30,7 @@ constexpr double kMaxBalloonG = 1e3;  // free balloon's acceleration [g]
 constexpr double kMaxDrag = 10.0;     // drag coefficient
 constexpr double kMaxDamping = 1e3;   // [N m s/rad]
 constexpr double kMaxInertia = 1e4;   // seesaw [kg m^2]
+constexpr double kMaxForce = 1e4;     // the radio's switch [N]
 
 // --- validation helpers ---------------------------------------------------------------------
 

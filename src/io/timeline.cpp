@@ -47,6 +47,11 @@ std::string outcome_sentence(const Result& result) {
           "arm; the lid is at {:.1f} deg",
           e.t, s.phi_l * units::kDegreesPerRadian);
     case EventType::radio_on: return fmt::format("radio on at t = {:.3f} s", e.t);
+    case EventType::switch_stays_off:
+      return fmt::format(
+          "the balloon's string is straight at {:.3f} s but pulls less than radio.switch_force: the radio "
+          "stays off",
+          e.t);
     case EventType::timeout:
       // With the radio the lid may have opened (and latched) before: say so, not "no outcome".
       for (const Event& open : result.events) {
@@ -64,10 +69,10 @@ std::string outcome_sentence(const Result& result) {
 
 std::string impulse_text(const Event& e) {
   // Each contact's impulse (docs/model.md §7): N s, the lid's a torque's, N m s.
-  static constexpr const char* kName[3] = {"sandbag", "rope", "lid"};
-  static constexpr const char* kUnit[3] = {"N s", "N s", "N m s"};
+  static constexpr const char* kName[6] = {"sandbag", "rope", "lid", "stop", "floor on seesaw", "floor on sandbag"};
+  static constexpr const char* kUnit[6] = {"N s", "N s", "N m s", "N s", "N s", "N s"};
   std::string out;
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < 6; ++i) {
     if (e.impulse[i] == 0.0) continue;
     out += fmt::format("{}{} {:.4f} {}", out.empty() ? "" : ", ", kName[i], clean(e.impulse[i]), kUnit[i]);
   }

@@ -70,6 +70,7 @@ std::string to_toml(const Scenario& sc, const Config* given) {
     out += "\n[radio]\nenabled = true\n";
     out += fmt::format("switch_offset = [{}, {}]\n", shortest(offset.x), shortest(offset.h));
     line("string_length", m.string_length);
+    if (m.switch_force > 0.0) line("switch_force", m.switch_force);
   }
   if (m.pivot_damping > 0.0 || m.lid_hinge_damping > 0.0) {
     out += "\n[damping]\n";
@@ -84,6 +85,11 @@ std::string to_toml(const Scenario& sc, const Config* given) {
       line("inertia", m.seesaw_inertia);
       line("com_offset", m.seesaw_com_offset);
     }
+    if (m.end_stop) out += "end_stop = true\n";
+  }
+  if (m.floor) {
+    out += "\n[floor]\nenabled = true\n";
+    line("restitution", m.floor_restitution);
   }
   out += "\n[start]\n";
   line("sandbag_x", st.sandbag_x);

@@ -279,11 +279,18 @@ std::string_view short_words(EventType type) {
     case EventType::balloon_free: return "balloon free";
     case EventType::sandbag_falls_off: return "falls off";
     case EventType::sandbag_leaves: return "leaves arm";
+    case EventType::sandbag_at_stop: return "at stop";
+    case EventType::sandbag_leaves_stop: return "off stop";
+    case EventType::seesaw_on_floor: return "on floor";
+    case EventType::seesaw_lifts: return "lifts";
+    case EventType::sandbag_on_floor: return "bag on floor";
+    case EventType::sandbag_bounces: return "bounces";
     case EventType::lid_open: return "lid open";
     case EventType::seesaw_vertical: return "vertical";
     case EventType::sandbag_at_pivot: return "at pivot";
     case EventType::rope_locked: return "locked";
     case EventType::radio_on: return "radio on";
+    case EventType::switch_stays_off: return "switch off";
     case EventType::timeout: return "t_max";
     case EventType::event_limit: return "event limit";
   }
@@ -687,12 +694,24 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   const Vec2 hinge = m.hinge;
   const RadioBox radio = radio_box(m);
 
-  // Floor pieces under the pivot stand, the box and the radio (the model has no floor elsewhere:
-  // the sandbag's arm is endless and may dip below them).
+  // Floor pieces under the pivot stand, the box and the radio (the paper's model has no floor
+  // elsewhere: the sandbag's arm is endless and may dip below them); the built machine's floor
+  // (floor.enabled) runs across the picture, with the ground below it.
   set(cr, kMidGrey);
   width_m(0.01, 2.0);
+  if (m.floor) {
+    const Pixel q = px({0.0, g});
+    set(cr, kLightGrey);
+    cairo_rectangle(cr, 0, q.y, v.width, v.bottom - q.y);
+    cairo_fill(cr);
+    set(cr, kMidGrey);
+    cairo_move_to(cr, 0, q.y);
+    cairo_line_to(cr, v.width, q.y);
+    cairo_stroke(cr);
+  }
   for (auto [a, b] : {std::pair{-0.15, 0.15}, std::pair{hinge.x - 0.05, hinge.x + 2 * rl + 0.05},
                       std::pair{radio.x0 - 0.05, radio.x1 + 0.05}}) {
+    if (m.floor) break;
     move({a, g});
     line({b, g});
     cairo_stroke(cr);

@@ -200,6 +200,8 @@ val machine_object(const Scenario& sc) {
   v.set("sandbag_mass", m.sandbag_mass);
   v.set("lid_mass", m.lid_mass);
   v.set("seesaw_mass", m.seesaw_mass);
+  v.set("end_stop", m.end_stop);
+  v.set("floor", m.floor);  // the built machine's floor through the box's bottom
   v.set("gravity", m.gravity);
   val start = val::object();
   start.set("sandbag_x", sc.start.sandbag_x);
@@ -247,7 +249,8 @@ val values_object(const Input& in) {
   return v;
 }
 
-val event_object(const Event& e) {
+// impulses: how many contacts the machine has (columns.hpp impulse_columns).
+val event_object(const Event& e, std::size_t impulses) {
   val v = val::object();
   v.set("type", std::string(to_string(e.type)));
   v.set("t", e.t);
@@ -258,7 +261,7 @@ val event_object(const Event& e) {
   v.set("energy_after", e.energy_after);
   if (e.impact) {  // each contact's impulse [N s; the lid's N m s] and the law applied
     val p = val::object();
-    for (std::size_t i = 0; i < e.impulse.size(); ++i) p.set(std::string(impulse_key(i)), e.impulse[i]);
+    for (std::size_t i = 0; i < impulses; ++i) p.set(std::string(impulse_key(i)), e.impulse[i]);
     v.set("impulses", p);
     v.set("law_applied", std::string(to_string(e.law)));
     v.set("law_note", std::string(e.law_note));
@@ -287,7 +290,8 @@ val run(val input) {
     r.set("machine", machine_object(in.scenario));
     r.set("values", values_object(in));
     val events = val::array();
-    for (const Event& e : result.events) events.call<void>("push", event_object(e));
+    for (const Event& e : result.events)
+      events.call<void>("push", event_object(e, impulse_columns(in.scenario.machine)));
     r.set("events", events);
     val groups = val::array();  // events at one instant, as the animation holds them
     for (const viz::EventGroup& g : viz::group_events(result)) {
@@ -346,7 +350,7 @@ val csv(val input) {
   return guarded([&] {
     const Input in = load(input);
     std::ostringstream out;
-    CsvWriter writer(out);
+    CsvWriter writer(out, Writing::at_once, impulse_columns(in.scenario.machine));
     simulate(in.scenario, &writer);
     return text_result(out.str());
   });
@@ -410,6 +414,8 @@ val presets() {
   const std::string radio = "examples/example1-radio.toml";
   out.call<void>("push",
                  preset("radio", "Example 1 with the radio", radio_example_toml(), radio, radio, radio));
+  out.call<void>("push", preset("konstanz", "The students' machine (Konstanz)", example_toml("konstanz"),
+                                "konstanz.toml", "example konstanz", "--example konstanz"));
   return out;
 }
 
