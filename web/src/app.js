@@ -134,7 +134,7 @@
     committed: null, previous: null,  // machines before and after the last finished change
     compare: { mode: 'none', law: 'kinetic-energy', step: '0.001', run: null, runs: [], label: '', message: '' },
     t: 0, playing: false, speed: 'auto', holdUntil: 0, last: 0,
-    view: null, dpr: 1, font: 16, lines: 1, band: 46, aspect: 0.7, runMs: 0, runs: 0, answers: 0, problem: '',
+    view: null, dpr: 1, font: 16, lines: 1, band: 46, aspect: 0.7, runMs: 0, runs: 0, answers: 0, problem: '', caption: '',
   };
 
   // Changes come faster than a slow run: the newest change waits while one runs, and replaces any
@@ -506,8 +506,13 @@
     // the parameters share the screen with it), but never less than the caption and a picture
     // below it (a short window, or one not laid out yet, has almost no height).
     const share = Number(getComputedStyle($('canvas-box')).getPropertyValue('--canvas-max')) || 0.75;
-    const height = Math.round(Math.max(Math.min(Math.max(st.aspect * width + st.band, 240), share * window.innerHeight),
-                                       st.band + 150));
+    let most = share * window.innerHeight;
+    if (document.body.classList.contains('projector')) {
+      // Projector mode: all of the screen's height below the header, but for the player under it.
+      const box = $('canvas-box').getBoundingClientRect(), below = $('stage').getBoundingClientRect().bottom - box.bottom;
+      most = window.innerHeight - (box.top + window.scrollY) - below - 10;
+    }
+    const height = Math.round(Math.max(Math.min(Math.max(st.aspect * width + st.band, 240), most), st.band + 150));
     st.dpr = window.devicePixelRatio || 1;
     canvas.style.height = `${height}px`;
     canvas.width = Math.round(width * st.dpr);
@@ -563,7 +568,8 @@
     ];
     const ghosts = (st.compare.runs || []).map((o) => ({ run: o.run, colour: o.colour, state: Machine.stateAt(o.run.samples, Math.min(st.t, o.run.tEnd)) }));
     ctx.setTransform(st.dpr, 0, 0, st.dpr, 0, 0);
-    Machine.draw(ctx, st.view, { run, state: s, ghosts, caption, event: group, font: st.font, lines: st.lines });
+    const drawn = Machine.draw(ctx, st.view, { run, state: s, ghosts, caption, event: group, font: st.font, lines: st.lines });
+    st.caption = [...caption, drawn.far].filter(Boolean).join('\n');
 
     $('clock').textContent = `t = ${S.decimals(st.t.toFixed(6))} s`;
     const scrub = $('scrub');
@@ -1010,6 +1016,10 @@
     get time() { return st.t; },
     get run() { return st.run; },
     get sounds() { return sound.log; },
+    // The canvas's caption as drawn (its lines, and how far a part beyond the picture is), and
+    // where the picture below it starts, in canvas pixels.
+    get caption() { return st.caption; },
+    get pictureTop() { return st.band * st.dpr; },
     validity: (key) => panel.field(key).validity,
     probes: (key) => panel.probes().find((p) => p.key === key).values,
     play: () => play(),

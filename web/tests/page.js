@@ -186,6 +186,24 @@ async function canvasColour(page, x, y) {
   }, [x, y]);
 }
 const near = (a, b, tol = 12) => a.every((v, i) => Math.abs(v - b[i]) <= tol);
+const kBalloonColour = [255, 42, 51];  // web/src/machine.js
+// Pixels of a colour within 40 px of the picture's edges (below the caption band): an arrow to
+// a part beyond the picture.
+async function edgeHas(page, rgb) {
+  return page.evaluate(([c]) => {
+    const canvas = document.getElementById('machine'), band = Math.ceil(window.whatnext.pictureTop), w = canvas.width, h = canvas.height;
+    const data = canvas.getContext('2d').getImageData(0, 0, w, h).data;
+    let n = 0;
+    for (let y = band; y < h; ++y) {
+      for (let x = 0; x < w; ++x) {
+        if (x >= 40 && x < w - 40 && y >= band + 40 && y < h - 40) continue;
+        const i = 4 * (y * w + x);
+        if (Math.abs(data[i] - c[0]) + Math.abs(data[i + 1] - c[1]) + Math.abs(data[i + 2] - c[2]) < 30) ++n;
+      }
+    }
+    return n > 30;
+  }, [rgb]);
+}
 
 async function scrubTo(page, t) {
   await page.evaluate((time) => {
@@ -304,7 +322,8 @@ const checks = {
       return { x: Number(row[col.x_m]), h: Number(row[col.h_m]) };
     };
     await withPage(async (page) => {
-      for (const [t, other] of [[0.3, 0.75], [0.75, 0.3], [0.65, 0.45]]) {
+      // (Later the sandbag slides beyond the picture, which frames the machine: drawing.)
+      for (const [t, other] of [[0.3, 0.6], [0.6, 0.3], [0.55, 0.45]]) {
         await scrubTo(page, t);
         const here = at(t), there = at(other);
         const p = await page.evaluate(([x, h]) => window.whatnext.canvasPixel(x, h), [here.x, here.h]);
@@ -523,7 +542,19 @@ const checks = {
       const far = await page.evaluate(() => { const s = window.whatnext.stateAt(10); return Math.hypot(s.x, s.h); });
       assert.ok(far > 100, `the sandbag is ${far} m out`);
       assert.ok(await captionHas(kBagText), 'the distance of a sandbag far out is in the caption');
+      assert.ok(await edgeHas(page, kSandbagColour), 'an arrow at the edge points to the sandbag');
     }, { scale: 1 });
+    // The picture frames the machine: a balloon on a 3 m string rises out of it at the end; an
+    // arrow at the top edge points to it and the caption says how high it is (as for the sandbag,
+    // which has fallen off the seesaw by then).
+    await withPage(async (page) => {
+      await scrubTo(page, 1.6);
+      const up = await page.evaluate(() => window.whatnext.stateAt(1.6).balloon_h);
+      assert.ok(up > 2, `the balloon is ${up} m above the box`);
+      assert.ok(await edgeHas(page, kBalloonColour), 'an arrow at the edge points to the balloon');
+      const caption = await page.evaluate(() => window.whatnext.caption);
+      assert.match(caption, /balloon \d\.\d+ m up/);
+    }, { scale: 1, hash: '#machine=radio&radio.string_length=3' });
     // A window a hundred pixels high.
     await withPage(async (page) => {
       const box = await page.locator('#machine').boundingBox();
@@ -933,35 +964,59 @@ const checks = {
 
   // Projector mode (F, or the button): the drawing takes most of a 1920x1080 screen beside the
   // timeline, in big type; Space plays, PageDown/PageUp step through the events (a presenter's
-  // remote), and the highlighted row's columns are whole.
+  // remote), and the highlighted row's columns are whole. At 1920x1080 and 1280x720 the machine
+  // itself (the pivot's stand to the radio, the floor to the sandbag's start) fills a good part of
+  // the screen: the picture frames the machine, not everything the run reaches (before, example
+  // 1's machine was a fifth of the width and a third of the height).
   async projector() {
     fs.mkdirSync(outDir, { recursive: true });
-    await withPage(async (page) => {
-      await page.keyboard.press('f');
-      assert.ok(await page.evaluate(() => document.body.classList.contains('projector')));
-      await page.waitForTimeout(300);
-      const box = await page.locator('#machine').boundingBox();
-      assert.ok(box.width >= 0.6 * 1920, `the drawing is ${box.width} px wide`);
-      assert.ok(box.height >= 0.6 * 1080, `the drawing is ${box.height} px high`);
-      const type = await page.evaluate(() => parseFloat(getComputedStyle(document.body).fontSize));
-      assert.ok(type >= 22, `type of ${type} px`);
-      const events = cliEvents(['--example', '1']).events;
-      await page.keyboard.press('Space');
-      await page.waitForTimeout(300);
-      await page.keyboard.press('Space');
-      assert.ok(await page.evaluate(() => window.whatnext.time) > 0, 'Space played');
-      await page.keyboard.press('PageDown');
-      await page.keyboard.press('PageDown');
-      assert.ok(Math.abs(await page.evaluate(() => window.whatnext.time) - events[1].t) < 1e-9);
-      await page.keyboard.press('PageUp');
-      assert.ok(Math.abs(await page.evaluate(() => window.whatnext.time) - events[0].t) < 1e-9);
-      assert.ok(await page.locator('#timeline tr.now').isVisible());
-      await checkTimelineWhole(page, 'projector');
-      await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
-      await page.screenshot({ path: path.join(outDir, 'web-projector.png') });
-      await page.click('#projector');
-      assert.equal(await page.evaluate(() => document.body.classList.contains('projector')), false);
-    }, { viewport: { width: 1920, height: 1080 } });
+    for (const viewport of [{ width: 1920, height: 1080 }, { width: 1280, height: 720 }]) {
+      const name = `${viewport.width}x${viewport.height}`;
+      await withPage(async (page) => {
+        await page.keyboard.press('f');
+        assert.ok(await page.evaluate(() => document.body.classList.contains('projector')));
+        await page.waitForTimeout(300);
+        const box = await page.locator('#machine').boundingBox();
+        assert.ok(box.width >= 0.55 * viewport.width, `${name}: the drawing is ${box.width} px wide`);
+        assert.ok(box.height >= 0.6 * viewport.height, `${name}: the drawing is ${box.height} px high`);
+        // The player under the drawing is on the screen too.
+        const player = await page.locator('#scrubber').boundingBox();
+        assert.ok(player.y + player.height <= viewport.height, `${name}: the scrubber ends at ${player.y + player.height} px`);
+        const machine = await page.evaluate(() => {
+          const m = window.whatnext.run.machine, floor = m.hinge.h - 2 * m.lid_half_length;
+          const radio = m.radio_switch.x + 0.18 * Math.max(0.5, 2 * m.lid_half_length);  // machine.js radioBox
+          const px = (x, h) => window.whatnext.canvasPixel(x, h);
+          return { width: px(radio, floor).x - px(-0.15, floor).x, height: px(0, floor).y - px(0, m.start.sandbag_h).y };
+        });
+        assert.ok(machine.width >= 0.3 * viewport.width, `${name}: the machine is ${machine.width} px wide`);
+        assert.ok(machine.height >= 0.5 * viewport.height, `${name}: the machine is ${machine.height} px high`);
+        console.log(`${name}: the machine ${Math.round(machine.width)} x ${Math.round(machine.height)} px`);
+        const type = await page.evaluate(() => parseFloat(getComputedStyle(document.body).fontSize));
+        assert.ok(type >= (viewport.width >= 1920 ? 22 : 18), `${name}: type of ${type} px`);
+        const events = cliEvents(['--example', '1']).events;
+        await page.keyboard.press('Space');
+        await page.waitForTimeout(300);
+        await page.keyboard.press('Space');
+        assert.ok(await page.evaluate(() => window.whatnext.time) > 0, 'Space played');
+        await page.keyboard.press('PageDown');
+        await page.keyboard.press('PageDown');
+        assert.ok(Math.abs(await page.evaluate(() => window.whatnext.time) - events[1].t) < 1e-9);
+        await page.keyboard.press('PageUp');
+        assert.ok(Math.abs(await page.evaluate(() => window.whatnext.time) - events[0].t) < 1e-9);
+        assert.ok(await page.locator('#timeline tr.now').isVisible());
+        await checkTimelineWhole(page, `projector ${name}`);
+        await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
+        await page.screenshot({ path: path.join(outDir, viewport.width >= 1920 ? 'web-projector.png' : `web-projector-${name}.png`) });
+        // Example 3's long run: the timeline's columns whole in projector mode too.
+        const before = await runs(page);
+        await page.selectOption('#preset', 'example3');
+        await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, before);
+        await page.keyboard.press('End');
+        await checkTimelineWhole(page, `projector ${name}, example 3 at its end`);
+        await page.click('#projector');
+        assert.equal(await page.evaluate(() => document.body.classList.contains('projector')), false);
+      }, { viewport });
+    }
   },
 
   // A phone, upright (360x740) and on its side (740x360), with a touch screen: nothing is cut or
