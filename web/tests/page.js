@@ -755,6 +755,14 @@ const checks = {
         const least = name === 'phone-390' ? viewport.width - 60 : 500;
         assert.ok(box.width >= least, `${name}: the drawing is ${box.width} px wide`);
         assert.ok(await page.locator('#outcome').isVisible());
+        if (viewport.width >= 1366) {
+          // A laptop's screen and larger: the drawing, the outcome with the timeline and the first
+          // plot in view without scrolling (at 1366x768 the plots were below the fold).
+          for (const part of ['#machine', '#outcome', '#timeline', '#plot-angles']) {
+            const r = await page.locator(part).boundingBox();
+            assert.ok(r.y >= 0 && r.y + r.height <= viewport.height, `${name}: ${part} ends at ${r.y + r.height} px`);
+          }
+        }
         await page.keyboard.press(']');
         await page.keyboard.press(']');
         if (name === 'desktop') {  // the README's picture: the two laws part after the hard pull
