@@ -41,7 +41,7 @@
       };
       worker.onerror = (e) => {
         e.preventDefault();
-        reject(new Error(e.message || 'the worker did not start'));
+        reject(new Error(e.message || T('the worker did not start')));
         // A worker that dies while working: every open request gets a message instead of a hang.
         for (const done of waiting.values()) done({ ok: false, kind: 'error', message: `the WebAssembly module failed (${e.message})` });
         waiting.clear();
@@ -297,12 +297,13 @@
       const prefix = `--set ${k}=${v}: `;
       if (message.startsWith(prefix)) return message.slice(prefix.length);
     }
-    return message.replace(/^--set [\w.]+=[^:]*: /, '');  // the comparison's own settings
+    // The comparison's own settings, and a key the library does not know ("--set: unknown key").
+    return message.replace(/^--set( [\w.]+=[^:]*)?: /, '');
   }
 
   function showProblem(r, editedKey) {
     if (r.message) r = { ...r, message: pageWords(r.message) };
-    st.problem = r.kind === 'stopped' ? T('Stopped before the run was done') : r.message;
+    st.problem = r.kind === 'stopped' ? T('Stopped before the run was done') : S.sentence(r.message);
     const key = r.kind === 'stopped' ? null : keyIn(r.message);
     if (key) panel.showError(key, S.sentence(r.message));
     if (editedKey && editedKey !== key) panel.showError(editedKey, S.sentence(r.message));
@@ -473,7 +474,8 @@
     for (const g of st.run.groups) {
       const mark = document.createElement('span');
       mark.style.left = `${(100 * g.t) / st.run.tEnd}%`;
-      mark.title = g.label;
+      mark.title = S.lang === 'en' ? g.label
+        : `${S.decimals(g.t.toFixed(3))} s ${g.events.map((i) => S.eventWords(st.run.events[i].words)).join(' + ')}`;
       ticks.append(mark);
     }
     $('scrub').max = String(st.run.tEnd);
@@ -709,10 +711,20 @@
   }
   function fromBase64(b64) {
     if (!/^[A-Za-z0-9_-]*$/.test(b64)) throw new Error(T('it holds characters that are not URL-safe base64'));
-    const binary = atob(b64.replace(/-/g, '+').replace(/_/g, '/'));  // throws on a bad length
+    // The browser's own reasons are English whatever the page's language: the page's words instead.
+    let binary;
+    try {
+      binary = atob(b64.replace(/-/g, '+').replace(/_/g, '/'));  // throws on a bad length
+    } catch (e) {
+      throw new Error(T('its length is not that of base64 text'));
+    }
     const bytes = new Uint8Array(binary.length);
     for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
-    return new TextDecoder('utf-8', { fatal: true }).decode(bytes);
+    try {
+      return new TextDecoder('utf-8', { fatal: true }).decode(bytes);
+    } catch (e) {
+      throw new Error(T('it is not text in UTF-8'));
+    }
   }
 
   // The link follows the machine on screen. Browsers limit how often a page may rewrite it (Safari
@@ -1024,6 +1036,8 @@
     probes: (key) => panel.probes().find((p) => p.key === key).values,
     play: () => play(),
     seek: (t) => { pause(); seek(t); },
+    // A message of the library as the page shows it (its words, its language).
+    words: (message) => S.sentence(pageWords(message)),
     stateAt: (t) => Machine.stateAt(st.run.samples, t),
     canvasPixel: (x, h) => {
       const p = Machine.toPixel(st.view, { x, h });

@@ -186,6 +186,30 @@ async function canvasColour(page, x, y) {
   }, [x, y]);
 }
 const near = (a, b, tol = 12) => a.every((v, i) => Math.abs(v - b[i]) <= tol);
+// English words left in a text of the German page. Keys (geometry.rope_length), file names, the
+// values as given (in German quotes), TOML sections and the library's names (adaptive, rope,
+// true, ...) are the library's and stay.
+const kEnglishWords = ['must', 'be', 'is', 'are', 'the', 'of', 'and', 'or', 'to', 'at', 'from', 'than', 'with', 'by',
+  'for', 'not', 'no', 'its', 'it', 'this', 'that', 'which', 'use', 'give', 'given', 'needs', 'most', 'least', 'one', 'too',
+  'never', 'apart', 'start', 'under', 'above', 'below', 'left', 'number', 'numbers', 'key', 'value', 'line', 'expected',
+  'got', 'found', 'next', 'unknown', 'section', 'mean', 'did', 'pair', 'finite', 'range', 'made', 'steps', 'rows',
+  'allowed', 'lid', 'rope', 'seesaw', 'sandbag', 'balloon', 'switch', 'hinge', 'pivot', 'box', 'edge', 'straight',
+  'shorter', 'longer', 'distance', 'inertia', 'bar', 'uniform', 'lift', 'air', 'rises', 'error', 'while', 'parsing',
+  'encountered', 'cannot', 'redefine', 'existing', 'quoted', 'without', 'quotes', 'write', 'point', 'decimal', 'comma',
+  'holds', 'exactly', 'many', 'plain', 'units', 'stopped', 'failed', 'module', 'turned', 'motion', 'state', 'run',
+  'file', 'machine', 'time', 'consistent', 'contacts', 'set', 'degenerate', 'contact', 'impact', 'mode', 'step',
+  'loosen', 'shorten', 'advancing', 'same', 'instant', 'decided', 'again', 'may', 'fixed',
+  'makes', 'centre', 'weight', 'acts', 'both', 'remove', 'enable', 'other', 'keys', 'puts', 'there', 'already', 'gives',
+  'free', 'acceleration', 'about', 'more', 'far', 'too', 'stops', 'part', 'damps', 'unstable', 'shorter', 'would',
+  'through', 'displaced', 'dot', 'does', 'make', 'name', 'after'];
+function englishIn(text) {
+  const rest = text.replace(/„[^“]*“|"[^"]*"|'[^']*'/g, ' ')
+    .replace(/\[[^\]]*\]/g, ' ')
+    .replace(/[\w-]+(\.[\w-]+)+|\w+_\w+/g, ' ')
+    .replace(/\b(adaptive|euler|rk4|rope|angular-momentum-sum|kinetic-energy|linear-momentum|program|lagrangian|added-mass|true|false|deg|kg|rad|xs|phiS|r_[A-Z]|rho_\w+|com_offset|SCHLÜSSEL|WERT|TOML|M\d)\b/g, ' ');
+  const words = rest.match(/[A-Za-zÄÖÜäöüß]+/g) || [];
+  return [...new Set(words.filter((w) => kEnglishWords.includes(w.toLowerCase())))];
+}
 const kBalloonColour = [255, 42, 51];  // web/src/machine.js
 // Pixels of a colour within 40 px of the picture's edges (below the caption band): an arrow to
 // a part beyond the picture.
@@ -837,7 +861,9 @@ const checks = {
       page = await open('#file=a.toml&text=QUJD_');  // five characters: no whole byte at the end
       assert.match(await page.textContent('#problem'), /The link's file \(text=\) cannot be read: /);
       page = await open('#machine=example2&geometry.rope_lenght=1');
-      const message = cliError(['--example', '2', '--set', 'geometry.rope_lenght=1']);
+      // The command line's message without its "--set: " (the page's words).
+      const message = cliError(['--example', '2', '--set', 'geometry.rope_lenght=1']).replace(/^--set: /, '');
+      assert.match(message, /^unknown key/);
       problem = await page.textContent('#problem');
       assert.ok(problem.includes(message), `${message} in: ${problem}`);
       assert.ok(problem.includes('This is Example 2 without the link\'s changes.'), problem);
@@ -1101,6 +1127,120 @@ const checks = {
       await page.selectOption('#lang', 'en');
       await page.waitForFunction(() => document.documentElement.lang === 'en' && document.body.dataset.ready);
       assert.match(await outcomeText(page), /^Outcome: lid open at /);
+    }, { locale: 'de-DE', viewport: { width: 1366, height: 768 } });
+  },
+
+  // German: the library's rarer messages too (issue 21). First every message the command line
+  // gives for a list of bad inputs (values out of range, rules between keys, words where numbers
+  // belong, unknown keys and sections, files that are not TOML or not a whatnext.inp) and every
+  // reason a run can fail for (as src/core writes them), put into the page's words: no English
+  // left. Then the page itself provokes several and shows them in German: a value beyond the
+  // model's range, two rules between keys, a word in a number's field, a key in a link the
+  // library does not know, a link whose file is cut, a comparison that cannot run, a file that is
+  // not TOML and a whatnext.inp with a decimal comma.
+  async messages() {
+    const bad = [
+      ['geometry.rope_length=5000'], ['geometry.rope_length=-1'], ['geometry.rope_length=0.3'], ['geometry.rope_length=3'],
+      ['start.seesaw_angle=95'], ['start.sandbag_x=0.2'], ['start.sandbag_x=-2000'], ['start.sandbag_height=-1'],
+      ['start.lid_angle=95'], ['air.helium_density=2'], ['air.density=1e6'], ['balloon.model=lagrangian', 'air.helium_density=0.0001'],
+      ['run.output_step=1e-9'], ['run.integrator=euler', 'run.step=1e-9'], ['run.tolerance=1'], ['run.t_max=1e9'],
+      ['run.step=abc'], ['run.integrator=foo'], ['run.impact_law=y'], ['balloon.model=x'], ['radio.enabled=maybe'],
+      ['radio.switch_offset=abc'], ['radio.switch_offset=[5000, 0]'], ['geometry.hinge_offset=[0,0]'],
+      ['geometry.rope_on_lid=0.5'], ['geometry.rope_lenght=1'],
+      ['seesaw.com_offset=0.3'], ['seesaw.inertia=1'], ['seesaw.mass=-1'], ['seesaw.mass=1'],
+      ['seesaw.mass=1', 'seesaw.left_arm=900'], ['seesaw.mass=1', 'seesaw.left_arm=1', 'seesaw.com_offset=0.9'],
+      ['seesaw.mass=1', 'seesaw.inertia=0.01', 'seesaw.com_offset=0.5'], ['start.sandbag_height=0', 'start.seesaw_angle=0', 'seesaw.left_arm=0.1'],
+      ['damping.pivot=1'],
+      ['damping.lid_hinge=100', 'run.integrator=euler'], ['radio.string_length=0.1'], ['radio.enabled=false', 'radio.string_length=2'],
+      ['balloon.rubber_mass=1'], ['balloon.rubber_mass=-1'], ['balloon.drag=false', 'balloon.drag_coefficient=0.5'],
+      ['balloon.drag_coefficient=100'], ['run.vertical_margin=inf'], ['run.gravity=-1'], ['masses.sandbag=1e-9'],
+    ];
+    const files = {
+      'a.toml': '[foo]\n', 'b.toml': '[geometry]\nrope_length = \n', 'c.toml': '"masses.sandbag" = 0.5\n',
+      'd.toml': '[geometry]\nrope_length = "x"\n', 'e.toml': '[run]\nintegrator = 3\n', 'f.toml': '[balloon]\nmodel = 1\n',
+      'g.toml': '[geometry]\nrope_length = 1\nrope_length = 2\n', 'h.toml': '[geometry]\nrope_length = [1\n',
+      'i.toml': 'x = 1\n', 'j.toml': '[geometry]\nrope_length = 01\n', 'k.toml': '[geometry]\nrope_length = 1x\n',
+      'l.toml': '[radio]\nenabled = 2\n', 'm.toml': '[geometry]\nhinge_offset = [0.5, 0.5]\nhinge_distance = 0.8\n', 'w.inp': '1\n-0,3\n', 'x.inp': '1\n-0.3\n', 'y.inp': Array.from({ length: 16 }, (_, i) => `${i + 1}`).join('\n'),
+    };
+    const messages = new Set();
+    for (const list of bad) messages.add(cliError(['--example', '1', ...sets(list)]));
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-messages-'));
+    try {
+      for (const [name, text] of Object.entries(files)) {
+        fs.writeFileSync(path.join(dir, name), text);
+        const r = spawnSync(cliPath, ['run', name, '-q'], { cwd: dir, encoding: 'utf8' });
+        assert.equal(r.status, 2, `${name} should be refused`);
+        messages.add(r.stderr.trim().replace(/^whatnext: error: /, ''));
+      }
+    } finally {
+      fs.rmSync(dir, { recursive: true, force: true });
+    }
+    // The reasons a run fails for, as the sources write them, in the sentence each is written into.
+    const source = (file) => fs.readFileSync(path.join(sourceDir, file), 'utf8');
+    const literals = (text) => [...text.matchAll(/"((?:[^"\\]|\\.)*)"/g)].map((m) => m[1]).join('');
+    const printf = (format, ...args) => format.replace(/%[-.\d]*[sgd]/g, () => args.shift());
+    const simulate = source('src/core/simulate.cpp'), contacts = source('src/core/contact_decision.cpp');
+    const failFormat = literals(simulate.match(/snprintf\(msg, sizeof msg, ("[^;]*?"),/)[1]);
+    for (const m of simulate.matchAll(/\bfail\(((?:\s*"(?:[^"\\]|\\.)*")+)/g)) messages.add(printf(failFormat, literals(m[1]), '0.512345678', '4'));
+    const consistentFormat = literals(contacts.match(/snprintf\(msg, sizeof msg, ("[^;]*?"),/)[1]);
+    for (const m of contacts.matchAll(/no_consistent\("([^"]+)"/g)) messages.add(printf(consistentFormat, m[1], '0.512345678', '4'));
+    for (const m of source('src/core/jumps.cpp').matchAll(/SimulationError\("([^"]+)"\)/g)) messages.add(m[1]);
+    assert.ok(messages.size >= 60, `${messages.size} messages`);
+
+    await withPage(async (page, { open }) => {
+      assert.equal(await page.getAttribute('html', 'lang'), 'de');
+      const english = [];
+      for (const m of messages) {
+        const shown = await page.evaluate((text) => window.whatnext.words(text), m);
+        const left = englishIn(shown);
+        if (left.length || shown === m) english.push(`${m}\n    -> ${shown}\n    English: ${left.join(', ')}`);
+      }
+      assert.deepEqual(english, [], 'messages with English words on the German page');
+      console.log(`${messages.size} messages of the library in German words`);
+
+      // In the page: what it shows after each input, in the problem line, the fields and the
+      // comparison's line.
+      const shownNow = () => page.evaluate(() => [document.getElementById('problem'), ...document.querySelectorAll('.field .error'),
+                                                   document.getElementById('compare-outcome')]
+        .filter((e) => !e.hidden && e.textContent.trim()).map((e) => e.textContent));
+      const check = async (what, expect) => {
+        const texts = await shownNow();
+        assert.ok(texts.length, `${what}: no message shown`);
+        assert.ok(texts.some((t) => expect.test(t)), `${what}: ${expect} not in ${JSON.stringify(texts)}`);
+        for (const t of texts) assert.deepEqual(englishIn(t), [], `${what}: English in "${t}"`);
+      };
+      await setField(page, 'geometry.rope_length', '5000');
+      await check('a rope beyond the model\'s range', /geometry\.rope_length muss in \[0,001; 1000\] m liegen, dem Bereich, für den das Modell gemacht ist/);
+      await setField(page, 'geometry.rope_length', '0,3');
+      await check('a rope too short for the start', /ist kürzer als der Abstand vom Ende der Wippe zur Deckelkante am Anfang \(0,3 m < 0,5724 m\)/);
+      await setField(page, 'geometry.rope_length', '');
+      await setField(page, 'air.helium_density', '2');
+      await check('helium heavier than air', /air\.helium_density muss > 0 und kleiner als air\.density \(1,29 kg\/m\^3\) sein, damit der Ballon steigt/);
+      await setField(page, 'air.helium_density', '');
+      await setField(page, 'run.t_max', 'abc');
+      await check('a word for a number', /run\.t_max muss eine Zahl in s sein \(gegeben: „abc“\)/);
+      await setField(page, 'run.t_max', '');
+      await page.selectOption('#compare', 'euler');
+      await page.fill('#compare-step', 'x');
+      await idle(page);
+      await check('a comparison that cannot run', /^Kein Vergleich: run\.step muss eine Zahl in s sein/);
+      await page.selectOption('#compare', 'none');
+      await idle(page);
+
+      let other = await open('#machine=example2&geometry.rope_lenght=1');
+      assert.match(await other.textContent('#problem'), /unbekannter Schlüssel „geometry\.rope_lenght“ \(gemeint: „geometry\.rope_length“\?\)/);
+      assert.deepEqual(englishIn(await other.textContent('#problem')), []);
+      other = await open('#file=a.toml&text=QUJD_');
+      assert.match(await other.textContent('#problem'), /Die Datei im Link \(text=\) ist nicht lesbar: seine Länge ist nicht die eines Base64-Texts\./);
+      assert.deepEqual(englishIn(await other.textContent('#problem')), []);
+
+      for (const [name, expect] of [['h.toml', /h\.toml:2:18: kein gültiges TOML beim Lesen einer Liste: das Dateiende kam zu früh/],
+                                    ['w.inp', /w\.inp Zeile 2: erwartet: eine Zahl für xs \(start\.sandbag_x\), gefunden: „-0,3“/]]) {
+        await page.setInputFiles('#file', { name, mimeType: 'text/plain', buffer: Buffer.from(files[name]) });
+        await page.waitForFunction(() => !document.getElementById('problem').hidden);
+        await idle(page);
+        await check(`the file ${name}`, expect);
+      }
     }, { locale: 'de-DE', viewport: { width: 1366, height: 768 } });
   },
 
