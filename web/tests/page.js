@@ -801,7 +801,7 @@ const checks = {
           await page.evaluate(() => window.whatnext.seek(0.7));
         }
         await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
-        await page.screenshot({ path: path.join(outDir, `web-${name}.png`), fullPage: name === 'desktop' });
+        await page.screenshot({ path: path.join(outDir, `web-${name}.png`) });
       }, { viewport, scale });
     }
   },
