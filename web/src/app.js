@@ -41,7 +41,7 @@
       };
       worker.onerror = (e) => {
         e.preventDefault();
-        reject(new Error(e.message || 'the worker did not start'));
+        reject(new Error(e.message || T('the worker did not start')));
         // A worker that dies while working: every open request gets a message instead of a hang.
         for (const done of waiting.values()) done({ ok: false, kind: 'error', message: `the WebAssembly module failed (${e.message})` });
         waiting.clear();
@@ -134,7 +134,7 @@
     committed: null, previous: null,  // machines before and after the last finished change
     compare: { mode: 'none', law: 'kinetic-energy', step: '0.001', run: null, runs: [], label: '', message: '' },
     t: 0, playing: false, speed: 'auto', holdUntil: 0, last: 0,
-    view: null, dpr: 1, font: 16, lines: 1, band: 46, aspect: 0.7, runMs: 0, runs: 0, answers: 0, problem: '',
+    view: null, dpr: 1, font: 16, lines: 1, band: 46, aspect: 0.7, runMs: 0, runs: 0, answers: 0, problem: '', caption: '',
   };
 
   // Changes come faster than a slow run: the newest change waits while one runs, and replaces any
@@ -297,12 +297,13 @@
       const prefix = `--set ${k}=${v}: `;
       if (message.startsWith(prefix)) return message.slice(prefix.length);
     }
-    return message.replace(/^--set [\w.]+=[^:]*: /, '');  // the comparison's own settings
+    // The comparison's own settings, and a key the library does not know ("--set: unknown key").
+    return message.replace(/^--set( [\w.]+=[^:]*)?: /, '');
   }
 
   function showProblem(r, editedKey) {
     if (r.message) r = { ...r, message: pageWords(r.message) };
-    st.problem = r.kind === 'stopped' ? T('Stopped before the run was done') : r.message;
+    st.problem = r.kind === 'stopped' ? T('Stopped before the run was done') : S.sentence(r.message);
     const key = r.kind === 'stopped' ? null : keyIn(r.message);
     if (key) panel.showError(key, S.sentence(r.message));
     if (editedKey && editedKey !== key) panel.showError(editedKey, S.sentence(r.message));
@@ -473,7 +474,8 @@
     for (const g of st.run.groups) {
       const mark = document.createElement('span');
       mark.style.left = `${(100 * g.t) / st.run.tEnd}%`;
-      mark.title = g.label;
+      mark.title = S.lang === 'en' ? g.label
+        : `${S.decimals(g.t.toFixed(3))} s ${g.events.map((i) => S.eventWords(st.run.events[i].words)).join(' + ')}`;
       ticks.append(mark);
     }
     $('scrub').max = String(st.run.tEnd);
@@ -506,8 +508,13 @@
     // the parameters share the screen with it), but never less than the caption and a picture
     // below it (a short window, or one not laid out yet, has almost no height).
     const share = Number(getComputedStyle($('canvas-box')).getPropertyValue('--canvas-max')) || 0.75;
-    const height = Math.round(Math.max(Math.min(Math.max(st.aspect * width + st.band, 240), share * window.innerHeight),
-                                       st.band + 150));
+    let most = share * window.innerHeight;
+    if (document.body.classList.contains('projector')) {
+      // Projector mode: all of the screen's height below the header, but for the player under it.
+      const box = $('canvas-box').getBoundingClientRect(), below = $('stage').getBoundingClientRect().bottom - box.bottom;
+      most = window.innerHeight - (box.top + window.scrollY) - below - 10;
+    }
+    const height = Math.round(Math.max(Math.min(Math.max(st.aspect * width + st.band, 240), most), st.band + 150));
     st.dpr = window.devicePixelRatio || 1;
     canvas.style.height = `${height}px`;
     canvas.width = Math.round(width * st.dpr);
@@ -563,7 +570,8 @@
     ];
     const ghosts = (st.compare.runs || []).map((o) => ({ run: o.run, colour: o.colour, state: Machine.stateAt(o.run.samples, Math.min(st.t, o.run.tEnd)) }));
     ctx.setTransform(st.dpr, 0, 0, st.dpr, 0, 0);
-    Machine.draw(ctx, st.view, { run, state: s, ghosts, caption, event: group, font: st.font, lines: st.lines });
+    const drawn = Machine.draw(ctx, st.view, { run, state: s, ghosts, caption, event: group, font: st.font, lines: st.lines });
+    st.caption = [...caption, drawn.far].filter(Boolean).join('\n');
 
     $('clock').textContent = `t = ${S.decimals(st.t.toFixed(6))} s`;
     const scrub = $('scrub');
@@ -703,10 +711,20 @@
   }
   function fromBase64(b64) {
     if (!/^[A-Za-z0-9_-]*$/.test(b64)) throw new Error(T('it holds characters that are not URL-safe base64'));
-    const binary = atob(b64.replace(/-/g, '+').replace(/_/g, '/'));  // throws on a bad length
+    // The browser's own reasons are English whatever the page's language: the page's words instead.
+    let binary;
+    try {
+      binary = atob(b64.replace(/-/g, '+').replace(/_/g, '/'));  // throws on a bad length
+    } catch (e) {
+      throw new Error(T('its length is not that of base64 text'));
+    }
     const bytes = new Uint8Array(binary.length);
     for (let i = 0; i < binary.length; ++i) bytes[i] = binary.charCodeAt(i);
-    return new TextDecoder('utf-8', { fatal: true }).decode(bytes);
+    try {
+      return new TextDecoder('utf-8', { fatal: true }).decode(bytes);
+    } catch (e) {
+      throw new Error(T('it is not text in UTF-8'));
+    }
   }
 
   // The link follows the machine on screen. Browsers limit how often a page may rewrite it (Safari
@@ -1016,10 +1034,16 @@
     get time() { return st.t; },
     get run() { return st.run; },
     get sounds() { return sound.log; },
+    // The canvas's caption as drawn (its lines, and how far a part beyond the picture is), and
+    // where the picture below it starts, in canvas pixels.
+    get caption() { return st.caption; },
+    get pictureTop() { return st.band * st.dpr; },
     validity: (key) => panel.field(key).validity,
     probes: (key) => panel.probes().find((p) => p.key === key).values,
     play: () => play(),
     seek: (t) => { pause(); seek(t); },
+    // A message of the library as the page shows it (its words, its language).
+    words: (message) => S.sentence(pageWords(message)),
     stateAt: (t) => Machine.stateAt(st.run.samples, t),
     canvasPixel: (x, h) => {
       const p = Machine.toPixel(st.view, { x, h });

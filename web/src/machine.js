@@ -210,12 +210,20 @@
     return s;
   }
 
-  // The region to show: the whole machine over the run, and the sandbag as long as it stays near
-  // the machine (further out an arrow points to it).
+  // How far from the pivot the picture follows the seesaw's left arm, the sandbag and the balloon:
+  // the machine's own size (its right arm, or the box's far side), so that the machine fills the
+  // picture, as a teacher projecting it wants to see it.
+  const reachOf = (m) => Math.max(1.5 * m.seesaw_right_arm, norm(m.hinge) + 2 * m.lid_half_length);
+
+  // The region to show: the machine itself over the run (the pivot's stand, the box with its lid,
+  // the radio, the balloon, the seesaw's right arm) and, of the left arm, the sandbag and the
+  // balloon, what stays within reachOf(m) of the pivot. Farther out (an endless arm, a sandbag
+  // that slides or flies far, a balloon on a long string) a part leaves the picture; an arrow at
+  // the edge points to the sandbag or the balloon, and the caption says how far (draw).
   function extent(run) {
     const m = run.machine, s = run.samples;
     const leftArm = Math.max(m.seesaw_right_arm, 1.2 * landingDistance(m));
-    const follow = 2.2 * Math.max(m.seesaw_right_arm, leftArm, norm(m.hinge) + 2 * m.lid_half_length);
+    const reach = reachOf(m);
     const box = { x0: Infinity, x1: -Infinity, h0: Infinity, h1: -Infinity, leftArm };
     const put = (p) => {
       if (!Number.isFinite(p.x) || !Number.isFinite(p.h)) return;
@@ -233,17 +241,24 @@
       const phiS = s.phi_s[i];
       put(seesawEnd(m, phiS));
       put(lidEdge(m, s.phi_l[i]));
-      const shown = Math.min(drawnArm(m, leftArm, { on_seesaw: s.on_seesaw[i], r: s.r[i] }), follow);
-      put(polar(-shown, phiS));
-      if (Math.hypot(s.x[i], s.h[i]) <= follow) put({ x: s.x[i], h: s.h[i] });
+      // Below the floor the left arm and the sandbag have left the machine (the model has no floor
+      // for them): they leave the picture there.
+      const shown = Math.min(drawnArm(m, leftArm, { on_seesaw: s.on_seesaw[i], r: s.r[i] }), reach);
+      const armEnd = polar(-shown, phiS);
+      put({ x: armEnd.x, h: Math.max(armEnd.h, g) });
+      if (Math.hypot(s.x[i], s.h[i]) <= reach) put({ x: s.x[i], h: Math.max(s.h[i], g) });
       const c = balloonCentre(m, { balloon_h: s.balloon_h[i] });
-      if (c.h - m.hinge.h <= follow) {
+      if (c.h - m.hinge.h <= reach) {
         put(add(c, { x: m.balloon_radius, h: m.balloon_radius }));
         put(sub(c, { x: m.balloon_radius, h: m.balloon_radius }));
       }
     }
     if (m.radio) {
-      for (const i of [0, n - 1]) for (const p of stringPath(m, balloonCentre(m, { balloon_h: s.balloon_h[i] }))) put(p);
+      for (const i of [0, n - 1]) {
+        for (const p of stringPath(m, balloonCentre(m, { balloon_h: s.balloon_h[i] }))) {
+          if (norm(sub(p, m.radio_switch)) <= reach) put({ x: p.x, h: Math.max(p.h, g) });
+        }
+      }
     }
     const pad = 0.05 * Math.max(box.x1 - box.x0, box.h1 - box.h0);
     box.x0 -= pad; box.x1 += pad; box.h0 -= pad; box.h1 += pad;
@@ -398,26 +413,39 @@
     return { x: bag.x, y: bag.y, radius };
   }
 
-  // An arrow at the edge of the picture towards a sandbag that is far out (its distance is in the
-  // caption).
-  function drawFarSandbag(ctx, v, s) {
-    const o = toPixel(v, { x: 0, h: 0 }), bag = toPixel(v, { x: s.x, h: s.h });
-    const dx = bag.x - o.x, dy = bag.y - o.y, len = Math.hypot(dx, dy);
-    const ux = dx / len, uy = dy / len;
+  // An arrow at the edge of the picture, on the line from `from` towards a part beyond the picture
+  // (its distance is in the caption), in the part's colour with a white rim; `size` in pixels.
+  function drawFar(ctx, v, from, to, fill, size) {
+    const o = toPixel(v, from), p = toPixel(v, to);
+    const dx = p.x - o.x, dy = p.y - o.y, len = Math.hypot(dx, dy);
+    if (!(len > 0)) return;
+    const ux = dx / len, uy = dy / len, edge = 0.6 * size;
     let reach = Infinity;
-    if (ux > 0) reach = Math.min(reach, (v.width - 14 - o.x) / ux);
-    if (ux < 0) reach = Math.min(reach, (14 - o.x) / ux);
-    if (uy > 0) reach = Math.min(reach, (v.height - 14 - o.y) / uy);
-    if (uy < 0) reach = Math.min(reach, (v.top + 14 - o.y) / uy);
-    const tx = o.x + ux * reach, ty = o.y + uy * reach;
-    ctx.fillStyle = colour.sandbag;
+    if (ux > 0) reach = Math.min(reach, (v.width - edge - o.x) / ux);
+    if (ux < 0) reach = Math.min(reach, (edge - o.x) / ux);
+    if (uy > 0) reach = Math.min(reach, (v.height - edge - o.y) / uy);
+    if (uy < 0) reach = Math.min(reach, (v.top + edge - o.y) / uy);
+    const tx = o.x + ux * reach, ty = o.y + uy * reach, back = 1.6 * size, half = 0.7 * size;
     ctx.beginPath();
     ctx.moveTo(tx, ty);
-    ctx.lineTo(tx - 16 * ux - 8 * uy, ty - 16 * uy + 8 * ux);
-    ctx.lineTo(tx - 16 * ux + 8 * uy, ty - 16 * uy - 8 * ux);
+    ctx.lineTo(tx - back * ux - half * uy, ty - back * uy + half * ux);
+    ctx.lineTo(tx - back * ux + half * uy, ty - back * uy - half * ux);
     ctx.closePath();
+    ctx.lineJoin = 'round';
+    ctx.lineWidth = 3;
+    ctx.strokeStyle = 'white';
+    ctx.stroke();
+    ctx.fillStyle = fill;
     ctx.fill();
   }
+
+  // The page's words where the page has them (strings.js), else English.
+  const words = (english, args) => (window.whatnextStrings ? window.whatnextStrings.t(english, args)
+                                    : english.replace(/\{(\w+)\}/g, (m, k) => args[k]));
+  const number = (x) => {
+    const text = String(Number(x.toPrecision(4)));
+    return window.whatnextStrings ? window.whatnextStrings.decimals(text) : text;
+  };
 
   // Splits text into at most n lines that fit the width, breaking between words (the last line
   // takes the rest).
@@ -467,9 +495,18 @@
     }
     const bag = drawMoving(ctx, v, run, s, false);
     ctx.restore();
-    const visible = bag.x >= -bag.radius && bag.x <= v.width + bag.radius &&
-                    bag.y >= v.top - bag.radius && bag.y <= v.height + bag.radius;
-    if (!visible) drawFarSandbag(ctx, v, s);
+    // The sandbag and the balloon beyond the picture: an arrow at its edge, the distance in the
+    // caption.
+    const inPicture = (q, r) => q.x >= -r && q.x <= v.width + r && q.y >= v.top - r && q.y <= v.height + r;
+    const visible = inPicture(bag, bag.radius);
+    const arrow = Math.max(10, 0.7 * font);
+    if (!visible) drawFar(ctx, v, { x: 0, h: 0 }, { x: s.x, h: s.h }, colour.sandbag, arrow);
+    const balloon = balloonCentre(m, s), boxTop = { x: balloon.x, h: m.hinge.h };
+    const balloonVisible = inPicture(toPixel(v, balloon), m.balloon_radius * v.scale);
+    if (!balloonVisible) drawFar(ctx, v, boxTop, balloon, colour.balloon, arrow);
+    const far = [];
+    if (!visible) far.push(words('sandbag {d} m out', { d: number(Math.hypot(s.x, s.h)) }));
+    if (!balloonVisible) far.push(words('balloon {d} m up', { d: number(balloon.h - m.hinge.h) }));
 
     // Caption band, as in the animation.
     ctx.fillStyle = event ? 'rgb(255,235,235)' : colour.band;
@@ -486,8 +523,8 @@
     // A sandbag beyond the picture: its distance at the right end of the second line, as the
     // animation writes it (next to the arrow it would cover the machine).
     let room = v.width - 2 * margin;
-    if (!visible) {
-      const out = `sandbag ${Number(Math.hypot(s.x, s.h).toPrecision(4))} m out`;
+    if (far.length) {
+      const out = far.join(' · ');
       ctx.font = `400 ${0.9 * font}px sans-serif`;
       const w = ctx.measureText(out).width, most = 0.45 * v.width;
       if (w > most) ctx.font = `400 ${0.9 * font * most / w}px sans-serif`;
@@ -510,7 +547,7 @@
       ctx.lineWidth = 4;
       ctx.strokeRect(2, 2, v.width - 4, v.height - 4);
     }
-    return bag;
+    return { ...bag, far: far.join(' · ') };
   }
 
   window.whatnextMachine = { draw, extent, makeView, toPixel, stateAt, ropePath, colour };

@@ -84,7 +84,7 @@
                             element('span', { class: 'name', text: words(key) }),
                             spec.unit ? element('span', { class: 'unit', text: spec.unit.replace('^2', '²').replace('^3', '³') }) : null);
       const reset = element('button', { type: 'button', class: 'reset', title: S.t('back to the machine as loaded'),
-                                        'aria-label': `reset ${key}` });
+                                        'aria-label': S.t('reset {key}', { key }) });
       reset.textContent = '↺';
       const row = element('div', { class: 'inputs' });
       const field = { spec, root, inputs: [], slider: null, reset, error: null };

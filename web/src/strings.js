@@ -2,7 +2,8 @@
 // language is one table below from the English words (as they stand in index.html and the scripts,
 // whitespace collapsed) to its own, plus patterns for the library's sentences (the outcome, the
 // events and modes, the messages) that hold numbers. A word missing from a table stays English.
-// Another language: one more entry in kLanguages with its name, table, patterns and decimal sign.
+// Another language: one more entry in kLanguages with its name, table, patterns (outcomes, modes),
+// messages (the library's errors), place (where a message says it comes from) and decimal sign.
 (function () {
   'use strict';
 
@@ -110,7 +111,11 @@
     'Running… {where}{secs} s so far.': 'Rechnet… {where}bisher {secs} s.',
     't = {t} s of {tMax} s; ': 't = {t} s von {tMax} s; ',
     'This page cannot start its worker here ({why}). Opened from a folder on the disk, use whatnext.html (the page in one file); or serve the folder (./run.sh web).':
-      'Die Seite kann hier ihren Worker nicht starten ({why}). Aus einem Ordner auf der Festplatte geöffnet: whatnext.html verwenden (die Seite in einer Datei), oder den Ordner bereitstellen (./run.sh web).',
+      // Without the browser's reason ({why}), which is English whatever the page's language.
+      'Die Seite kann hier ihren Worker nicht starten. Aus einem Ordner auf der Festplatte geöffnet: whatnext.html verwenden (die Seite in einer Datei), oder den Ordner bereitstellen (./run.sh web).',
+    'the worker did not start': 'der Worker ist nicht gestartet',
+    'its length is not that of base64 text': 'seine Länge ist nicht die eines Base64-Texts',
+    'it is not text in UTF-8': 'er ist kein Text in UTF-8',
     'This run': 'Dieser Lauf',
     'The run to compare with': 'Der Vergleichslauf',
     '{what} takes {steps} steps of the {integrator} method (t_max {tMax} s at a step of {step} s): the page may work on it for minutes. Run it anyway? (It can be stopped.)':
@@ -178,6 +183,7 @@
     Balloon: 'Ballon', Radio: 'Radio', Damping: 'Dämpfung', 'A seesaw with mass': 'Eine Wippe mit Masse',
     'back to the machine as loaded': 'zurück zur Maschine, wie sie geladen wurde',
     on: 'an',
+    'reset {key}': '{key} zurücksetzen',
     'red: values this machine refuses': 'rot: Werte, die diese Maschine nicht annimmt',
     'valid from {lo} to {hi}': 'gültig von {lo} bis {hi}',
 
@@ -188,6 +194,9 @@
     dashed: 'gestrichelt',
     energy: 'Energie',
     impulse: 'Kraftstoß', sandbag: 'Sandsack', rope: 'Seil', lid: 'Deckel',
+    // machine.js
+    'sandbag {d} m out': 'Sandsack {d} m draußen',
+    'balloon {d} m up': 'Ballon {d} m oben',
     'each law in its colour: outlines in the drawing, dashes in the plots': 'jedes Gesetz in seiner Farbe: Umrisse in der Zeichnung, Striche in den Diagrammen',
   };
 
@@ -250,16 +259,160 @@
     [/^M3: sandbag on the seesaw, rope slack$/, 'M3: Sandsack auf der Wippe, Seil locker'],
     [/^M4: sandbag on the seesaw, rope pulls the lid$/, 'M4: Sandsack auf der Wippe, Seil zieht den Deckel'],
     [/^M5: rope taut, lid resting$/, 'M5: Seil straff, Deckel liegt auf'],
-    // Messages: the rule in German, the key and the values as given.
-    [/^(\S+) must be a number in (.+) \(given '(.*)'\)$/, '$1 muss eine Zahl in $2 sein (gegeben: „$3“)'],
-    [/^(\S+) must be a number \(given '(.*)'\)$/, '$1 muss eine Zahl sein (gegeben: „$2“)'],
-    [/^(\S+) must be ([<>]=?) (\S+) ?(.*) \(given (.*)\)$/, '$1 muss $2 $3 $4 sein (gegeben: $5)'],
-    [/^(\S+) must be within \[(.*)\] (.*), the range the model is made for \(given (.*)\)$/, '$1 muss in [$2] $3 liegen, dem Bereich, für den das Modell gemacht ist (gegeben: $4)'],
-    [/^geometry.rope_length is shorter than the distance from the seesaw's end to the lid's edge at the start \((.*)\)$/,
-      'geometry.rope_length ist kürzer als der Abstand vom Ende der Wippe zur Deckelkante am Anfang ($1)'],
-    [/^(\S+): unknown key '(.*)' \(did you mean '(.*)'\?\)$/, '$1: unbekannter Schlüssel „$2“ (gemeint: „$3“?)'],
-    [/^(\S+): unknown key '(.*)'$/, '$1: unbekannter Schlüssel „$2“'],
+    [/^seesaw vertical at ([\d.]+) s without the sandbag \(it is (\S+) m from the pivot\); the lid never opens \(it is at ([-\d.]+) deg\)$/,
+      'Wippe senkrecht bei $1 s ohne den Sandsack (er ist $2 m von der Achse entfernt); der Deckel öffnet nie (er steht bei $3°)'],
+    [/^([a-z_]+) at ([\d.]+) s$/, (m, type, t) => `${deEvents[type.replace(/_/g, ' ')] || type} bei ${t} s`],
   ];
+
+  // The library's messages (src/io/reader.hpp, build_scenario.cpp, build_extensions.cpp,
+  // set_input.cpp, keys.cpp, toml_input.cpp, inp_input.cpp; src/core's SimulationErrors; the
+  // worker's own), each without the place it names in front ("--set KEY=VALUE: ", "a.toml:3: ",
+  // sentence() splits that off). Keys, numbers, units and the values given stay as they are; a
+  // value given in quotes gets German quotes.
+  const q = (text) => text.replace(/^'(.*)'$/, '„$1“');
+  const oder = (list) => list.replace(/ or /g, ' oder ');
+  const deMessages = [
+    // reader.hpp: the rules every number obeys.
+    [/^(\S+) must be a finite number \(given (.*)\)$/, '$1 muss eine endliche Zahl sein (gegeben: $2)'],
+    [/^(\S+) must be < 0 m: the sandbag starts left of the pivot, above the left arm \(given (.*)\)$/,
+      '$1 muss < 0 m sein: der Sandsack beginnt links der Achse, über dem linken Arm (gegeben: $2)'],
+    [/^(\S+) must be > 0 and below (\S+) \((.*)\) so that the balloon rises \(given (.*)\)$/,
+      '$1 muss > 0 und kleiner als $2 ($3) sein, damit der Ballon steigt (gegeben: $4)'],
+    [/^(\S+) must be > 0 and at least mass \* com_offset\^2 = (\S+) kg m\^2 \(given (.*)\)$/,
+      '$1 muss > 0 und mindestens Masse * com_offset^2 = $2 kg m^2 sein (gegeben: $3)'],
+    [/^(\S+) must be ([<>]=?) (\S+)( [^(]+)? \(given (.*)\)$/, (m, k, op, x, unit, given) => `${k} muss ${op} ${x}${unit || ''} sein (gegeben: ${given})`],
+    [/^(\S+) must be in ([[(]\S+, \S+[\])])( [^(]+)? \(given (.*)\)$/, (m, k, range, unit, given) => `${k} muss in ${range}${unit || ''} liegen (gegeben: ${given})`],
+    [/^(\S+) must be within (\[\S+, \S+\])( [^,]+)?, the range the model is made for \(given (.*)\)$/,
+      (m, k, range, unit, given) => `${k} muss in ${range}${unit || ''} liegen, dem Bereich, für den das Modell gemacht ist (gegeben: ${given})`],
+    [/^(\S+) must hold finite numbers \(given (.*)\)$/, '$1 muss endliche Zahlen enthalten (gegeben: $2)'],
+    [/^(\S+) must hold numbers within (\[\S+, \S+\]) m, the range the model is made for \(given (.*)\)$/,
+      '$1 muss Zahlen in $2 m enthalten, dem Bereich, für den das Modell gemacht ist (gegeben: $3)'],
+    // The value's form (set_input.cpp, toml_input.cpp).
+    [/^(\S+) must be a number in plain units \(given (.*)\)$/, (m, k, given) => `${k} muss eine Zahl ohne Einheit sein (gegeben: ${q(given)})`],
+    [/^(\S+) must be a number in (.+) \(given (.*)\)$/, (m, k, unit, given) => `${k} muss eine Zahl in ${unit} sein (gegeben: ${q(given)})`],
+    [/^(\S+) must be a number \(given (.*)\)$/, (m, k, given) => `${k} muss eine Zahl sein (gegeben: ${q(given)})`],
+    [/^(\S+) must be a pair of numbers \[dx, dh\] in (.+) \(given (.*)\)$/, (m, k, unit, given) => `${k} muss ein Zahlenpaar [dx, dh] in ${unit} sein (gegeben: ${q(given)})`],
+    [/^(\S+) must be true or false \(given (.*)\)$/, (m, k, given) => `${k} muss true oder false sein (gegeben: ${q(given)})`],
+    [/^(\S+) must be a text value, one of: (.*) \(given (.*)\)$/,
+      (m, k, help, given) => `${k} muss ein Text sein, einer von: ${deKeys[k] ? deKeys[k][1] : oder(help)} (gegeben: ${q(given)})`],
+    [/^(\S+) must be ([\w-]+(?:, [\w-]+)* or [\w-]+) \(given (.*)\)$/, (m, k, list, given) => `${k} muss ${oder(list)} sein (gegeben: ${q(given)})`],
+    [/^KEY=VALUE must be one line without control characters$/, 'SCHLÜSSEL=WERT muss eine Zeile ohne Steuerzeichen sein'],
+    [/^expected KEY=VALUE \(no key before '='\)$/, 'erwartet: SCHLÜSSEL=WERT (kein Schlüssel vor „=“)'],
+    [/^expected KEY=VALUE$/, 'erwartet: SCHLÜSSEL=WERT'],
+    [/^give a value after '='$/, 'nach „=“ einen Wert angeben'],
+    [/^key (\S+): is not a single number$/, 'Schlüssel $1: ist keine einzelne Zahl'],
+    [/^unknown key '(.*)' \(did you mean '(.*)'\?\)$/, 'unbekannter Schlüssel „$1“ (gemeint: „$2“?)'],
+    [/^unknown key '(.*)'$/, 'unbekannter Schlüssel „$1“'],
+    [/^unknown section \[(.*)\] \(did you mean \[(.*)\]\?\)$/, 'unbekannter Abschnitt [$1] (gemeint: [$2]?)'],
+    [/^unknown section \[(.*)\]$/, 'unbekannter Abschnitt [$1]'],
+    [/^key "(.*)" is quoted, so its dot does not make a section: write (\S+) = \.\.\. without the quotes, or the name after the dot under \[(.*)\]$/,
+      'der Schlüssel "$1" steht in Anführungszeichen, so bildet sein Punkt keinen Abschnitt: $2 = ... ohne Anführungszeichen schreiben, oder den Namen nach dem Punkt unter [$3]'],
+    [/^not valid TOML: (.*)$/, (m, why) => `kein gültiges TOML${tomlWhy(why)}`],
+    // build_scenario.cpp: the rules of a machine.
+    [/^(\S+) must be on the lid, at most its length 2 r_L = (\S+) m from the hinge \(given (\S+) m\)$/,
+      '$1 muss auf dem Deckel liegen, höchstens seine Länge 2 r_L = $2 m vom Scharnier entfernt (gegeben: $3 m)'],
+    [/^(\S+) and (\S+) both given: use one form$/, '$1 und $2 sind beide angegeben: nur eine Form verwenden'],
+    [/^(\S+) must put the hinge at least (\S+) m from the pivot \(given (.*)\)$/,
+      '$1 muss das Scharnier mindestens $2 m von der Achse entfernt setzen (gegeben: $3)'],
+    [/^(\S+) gives the free balloon an acceleration of (\S+) g; at most (\S+) g is within the range the model is made for \(given (.*)\)$/,
+      '$1 gibt dem freien Ballon eine Beschleunigung von $2 g; höchstens $3 g liegen im Bereich, für den das Modell gemacht ist (gegeben: $4)'],
+    [/^(\S+) gives (\S+) (steps|rows) up to (\S+) = (\S+) s; at most (\S+) are allowed \(given (.*)\)$/,
+      (m, k, n, what, tk, t, most, given) => `${k} ergibt ${n} ${what === 'steps' ? 'Schritte' : 'Zeilen'} bis ${tk} = ${t} s; höchstens ${most} sind erlaubt (gegeben: ${given})`],
+    [/^(\S+) is longer than the (\S+) s in which (\S+) = (\S+) N m s\/rad stops the part it damps: the fixed step is unstable \(use a shorter step or the adaptive integrator; given (.*)\)$/,
+      '$1 ist länger als die $2 s, in denen $3 = $4 N m s/rad das gedämpfte Teil anhält: der feste Schritt ist instabil (einen kürzeren Schritt oder den Integrator adaptive nehmen; gegeben: $5)'],
+    [/^(\S+) puts the sandbag under the seesaw's left arm, which is at (\S+) m there \(given (.*)\)$/,
+      '$1 setzt den Sandsack unter den linken Arm der Wippe, der dort auf $2 m liegt (gegeben: $3)'],
+    [/^(\S+) is shorter than the distance from the seesaw's end to the lid's edge at the start \((.*)\)$/,
+      '$1 ist kürzer als der Abstand vom Ende der Wippe zur Deckelkante am Anfang ($2)'],
+    [/^(\S+) puts the lid above the rope, which is straight at the start \((\S+) = (\S+) m at (\S+) = (\S+) deg\) and would run under the hinge, through the box \(given (.*)\)$/,
+      '$1 setzt den Deckel über das Seil, das am Anfang gestreckt ist ($2 = $3 m bei $4 = $5 deg) und unter dem Scharnier durch die Kiste liefe (gegeben: $6)'],
+    [/^(\S+) can never be straight: the seesaw's end and the lid's edge are never more than (\S+) m apart \(given (.*)\)$/,
+      '$1 kann nie gestreckt sein: Ende der Wippe und Deckelkante sind nie mehr als $2 m voneinander entfernt (gegeben: $3)'],
+    // build_extensions.cpp: the extensions' rules.
+    [/^(\S+) makes the seesaw \(a uniform bar of (\S+) = (\S+) kg from -(\S+) to r_H\) an inertia of (\S+) kg m\^2 about the pivot; at most (\S+) kg m\^2 is within the range the model is made for \(given (.*)\)$/,
+      '$1 gibt der Wippe (einem gleichmäßigen Balken mit $2 = $3 kg von -$4 bis r_H) ein Trägheitsmoment von $5 kg m^2 um die Achse; höchstens $6 kg m^2 liegen im Bereich, für den das Modell gemacht ist (gegeben: $7)'],
+    [/^(\S+) is too far from the pivot for the bar's inertia (\S+) kg m\^2 \(mass \* com_offset\^2 = (\S+) kg m\^2 is more\): give (\S+) too \(given (.*)\)$/,
+      '$1 liegt zu weit von der Achse für das Trägheitsmoment $2 kg m^2 des Balkens (Masse * com_offset^2 = $3 kg m^2 ist mehr): auch $4 angeben (gegeben: $5)'],
+    [/^(\S+) is false but other radio keys are given: remove them or enable the radio$/,
+      '$1 ist false, aber andere Schlüssel des Radios sind angegeben: sie entfernen oder das Radio einschalten'],
+    [/^(\S+) must be below the lift (\S+) kg \(displaced air minus helium\) so that the balloon rises \(given (.*)\)$/,
+      '$1 muss unter dem Auftrieb von $2 kg liegen (verdrängte Luft minus Helium), damit der Ballon steigt (gegeben: $3)'],
+    [/^(\S+) is false but (\S+) is given: remove one$/, '$1 ist false, aber $2 ist angegeben: eines von beiden entfernen'],
+    [/^(\S+) needs (\S+) \(a uniform bar\) or both (\S+) and (\S+)$/, '$1 braucht $2 (ein gleichmäßiger Balken) oder sowohl $3 als auch $4'],
+    [/^(\S+) needs (\S+) \(the seesaw's weight acts at its centre of mass\)$/, '$1 braucht $2 (das Gewicht der Wippe greift in ihrem Schwerpunkt an)'],
+    [/^(\S+) needs a seesaw with inertia: give (\S+) \(and (\S+)\) too$/, '$1 braucht eine Wippe mit Trägheit: auch $2 (und $3) angeben'],
+    [/^(\S+) is shorter than the sandbag's start on the arm \((.*)\)$/, '$1 ist kürzer als der Weg bis zum Anfangsort des Sandsacks auf dem Arm ($2)'],
+    [/^(\S+) is already straight at the start: the balloon is (\S+) m from the switch \(given (.*)\)$/,
+      '$1 ist schon am Anfang gestreckt: der Ballon ist $2 m vom Schalter entfernt (gegeben: $3)'],
+    // inp_input.cpp: the paper's whatnext.inp.
+    [/^expected a number for (\S+) \((\S+)\), got '(.*)'( \(a decimal comma\? write a point\))?$/,
+      (m, name, k, got, comma) => `erwartet: eine Zahl für ${name} (${k}), gefunden: „${got}“${comma ? ' (ein Dezimalkomma? Einen Punkt schreiben)' : ''}`],
+    [/^a whatnext\.inp needs 15 numbers, one per line; found (\d+) \(next: (.*)\)$/,
+      'eine whatnext.inp braucht 15 Zahlen, eine pro Zeile; gefunden: $1 (als nächste fehlt: $2)'],
+    [/^a whatnext\.inp holds exactly 15 numbers; this line is one too many \('(.*)'\)$/,
+      'eine whatnext.inp enthält genau 15 Zahlen; diese Zeile ist eine zu viel („$1“)'],
+    // src/core: a run that cannot go on.
+    [/^(.+?) at t = (\S+) s in mode (M\d)( \(degenerate contact\))?$/,
+      (m, what, t, mode, degenerate) => `${deFailures[what] || what} bei t = ${t} s in Phase ${mode}${degenerate ? ' (entarteter Kontakt)' : ''}`],
+    [/^no consistent set of contacts at the start \(degenerate contact\)$/, 'keine widerspruchsfreie Menge von Kontakten am Anfang (entarteter Kontakt)'],
+    // The page's worker (worker.js, app.js).
+    // Without the browser's reason, which is English whatever the page's language.
+    [/^the WebAssembly module failed \((.*)\)$/, 'das WebAssembly-Modul ist ausgefallen'],
+    [/^no function (\S+)$/, 'keine Funktion $1'],
+  ];
+  const deFailures = {
+    'the state turned non-finite': 'der Zustand wurde unendlich oder undefiniert',
+    'the motion turned non-finite': 'die Bewegung wurde unendlich oder undefiniert',
+    'the integrator used its budget of 5e6 steps (loosen run.tolerance or shorten run.t_max)':
+      'der Integrator hat seine 5e6 Schritte verbraucht (run.tolerance lockern oder run.t_max kürzen)',
+    "the run stopped advancing (the same instant's contacts decided again and again; a fixed step may be too long for this machine)":
+      'der Lauf kam nicht mehr voran (die Kontakte desselben Augenblicks wurden wieder und wieder entschieden; ein fester Schritt ist für diese Maschine vielleicht zu lang)',
+    'no consistent impact': 'kein widerspruchsfreier Stoß',
+    'no consistent set of contacts': 'keine widerspruchsfreie Menge von Kontakten',
+  };
+  // The TOML reader's (toml++) own words: "Error while parsing <what>: <detail>". The common
+  // details in German; one it does not know is left out (the place, line and column, stays).
+  const deTomlScopes = {
+    'key-value pair': 'eines Schlüssel-Wert-Paars', array: 'einer Liste', 'inline table': 'einer Inline-Tabelle',
+    'table header': 'eines Tabellenkopfs', string: 'eines Texts', 'literal string': 'eines Texts', key: 'eines Schlüssels',
+    value: 'eines Werts', boolean: 'eines Wahrheitswerts', 'floating-point': 'einer Gleitkommazahl',
+    'hexadecimal floating-point': 'einer Gleitkommazahl', 'decimal integer': 'einer ganzen Zahl', 'binary integer': 'einer ganzen Zahl',
+    'octal integer': 'einer ganzen Zahl', 'hexadecimal integer': 'einer ganzen Zahl', date: 'eines Datums', time: 'einer Uhrzeit',
+    'date-time': 'einer Zeitangabe', 'date-time offset': 'einer Zeitangabe', comment: 'eines Kommentars', 'root table': 'der Datei',
+    'unicode scalar sequence': 'eines Unicode-Zeichens',
+  };
+  const deTomlThings = {
+    value: 'ein Wert', 'value-terminator': 'das Ende des Werts', 'space or tab': 'ein Leerzeichen oder Tab',
+    'decimal digit': 'eine Ziffer', digit: 'eine Ziffer', 'hex digit': 'eine Hexadezimalziffer', 'hexadecimal digit': 'eine Hexadezimalziffer',
+    'exponent digit': 'eine Ziffer des Exponenten', 'exponent digit or sign': 'eine Ziffer oder ein Vorzeichen des Exponenten',
+    'bare key character': 'ein Zeichen eines Schlüssels', 'bare key starting character or string delimiter': 'ein Schlüssel',
+    'key or table header': 'ein Schlüssel oder Tabellenkopf', 'key-value pair': 'ein Schlüssel-Wert-Paar',
+  };
+  const deTomlDetails = [
+    [/^encountered end-of-file$/, 'das Dateiende kam zu früh'],
+    [/^expected (.+?), saw (.+)$/, (m, a, b) => (deTomlThings[a] || /^'.*'$/.test(a) ? `erwartet: ${deTomlThings[a] || q(a)}, gefunden: ${q(b)}` : null)],
+    [/^cannot redefine existing ([\w -]+) '(.*)'$/, (m, what, name) => `„${name}“ ist schon festgelegt`],
+    [/^could not determine value type$/, 'die Art des Werts ist nicht zu erkennen'],
+    [/^leading zeroes are prohibited$/, 'führende Nullen sind nicht erlaubt'],
+    [/^unexpected control character$/, 'ein Steuerzeichen an unerwarteter Stelle'],
+    [/^underscores (may only follow|must be followed by) digits$/, 'ein Unterstrich nur zwischen Ziffern'],
+    [/^values may not begin with underscores$/, 'ein Wert darf nicht mit einem Unterstrich beginnen'],
+    [/^missing exponent$/, 'der Exponent fehlt'],
+  ];
+  function tomlWhy(why) {
+    const m = /^Error while parsing (.+?): (.*)$/.exec(why);
+    const scope = m && deTomlScopes[m[1]] ? ` beim Lesen ${deTomlScopes[m[1]]}` : '';
+    const detail = m ? m[2] : why;
+    for (const [re, out] of deTomlDetails) {
+      const found = re.exec(detail);
+      if (!found) continue;
+      const words = typeof out === 'function' ? out(...found) : detail.replace(re, out);
+      return words ? `${scope}: ${words}` : scope;
+    }
+    return scope;
+  }
+  // Where a message comes from, in the language's words ("whatnext.inp line 3 (ms)").
+  const dePlace = (where) => where.replace(/ line (\d+)/, ' Zeile $1');
   const deEvents = {
     'sandbag lands': 'Sandsack landet', 'rope taut': 'Seil straff', 'rope slack': 'Seil locker', 'lid rests': 'Deckel liegt auf',
     'lid lifts': 'Deckel hebt ab', 'balloon caught': 'Ballon gefangen', 'balloon free': 'Ballon frei',
@@ -269,8 +422,9 @@
   };
 
   const kLanguages = {
-    en: { name: 'English', table: {}, keys: {}, patterns: [], events: {}, decimal: '.', html: 'en' },
-    de: { name: 'Deutsch', table: de, keys: deKeys, patterns: dePatterns, events: deEvents, decimal: ',', html: 'de' },
+    en: { name: 'English', table: {}, keys: {}, patterns: [], messages: [], place: (w) => w, events: {}, decimal: '.', html: 'en' },
+    de: { name: 'Deutsch', table: de, keys: deKeys, patterns: dePatterns, messages: deMessages, place: dePlace, events: deEvents,
+          decimal: ',', html: 'de' },
   };
 
   // The page's language: the link's lang=, else the one chosen before, else the browser's.
@@ -294,10 +448,24 @@
   // Words of the page: t('English {x}', {x}).
   const t = (english, args) => fill(L().table[english] ?? english, args);
   // Numbers with the language's decimal sign (in sentences: a point between digits).
-  const decimals = (text) => (L().decimal === '.' ? text : text.replace(/(\d)\.(\d)/g, `$1${L().decimal}$2`));
-  // A sentence of the library: its pattern's translation, numbers with the decimal sign.
+  // A pair or interval of numbers is split by a semicolon where the comma is the decimal sign
+  // ("[0,001; 1000]", not "[0,001, 1000]").
+  const decimals = (text) => (L().decimal === '.' ? text
+    : text.replace(/([[(])([-+\d.eE]+|dx), ([-+\d.eE]+|dh)([\])])/g, '$1$2; $3$4').replace(/(\d)\.(\d)/g, `$1${L().decimal}$2`));
+  // A sentence of the library (an outcome, a mode, a message): its pattern's translation, numbers
+  // with the decimal sign. A message may name where it comes from first ("a.toml:3: ", "--set
+  // KEY=VALUE: "): that place is kept (in the language's words) and the rest translated.
+  function translated(text) {
+    for (const [re, out] of [...L().patterns, ...L().messages]) if (re.test(text)) return text.replace(re, out);
+    return null;
+  }
   function sentence(text) {
-    for (const [re, out] of L().patterns) if (re.test(text)) return decimals(text.replace(re, out));
+    const whole = translated(text);
+    if (whole !== null) return decimals(whole);
+    for (let i = text.indexOf(': '); i >= 0; i = text.indexOf(': ', i + 1)) {
+      const rest = translated(text.slice(i + 2));
+      if (rest !== null) return `${L().place(text.slice(0, i))}: ${decimals(rest)}`;
+    }
     return decimals(text);
   }
   // An event's words ("rope taut (impact, 0.08 J -> 0.07 J)").

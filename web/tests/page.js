@@ -186,6 +186,48 @@ async function canvasColour(page, x, y) {
   }, [x, y]);
 }
 const near = (a, b, tol = 12) => a.every((v, i) => Math.abs(v - b[i]) <= tol);
+// English words left in a text of the German page. Keys (geometry.rope_length), file names, the
+// values as given (in German quotes), TOML sections and the library's names (adaptive, rope,
+// true, ...) are the library's and stay.
+const kEnglishWords = ['must', 'be', 'is', 'are', 'the', 'of', 'and', 'or', 'to', 'at', 'from', 'than', 'with', 'by',
+  'for', 'not', 'no', 'its', 'it', 'this', 'that', 'which', 'use', 'give', 'given', 'needs', 'most', 'least', 'one', 'too',
+  'never', 'apart', 'start', 'under', 'above', 'below', 'left', 'number', 'numbers', 'key', 'value', 'line', 'expected',
+  'got', 'found', 'next', 'unknown', 'section', 'mean', 'did', 'pair', 'finite', 'range', 'made', 'steps', 'rows',
+  'allowed', 'lid', 'rope', 'seesaw', 'sandbag', 'balloon', 'switch', 'hinge', 'pivot', 'box', 'edge', 'straight',
+  'shorter', 'longer', 'distance', 'inertia', 'bar', 'uniform', 'lift', 'air', 'rises', 'error', 'while', 'parsing',
+  'encountered', 'cannot', 'redefine', 'existing', 'quoted', 'without', 'quotes', 'write', 'point', 'decimal', 'comma',
+  'holds', 'exactly', 'many', 'plain', 'units', 'stopped', 'failed', 'module', 'turned', 'motion', 'state', 'run',
+  'file', 'machine', 'time', 'consistent', 'contacts', 'set', 'degenerate', 'contact', 'impact', 'mode', 'step',
+  'loosen', 'shorten', 'advancing', 'same', 'instant', 'decided', 'again', 'may', 'fixed',
+  'makes', 'centre', 'weight', 'acts', 'both', 'remove', 'enable', 'other', 'keys', 'puts', 'there', 'already', 'gives',
+  'free', 'acceleration', 'about', 'more', 'far', 'too', 'stops', 'part', 'damps', 'unstable', 'shorter', 'would',
+  'through', 'displaced', 'dot', 'does', 'make', 'name', 'after'];
+function englishIn(text) {
+  const rest = text.replace(/„[^“]*“|"[^"]*"|'[^']*'/g, ' ')
+    .replace(/\[[^\]]*\]/g, ' ')
+    .replace(/[\w-]+(\.[\w-]+)+|\w+_\w+/g, ' ')
+    .replace(/\b(adaptive|euler|rk4|rope|angular-momentum-sum|kinetic-energy|linear-momentum|program|lagrangian|added-mass|true|false|deg|kg|rad|xs|phiS|r_[A-Z]|rho_\w+|com_offset|SCHLÜSSEL|WERT|TOML|M\d)\b/g, ' ');
+  const words = rest.match(/[A-Za-zÄÖÜäöüß]+/g) || [];
+  return [...new Set(words.filter((w) => kEnglishWords.includes(w.toLowerCase())))];
+}
+const kBalloonColour = [255, 42, 51];  // web/src/machine.js
+// Pixels of a colour within 40 px of the picture's edges (below the caption band): an arrow to
+// a part beyond the picture.
+async function edgeHas(page, rgb) {
+  return page.evaluate(([c]) => {
+    const canvas = document.getElementById('machine'), band = Math.ceil(window.whatnext.pictureTop), w = canvas.width, h = canvas.height;
+    const data = canvas.getContext('2d').getImageData(0, 0, w, h).data;
+    let n = 0;
+    for (let y = band; y < h; ++y) {
+      for (let x = 0; x < w; ++x) {
+        if (x >= 40 && x < w - 40 && y >= band + 40 && y < h - 40) continue;
+        const i = 4 * (y * w + x);
+        if (Math.abs(data[i] - c[0]) + Math.abs(data[i + 1] - c[1]) + Math.abs(data[i + 2] - c[2]) < 30) ++n;
+      }
+    }
+    return n > 30;
+  }, [rgb]);
+}
 
 async function scrubTo(page, t) {
   await page.evaluate((time) => {
@@ -304,7 +346,8 @@ const checks = {
       return { x: Number(row[col.x_m]), h: Number(row[col.h_m]) };
     };
     await withPage(async (page) => {
-      for (const [t, other] of [[0.3, 0.75], [0.75, 0.3], [0.65, 0.45]]) {
+      // (Later the sandbag slides beyond the picture, which frames the machine: drawing.)
+      for (const [t, other] of [[0.3, 0.6], [0.6, 0.3], [0.55, 0.45]]) {
         await scrubTo(page, t);
         const here = at(t), there = at(other);
         const p = await page.evaluate(([x, h]) => window.whatnext.canvasPixel(x, h), [here.x, here.h]);
@@ -523,7 +566,19 @@ const checks = {
       const far = await page.evaluate(() => { const s = window.whatnext.stateAt(10); return Math.hypot(s.x, s.h); });
       assert.ok(far > 100, `the sandbag is ${far} m out`);
       assert.ok(await captionHas(kBagText), 'the distance of a sandbag far out is in the caption');
+      assert.ok(await edgeHas(page, kSandbagColour), 'an arrow at the edge points to the sandbag');
     }, { scale: 1 });
+    // The picture frames the machine: a balloon on a 3 m string rises out of it at the end; an
+    // arrow at the top edge points to it and the caption says how high it is (as for the sandbag,
+    // which has fallen off the seesaw by then).
+    await withPage(async (page) => {
+      await scrubTo(page, 1.6);
+      const up = await page.evaluate(() => window.whatnext.stateAt(1.6).balloon_h);
+      assert.ok(up > 2, `the balloon is ${up} m above the box`);
+      assert.ok(await edgeHas(page, kBalloonColour), 'an arrow at the edge points to the balloon');
+      const caption = await page.evaluate(() => window.whatnext.caption);
+      assert.match(caption, /balloon \d\.\d+ m up/);
+    }, { scale: 1, hash: '#machine=radio&radio.string_length=3' });
     // A window a hundred pixels high.
     await withPage(async (page) => {
       const box = await page.locator('#machine').boundingBox();
@@ -724,6 +779,14 @@ const checks = {
         const least = name === 'phone-390' ? viewport.width - 60 : 500;
         assert.ok(box.width >= least, `${name}: the drawing is ${box.width} px wide`);
         assert.ok(await page.locator('#outcome').isVisible());
+        if (viewport.width >= 1366) {
+          // A laptop's screen and larger: the drawing, the outcome with the timeline and the first
+          // plot in view without scrolling (at 1366x768 the plots were below the fold).
+          for (const part of ['#machine', '#outcome', '#timeline', '#plot-angles']) {
+            const r = await page.locator(part).boundingBox();
+            assert.ok(r.y >= 0 && r.y + r.height <= viewport.height, `${name}: ${part} ends at ${r.y + r.height} px`);
+          }
+        }
         await page.keyboard.press(']');
         await page.keyboard.press(']');
         if (name === 'desktop') {  // the README's picture: the two laws part after the hard pull
@@ -738,7 +801,7 @@ const checks = {
           await page.evaluate(() => window.whatnext.seek(0.7));
         }
         await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
-        await page.screenshot({ path: path.join(outDir, `web-${name}.png`), fullPage: name === 'desktop' });
+        await page.screenshot({ path: path.join(outDir, `web-${name}.png`) });
       }, { viewport, scale });
     }
   },
@@ -798,7 +861,9 @@ const checks = {
       page = await open('#file=a.toml&text=QUJD_');  // five characters: no whole byte at the end
       assert.match(await page.textContent('#problem'), /The link's file \(text=\) cannot be read: /);
       page = await open('#machine=example2&geometry.rope_lenght=1');
-      const message = cliError(['--example', '2', '--set', 'geometry.rope_lenght=1']);
+      // The command line's message without its "--set: " (the page's words).
+      const message = cliError(['--example', '2', '--set', 'geometry.rope_lenght=1']).replace(/^--set: /, '');
+      assert.match(message, /^unknown key/);
       problem = await page.textContent('#problem');
       assert.ok(problem.includes(message), `${message} in: ${problem}`);
       assert.ok(problem.includes('This is Example 2 without the link\'s changes.'), problem);
@@ -933,35 +998,59 @@ const checks = {
 
   // Projector mode (F, or the button): the drawing takes most of a 1920x1080 screen beside the
   // timeline, in big type; Space plays, PageDown/PageUp step through the events (a presenter's
-  // remote), and the highlighted row's columns are whole.
+  // remote), and the highlighted row's columns are whole. At 1920x1080 and 1280x720 the machine
+  // itself (the pivot's stand to the radio, the floor to the sandbag's start) fills a good part of
+  // the screen: the picture frames the machine, not everything the run reaches (before, example
+  // 1's machine was a fifth of the width and a third of the height).
   async projector() {
     fs.mkdirSync(outDir, { recursive: true });
-    await withPage(async (page) => {
-      await page.keyboard.press('f');
-      assert.ok(await page.evaluate(() => document.body.classList.contains('projector')));
-      await page.waitForTimeout(300);
-      const box = await page.locator('#machine').boundingBox();
-      assert.ok(box.width >= 0.6 * 1920, `the drawing is ${box.width} px wide`);
-      assert.ok(box.height >= 0.6 * 1080, `the drawing is ${box.height} px high`);
-      const type = await page.evaluate(() => parseFloat(getComputedStyle(document.body).fontSize));
-      assert.ok(type >= 22, `type of ${type} px`);
-      const events = cliEvents(['--example', '1']).events;
-      await page.keyboard.press('Space');
-      await page.waitForTimeout(300);
-      await page.keyboard.press('Space');
-      assert.ok(await page.evaluate(() => window.whatnext.time) > 0, 'Space played');
-      await page.keyboard.press('PageDown');
-      await page.keyboard.press('PageDown');
-      assert.ok(Math.abs(await page.evaluate(() => window.whatnext.time) - events[1].t) < 1e-9);
-      await page.keyboard.press('PageUp');
-      assert.ok(Math.abs(await page.evaluate(() => window.whatnext.time) - events[0].t) < 1e-9);
-      assert.ok(await page.locator('#timeline tr.now').isVisible());
-      await checkTimelineWhole(page, 'projector');
-      await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
-      await page.screenshot({ path: path.join(outDir, 'web-projector.png') });
-      await page.click('#projector');
-      assert.equal(await page.evaluate(() => document.body.classList.contains('projector')), false);
-    }, { viewport: { width: 1920, height: 1080 } });
+    for (const viewport of [{ width: 1920, height: 1080 }, { width: 1280, height: 720 }]) {
+      const name = `${viewport.width}x${viewport.height}`;
+      await withPage(async (page) => {
+        await page.keyboard.press('f');
+        assert.ok(await page.evaluate(() => document.body.classList.contains('projector')));
+        await page.waitForTimeout(300);
+        const box = await page.locator('#machine').boundingBox();
+        assert.ok(box.width >= 0.55 * viewport.width, `${name}: the drawing is ${box.width} px wide`);
+        assert.ok(box.height >= 0.6 * viewport.height, `${name}: the drawing is ${box.height} px high`);
+        // The player under the drawing is on the screen too.
+        const player = await page.locator('#scrubber').boundingBox();
+        assert.ok(player.y + player.height <= viewport.height, `${name}: the scrubber ends at ${player.y + player.height} px`);
+        const machine = await page.evaluate(() => {
+          const m = window.whatnext.run.machine, floor = m.hinge.h - 2 * m.lid_half_length;
+          const radio = m.radio_switch.x + 0.18 * Math.max(0.5, 2 * m.lid_half_length);  // machine.js radioBox
+          const px = (x, h) => window.whatnext.canvasPixel(x, h);
+          return { width: px(radio, floor).x - px(-0.15, floor).x, height: px(0, floor).y - px(0, m.start.sandbag_h).y };
+        });
+        assert.ok(machine.width >= 0.3 * viewport.width, `${name}: the machine is ${machine.width} px wide`);
+        assert.ok(machine.height >= 0.5 * viewport.height, `${name}: the machine is ${machine.height} px high`);
+        console.log(`${name}: the machine ${Math.round(machine.width)} x ${Math.round(machine.height)} px`);
+        const type = await page.evaluate(() => parseFloat(getComputedStyle(document.body).fontSize));
+        assert.ok(type >= (viewport.width >= 1920 ? 22 : 18), `${name}: type of ${type} px`);
+        const events = cliEvents(['--example', '1']).events;
+        await page.keyboard.press('Space');
+        await page.waitForTimeout(300);
+        await page.keyboard.press('Space');
+        assert.ok(await page.evaluate(() => window.whatnext.time) > 0, 'Space played');
+        await page.keyboard.press('PageDown');
+        await page.keyboard.press('PageDown');
+        assert.ok(Math.abs(await page.evaluate(() => window.whatnext.time) - events[1].t) < 1e-9);
+        await page.keyboard.press('PageUp');
+        assert.ok(Math.abs(await page.evaluate(() => window.whatnext.time) - events[0].t) < 1e-9);
+        assert.ok(await page.locator('#timeline tr.now').isVisible());
+        await checkTimelineWhole(page, `projector ${name}`);
+        await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
+        await page.screenshot({ path: path.join(outDir, viewport.width >= 1920 ? 'web-projector.png' : `web-projector-${name}.png`) });
+        // Example 3's long run: the timeline's columns whole in projector mode too.
+        const before = await runs(page);
+        await page.selectOption('#preset', 'example3');
+        await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, before);
+        await page.keyboard.press('End');
+        await checkTimelineWhole(page, `projector ${name}, example 3 at its end`);
+        await page.click('#projector');
+        assert.equal(await page.evaluate(() => document.body.classList.contains('projector')), false);
+      }, { viewport });
+    }
   },
 
   // A phone, upright (360x740) and on its side (740x360), with a touch screen: nothing is cut or
@@ -1038,6 +1127,120 @@ const checks = {
       await page.selectOption('#lang', 'en');
       await page.waitForFunction(() => document.documentElement.lang === 'en' && document.body.dataset.ready);
       assert.match(await outcomeText(page), /^Outcome: lid open at /);
+    }, { locale: 'de-DE', viewport: { width: 1366, height: 768 } });
+  },
+
+  // German: the library's rarer messages too (issue 21). First every message the command line
+  // gives for a list of bad inputs (values out of range, rules between keys, words where numbers
+  // belong, unknown keys and sections, files that are not TOML or not a whatnext.inp) and every
+  // reason a run can fail for (as src/core writes them), put into the page's words: no English
+  // left. Then the page itself provokes several and shows them in German: a value beyond the
+  // model's range, two rules between keys, a word in a number's field, a key in a link the
+  // library does not know, a link whose file is cut, a comparison that cannot run, a file that is
+  // not TOML and a whatnext.inp with a decimal comma.
+  async messages() {
+    const bad = [
+      ['geometry.rope_length=5000'], ['geometry.rope_length=-1'], ['geometry.rope_length=0.3'], ['geometry.rope_length=3'],
+      ['start.seesaw_angle=95'], ['start.sandbag_x=0.2'], ['start.sandbag_x=-2000'], ['start.sandbag_height=-1'],
+      ['start.lid_angle=95'], ['air.helium_density=2'], ['air.density=1e6'], ['balloon.model=lagrangian', 'air.helium_density=0.0001'],
+      ['run.output_step=1e-9'], ['run.integrator=euler', 'run.step=1e-9'], ['run.tolerance=1'], ['run.t_max=1e9'],
+      ['run.step=abc'], ['run.integrator=foo'], ['run.impact_law=y'], ['balloon.model=x'], ['radio.enabled=maybe'],
+      ['radio.switch_offset=abc'], ['radio.switch_offset=[5000, 0]'], ['geometry.hinge_offset=[0,0]'],
+      ['geometry.rope_on_lid=0.5'], ['geometry.rope_lenght=1'],
+      ['seesaw.com_offset=0.3'], ['seesaw.inertia=1'], ['seesaw.mass=-1'], ['seesaw.mass=1'],
+      ['seesaw.mass=1', 'seesaw.left_arm=900'], ['seesaw.mass=1', 'seesaw.left_arm=1', 'seesaw.com_offset=0.9'],
+      ['seesaw.mass=1', 'seesaw.inertia=0.01', 'seesaw.com_offset=0.5'], ['start.sandbag_height=0', 'start.seesaw_angle=0', 'seesaw.left_arm=0.1'],
+      ['damping.pivot=1'],
+      ['damping.lid_hinge=100', 'run.integrator=euler'], ['radio.string_length=0.1'], ['radio.enabled=false', 'radio.string_length=2'],
+      ['balloon.rubber_mass=1'], ['balloon.rubber_mass=-1'], ['balloon.drag=false', 'balloon.drag_coefficient=0.5'],
+      ['balloon.drag_coefficient=100'], ['run.vertical_margin=inf'], ['run.gravity=-1'], ['masses.sandbag=1e-9'],
+    ];
+    const files = {
+      'a.toml': '[foo]\n', 'b.toml': '[geometry]\nrope_length = \n', 'c.toml': '"masses.sandbag" = 0.5\n',
+      'd.toml': '[geometry]\nrope_length = "x"\n', 'e.toml': '[run]\nintegrator = 3\n', 'f.toml': '[balloon]\nmodel = 1\n',
+      'g.toml': '[geometry]\nrope_length = 1\nrope_length = 2\n', 'h.toml': '[geometry]\nrope_length = [1\n',
+      'i.toml': 'x = 1\n', 'j.toml': '[geometry]\nrope_length = 01\n', 'k.toml': '[geometry]\nrope_length = 1x\n',
+      'l.toml': '[radio]\nenabled = 2\n', 'm.toml': '[geometry]\nhinge_offset = [0.5, 0.5]\nhinge_distance = 0.8\n', 'w.inp': '1\n-0,3\n', 'x.inp': '1\n-0.3\n', 'y.inp': Array.from({ length: 16 }, (_, i) => `${i + 1}`).join('\n'),
+    };
+    const messages = new Set();
+    for (const list of bad) messages.add(cliError(['--example', '1', ...sets(list)]));
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-messages-'));
+    try {
+      for (const [name, text] of Object.entries(files)) {
+        fs.writeFileSync(path.join(dir, name), text);
+        const r = spawnSync(cliPath, ['run', name, '-q'], { cwd: dir, encoding: 'utf8' });
+        assert.equal(r.status, 2, `${name} should be refused`);
+        messages.add(r.stderr.trim().replace(/^whatnext: error: /, ''));
+      }
+    } finally {
+      fs.rmSync(dir, { recursive: true, force: true });
+    }
+    // The reasons a run fails for, as the sources write them, in the sentence each is written into.
+    const source = (file) => fs.readFileSync(path.join(sourceDir, file), 'utf8');
+    const literals = (text) => [...text.matchAll(/"((?:[^"\\]|\\.)*)"/g)].map((m) => m[1]).join('');
+    const printf = (format, ...args) => format.replace(/%[-.\d]*[sgd]/g, () => args.shift());
+    const simulate = source('src/core/simulate.cpp'), contacts = source('src/core/contact_decision.cpp');
+    const failFormat = literals(simulate.match(/snprintf\(msg, sizeof msg, ("[^;]*?"),/)[1]);
+    for (const m of simulate.matchAll(/\bfail\(((?:\s*"(?:[^"\\]|\\.)*")+)/g)) messages.add(printf(failFormat, literals(m[1]), '0.512345678', '4'));
+    const consistentFormat = literals(contacts.match(/snprintf\(msg, sizeof msg, ("[^;]*?"),/)[1]);
+    for (const m of contacts.matchAll(/no_consistent\("([^"]+)"/g)) messages.add(printf(consistentFormat, m[1], '0.512345678', '4'));
+    for (const m of source('src/core/jumps.cpp').matchAll(/SimulationError\("([^"]+)"\)/g)) messages.add(m[1]);
+    assert.ok(messages.size >= 60, `${messages.size} messages`);
+
+    await withPage(async (page, { open }) => {
+      assert.equal(await page.getAttribute('html', 'lang'), 'de');
+      const english = [];
+      for (const m of messages) {
+        const shown = await page.evaluate((text) => window.whatnext.words(text), m);
+        const left = englishIn(shown);
+        if (left.length || shown === m) english.push(`${m}\n    -> ${shown}\n    English: ${left.join(', ')}`);
+      }
+      assert.deepEqual(english, [], 'messages with English words on the German page');
+      console.log(`${messages.size} messages of the library in German words`);
+
+      // In the page: what it shows after each input, in the problem line, the fields and the
+      // comparison's line.
+      const shownNow = () => page.evaluate(() => [document.getElementById('problem'), ...document.querySelectorAll('.field .error'),
+                                                   document.getElementById('compare-outcome')]
+        .filter((e) => !e.hidden && e.textContent.trim()).map((e) => e.textContent));
+      const check = async (what, expect) => {
+        const texts = await shownNow();
+        assert.ok(texts.length, `${what}: no message shown`);
+        assert.ok(texts.some((t) => expect.test(t)), `${what}: ${expect} not in ${JSON.stringify(texts)}`);
+        for (const t of texts) assert.deepEqual(englishIn(t), [], `${what}: English in "${t}"`);
+      };
+      await setField(page, 'geometry.rope_length', '5000');
+      await check('a rope beyond the model\'s range', /geometry\.rope_length muss in \[0,001; 1000\] m liegen, dem Bereich, für den das Modell gemacht ist/);
+      await setField(page, 'geometry.rope_length', '0,3');
+      await check('a rope too short for the start', /ist kürzer als der Abstand vom Ende der Wippe zur Deckelkante am Anfang \(0,3 m < 0,5724 m\)/);
+      await setField(page, 'geometry.rope_length', '');
+      await setField(page, 'air.helium_density', '2');
+      await check('helium heavier than air', /air\.helium_density muss > 0 und kleiner als air\.density \(1,29 kg\/m\^3\) sein, damit der Ballon steigt/);
+      await setField(page, 'air.helium_density', '');
+      await setField(page, 'run.t_max', 'abc');
+      await check('a word for a number', /run\.t_max muss eine Zahl in s sein \(gegeben: „abc“\)/);
+      await setField(page, 'run.t_max', '');
+      await page.selectOption('#compare', 'euler');
+      await page.fill('#compare-step', 'x');
+      await idle(page);
+      await check('a comparison that cannot run', /^Kein Vergleich: run\.step muss eine Zahl in s sein/);
+      await page.selectOption('#compare', 'none');
+      await idle(page);
+
+      let other = await open('#machine=example2&geometry.rope_lenght=1');
+      assert.match(await other.textContent('#problem'), /unbekannter Schlüssel „geometry\.rope_lenght“ \(gemeint: „geometry\.rope_length“\?\)/);
+      assert.deepEqual(englishIn(await other.textContent('#problem')), []);
+      other = await open('#file=a.toml&text=QUJD_');
+      assert.match(await other.textContent('#problem'), /Die Datei im Link \(text=\) ist nicht lesbar: seine Länge ist nicht die eines Base64-Texts\./);
+      assert.deepEqual(englishIn(await other.textContent('#problem')), []);
+
+      for (const [name, expect] of [['h.toml', /h\.toml:2:18: kein gültiges TOML beim Lesen einer Liste: das Dateiende kam zu früh/],
+                                    ['w.inp', /w\.inp Zeile 2: erwartet: eine Zahl für xs \(start\.sandbag_x\), gefunden: „-0,3“/]]) {
+        await page.setInputFiles('#file', { name, mimeType: 'text/plain', buffer: Buffer.from(files[name]) });
+        await page.waitForFunction(() => !document.getElementById('problem').hidden);
+        await idle(page);
+        await check(`the file ${name}`, expect);
+      }
     }, { locale: 'de-DE', viewport: { width: 1366, height: 768 } });
   },
 
