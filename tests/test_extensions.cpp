@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -340,4 +341,150 @@ TEST(NoSomersaults, NoSeesawWithMassEverTurnsPastTheVertical) {
     stopped += r.outcome().type == wn::EventType::seesaw_vertical;
   }
   EXPECT_GT(stopped, 0);  // the family does reach the vertical
+}
+
+// --- the built machine (issue 19: docs/extensions.md "The machine students build") ------------
+
+namespace {
+// A seesaw standing on the floor with its left end: the box's bottom 0.4 m below the pivot, the
+// left arm 0.8 m long, so sin(phiS) = 0.4 / 0.8 and phiS = 30 deg; a uniform board (its centre at
+// the pivot), so only the sandbag's weight presses the end onto the floor.
+std::string standing_seesaw(const std::string& more) {
+  return R"(
+[geometry]
+seesaw_right_arm = 0.8
+lid_half_length = 0.12
+rope_length = 1.0
+hinge_offset = [0.75, 0.16]
+[masses]
+sandbag = 0.7
+lid = 0.1
+[seesaw]
+left_arm = 0.8
+mass = 0.3
+[floor]
+enabled = true
+[start]
+seesaw_angle = 30.0
+lid_angle = 0.0
+[run]
+t_max = 1.5
+)" + more;
+}
+}  // namespace
+
+TEST(BuiltMachine, TheSandbagSlidesFromRestToTheStopOnTheArmStandingOnTheFloor) {
+  // Placed on the arm at r0 = 0.3 m, at rest: r'' = g sin(30 deg) on the fixed arm, so it reaches
+  // the stop at L = 0.8 m after sqrt(2 (L - r0) / (g sin 30)), at v = g sin(30) t, and the stop
+  // takes its momentum m v; its kinetic energy is lost.
+  const double g = 9.81, s30 = 0.5, r0 = 0.3, L = 0.8, m = 0.7;
+  const double c30 = std::sqrt(3.0) / 2.0;
+  auto num = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.17g", v);
+    return std::string(b);
+  };
+  const wn::Scenario sc = from_toml(standing_seesaw(""), {"seesaw.end_stop=true", "start.sandbag_x=" + num(-r0 * c30),
+                                                          "start.sandbag_height=" + num(-r0 * s30)});
+  const wn::Result r = wn::simulate(sc);
+  EXPECT_EQ(find(r.events, wn::EventType::sandbag_lands), nullptr);  // placed on the arm
+  const wn::Event* stop = find(r.events, wn::EventType::sandbag_at_stop);
+  ASSERT_NE(stop, nullptr) << r.events.size();
+  const double t_by_hand = std::sqrt(2.0 * (L - r0) / (g * s30)), v = g * s30 * t_by_hand;
+  EXPECT_NEAR(stop->t, t_by_hand, 1e-9);
+  ASSERT_TRUE(stop->impact);
+  EXPECT_NEAR(stop->impulse[3], m * v, 1e-9);
+  EXPECT_NEAR(stop->energy_before - stop->energy_after, 0.5 * m * v * v, 1e-9);
+  EXPECT_NEAR(stop->after.r, L, 1e-12);
+  // The floor holds the seesaw all along: it never lifts, and the sandbag stays at the stop.
+  EXPECT_EQ(find(r.events, wn::EventType::seesaw_lifts), nullptr);
+  EXPECT_EQ(find(r.events, wn::EventType::sandbag_leaves_stop), nullptr);
+  EXPECT_EQ(r.outcome().type, wn::EventType::timeout);
+  EXPECT_NEAR(r.outcome().after.r, L, 1e-12);
+}
+
+TEST(BuiltMachine, ASandbagThatMissesTheArmLandsOnTheFloorAndBouncesByItsRestitution) {
+  // Dropped from rest at h0 = 0 beyond the arm's end: free fall to the floor 0.4 m below, then
+  // it leaves with e times its speed and lands again after 2 e v / g.
+  const double g = 9.81, e = 0.5, m = 0.7, drop = 0.4;
+  const wn::Scenario sc = from_toml(standing_seesaw(""), {"floor.restitution=0.5", "start.sandbag_x=-1.0",
+                                                          "start.sandbag_height=0.0"});
+  const wn::Result r = wn::simulate(sc);
+  const wn::Event* first = find(r.events, wn::EventType::sandbag_on_floor);
+  ASSERT_NE(first, nullptr);
+  const double t1 = std::sqrt(2.0 * drop / g), v1 = g * t1;
+  EXPECT_NEAR(first->t, t1, 1e-9);
+  EXPECT_NEAR(first->impulse[5], (1.0 + e) * m * v1, 1e-9);
+  EXPECT_NEAR(first->energy_before - first->energy_after, 0.5 * m * v1 * v1 * (1.0 - e * e), 1e-9);
+  const wn::Event* bounce = find(r.events, wn::EventType::sandbag_bounces);
+  ASSERT_NE(bounce, nullptr);
+  EXPECT_EQ(bounce->t, first->t);
+  const wn::Event* second = find(r.events, wn::EventType::sandbag_on_floor, first->t);
+  ASSERT_NE(second, nullptr);
+  EXPECT_NEAR(second->t - first->t, 2.0 * e * v1 / g, 1e-9);
+  // The bounces die out: a geometric series of flights, 2 e v1 / (g (1 - e)) in all; after it
+  // the sandbag lies on the floor (it never goes below it).
+  const wn::Event* last = nullptr;
+  for (const wn::Event& ev : r.events)
+    if (ev.type == wn::EventType::sandbag_on_floor) last = &ev;
+  EXPECT_NEAR(last->t, t1 + 2.0 * e * v1 / (g * (1.0 - e)), 1e-5);
+  EXPECT_NEAR(r.outcome().after.h, sc.machine.floor_height(), 1e-12);
+}
+
+TEST(BuiltMachine, TheSwitchNeedsTheBalloonsNetLift) {
+  // The string, once straight, holds the balloon still and pulls with its net lift: the displaced
+  // air's weight minus the helium's, V (rho_air - rho_He) g with r_B = r_L = 0.2 m.
+  const double lift = 4.0 / 3.0 * kPi * 0.008 * (1.29 - 0.18) * 9.81;
+  wn::Config cfg = wn::parse_toml(std::string(wn::example_toml(1)), "example1.toml");
+  wn::apply_set(cfg, "radio.enabled=true");
+  const wn::Result free = wn::simulate(wn::build_scenario(cfg));
+  ASSERT_EQ(free.outcome().type, wn::EventType::radio_on);
+  wn::Config weak = cfg, stiff = cfg;
+  wn::apply_set(weak, "radio.switch_force=" + std::to_string(0.99 * lift));
+  wn::apply_set(stiff, "radio.switch_force=" + std::to_string(1.01 * lift));
+  const wn::Result on = wn::simulate(wn::build_scenario(weak)), off = wn::simulate(wn::build_scenario(stiff));
+  EXPECT_EQ(on.outcome().type, wn::EventType::radio_on);
+  EXPECT_EQ(off.outcome().type, wn::EventType::switch_stays_off);
+  EXPECT_EQ(on.outcome().t, free.outcome().t);
+  EXPECT_EQ(off.outcome().t, free.outcome().t);
+}
+
+TEST(BuiltMachine, KonstanzSwitchesTheRadioOnWithNothingBelowTheFloor) {
+  const wn::Scenario sc = wn::build_scenario(wn::example_config(std::string_view("konstanz")));
+  EXPECT_TRUE(sc.machine.floor && sc.machine.end_stop && sc.machine.heavy_seesaw());
+  EXPECT_EQ(sc.machine.rope_knot(), sc.machine.lid_half_length);  // the lid's middle (Fig. 3)
+  wn::Recorder rec;
+  const wn::Result r = wn::simulate(sc, &rec);
+  EXPECT_EQ(r.outcome().type, wn::EventType::radio_on);
+  EXPECT_NE(find(r.events, wn::EventType::seesaw_on_floor), nullptr);
+  EXPECT_NE(find(r.events, wn::EventType::sandbag_at_stop), nullptr);
+  const double floor = sc.machine.floor_height();
+  for (const wn::Snapshot& s : rec.samples) {
+    ASSERT_GE(s.h, floor - 1e-9) << s.t;
+    ASSERT_GE(-sc.machine.seesaw_left_arm * std::sin(s.phi_s), floor - 1e-9) << s.t;
+    ASSERT_GE(sc.machine.seesaw_right_arm * std::sin(s.phi_s), floor - 1e-9) << s.t;
+    if (s.on_seesaw) ASSERT_LE(s.r, sc.machine.seesaw_left_arm + 1e-9) << s.t;
+  }
+}
+
+TEST(BuiltMachine, TheFloorChangesNothingItDoesNotTouch) {
+  // Example 1 with a 0.5 m left arm: the sandbag slides off its end at 0.536 s, after the rope's
+  // jerk. With the floor it then lands there, and nothing else changes: the seesaw's ends never
+  // get near a floor 0.76 m below the pivot, and the rest of the story is the lid's and balloon's.
+  wn::Config plain = wn::example_config(1), built = wn::example_config(1);
+  wn::apply_set(plain, "seesaw.left_arm=0.5");
+  wn::apply_set(built, "seesaw.left_arm=0.5");
+  wn::apply_set(built, "floor.enabled=true");
+  const wn::Result a = wn::simulate(wn::build_scenario(plain)), b = wn::simulate(wn::build_scenario(built));
+  std::vector<wn::Event> rest;
+  for (const wn::Event& e : b.events)
+    if (e.type != wn::EventType::sandbag_on_floor) rest.push_back(e);
+  ASSERT_EQ(b.events.size(), rest.size() + 1);
+  ASSERT_EQ(a.events.size(), rest.size());
+  for (std::size_t i = 0; i < rest.size(); ++i) {
+    EXPECT_EQ(a.events[i].type, rest[i].type);
+    // The landing starts a new smooth piece, so later steps differ: equal within the tolerance.
+    EXPECT_NEAR(a.events[i].t, rest[i].t, 1e-9);
+    EXPECT_NEAR(a.events[i].after.phi_l, rest[i].after.phi_l, 1e-9);
+  }
 }
