@@ -50,6 +50,8 @@ Snapshot SampleBatch::snapshot(std::size_t i) const {
   return model_->snapshot(times_[i], d_, states_[i], full_, /*memo=*/false);
 }
 
+Positions SampleBatch::positions(std::size_t i) const { return model_->positions(times_[i], d_, states_[i]); }
+
 namespace {
 
 // One run, in the stages every smooth piece goes through: settle what the instant decides at once,

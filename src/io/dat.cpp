@@ -14,7 +14,8 @@ namespace {
 // A .dat row: seven numbers and the two flags (cr, straight), which are 0 or 1.
 constexpr std::size_t kDatMaxChars = 9 * 8 + 1;
 
-char* format_dat(const Snapshot& s, bool slack, char* out) {
+template <class Where>  // Snapshot or Positions
+char* format_dat(const Where& s, bool slack, char* out) {
   const double values[7] = {s.t, s.x, s.h, s.phi_s, s.phi_l, s.balloon_limit, s.balloon_h};
   // Refused as in every writer, but only the numbers written are looked at: the samples are
   // positions (sample_detail), and this runs 80,000 times for example 3 at the paper's step.
@@ -53,7 +54,7 @@ void DatWriter::on_sample(const Snapshot& s) {
 void DatWriter::on_samples(const SampleBatch& batch) {
   const bool slack = slack_since_last_row_;
   rows_->write(batch.size(),
-               [&](std::size_t i, char* out) { return format_dat(batch.snapshot(i), i == 0 && slack, out); });
+               [&](std::size_t i, char* out) { return format_dat(batch.positions(i), i == 0 && slack, out); });
   slack_since_last_row_ = false;
 }
 

@@ -16,7 +16,23 @@
 
 #include "whatnext/output.hpp"
 
+#if defined(__linux__) && !defined(__EMSCRIPTEN__)
+#include <sched.h>
+#endif
+
 namespace whatnext {
+
+// The CPUs this process may run on: `taskset -c 0` (or a container's cpuset) leaves one, where
+// hardware_concurrency() still counts the machine's. A helper thread on the same single CPU only
+// takes turns with the run's thread and spins between batches (docs/performance.md).
+inline unsigned usable_cpus() {
+#if defined(__linux__) && !defined(__EMSCRIPTEN__)
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (::sched_getaffinity(0, sizeof set, &set) == 0) return static_cast<unsigned>(CPU_COUNT(&set));
+#endif
+  return std::thread::hardware_concurrency();
+}
 
 // A batch's rows, made in chunks of kChunkRows on the calling thread and, with Writing::parallel,
 // on a helper thread too; written in order by the calling thread as their chunks are done.
@@ -34,7 +50,7 @@ class RowText {
   RowText(std::ostream& out, Writing writing, std::size_t max_chars)
       : out_(out),
         buf_(out.rdbuf()),
-        parallel_(writing == Writing::parallel && std::thread::hardware_concurrency() > 1),
+        parallel_(writing == Writing::parallel && usable_cpus() > 1),
         max_chars_(max_chars) {}
   ~RowText() {
     if (!helper_.joinable()) return;
