@@ -346,6 +346,25 @@ TEST_F(SweepCli, ASecondSweepOfOneFileIsRefusedWhileTheFirstRuns) {
   EXPECT_EQ(rows.rfind("index,geometry.rope_length,masses.lid,outcome,", 0), 0u);
 }
 
+// NAME.part holds a sweep's rows while it runs; a file of that name that no sweep wrote is the
+// user's, and neither a new sweep nor a resumed one writes over it.
+TEST_F(SweepCli, AUsersOwnPartFileIsNeverCut) {
+  const fs::path csv = dir_ / "u.csv", part = dir_ / "u.csv.part";
+  std::ofstream(part, std::ios::binary) << "my notes\n";
+  for (const char* resume : {"", " --resume"}) {
+    const CliResult r = whatnext("sweep --example 2 --vary masses.lid=0.3:0.5:3 --out " + csv.string() + resume);
+    EXPECT_EQ(r.code, 2) << resume << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(slurp(part), "my notes\n") << resume;
+    EXPECT_FALSE(fs::exists(csv)) << resume;
+  }
+  // The zeros a power cut leaves are a sweep's: replaced.
+  std::ofstream(part, std::ios::binary | std::ios::trunc) << std::string(64, '\0');
+  ASSERT_EQ(whatnext("sweep --example 2 --vary masses.lid=0.3:0.5:3 --out " + csv.string()).code, 0);
+  EXPECT_FALSE(fs::exists(part));
+  EXPECT_EQ(slurp(csv).rfind("index,masses.lid,outcome,", 0), 0u);
+}
+
 // Issue 23: a Monte Carlo over building tolerances.
 TEST_F(SweepCli, SpreadDrawsAroundTheMachineTheSameForAnyThreadCount) {
   const std::string base =

@@ -122,6 +122,19 @@ std::string SweepFile::previous() {
 
 void SweepFile::start(std::string_view kept) {
   const bool in_place = from_part_ && !kept.empty();  // else the file is made anew
+  if (from_part_ && !in_place) {
+    // A file of that name that no sweep wrote is the user's: never cut. A sweep's begins with its
+    // header, or with the zeros a power cut can leave.
+    char head[6] = {};
+    ssize_t n = 0;
+    do n = ::pread(fd_, head, sizeof head, 0);
+    while (n < 0 && errno == EINTR);
+    if (n > 0 && head[0] != '\0' && std::string_view(head, static_cast<std::size_t>(n)) != std::string_view("index,", static_cast<std::size_t>(n))) {
+      throw InputError(fmt::format("{} {}: {}.part exists and is not a sweep's CSV; whatnext does not write over "
+                                   "it (move it away, or give another name)",
+                                   option_, printable(given_, 96), printable(given_, 96)));
+    }
+  }
   if (::ftruncate(fd_, static_cast<off_t>(in_place ? kept.size() : 0)) != 0)
     fail("cannot cut its .part file", false);
   struct stat st {};

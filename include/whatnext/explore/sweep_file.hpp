@@ -34,7 +34,8 @@ class SweepFile {
 
   // Starts the sweep's file with `kept`: when from_part(), the first kept.size() bytes of the .part
   // file stay and the rest is cut; otherwise the file is made anew from kept (empty: a sweep from
-  // the start), keeping the target's permissions. Synced before it returns.
+  // the start), keeping the target's permissions. Synced before it returns. InputError, and the
+  // file untouched, where an existing .part file is not a sweep's (the user's own file).
   void start(std::string_view kept);
   // Where the rows are written (buffered).
   std::ostream& stream();
