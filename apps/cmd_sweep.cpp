@@ -1,6 +1,5 @@
 // `whatnext sweep`: many machines over a grid or a Latin hypercube, one CSV row each.
 #include <fcntl.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -10,9 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <thread>
 
 #include <fmt/format.h>
@@ -22,6 +19,7 @@
 #include "whatnext/viz/heatmap.hpp"
 #endif
 #include "whatnext/explore/sweep.hpp"
+#include "whatnext/explore/sweep_file.hpp"
 #include "whatnext/output.hpp"
 #if WHATNEXT_FULL
 #include "whatnext/viz/histogram.hpp"
@@ -89,72 +87,17 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
 };
 
-// The CSV of a resumed sweep (docs/explore.md, "Resuming a sweep"). Its rows go to TARGET.part:
-// continued in place when a killed sweep left one (cut back to its last complete row), otherwise
-// a new one that starts with the rows kept from TARGET. It is renamed over TARGET when the sweep
-// ends or is stopped, synced first; until then TARGET stays as it was. It is never removed, not
-// even on an interrupt: it holds the sweep's progress for the next --resume.
-class ResumedCsv {
- public:
-  ResumedCsv(const std::string& target, const std::string& part, bool from_part, std::string_view kept,
-             std::string_view given)
-      : target_(target), part_(part), given_(given) {
-    fd_ = from_part ? ::open(part_.c_str(), O_WRONLY | O_CLOEXEC)
-                    : ::open(part_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd_ < 0) fail("cannot write its .part file");
-    struct stat st {};
-    if (!from_part && ::stat(target_.c_str(), &st) == 0) (void)::fchmod(fd_, st.st_mode & 07777);
-    if (::ftruncate(fd_, static_cast<off_t>(from_part ? kept.size() : 0)) != 0)
-      fail("cannot cut its .part file");
-    if (!from_part) {
-      for (std::size_t done = 0; done < kept.size();) {
-        const ssize_t n = ::write(fd_, kept.data() + done, kept.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) fail("cannot write its .part file");
-        done += static_cast<std::size_t>(n);
-      }
-    }
-    if (::fdatasync(fd_) != 0) fail("cannot sync its .part file");
-    out_.open(part_, std::ios::binary | std::ios::app);
-    if (!out_) fail("cannot write its .part file");
+// A grid or Latin hypercube sweep whose --out is a regular file (new or existing) writes it
+// through a SweepFile, resumable; standard output, /dev/null and pipes are written through in place
+// (an AtomicFile, which also gives the message for a path that cannot be written).
+bool regular_file_output(const std::string& out) {
+  if (out == "-") return false;
+  try {
+    (void)regular_output_target(out, "--out");
+    return true;
+  } catch (const InputError&) {
+    return false;
   }
-  ~ResumedCsv() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  ResumedCsv(const ResumedCsv&) = delete;
-  ResumedCsv& operator=(const ResumedCsv&) = delete;
-  std::ostream& stream() { return out_; }
-  // The rows written so far on disk: a kill or a power cut after this keeps them.
-  void sync() {
-    out_.flush();
-    if (!out_ || ::fdatasync(fd_) != 0) fail("writing failed", true);
-  }
-  void commit() {
-    sync();
-    out_.close();
-    if (!out_ || ::close(fd_) != 0) fail("writing failed", true);
-    fd_ = -1;
-    if (::rename(part_.c_str(), target_.c_str()) != 0) fail("writing failed", true);
-  }
-
- private:
-  std::string target_, part_, given_;
-  int fd_ = -1;
-  std::ofstream out_;
-  [[noreturn]] void fail(const std::string& why, bool output = false) const {
-    const std::string line =
-        fmt::format("--out {}: {}: {}", printable(given_, 96), why, std::strerror(errno ? errno : EIO));
-    if (output) throw OutputError(line);
-    throw InputError(line);
-  }
-};
-
-std::string read_file(const std::string& path, const std::string& given) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in && !in.eof()) throw InputError(fmt::format("--resume {}: cannot read it", printable(given, 96)));
-  return text.str();
 }
 
 }  // namespace
@@ -296,32 +239,26 @@ void register_sweep(CLI::App& app, int& exit_code) {
           "--resume: draw the heat map from the finished CSV with a sweep of its own; --resume does "
           "not take --heatmap");
     }
-    // A resumed sweep: what the interrupted one left is read (and checked to be this sweep's)
-    // before anything is written.
-    std::unique_ptr<ResumedCsv> resumed;
+    // The CSV of a grid or Latin hypercube in a regular file is written resumably (docs/explore.md,
+    // "Resuming a sweep"); a resumed sweep reads what the interrupted one left (and checks that it
+    // is this sweep's) before anything is written.
+    std::unique_ptr<explore::SweepFile> file;
     explore::Resumable kept;
-    if (opts->resume) {
+    std::string text;
+    std::string_view kept_text;
+    if (opts->resume || (!monte_carlo && regular_file_output(opts->out))) {
       const std::string target = regular_output_target(opts->out, "--out");
       check_unclaimed("--out", opts->out);
-      const std::string part = target + ".part";
-      struct stat st {};
-      const bool from_part = ::lstat(part.c_str(), &st) == 0;
-      if (from_part && !S_ISREG(st.st_mode)) {
-        throw InputError(fmt::format("--resume {}: {} is not a regular file", printable(opts->out, 96),
-                                     printable(part, 96)));
+      file = std::make_unique<explore::SweepFile>(target, opts->out, "--out");
+      if (opts->resume) {
+        text = file->previous();
+        kept = explore::read_resumable(text, machines, in.config, opts->accuracy,
+                                       fmt::format("--resume {}", printable(file->source(), 96)));
       }
-      const bool from_target = !from_part && ::stat(target.c_str(), &st) == 0;
-      const std::string given_source = from_part ? opts->out + ".part" : opts->out;
-      const std::string text = from_part     ? read_file(part, given_source)
-                               : from_target ? read_file(target, given_source)
-                                             : "";
-      kept = explore::read_resumable(text, machines, in.config, opts->accuracy,
-                                     fmt::format("--resume {}", printable(given_source, 96)));
-      resumed = std::make_unique<ResumedCsv>(target, part, from_part,
-                                             std::string_view(text).substr(0, kept.prefix_bytes), opts->out);
+      kept_text = std::string_view(text).substr(0, kept.prefix_bytes);
     }
     Outputs outputs;
-    AtomicFile* csv = resumed ? nullptr : outputs.add(*cmd, "--out", opts->out);
+    AtomicFile* csv = file ? nullptr : outputs.add(*cmd, "--out", opts->out);
     AtomicFile* heat = outputs.add(*cmd, "--heatmap", opts->heatmap);
     AtomicFile* hist = outputs.add(*cmd, "--histogram", opts->histogram);
     outputs.check_distinct();
@@ -331,7 +268,9 @@ void register_sweep(CLI::App& app, int& exit_code) {
     if (heat && heat->temp_path().empty()) {
       throw InputError(fmt::format("--heatmap {}: must be a regular file", printable(opts->heatmap, 96)));
     }
-    std::FILE* text = outputs.any_to_stdout() ? stderr : stdout;
+    std::FILE* text_out = outputs.any_to_stdout() ? stderr : stdout;
+    // Every output checked: only now is the .part file cut or made (a refused sweep touches nothing).
+    if (file) file->start(kept_text);
 
     explore::RunOptions ro;
     ro.threads = opts->threads > 0 ? opts->threads
@@ -356,8 +295,8 @@ void register_sweep(CLI::App& app, int& exit_code) {
       sync_fd = ::open(csv->temp_path().c_str(), O_RDONLY | O_CLOEXEC);
     ro.checkpoint = [&] {
       try {
-        if (resumed) {
-          resumed->sync();
+        if (file) {
+          file->sync();
         } else if (csv) {
           csv->flush();
           if (sync_fd >= 0) (void)::fdatasync(sync_fd);
@@ -367,12 +306,12 @@ void register_sweep(CLI::App& app, int& exit_code) {
         stop.store(true);
       }
     };
-    if (resumed) {
+    if (opts->resume) {
       ro.header_written = kept.header;
       ro.rows_written = kept.prefix_rows;
       ro.known = std::move(kept.later);
     }
-    ro.csv = resumed ? &resumed->stream() : csv ? &csv->stream() : nullptr;  // written while the machines run
+    ro.csv = file ? &file->stream() : csv ? &csv->stream() : nullptr;  // written while the machines run
     ro.keep_rows = heat != nullptr || monte_carlo;  // the heat map and the summary read the outcomes
     const explore::SweepResult result = explore::run(in.config, machines, ro);
     bar.finish();
@@ -434,8 +373,9 @@ void register_sweep(CLI::App& app, int& exit_code) {
 #endif
     if (sync_fd >= 0) ::close(sync_fd);
     if (write_failure) std::rethrow_exception(write_failure);
-    if (resumed) resumed->commit();
+    if (file) file->sync();  // every file written before any is renamed: all appear, or none
     outputs.commit_all();
+    if (file) file->commit();
     if (result.interrupted) {
       fmt::print(stderr, "whatnext: sweep interrupted: {} of {} machines written to {}\n", result.completed,
                  machines.size(), printable(opts->out, 96));
@@ -443,12 +383,12 @@ void register_sweep(CLI::App& app, int& exit_code) {
       return;
     }
     if (monte_carlo) {
-      fmt::print(text, "{}", summary);
+      fmt::print(text_out, "{}", summary);
       if (!csv && !hist) {
         exit_code = 0;
         return;
       }
-      fmt::print(text, "written to {}\n",
+      fmt::print(text_out, "written to {}\n",
                  csv && hist
                      ? fmt::format("{} and {}", printable(opts->out, 96), printable(opts->histogram, 96))
                  : csv ? printable(opts->out, 96)
@@ -456,11 +396,11 @@ void register_sweep(CLI::App& app, int& exit_code) {
       exit_code = 0;
       return;
     }
-    fmt::print(text, "sweep: {} machines ({} with invalid inputs, {} failed runs) written to {}{}{}\n",
+    fmt::print(text_out, "sweep: {} machines ({} with invalid inputs, {} failed runs) written to {}{}{}\n",
                machines.size(), result.invalid + kept.invalid, result.failed + kept.failed,
                printable(opts->out, 96),
                heat ? fmt::format(", heat map {}", printable(opts->heatmap, 96)) : "",
-               resumed ? fmt::format(" ({} rows kept from the interrupted sweep)", kept.kept) : "");
+               opts->resume && file ? fmt::format(" ({} rows kept from the interrupted sweep)", kept.kept) : "");
     exit_code = 0;
   });
 }

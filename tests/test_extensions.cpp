@@ -463,7 +463,9 @@ TEST(BuiltMachine, KonstanzSwitchesTheRadioOnWithNothingBelowTheFloor) {
     ASSERT_GE(s.h, floor - 1e-9) << s.t;
     ASSERT_GE(-sc.machine.seesaw_left_arm * std::sin(s.phi_s), floor - 1e-9) << s.t;
     ASSERT_GE(sc.machine.seesaw_right_arm * std::sin(s.phi_s), floor - 1e-9) << s.t;
-    if (s.on_seesaw) ASSERT_LE(s.r, sc.machine.seesaw_left_arm + 1e-9) << s.t;
+    if (s.on_seesaw) {
+      ASSERT_LE(s.r, sc.machine.seesaw_left_arm + 1e-9) << s.t;
+    }
   }
 }
 

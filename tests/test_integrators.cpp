@@ -1,11 +1,15 @@
-// The integrators against each other: the adaptive default against a much tighter run, and the
-// paper's Euler method converging at first order.
+// The integrators against each other: the adaptive default against a much tighter run, the
+// paper's Euler method converging at first order, and the sandbag's free fall in closed form
+// against Dormand-Prince on the whole state.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "core/ballistic.hpp"
+#include "core/integrate.hpp"
+#include "core/model.hpp"
 #include "whatnext/config.hpp"
 #include "whatnext/simulate.hpp"
 
@@ -82,6 +86,127 @@ TEST(FixedStep, Rk4AndEulerAgreeWithTheAdaptiveSolutionWithinAFewSteps) {
     const double t = lid_open_time(run(1, {std::string("run.integrator=") + integ, "run.step=1e-4"}));
     EXPECT_NEAR(t, ref, 3e-3) << integ;
   }
+}
+
+}  // namespace
+
+// --- the sandbag's free fall in closed form (src/core/ballistic.hpp) -------------------------------
+
+namespace {
+
+// The automaton in one discrete state as the integrators see it (simulate.cpp's MachineSystem).
+struct PieceSystem {
+  using state_type = wn::State;
+  using guard_type = wn::GuardValues;
+  const wn::Model* model;
+  wn::Discrete d;
+  void operator()(const wn::State& y, wn::State& dy, double) const { model->flow(d, y, dy); }
+  void guards(const wn::State& y, wn::GuardValues& g, wn::GuardValues* rates = nullptr) const {
+    model->guards(d, y, g, rates);
+  }
+  double guard(const wn::State& y, int i) const {
+    wn::GuardValues g;
+    model->guards(d, y, g, nullptr, i);
+    return g[i];
+  }
+  wn::GuardStart guard_start(int i) const { return d.armed[i]; }
+};
+
+struct PieceEnd {
+  wn::Crossing c;
+  wn::State y;
+  double t;
+  std::vector<double> sample_times;
+  std::vector<wn::State> samples;
+};
+
+template <class Stepper>
+PieceEnd integrate_piece(Stepper& stepper, const wn::Scenario& sc, const PieceSystem& sys, wn::State y) {
+  PieceEnd e;
+  e.t = 0.0;
+  wn::OutputGrid grid{0.01, 0};
+  wn::StepStats stats;
+  auto sample = [&](double t, const wn::State& s) {
+    e.sample_times.push_back(t);
+    e.samples.push_back(s);
+  };
+  e.c = wn::integrate_dense(stepper, sys, y, e.t, sc.run.t_max, sc.run.tolerance, 0.1, sc.run.event_time_tolerance,
+                            1'000'000, grid, sample, stats);
+  e.y = y;
+  return e;
+}
+
+// A piece in which only the sandbag moves (it falls onto the parked seesaw), and one in which the
+// lid swings freely while the sandbag flies on a massless seesaw with the rope slack: the closed
+// form gives the event the whole state's Dormand-Prince gives, and the lid the same numbers.
+TEST(BallisticPieces, AgreeWithDormandPrinceOnTheWholeState) {
+  for (int ex : {1, 2, 4}) {
+    wn::Config cfg = wn::example_config(ex);
+    const wn::Scenario sc = wn::build_scenario(cfg);
+    const wn::Model model(sc);
+    std::vector<wn::Event> events;
+    const wn::HybridState start = model.initial(events);
+    // The lid thrown open at 3 rad/s from 20 degrees, the sandbag on the arm moving down and out.
+    wn::HybridState thrown = start;
+    thrown.d.on_seesaw = true;
+    thrown.d.taut = false;
+    thrown.d.lid_resting = false;
+    thrown.y[wn::slot::phi_l] = 20.0 * 3.14159265358979 / 180.0;
+    thrown.y[wn::slot::dphi_l] = 3.0;
+    thrown.y[wn::slot::x] = -0.3;
+    thrown.y[wn::slot::h] = 0.05;
+    thrown.y[wn::slot::vx] = -0.4;
+    thrown.y[wn::slot::vh] = -1.0;
+    for (const wn::HybridState& hs : {start, thrown}) {
+      const PieceSystem sys{&model, hs.d};
+      ASSERT_TRUE(wn::BallisticStepper::applies(model, sc, hs.d, hs.y)) << ex;
+      auto dopri = wn::make_dopri5<wn::State>(sc.run.tolerance, 0.1);
+      const PieceEnd whole = integrate_piece(dopri, sc, sys, hs.y);
+      wn::BallisticStepper ballistic(model, hs.d, sc.machine.gravity, sc.run.tolerance, 0.1);
+      const PieceEnd exact = integrate_piece(ballistic, sc, sys, hs.y);
+      ASSERT_EQ(whole.c.kind, wn::Crossing::event) << ex;
+      ASSERT_EQ(exact.c.kind, whole.c.kind) << ex;
+      EXPECT_EQ(exact.c.guard, whole.c.guard) << ex;
+      EXPECT_NEAR(exact.c.t, whole.c.t, sc.run.event_time_tolerance) << ex;
+      ASSERT_EQ(exact.sample_times, whole.sample_times) << ex;
+      for (std::size_t i = 0; i < whole.samples.size(); ++i) {
+        // The lid (and the balloon) take the same steps and values; the sandbag's parabola is the
+        // dense output's to rounding.
+        for (int k : {wn::slot::phi_l, wn::slot::dphi_l, wn::slot::balloon_h, wn::slot::balloon_v})
+          EXPECT_EQ(exact.samples[i][k], whole.samples[i][k]) << ex << " sample " << i << " slot " << k;
+        for (int k : {wn::slot::x, wn::slot::h, wn::slot::vx, wn::slot::vh})
+          EXPECT_NEAR(exact.samples[i][k], whole.samples[i][k], 1e-13) << ex << " sample " << i << " slot " << k;
+      }
+      // The closed form is the free fall itself: h = h0 + vh0 t - g t^2 / 2 at the event.
+      const double t = exact.c.t;
+      EXPECT_NEAR(exact.y[wn::slot::h], hs.y[wn::slot::h] + hs.y[wn::slot::vh] * t - 0.5 * sc.machine.gravity * t * t,
+                  1e-14);
+      EXPECT_EQ(exact.y[wn::slot::vx], hs.y[wn::slot::vx]);
+    }
+  }
+}
+
+// Not such a piece: a heavy seesaw, a damper, or the rope taut (the sandbag then moves on the arm).
+TEST(BallisticPieces, OnlyWhereTheSandbagFliesFreely) {
+  for (const std::string& set : {std::string("seesaw.mass=0.3"), std::string("damping.lid_hinge=0.01")}) {
+    wn::Config cfg = wn::example_config(2);
+    wn::apply_set(cfg, set);
+    if (set.rfind("seesaw", 0) == 0) wn::apply_set(cfg, "seesaw.left_arm=0.5");
+    const wn::Scenario sc = wn::build_scenario(cfg);
+    const wn::Model model(sc);
+    std::vector<wn::Event> events;
+    const wn::HybridState start = model.initial(events);
+    EXPECT_FALSE(wn::BallisticStepper::applies(model, sc, start.d, start.y)) << set;
+  }
+  const wn::Scenario sc = wn::build_scenario(wn::example_config(2));
+  const wn::Model model(sc);
+  std::vector<wn::Event> events;
+  wn::HybridState hs = model.initial(events);
+  hs.d.on_seesaw = hs.d.taut = true;
+  hs.d.lid_resting = false;
+  hs.y[wn::slot::r] = 0.3;
+  hs.y[wn::slot::phi_s] = 0.2;
+  EXPECT_FALSE(wn::BallisticStepper::applies(model, sc, hs.d, hs.y));
 }
 
 }  // namespace

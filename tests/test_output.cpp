@@ -230,6 +230,16 @@ class Samples : public wn::Observer {
   Detail detail_;
 };
 
+// Keeps only the batches' positions (SampleBatch::positions), as the .dat writer reads them.
+class BatchPositions : public wn::Observer {
+ public:
+  Detail sample_detail() const override { return Detail::positions; }
+  void on_samples(const wn::SampleBatch& batch) override {
+    for (std::size_t i = 0; i < batch.size(); ++i) got.push_back(batch.positions(i));
+  }
+  std::vector<wn::Positions> got;
+};
+
 TEST(Samples, PositionsAreTheFullSamplesPositionsBitForBit) {
   // Every way a machine moves: the examples (example 3 spends most of its time in the lid's chart),
   // a seesaw with mass (its own swing, unloaded or carrying the sandbag), a finite arm, the radio,
@@ -254,9 +264,12 @@ TEST(Samples, PositionsAreTheFullSamplesPositionsBitForBit) {
       }
       sc.run.output_step = std::fmin(sc.run.output_step, 0.002);
       Samples full(wn::Observer::Detail::full), positions(wn::Observer::Detail::positions);
+      BatchPositions alone;
       wn::simulate(sc, &full);
       wn::simulate(sc, &positions);
+      wn::simulate(sc, &alone);
       ASSERT_EQ(full.got.size(), positions.got.size());
+      ASSERT_EQ(full.got.size(), alone.got.size());
       for (std::size_t i = 0; i < full.got.size(); ++i) {
         const wn::Snapshot& a = full.got[i];
         const wn::Snapshot& b = positions.got[i];
@@ -275,6 +288,18 @@ TEST(Samples, PositionsAreTheFullSamplesPositionsBitForBit) {
           ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0) << where << ": " << name << " " << x << " vs " << y;
         }
         EXPECT_EQ(b.tension, 0.0) << where;  // positions only: no contact problem solved
+        const wn::Positions& c = alone.got[i];
+        ASSERT_EQ(a.mode, c.mode) << where;
+        ASSERT_EQ(a.rope_taut, c.rope_taut) << where;
+        for (const auto& [name, x, y] : {std::tuple{"t", a.t, c.t},
+                                         {"x", a.x, c.x},
+                                         {"h", a.h, c.h},
+                                         {"phi_s", a.phi_s, c.phi_s},
+                                         {"phi_l", a.phi_l, c.phi_l},
+                                         {"balloon_h", a.balloon_h, c.balloon_h},
+                                         {"balloon_limit", a.balloon_limit, c.balloon_limit}}) {
+          ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0) << where << ": Positions' " << name << " " << x << " vs " << y;
+        }
         ++modes[static_cast<int>(a.mode)];
       }
     }

@@ -187,8 +187,8 @@ TEST_F(SweepCli, InterruptKeepsAValidFileOfFinishedRows) {
           "--vary", "masses.lid=0.3:0.7:200", "--out", csv.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
-  // The temporary appears just before the handler is installed and the machines start.
-  for (int i = 0; i < 200 && whatnext::test_support::temps_of(csv).empty(); ++i) {
+  // The .part file appears just before the handler is installed and the machines start.
+  for (int i = 0; i < 200 && !fs::exists(csv.string() + ".part"); ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(400));
@@ -316,6 +316,53 @@ TEST_F(SweepCli, ResumeRefusesAnotherSweepsFile) {
   // With nothing to resume, --resume runs the whole sweep.
   ASSERT_EQ(whatnext(base + " --resume --out " + (dir_ / "new.csv").string()).code, 0);
   EXPECT_EQ(slurp(dir_ / "new.csv"), slurp(csv));
+}
+
+// Two sweeps never write one file at once: while one runs, a second (resumed or not) is refused
+// and leaves its rows alone.
+TEST_F(SweepCli, ASecondSweepOfOneFileIsRefusedWhileTheFirstRuns) {
+  const std::vector<std::string> args{"sweep", "--example", "3", "--vary", "geometry.rope_length=0.9:1.1:200",
+                                      "--vary", "masses.lid=0.3:0.7:200", "--threads", "1"};
+  const fs::path csv = dir_ / "s.csv", part = dir_ / "s.csv.part";
+  std::vector<std::string> a = args;
+  a.insert(a.end(), {"--out", csv.string()});
+  const pid_t pid = whatnext::test_support::spawn_whatnext(a);
+  std::error_code ec;
+  for (int i = 0; i < 2000 && !(fs::file_size(part, ec) > 20000 && !ec); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const CliResult second = whatnext_argv(a);
+  std::vector<std::string> r = a;
+  r.push_back("--resume");
+  const CliResult resumed = whatnext_argv(r);
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  EXPECT_EQ(second.code, 2) << second.err;
+  EXPECT_NE(second.err.find("another sweep is writing"), std::string::npos) << second.err;
+  EXPECT_EQ(resumed.code, 2) << resumed.err;
+  EXPECT_FALSE(fs::exists(csv));
+  // What the killed sweep wrote stays for --resume (ResumedSweepsEndWithTheBytesOfAnUninterruptedOne).
+  const std::string rows = slurp(part);
+  EXPECT_GT(rows.size(), 20000u);
+  EXPECT_EQ(rows.rfind("index,geometry.rope_length,masses.lid,outcome,", 0), 0u);
+}
+
+// NAME.part holds a sweep's rows while it runs; a file of that name that no sweep wrote is the
+// user's, and neither a new sweep nor a resumed one writes over it.
+TEST_F(SweepCli, AUsersOwnPartFileIsNeverCut) {
+  const fs::path csv = dir_ / "u.csv", part = dir_ / "u.csv.part";
+  std::ofstream(part, std::ios::binary) << "my notes\n";
+  for (const char* resume : {"", " --resume"}) {
+    const CliResult r = whatnext("sweep --example 2 --vary masses.lid=0.3:0.5:3 --out " + csv.string() + resume);
+    EXPECT_EQ(r.code, 2) << resume << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(slurp(part), "my notes\n") << resume;
+    EXPECT_FALSE(fs::exists(csv)) << resume;
+  }
+  // The zeros a power cut leaves are a sweep's: replaced.
+  std::ofstream(part, std::ios::binary | std::ios::trunc) << std::string(64, '\0');
+  ASSERT_EQ(whatnext("sweep --example 2 --vary masses.lid=0.3:0.5:3 --out " + csv.string()).code, 0);
+  EXPECT_FALSE(fs::exists(part));
+  EXPECT_EQ(slurp(csv).rfind("index,masses.lid,outcome,", 0), 0u);
 }
 
 // Issue 23: a Monte Carlo over building tolerances.

@@ -36,6 +36,8 @@ class SampleBatch {
   std::size_t size() const { return times_.size(); }
   double time(std::size_t i) const { return times_[i]; }
   Snapshot snapshot(std::size_t i) const;
+  // snapshot(i)'s positions (the same bits), without the rest of a Snapshot.
+  Positions positions(std::size_t i) const;
   // For simulate(): a new piece in discrete state d, and its samples.
   void start(const Discrete& d) {
     d_ = d;

@@ -125,4 +125,11 @@ struct Snapshot {
   }
 };
 
+// What a Snapshot holds of where everything is (Observer::Detail::positions), alone.
+struct Positions {
+  double t = 0.0, x = 0.0, h = 0.0, phi_s = 0.0, phi_l = 0.0, balloon_limit = 0.0, balloon_h = 0.0;
+  Mode mode = Mode::M1;
+  bool rope_taut = false;
+};
+
 }  // namespace whatnext

@@ -26,6 +26,7 @@
 #include "whatnext/columns.hpp"
 #include "whatnext/config.hpp"
 #include "whatnext/explore/sweep.hpp"
+#include "whatnext/explore/sweep_file.hpp"
 #include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
 
@@ -602,6 +603,175 @@ py::bytes sweep_csv(const std::vector<std::string>& keys, const py::dict& column
   return py::bytes(text);
 }
 
+// --- sweeps written to a file, resumably ---------------------------------------------------------
+
+// One row of a sweep's CSV (explore::csv_row's layout, with its newline) read back; false when the
+// line is not one. Numbers are written in the shortest form that reads back as the same double,
+// so strtod gives the outcome's own numbers; the caller checks that csv_row gives the line again.
+bool parse_row(std::string_view line, std::size_t n_keys, explore::Outcome& o) {
+  const auto& types = explore::event_types();
+  if (line.empty() || line.back() != '\n') return false;
+  line.remove_suffix(1);
+  const std::size_t fields = 1 + n_keys + 4 + types.size();  // before the error
+  std::vector<std::string_view> cell;
+  std::size_t pos = 0;
+  for (std::size_t k = 0; k < fields; ++k) {
+    const auto comma = line.find(',', pos);
+    if (comma == std::string_view::npos) return false;
+    cell.push_back(line.substr(pos, comma - pos));
+    pos = comma + 1;
+  }
+  std::string_view error = line.substr(pos);
+  const auto number = [](std::string_view text) {
+    if (text.empty()) return kNaN;
+    const std::string t(text);
+    char* end = nullptr;
+    const double v = std::strtod(t.c_str(), &end);
+    return end == t.c_str() + t.size() ? v : kNaN;
+  };
+  o = explore::Outcome{};
+  o.first.assign(types.size(), kNaN);
+  const std::string_view name = cell[1 + n_keys];
+  o.failed = name == "failed";
+  o.valid = !o.failed && name != "invalid";
+  if (o.valid) {
+    const auto it = std::find_if(types.begin(), types.end(), [&](EventType t) { return to_string(t) == name; });
+    if (it == types.end()) return false;
+    o.outcome = *it;
+    o.outcome_t = number(cell[2 + n_keys]);
+    o.final_r = number(cell[3 + n_keys]);
+    o.final_phi_l_deg = number(cell[4 + n_keys]);
+    for (std::size_t e = 0; e < types.size(); ++e) o.first[e] = number(cell[5 + n_keys + e]);
+  } else {
+    std::string text;
+    if (error.size() >= 2 && error.front() == '"' && error.back() == '"') {
+      error = error.substr(1, error.size() - 2);
+      for (std::size_t i = 0; i < error.size(); ++i) {
+        text += error[i];
+        if (error[i] == '"' && i + 1 < error.size() && error[i + 1] == '"') ++i;
+      }
+    } else {
+      text = std::string(error);
+    }
+    o.error = std::move(text);
+  }
+  return true;
+}
+
+// A sweep written to the CSV file `path` while it runs, as `whatnext sweep --out` writes it and
+// through the same code (explore::run, explore::SweepFile): the same bytes, rows synced about once
+// a second to PATH.part, renamed over PATH at the end. With resume, what an interrupted sweep left
+// (PATH.part, else PATH) is checked to be this sweep's and kept; only the other machines run.
+// Ctrl-C stops the workers, gives the file its name with the rows done (as the command does) and
+// raises KeyboardInterrupt. Returns every machine's columns, the kept ones read back from the file.
+py::dict sweep_to_file(const MachineHandle& m, const std::vector<std::string>& keys,
+                       const std::optional<std::vector<Axis>>& axes, const std::optional<Points>& points,
+                       int threads, std::optional<double> accuracy_given, const std::string& path, bool resume) {
+  check_sweep_keys(keys);
+  if (accuracy_given) explore::check_accuracy(*accuracy_given, "sweep: accuracy");
+  const double accuracy = accuracy_given.value_or(0.0);
+  std::optional<explore::Machines> made;
+  if (axes) {
+    std::vector<std::vector<double>> values;
+    for (const Axis& a : *axes) {
+      if (a.ndim() != 1) throw std::invalid_argument("sweep: one-dimensional values per key");
+      values.emplace_back(a.data(), a.data() + a.size());
+    }
+    made = explore::Machines::grid_of(keys, std::move(values));
+  } else if (points) {
+    if (points->ndim() != 2 || points->shape(1) != static_cast<py::ssize_t>(keys.size()))
+      throw std::invalid_argument("sweep: points need one column per key");
+    made = explore::Machines::points_of(keys, std::vector<double>(points->data(), points->data() + points->size()));
+  } else {
+    throw std::invalid_argument("sweep: axes or points");
+  }
+  const explore::Machines& machines = *made;
+  const std::string option = "sweep: csv";
+  explore::SweepFile file(regular_output_target(path, option), path, option);
+  explore::Resumable kept;
+  std::string text;
+  if (resume) {
+    text = file.previous();
+    explore::ResumeWords words;
+    words.remedy = "give another csv= or resume=False";
+    words.plan = "other values, samples or seed";
+    words.machine = "another machine or accuracy";
+    kept = explore::read_resumable(text, machines, m.config, accuracy,
+                                   fmt::format("sweep: resume {}", printable(file.source(), 96)), words);
+  }
+  const std::int64_t n = machines.size();
+  // The kept rows, read back: the Sweep holds every machine, as an uninterrupted sweep's does.
+  std::vector<explore::Outcome> rows(static_cast<std::size_t>(n));
+  std::vector<char> from_file(static_cast<std::size_t>(n), 0);
+  {
+    std::vector<double> values(keys.size());
+    const auto read_back = [&](std::int64_t index, std::string_view line) {
+      explore::Outcome& o = rows[static_cast<std::size_t>(index)];
+      machines.point(index, values.data());
+      if (!parse_row(line, keys.size(), o) || explore::csv_row(index, values, o) != line) {
+        throw InputError(fmt::format("sweep: resume {}: the row of machine {} cannot be read back; {}",
+                                     printable(file.source(), 96), index, "give another csv= or resume=False"));
+      }
+      from_file[static_cast<std::size_t>(index)] = 1;
+    };
+    std::size_t at = text.find('\n') + 1;
+    for (std::int64_t i = 0; i < kept.prefix_rows; ++i) {
+      const std::size_t end = text.find('\n', at) + 1;
+      read_back(i, std::string_view(text).substr(at, end - at));
+      at = end;
+    }
+    for (const auto& [index, line] : kept.later) read_back(index, line);
+  }
+  file.start(std::string_view(text).substr(0, kept.prefix_bytes));
+  std::string().swap(text);
+
+  explore::RunOptions ro;
+  ro.threads = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  ro.accuracy = accuracy;
+  std::atomic<bool> stop{false};
+  ro.stop = &stop;
+  ro.csv = &file.stream();
+  ro.keep_rows = true;
+  ro.header_written = kept.header;
+  ro.rows_written = kept.prefix_rows;
+  ro.known = std::move(kept.later);
+  std::exception_ptr write_failure;
+  ro.checkpoint = [&] {
+    try {
+      file.sync();
+    } catch (...) {  // thrown here it would end the sweep's threads: they stop, it is thrown below
+      if (!write_failure) write_failure = std::current_exception();
+      stop.store(true);
+    }
+  };
+  bool interrupted = false;
+  ro.progress = [&](std::int64_t, std::int64_t) {  // on the calling thread, ten times a second
+    if (interrupted) return;
+    py::gil_scoped_acquire gil;
+    interrupted = PyErr_CheckSignals() != 0;  // keeps the exception set for below
+    if (interrupted) stop.store(true);
+  };
+  explore::SweepResult result;
+  {
+    py::gil_scoped_release nogil;
+    result = explore::run(m.config, machines, ro);
+  }
+  if (interrupted) {
+    py::error_already_set pending;  // the KeyboardInterrupt, taken aside: a failed write is raised instead
+    if (write_failure) std::rethrow_exception(write_failure);
+    file.commit();  // the rows done, under the file's name, as the command does when stopped
+    throw pending;
+  }
+  if (write_failure) std::rethrow_exception(write_failure);
+  file.commit();
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto slot = static_cast<std::size_t>(i);
+    if (!from_file[slot]) rows[slot] = std::move(result.rows[slot]);
+  }
+  const PointFn point = [&machines](std::int64_t i, double* out) { machines.point(i, out); };
+  return sweep_columns(keys, 0, n, point, rows);
+}
+
 // The n values of the CLI's --vary KEY=a:b:n grid, computed by the library (the same doubles).
 py::array grid_values(double a, double b, int n) {
   if (!(std::isfinite(a) && std::isfinite(b) && a <= b) || n < 1) {
@@ -668,6 +838,8 @@ PYBIND11_MODULE(_core, mod) {
   mod.def("lhs_points", &lhs_points, py::arg("keys"), py::arg("lo"), py::arg("hi"), py::arg("samples"),
           py::arg("seed"));
   mod.def("sweep_csv", &sweep_csv, py::arg("keys"), py::arg("columns"));
+  mod.def("sweep_to_file", &sweep_to_file, py::arg("machine"), py::arg("keys"), py::arg("axes"), py::arg("points"),
+          py::arg("threads"), py::arg("accuracy"), py::arg("path"), py::arg("resume"));
   mod.attr("DEFAULT_ACCURACY") = explore::kDefaultAccuracy;
   mod.attr("MAX_MACHINES") = explore::kMaxMachines;
   mod.def("grid_values", &grid_values, py::arg("a"), py::arg("b"), py::arg("n"));

@@ -616,7 +616,8 @@ def _plan(machine: Machine, values: Mapping[str, Any], samples: Optional[int], s
 def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int] = None, seed: int = 1,
           threads: Optional[int] = None, accuracy: Optional[float] = _core.DEFAULT_ACCURACY,
           force_large: bool = False, client: Any = None, chunk: Optional[int] = None,
-          progress: Union[bool, Callable[[int, int], None]] = False) -> Sweep:
+          progress: Union[bool, Callable[[int, int], None]] = False,
+          csv: Union[None, str, "os.PathLike[str]"] = None, resume: bool = False) -> Sweep:
     """Run many variants of a machine on all cores; the Python form of ``whatnext sweep``.
 
     ``values`` maps input keys (any numeric key of docs/inputs.md, angles in degrees) to the
@@ -647,6 +648,19 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
     :func:`whatnext.dask.sweep`); ``progress=True`` then prints the machines done, or a function
     ``progress(done, total)`` is called as chunks finish.
 
+    ``csv=path`` writes the sweep's CSV while it runs, exactly as ``whatnext sweep --out path``
+    does (the same bytes as ``to_csv()``): the rows go to ``path.part`` in machine order and are
+    synced to the disk about once a second, and the file gets its name when the sweep ends (until
+    then an existing ``path`` stays as it was). Killed, crashed or cut off by a power cut, the sweep
+    leaves its rows in ``path.part``; Ctrl-C gives the file its name with the rows done, then
+    raises KeyboardInterrupt. ``resume=True`` continues such a sweep: called again with the same
+    machine, values, samples, seed and accuracy, it keeps every complete row of ``path.part`` (or
+    of ``path``), runs only the other machines, and ends with the bytes an uninterrupted sweep
+    writes, whatever was interrupted and how often; the file is the command's, so ``whatnext sweep
+    --resume`` continues it too when its values are the command's (``whatnext.grid``). A file of
+    another sweep is refused with :class:`InputError` and left as it was; so is a second sweep
+    writing the same file while the first runs. Not with ``client=``.
+
     Returns a :class:`Sweep`: columns named like the sweep CSV (``outcome``, ``outcome_t``,
     ``lid_open``, ``rope_taut``, ..., ``error``), each a read-only numpy array with a row per
     machine; ``to_csv(path)`` writes that CSV.
@@ -660,10 +674,26 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
     plan = _plan(machine, values, samples, seed, accuracy, force_large)
     if client is None and (chunk is not None or progress is not False):
         raise TypeError("sweep: chunk= and progress= belong to a sweep on a Dask cluster (client=...)")
+    if not isinstance(resume, (bool, np.bool_)):
+        raise TypeError(f"sweep: resume is True or False, not {type(resume).__name__} {resume!r}")
+    if resume and csv is None:
+        raise TypeError("sweep: resume=True continues the CSV file of an interrupted sweep: give it as csv=...")
+    if csv is not None and not isinstance(csv, (str, os.PathLike)):
+        raise TypeError(f"sweep: csv is a file name, not {type(csv).__name__} {csv!r}")
     if client is not None:
+        if csv is not None:
+            raise TypeError("sweep: csv= writes a sweep on this computer; on a Dask cluster write the "
+                            "result with to_csv(path)")
         from . import dask as _dask
         return _dask.run(plan, client, chunk=chunk, threads=threads, progress=progress)
     n_threads = 0 if threads is None else _whole("sweep: threads", threads, 1, 4096)
+    if csv is not None:
+        path = os.fspath(csv)
+        if not isinstance(path, str):
+            raise TypeError(f"sweep: csv is a file name as text, not {type(path).__name__} {path!r}")
+        axes = list(plan.axes.values()) if plan.axes is not None else None
+        return Sweep(plan.keys, _core.sweep_to_file(plan.machine._handle, plan.keys, axes, plan.points, n_threads,
+                                                    plan.accuracy, path, bool(resume)), plan.axes)
     return Sweep(plan.keys, plan.run(0, plan.size, n_threads), plan.axes)
 
 

@@ -76,6 +76,12 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
   return s;
 }
 
+Positions Model::positions(double t, const Discrete& d, const State& y) const {
+  // snapshot(t, d, y, false, false)'s positions, computed the same way.
+  const Kinematics k = kinematics(d, y, false, false);
+  return {t, k.x, k.h, k.phi_s, k.phi_l, limit_.height_at(k.cos_l, k.sin_l), k.balloon_h, d.mode(), d.taut};
+}
+
 void Model::open_books(HybridState& hs, const Kinematics& k) const {
   Books& b = hs.d.books;
   b.lid_push = lid_push_now(hs.d, k, hs.y);

@@ -125,6 +125,9 @@ class Model {
   // full = false: positions only (Observer::Detail::positions), no rates, forces nor energies.
   Snapshot snapshot(double t, const Discrete& d, const State& y, bool full = true, bool memo = true) const;
   Snapshot snapshot(const HybridState& hs) const { return snapshot(hs.t, hs.d, hs.y); }
+  // A snapshot's positions alone (Observer::Detail::positions), the same bits, for writers that
+  // read nothing else: no Snapshot of 50 numbers made and copied per sample.
+  Positions positions(double t, const Discrete& d, const State& y) const;
   // The contact problem at this instant: masses, forces, the contacts' gap gradients and
   // curvatures in the coordinates (x, h, phiS, phiL).
   contact::System contact_system(const Discrete& d, const Kinematics& k) const;

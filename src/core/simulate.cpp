@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "ballistic.hpp"
 #include "integrate.hpp"
 #include "model.hpp"
 
@@ -49,6 +50,8 @@ constexpr std::int64_t kMaxAdaptiveSteps = 5'000'000;
 Snapshot SampleBatch::snapshot(std::size_t i) const {
   return model_->snapshot(times_[i], d_, states_[i], full_, /*memo=*/false);
 }
+
+Positions SampleBatch::positions(std::size_t i) const { return model_->positions(times_[i], d_, states_[i]); }
 
 namespace {
 
@@ -146,8 +149,16 @@ class Runner {
     const RunSettings& run = sc_.run;
     switch (run.integrator) {
       case IntegratorKind::adaptive:
-        c = integrate_adaptive(sys, hs_.y, t_, run.t_max, run.tolerance, kMaxAdaptiveStep, run.event_time_tolerance,
-                               kMaxAdaptiveSteps - res_.stats.steps, grid_, sample, res_.stats);
+        if (BallisticStepper::applies(model_, sc_, hs_.d, hs_.y)) {  // the sandbag's parabola in closed form
+          BallisticStepper stepper(model_, hs_.d, sc_.machine.gravity, run.tolerance, kMaxAdaptiveStep);
+          c = integrate_dense(stepper, sys, hs_.y, t_, run.t_max, run.tolerance, kMaxAdaptiveStep,
+                              run.event_time_tolerance, kMaxAdaptiveSteps - res_.stats.steps, grid_, sample,
+                              res_.stats);
+        } else {
+          c = integrate_adaptive(sys, hs_.y, t_, run.t_max, run.tolerance, kMaxAdaptiveStep,
+                                 run.event_time_tolerance, kMaxAdaptiveSteps - res_.stats.steps, grid_, sample,
+                                 res_.stats);
+        }
         break;
       case IntegratorKind::euler:
         c = integrate_fixed<odeint::euler<State>>(sys, hs_.y, t_, run.t_max, run.step, grid_, sample, res_.stats);

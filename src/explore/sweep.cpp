@@ -399,6 +399,53 @@ Machines::Machines(const Plan& plan) : plan_(plan) {
   }
 }
 
+Machines Machines::of_keys(std::vector<std::string> keys) {
+  if (keys.empty()) throw InputError("sweep: give at least one key to vary");
+  Machines m;
+  for (std::string& k : keys) {
+    for (const Range& r : m.plan_.ranges) {
+      if (r.key == k) throw InputError(fmt::format("sweep: each key may be varied once ({} is given twice)", k));
+    }
+    Range r;
+    r.key = std::move(k);
+    m.plan_.ranges.push_back(std::move(r));
+  }
+  return m;
+}
+
+Machines Machines::grid_of(std::vector<std::string> keys, std::vector<std::vector<double>> axes) {
+  if (axes.size() != keys.size()) throw InputError("sweep: one sequence of values per key");
+  Machines m = of_keys(std::move(keys));
+  m.size_ = 1;
+  for (std::size_t d = 0; d < axes.size(); ++d) {
+    Range& r = m.plan_.ranges[d];
+    const auto n = static_cast<std::int64_t>(axes[d].size());
+    if (n < 1) throw InputError(fmt::format("sweep: {} needs at least one value", r.key));
+    if (m.size_ > kMaxMachines / n) {
+      throw InputError(fmt::format("sweep: the grid has more than {} machines; use fewer values", kMaxMachines));
+    }
+    m.size_ *= n;
+    r.n = static_cast<int>(n);
+    r.lo = axes[d].front();
+    r.hi = axes[d].back();
+  }
+  m.grid_ = std::move(axes);  // point() reads every value from here, whatever the axis's length
+  return m;
+}
+
+Machines Machines::points_of(std::vector<std::string> keys, std::vector<double> points) {
+  Machines m = of_keys(std::move(keys));
+  const std::size_t dims = m.plan_.ranges.size();
+  if (points.empty() || points.size() % dims != 0)
+    throw InputError("sweep: the machines need one value per key each, and at least one machine");
+  const auto n = static_cast<std::int64_t>(points.size() / dims);
+  if (n > kMaxMachines) throw InputError(fmt::format("sweep: at most {} machines (given {})", kMaxMachines, n));
+  m.size_ = n;
+  m.plan_.samples = n;  // point() reads machine i's values from lhs_
+  m.lhs_ = std::move(points);
+  return m;
+}
+
 void Machines::point(std::int64_t i, double* out) const {
   const auto dims = plan_.ranges.size();
   if (plan_.samples > 0) {
@@ -721,26 +768,24 @@ std::string header_keys(std::string_view line) {
 }  // namespace
 
 Resumable read_resumable(std::string_view text, const Machines& machines, const Config& base, double accuracy,
-                         std::string_view what) {
+                         std::string_view what, const ResumeWords& words) {
   Resumable r;
   const std::string header = csv_header(machines.plan());
   const auto eol = text.find('\n');
   if (eol == std::string_view::npos) {  // killed before the header was complete: nothing to keep
     if (header.compare(0, text.size(), text) != 0 && text.find('\0') == std::string_view::npos) {
       throw InputError(
-          fmt::format("{}: is not a CSV of this sweep (its first line is '{}'); give another --out "
-                      "or drop --resume",
-                      what, printable(text, 60)));
+          fmt::format("{}: is not a CSV of this sweep (its first line is '{}'); {}", what, printable(text, 60),
+                      words.remedy));
     }
     return r;
   }
   const std::string_view first = text.substr(0, eol + 1);
   if (first != header) {
     throw InputError(
-        fmt::format("{}: was written by a sweep over other columns (it varies {}; this sweep varies {}); "
-                    "give another --out or drop --resume",
+        fmt::format("{}: was written by a sweep over other columns (it varies {}; this sweep varies {}); {}",
                     what, header_keys(first.substr(0, first.size() - 1)),
-                    header_keys(std::string_view(header).substr(0, header.size() - 1))));
+                    header_keys(std::string_view(header).substr(0, header.size() - 1)), words.remedy));
   }
   r.header = true;
   r.prefix_bytes = first.size();
@@ -762,17 +807,15 @@ Resumable read_resumable(std::string_view text, const Machines& machines, const 
     if (index <= previous || index >= machines.size()) {
       throw InputError(
           fmt::format("{}: holds a row for machine {}{}, which this sweep does not have there; the "
-                      "file is another sweep's (other --vary, --samples or --seed): give another "
-                      "--out or drop --resume",
-                      what, index, index <= previous ? " out of order" : ""));
+                      "file is another sweep's ({}): {}",
+                      what, index, index <= previous ? " out of order" : "", words.plan, words.remedy));
     }
     const std::string start = row_start(machines, index, values);
     if (line.compare(0, start.size(), start) != 0) {
       throw InputError(
           fmt::format("{}: its row for machine {} has other values than this sweep's ({}); the file "
-                      "is another sweep's (other --vary, --samples or --seed): give another --out or "
-                      "drop --resume",
-                      what, index, printable(start.substr(0, start.size() - 1), 80)));
+                      "is another sweep's ({}): {}",
+                      what, index, printable(start.substr(0, start.size() - 1), 80), words.plan, words.remedy));
     }
     const std::string_view rest = line.substr(start.size());
     if (rest.rfind("invalid,", 0) == 0) ++r.invalid;
@@ -800,9 +843,8 @@ Resumable read_resumable(std::string_view text, const Machines& machines, const 
       if (again != line) {
         throw InputError(
             fmt::format("{}: machine {} gives another row now than in the file; the file is another "
-                        "sweep's (another machine, --set or --accuracy): give another --out or drop "
-                        "--resume",
-                        what, index));
+                        "sweep's ({}): {}",
+                        what, index, words.machine, words.remedy));
       }
     }
   }

@@ -16,7 +16,8 @@ inline double clean(double v) { return (std::isfinite(v) && v != 0.0) ? v : 0.0;
 
 // Nor a NaN or an infinity: a state that is not finite ends the run as failed (the writers are
 // called from inside simulate(), so the run stops there and no file is committed).
-[[noreturn]] inline void not_finite(const Snapshot& s) {
+template <class Where>  // Snapshot or Positions
+[[noreturn]] inline void not_finite(const Where& s) {
   throw SimulationError(
       fmt::format("the state is not finite at t = {} s in mode {}", s.t, to_string(s.mode)));
 }

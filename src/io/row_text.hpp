@@ -16,7 +16,23 @@
 
 #include "whatnext/output.hpp"
 
+#if defined(__linux__) && !defined(__EMSCRIPTEN__)
+#include <sched.h>
+#endif
+
 namespace whatnext {
+
+// The CPUs this process may run on: `taskset -c 0` (or a container's cpuset) leaves one, where
+// hardware_concurrency() still counts the machine's. A helper thread on the same single CPU only
+// takes turns with the run's thread and spins between batches (docs/performance.md).
+inline unsigned usable_cpus() {
+#if defined(__linux__) && !defined(__EMSCRIPTEN__)
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (::sched_getaffinity(0, sizeof set, &set) == 0) return static_cast<unsigned>(CPU_COUNT(&set));
+#endif
+  return std::thread::hardware_concurrency();
+}
 
 // A batch's rows, made in chunks of kChunkRows on the calling thread and, with Writing::parallel,
 // on a helper thread too; written in order by the calling thread as their chunks are done.
@@ -24,17 +40,17 @@ namespace whatnext {
 // never only leaves more chunks to the caller: the caller never waits for a chunk nobody took.
 class RowText {
  public:
-  // Writes the text of row i at out (at most max_chars characters) and returns its end. Called
-  // from two threads at once with Writing::parallel.
-  struct Row {
+  // Writes the text of rows from..to-1 at out (at most max_chars characters each) and returns its
+  // end. Called from two threads at once with Writing::parallel.
+  struct Rows {
     const void* context;
-    char* (*make)(const void* context, std::size_t i, char* out);
+    char* (*make)(const void* context, std::size_t from, std::size_t to, char* out);
   };
 
   RowText(std::ostream& out, Writing writing, std::size_t max_chars)
       : out_(out),
         buf_(out.rdbuf()),
-        parallel_(writing == Writing::parallel && std::thread::hardware_concurrency() > 1),
+        parallel_(writing == Writing::parallel && usable_cpus() > 1),
         max_chars_(max_chars) {}
   ~RowText() {
     if (!helper_.joinable()) return;
@@ -52,9 +68,18 @@ class RowText {
   // rows before its chunk are written, and the exception is rethrown here.
   template <class F>
   void write(std::size_t n, const F& row) {
-    write(n, Row{&row, [](const void* c, std::size_t i, char* out) {
-                   return (*static_cast<const F*>(c))(i, out);
-                 }});
+    write(n, Rows{&row, [](const void* c, std::size_t from, std::size_t to, char* out) {
+                    for (std::size_t i = from; i < to; ++i) out = (*static_cast<const F*>(c))(i, out);
+                    return out;
+                  }});
+  }
+  // The same, with rows(from, to, out) making a run of rows at once (and returning its end): a
+  // writer may then overlap one row's work with the next's.
+  template <class F>
+  void write_runs(std::size_t n, const F& rows) {
+    write(n, Rows{&rows, [](const void* c, std::size_t from, std::size_t to, char* out) {
+                    return (*static_cast<const F*>(c))(from, to, out);
+                  }});
   }
 
  private:
@@ -62,7 +87,7 @@ class RowText {
   static constexpr std::size_t kChunks = 16;  // a round: 2048 rows, one simulate() batch
   enum : int { pending = 0, done = 1, failed = 2 };
 
-  void write(std::size_t n, Row row) {
+  void write(std::size_t n, Rows row) {
     for (std::size_t base = 0; base < n; base += kChunks * kChunkRows) {
       const std::size_t rows = std::min(n - base, kChunks * kChunkRows);
       const std::size_t chunks = (rows + kChunkRows - 1) / kChunkRows;
@@ -111,7 +136,7 @@ class RowText {
     char* p = slot_[k].get();
     try {
       const std::size_t from = base_ + k * kChunkRows, to = std::min(end_row_, from + kChunkRows);
-      for (std::size_t i = from; i < to; ++i) p = row_.make(row_.context, i, p);
+      p = row_.make(row_.context, from, to, p);
       end_[k] = p;
       state_[k].store(done, std::memory_order_release);
     } catch (...) {
@@ -172,7 +197,7 @@ class RowText {
   bool parallel_;
   const std::size_t max_chars_;
   // The round's job: set by the caller before claim_ opens the round, read after a claim.
-  Row row_{};
+  Rows row_{};
   std::size_t base_ = 0, end_row_ = 0;
   std::atomic<std::uint64_t> claim_{0};
   std::array<std::atomic<int>, kChunks> state_{};

@@ -283,6 +283,9 @@ def test_large_sweeps_need_force_large():
     ({"accuracy": "fine"}, TypeError, "sweep: accuracy must be a real number, not str 'fine'"),
     ({"accuracy": 1e-8j}, TypeError, "sweep: accuracy must be a real number, not a complex number"),
     ({"chunk": 10}, TypeError, "sweep: chunk= and progress= belong to a sweep on a Dask cluster"),
+    ({"resume": True}, TypeError, "sweep: resume=True continues the CSV file of an interrupted sweep: give it as csv="),
+    ({"resume": 1}, TypeError, "sweep: resume is True or False, not int 1"),
+    ({"csv": 3}, TypeError, "sweep: csv is a file name, not int 3"),
 ])
 def test_bad_sweep_arguments_are_named(kwargs, error, words):
     values = {"geometry.rope_length": (0.62, 0.9) if "samples" in kwargs else [0.7, 0.8]}
@@ -326,6 +329,182 @@ def test_sweeps_pickle():
     for again in (pickle.loads(pickle.dumps(s)), copy.deepcopy(s)):
         assert again.to_csv() == s.to_csv() and again.shape == s.shape
         assert all(not c.flags.writeable for c in again.values())
+
+
+# --- resumable sweeps (issue 23) -------------------------------------------------------------------
+
+RESUMABLE = ["--example", 3, "--vary", "geometry.rope_length=0.9:1.1:30", "--vary", "masses.lid=0.3:0.7:31"]
+
+SWEEP_TO_FILE = """
+import sys
+import whatnext
+values = {"geometry.rope_length": whatnext.grid(0.9, 1.1, 30), "masses.lid": whatnext.grid(0.3, 0.7, 31)}
+try:
+    whatnext.sweep(whatnext.example(3), values, threads=2, csv=sys.argv[1], resume=sys.argv[2] == "resume")
+except KeyboardInterrupt:
+    sys.exit(3)
+"""
+
+
+def test_a_resumed_sweep_ends_with_the_bytes_of_an_uninterrupted_one(tmp_path):
+    # Killed (SIGKILL: what a crash or a power cut leaves, less the last second), stopped by Ctrl-C,
+    # cut off mid-line, then resumed: the file is the command's uninterrupted CSV, byte for byte,
+    # and the Sweep returned holds every machine as an uninterrupted sweep's does.
+    import random
+    import subprocess
+    import sys
+
+    ref = tmp_path / "ref.csv"
+    run_cli(["sweep", *RESUMABLE, "--out", ref])
+    want = ref.read_bytes()
+    m = whatnext.example(3)
+    values = {"geometry.rope_length": whatnext.grid(0.9, 1.1, 30), "masses.lid": whatnext.grid(0.3, 0.7, 31)}
+    whole = whatnext.sweep(m, values)
+    assert whole.to_csv().encode() == want
+
+    csv, part = tmp_path / "s.csv", tmp_path / "s.csv.part"
+    old = b"the user's previous file\n"
+    csv.write_bytes(old)
+    rng = random.Random()
+
+    def interrupt_when_grown(mode, sig):
+        """The sweep in a process of its own, sent sig once its .part file has grown past a random
+        size beyond what it held; True if the signal came before the sweep finished."""
+        before = part.stat().st_size if part.exists() else 0
+        at = before + rng.randint(1, max(1, (len(want) - min(len(want), before)) * 3 // 4))
+        proc = subprocess.Popen([sys.executable, "-c", SWEEP_TO_FILE, str(csv), mode])
+        try:
+            while proc.poll() is None:
+                if part.exists() and part.stat().st_size >= at:
+                    proc.send_signal(sig)
+                    proc.wait(timeout=60)
+                    return proc.returncode in (-sig, 3)
+                time.sleep(0.0005)
+            return False
+        finally:
+            proc.kill()
+            proc.wait()
+
+    if interrupt_when_grown("new", signal.SIGKILL):
+        assert csv.read_bytes() == old  # killed: only the .part file holds the rows
+        assert part.read_bytes().startswith(b"index,geometry.rope_length,masses.lid,outcome,")
+    interrupt_when_grown("resume", signal.SIGKILL)
+    interrupt_when_grown("resume", signal.SIGKILL)
+    if part.exists():  # still at work: the old file, or the one a finished resume wrote
+        assert csv.read_bytes() in (old, want)
+    if interrupt_when_grown("resume", signal.SIGINT):  # stopped: the rows done, gaps and all, get the name
+        assert not part.exists()
+        assert csv.read_bytes().endswith(b"\n")
+    # A power cut can leave zeros, or half a line, at the end.
+    if part.exists():
+        with open(part, "ab") as f:
+            f.write(b"\0" * 100)
+    else:
+        with open(csv, "ab") as f:
+            f.write(b"929,1.1,0.7,lid_op")
+    resumed = whatnext.sweep(m, values, csv=csv, resume=True)
+    assert csv.read_bytes() == want, "the resumed CSV differs from the uninterrupted one"
+    assert not part.exists()
+    assert resumed.to_csv().encode() == want
+    for name in whole:
+        assert np.array_equal(resumed[name], whole[name], equal_nan=whole[name].dtype.kind == "f"), name
+
+    # A finished file cut in the middle of a row (as a copy that broke off) resumes the same way,
+    # and a finished one stays as it is; the command continues the module's file and vice versa.
+    csv.write_bytes(want[:len(want) // 2 + 37])
+    assert whatnext.sweep(m, values, csv=csv, resume=True).to_csv().encode() == want
+    assert csv.read_bytes() == want
+    assert whatnext.sweep(m, values, csv=csv, resume=True).to_csv().encode() == want
+    csv.write_bytes(want[:len(want) // 3])
+    assert "rows kept from the interrupted sweep" in run_cli(["sweep", *RESUMABLE, "--out", csv, "--resume"]).stdout
+    assert csv.read_bytes() == want
+
+
+def test_ctrl_c_gives_the_rows_done_their_name_and_resume_finishes_them(tmp_path):
+    # 3,000 machines of example 3 (a second or two): Ctrl-C once rows are on the disk.
+    import subprocess
+    import sys
+
+    args = ["--example", 3, "--vary", "geometry.rope_length=0.9:1.1:60", "--vary", "masses.lid=0.3:0.7:50"]
+    run_cli(["sweep", *args, "--out", tmp_path / "ref.csv"])
+    want = (tmp_path / "ref.csv").read_bytes()
+    script = SWEEP_TO_FILE.replace("30)", "60)").replace("31)", "50)")
+    csv, part = tmp_path / "s.csv", tmp_path / "s.csv.part"
+    proc = subprocess.Popen([sys.executable, "-c", script, str(csv), "new"])
+    try:
+        while proc.poll() is None and not (part.exists() and part.stat().st_size > 0):
+            time.sleep(0.001)
+        proc.send_signal(signal.SIGINT)
+        assert proc.wait(timeout=60) == 3  # KeyboardInterrupt
+    finally:
+        proc.kill()
+        proc.wait()
+    assert not part.exists()
+    got = csv.read_bytes()
+    assert got.endswith(b"\n") and len(got) < len(want)
+    lines = got.decode().splitlines()
+    assert lines[0] == want.decode().splitlines()[0]
+    indices = [int(line.split(",")[0]) for line in lines[1:]]
+    assert indices == sorted(indices) and len(indices) < 3000
+    assert set(lines) <= set(want.decode().splitlines())  # every row done is the uninterrupted sweep's
+    values = {"geometry.rope_length": whatnext.grid(0.9, 1.1, 60), "masses.lid": whatnext.grid(0.3, 0.7, 50)}
+    whatnext.sweep(whatnext.example(3), values, csv=csv, resume=True)
+    assert csv.read_bytes() == want
+
+
+def test_a_latin_hypercube_and_own_values_resume_too(tmp_path):
+    # Not only the command's grids: a hypercube, and values of any kind (here not a grid's).
+    m = whatnext.example(1)
+    csv = tmp_path / "lhs.csv"
+    lhs = {"start.sandbag_height": (0.3, 1.5), "masses.lid": (0.2, 1)}
+    whole = whatnext.sweep(m, lhs, samples=60, seed=4, csv=csv)
+    want = csv.read_bytes()
+    assert whole.to_csv().encode() == want
+    run_cli(["sweep", "--example", 1, "--samples", 60, "--seed", 4, "--vary", "start.sandbag_height=0.3:1.5",
+             "--vary", "masses.lid=0.2:1", "--out", tmp_path / "cli.csv"])
+    assert (tmp_path / "cli.csv").read_bytes() == want
+    for cut in (0, 10, len(want) // 2, len(want) - 1):
+        csv.write_bytes(want[:cut])
+        assert whatnext.sweep(m, lhs, samples=60, seed=4, csv=csv, resume=True).to_csv().encode() == want
+        assert csv.read_bytes() == want
+    own = {"masses.lid": np.array([0.9, 0.2, 0.55, 0.3]), "geometry.rope_length": [1.0, 0.95]}
+    whole = whatnext.sweep(m, own, csv=csv)
+    want = csv.read_bytes()
+    assert whole.to_csv().encode() == want
+    csv.write_bytes(want[:len(want) * 2 // 3])
+    assert whatnext.sweep(m, own, csv=csv, resume=True).to_csv().encode() == want
+    # With nothing to resume, resume=True runs the whole sweep.
+    assert whatnext.sweep(m, own, csv=tmp_path / "new.csv", resume=True).to_csv().encode() == want
+    assert (tmp_path / "new.csv").read_bytes() == want
+
+
+def test_resume_refuses_another_sweeps_file(tmp_path):
+    m = whatnext.example(2)
+    values = {"geometry.rope_length": whatnext.grid(0.64, 0.8, 7), "masses.lid": whatnext.grid(0.3, 0.5, 3)}
+    csv = tmp_path / "s.csv"
+    whatnext.sweep(m, values, csv=csv)
+    text = csv.read_bytes()
+    text = text[:text.rindex(b"\n", 0, len(text) // 2) + 1]
+    csv.write_bytes(text)
+    for machine, other, kwargs, words in [
+        (m, {"geometry.rope_length": values["geometry.rope_length"], "masses.sandbag": [0.3, 0.4, 0.5]}, {},
+         "was written by a sweep over other columns (it varies geometry.rope_length, masses.lid; this sweep "
+         "varies geometry.rope_length, masses.sandbag); give another csv= or resume=False"),
+        (m, {"geometry.rope_length": whatnext.grid(0.64, 0.8, 8), "masses.lid": values["masses.lid"]}, {},
+         "the file is another sweep's (other values, samples or seed): give another csv= or resume=False"),
+        (m, values, {"accuracy": 1e-4}, "(another machine or accuracy): give another csv= or resume=False"),
+        (whatnext.example(1), values, {}, "gives another row now than in the file"),
+    ]:
+        with pytest.raises(whatnext.InputError) as err:
+            whatnext.sweep(machine, other, csv=csv, resume=True, **kwargs)
+        assert str(err.value).startswith("sweep: resume ") and words in str(err.value), str(err.value)
+        assert "--" not in str(err.value)
+        assert csv.read_bytes() == text  # left as it was, and no .part file made
+        assert not (tmp_path / "s.csv.part").exists()
+    with pytest.raises(whatnext.InputError, match="^sweep: csv .*: is a directory"):
+        whatnext.sweep(m, values, csv=tmp_path)
+    with pytest.raises(TypeError, match="^sweep: csv= writes a sweep on this computer"):
+        whatnext.sweep(m, values, csv=csv, client=object())
 
 
 # --- on a Dask cluster (issue 23) ------------------------------------------------------------------

@@ -64,12 +64,20 @@ class Machines {
  public:
   // Throws InputError for no ranges, a key given twice, a grid range without N, or too many machines.
   explicit Machines(const Plan& plan);
+  // Machines given by their values (the Python module's sweeps, whose values may be any numbers):
+  // the grid over axes[d] for keys[d] (the last key varies fastest), or machine i's values at
+  // points[i * keys.size() ...]. Their plan has the keys (for the CSV's header), not the values.
+  // InputError for no keys, a key given twice, an empty axis, or too many machines.
+  static Machines grid_of(std::vector<std::string> keys, std::vector<std::vector<double>> axes);
+  static Machines points_of(std::vector<std::string> keys, std::vector<double> points);
   std::int64_t size() const { return size_; }
   const Plan& plan() const { return plan_; }
   // Values of machine i, one per range, written to out[0..ranges).
   void point(std::int64_t i, double* out) const;
 
  private:
+  Machines() = default;
+  static Machines of_keys(std::vector<std::string> keys);
   Plan plan_;
   std::int64_t size_ = 0;
   std::vector<double> lhs_;  // Latin hypercube: size_ x ranges values, row-major
@@ -199,7 +207,13 @@ struct Resumable {
 // naming `what` (the option and file) when the file is another sweep's: other columns, a row
 // whose index or values are not this plan's, or a kept row that running its machine again (with
 // base and accuracy) does not reproduce byte for byte (another machine or --accuracy).
+// The words of read_resumable's messages for what the user can change: the command's by default.
+struct ResumeWords {
+  std::string_view remedy = "give another --out or drop --resume";
+  std::string_view plan = "other --vary, --samples or --seed";
+  std::string_view machine = "another machine, --set or --accuracy";
+};
 Resumable read_resumable(std::string_view text, const Machines& machines, const Config& base, double accuracy,
-                         std::string_view what);
+                         std::string_view what, const ResumeWords& words = {});
 
 }  // namespace whatnext::explore
