@@ -29,4 +29,13 @@ cp "$TMP/ex1e/compare_integrator.png" "$IMG/example1-compare-euler.png"
 "$WN" animate --example 1 --out "$IMG/example1.gif" --width 480 --fps 15 -q
 "$WN" animate --example 3 --out "$IMG/example3.gif" --width 400 --fps 10 --max-length 14 -q
 
+# The students' machine (docs/extensions.md): idealised and built, each at its last frame (the radio on).
+for m in "ideal examples/konstanz-ideal.toml" "built --example konstanz"; do
+  name=${m%% *}
+  mkdir -p "$TMP/k-$name"
+  # shellcheck disable=SC2086
+  "$WN" animate ${m#* } --out "$TMP/k-$name/k.gif" --width 400 --dump-frames "$TMP/k-$name" -q
+  cp "$(ls "$TMP/k-$name"/frame*.png | tail -1)" "$IMG/konstanz-$name.png"
+done
+
 ls -l "$IMG"
