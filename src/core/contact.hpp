@@ -28,8 +28,9 @@ struct System {
   Coords mass{};                              // diagonal of the mass matrix; 0: massless
   Coords force{};                             // generalized forces (gravity, dampers) at this state
   Coords velocity{};                          // generalized velocities
-  std::array<Coords, kMaxContacts> normal{};  // W_i = d gap_i / dq
-  PerContact curvature{};  // gap_i'' = W_i . q'' + curvature_i (the velocity-product terms)
+  // The first `contacts` entries of these are set (not zeroed beyond: the paper's machine has 3).
+  std::array<Coords, kMaxContacts> normal;  // W_i = d gap_i / dq
+  PerContact curvature;  // gap_i'' = W_i . q'' + curvature_i (the velocity-product terms)
   double rate(int i, const Coords& v) const;  // gap_i' = W_i . v
 };
 
