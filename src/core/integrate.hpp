@@ -129,6 +129,30 @@ class StepGrowth : public boost::numeric::odeint::default_step_adjuster<double, 
  private:
   double max_dt_;
 };
+
+// A contact released on its acceleration (order 2: gap ~ L tau^2, L < 0 as a guard) whose gap
+// closes again while it is still within rounding of zero: its value cannot say where, but its rate
+// can (the rate's terms are velocities, resolved far better than the gap's positions), and so can
+// a value that has already come out clearly positive. With g = L tau^2 + C tau^3 through the guard
+// g or its rate r at tau: C = (g - L tau^2) / tau^3 or (r - 2 L tau) / (3 tau^2), and the gap
+// closes at tau* = -L / C. Returns tau* when it is within tau, else -1 (not closing yet, or not
+// such a guard). Without this a rope that tightened again within microseconds of going slack was
+// found only where the step after next ended (11 us after, docs/model.md §4).
+inline double closes_again(int order, double lead, double tau, double g, double floor, double rate) {
+  if (order != 2 || !(lead < -1e-200) || !(tau > 0.0)) return -1.0;
+  double c;
+  if (g > floor) {
+    c = (g - lead * tau * tau) / (tau * tau * tau);
+  } else if (std::isfinite(rate) && rate > 0.0) {
+    c = (rate - 2.0 * lead * tau) / (3.0 * tau * tau);
+  } else {
+    return -1.0;
+  }
+  if (!(c > 0.0)) return -1.0;
+  const double closing = -lead / c;
+  if (closing <= tau) return closing;
+  return g > floor ? tau : -1.0;
+}
 }  // namespace detail
 
 // The adaptive integrator's stepper: embedded Dormand-Prince 5(4) with error control (tolerance
@@ -170,12 +194,13 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
   sys.guards(y, g0, &d0);
   constexpr std::size_t kGuards = std::tuple_size<guard_type>::value;
   std::array<int, kGuards> order{};
-  std::array<double, kGuards> floor{}, noise_time{};
+  std::array<double, kGuards> floor{}, noise_time{}, lead{};
   std::array<bool, kGuards> armed{};
   for (std::size_t i = 0; i < g0.size(); ++i) {
     const auto s = sys.guard_start(static_cast<int>(i));
     order[i] = s.order;
     floor[i] = s.floor;
+    lead[i] = s.lead;
     armed[i] = s.order > 0;
     if (s.order > 0) {
       g0[i] = s.lead;  // the limit of g / (t - t0)^order at t0
@@ -225,11 +250,22 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
     };
     for (std::size_t i = 0; i < g0.size(); ++i) {
       if (armed[i]) {
-        if (in_first && order[i] > 0 && tb - t0 < noise_time[i]) {
-          g1[i] = -std::numeric_limits<double>::min();  // within rounding of the start: as expanded
-        } else if (g1[i] < -floor[i]) {
+        // Within rounding of the start only the guard's rate can tell (its value is as expanded).
+        const bool noise = in_first && order[i] > 0 && tb - t0 < noise_time[i];
+        if (!noise && g1[i] < -floor[i]) {
           armed[i] = false;  // clearly open: an ordinary guard from here on
-        } else if (g1[i] <= floor[i]) {
+          continue;
+        }
+        // Still zero within rounding, or closed again before it ever opened beyond it.
+        const double g_seen = noise ? 0.0 : g1[i];
+        const double closes = detail::closes_again(order[i], lead[i], tb - t0, g_seen, floor[i], d1[i]);
+        if (closes > 0.0) {
+          const double t_close = std::fmax(ta, t0 + closes);
+          if (hit < 0 || t_close < t_hit) {
+            hit = static_cast<int>(i), t_hit = t_close, rate_hit = std::numeric_limits<double>::infinity();
+          }
+          g1[i] = -std::numeric_limits<double>::min();  // found: not an ordinary crossing
+        } else if (noise || g1[i] <= floor[i]) {
           g1[i] = -std::numeric_limits<double>::min();  // still zero: not a crossing
         }
         continue;
