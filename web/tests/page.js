@@ -595,6 +595,24 @@ const checks = {
         .map((k) => `[data-key="${k}"] .name`).join(','), (e) => e.map((x) => x.textContent));
       assert.deepEqual(labels, ['Schaltkraft', 'Anschlag', 'Boden', 'Stoßzahl']);
     }, { hash: '#machine=konstanz', locale: 'de-DE', viewport: { width: 1366, height: 768 } });
+
+    // On the projector (1280x720) at the end, the radio on: the machine, from the seesaw's left end
+    // at the start to the radio's switch, spans most of the drawing (it frames the machine);
+    // writes web-konstanz.png.
+    fs.mkdirSync(outDir, { recursive: true });
+    await withPage(async (p) => {
+      page = p;
+      await page.keyboard.press('f');
+      await page.keyboard.press('End');
+      await page.waitForTimeout(300);
+      const span = await page.evaluate(() => {
+        const w = window.whatnext, m = w.run.machine, phi = m.start.seesaw_angle;
+        const a = w.canvasPixel(-m.seesaw_left_arm * Math.cos(phi), 0), b = w.canvasPixel(m.radio_switch.x, 0);
+        return (b.x - a.x) / document.getElementById('machine').width;
+      });
+      assert.ok(span > 0.75, `the machine spans ${span} of the drawing's width`);
+      await page.screenshot({ path: path.join(outDir, 'web-konstanz.png') });
+    }, { hash: '#machine=konstanz', viewport: { width: 1280, height: 720 } });
   },
 
   // The second run: another impact law, the paper's Euler method at a chosen step, and the
