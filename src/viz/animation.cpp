@@ -775,6 +775,13 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
     cairo_show_text(cr, "\u266A \u266B");
   }
 
+  // The moving parts; the built machine stands on its floor, so nothing of them is drawn below it
+  // (a sandbag lying there, a point in the model, is half a disc).
+  if (m.floor) {
+    cairo_rectangle(cr, 0, 0, v.width, px({0.0, g}).y);
+    cairo_clip(cr);
+  }
+
   // Lid on its hinge.
   set(cr, kLid);
   width_m(0.025, 3.0);
@@ -791,6 +798,10 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   width_m(0.03, 4.0);
   move(polar(-arm, s.phi_s));
   line(geo.seesaw_end(s.phi_s));
+  if (m.end_stop) {  // an edge standing up from the left arm's end, above the sandbag drawn there
+    move(polar(-arm, s.phi_s));
+    line(polar(-arm, s.phi_s) + polar(std::max(0.08, 10.0 / v.scale), s.phi_s + 0.5 * kPi));
+  }
   cairo_stroke(cr);
   set(cr, kBlack);
   circle({0.0, 0.0}, std::max(2.5, 0.015 * v.scale));

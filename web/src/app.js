@@ -121,6 +121,7 @@
     example3: 'sandbag on the level seesaw: the lid never opens',
     example4: 'a hard hit throws the lid up; it never opens',
     radio: 'the balloon switches the radio on',
+    konstanz: "floor, end stop, the rope at the lid's middle: the radio comes on",
   };  // the command line reads machine files of at most 1 MiB  // an event's frame stays this long when playing
   const icon = (d) => `<svg viewBox="0 0 24 24" aria-hidden="true"><path d="${d}"/></svg>`;
   const kPlayIcon = `${icon('M7 4v16l13-8z')} ${T('Play')}`, kPauseIcon = `${icon('M6 4h4v16H6zM14 4h4v16h-4z')} ${T('Pause')}`;
@@ -452,10 +453,12 @@
         note.dataset.index = String(i);
         const cell = note.insertCell();
         cell.colSpan = 6;
-        // The impact's energy and its impulses per contact (N s), in the page's words.
+        // The impact's energy, its impulses per contact (N s) and why another law than the one
+        // chosen was applied, in the page's words.
         cell.textContent = cells.slice(6).join(' ').replace(/^energy /, `${T('energy')} `)
           .replace(/; impulse (.*?)(;|$)/, (all, list, end) =>
-            `; ${T('impulse')} ${list.replace(/\b(sandbag|rope|lid)\b/g, (w) => T(w))}${end}`);
+            `; ${T('impulse')} ${list.replace(/\b(floor on seesaw|floor on sandbag|sandbag|rope|lid|stop)\b/g, (w) => T(w))}${end}`)
+          .replace(/; not the (\S+) law: (.*)$/, (all, law, note) => `; ${T('not the {law} law: {note}', { law, note: T(note) })}`);
         // A negative energy is no error: the potential's zero is at the pivot's height.
         if (/-\d/.test(cell.textContent.split(';')[0])) {
           const why = document.createElement('span');

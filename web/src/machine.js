@@ -16,6 +16,7 @@
     dark: 'rgb(51,42,51)',
     grey: 'rgb(96,96,96)',
     midGrey: 'rgb(160,160,160)',
+    ground: 'rgb(224,224,224)',  // below the built machine's floor (the pixel test looks for it)
     band: 'rgb(236,236,236)',
     eventRed: 'rgb(204,0,0)',
     bagText: 'rgb(153,85,0)',
@@ -236,6 +237,7 @@
     put(add(m.hinge, { x: 0, h: 2 * rl }));
     const radio = radioBox(m);
     put({ x: radio.x0 - 0.05, h: radio.h0 }); put({ x: radio.x1 + 0.05, h: radio.h1 + 0.05 });
+    if (run.events.some((e) => e.type === 'radio_on')) put({ x: radio.x1, h: radio.h1 + 0.25 });  // the notes
     const n = s.t.length, every = Math.max(1, Math.floor(n / 4000));
     for (let i = 0; i < n; i += (s.event[i] >= 0 ? 1 : every)) {
       const phiS = s.phi_s[i];
@@ -300,15 +302,22 @@
     };
   }
 
-  // The parts that never move: floor, pivot stand, box, radio.
+  // The parts that never move: floor, pivot stand, box, radio. The paper's model has no floor
+  // but pieces of it under the stand, the box and the radio; the built machine's floor
+  // (floor.enabled) runs across the picture with the ground below it, as in the animation.
   function drawStill(ctx, v, m, radioOn, radioPlaying) {
     const p = painter(ctx, v);
     const g = groundLevel(m), rl = m.lid_half_length, radio = radioBox(m);
+    if (m.floor) {
+      const y = toPixel(v, { x: 0, h: g }).y;
+      ctx.fillStyle = colour.ground;
+      ctx.fillRect(0, y, v.width, v.height - y);
+    }
     ctx.strokeStyle = colour.midGrey;
     p.width(0.01, 2);
-    for (const [a, b] of [[-0.15, 0.15], [m.hinge.x - 0.05, m.hinge.x + 2 * rl + 0.05], [radio.x0 - 0.05, radio.x1 + 0.05]]) {
-      p.line([{ x: a, h: g }, { x: b, h: g }]);
-    }
+    const pieces = m.floor ? [[(0 - v.ox) / v.scale, (v.width - v.ox) / v.scale]]
+      : [[-0.15, 0.15], [m.hinge.x - 0.05, m.hinge.x + 2 * rl + 0.05], [radio.x0 - 0.05, radio.x1 + 0.05]];
+    for (const [a, b] of pieces) p.line([{ x: a, h: g }, { x: b, h: g }]);
     ctx.fillStyle = colour.grey;
     ctx.beginPath();
     for (const q of [{ x: 0, h: 0 }, { x: -0.07, h: g }, { x: 0.07, h: g }].map((w) => toPixel(v, w))) ctx.lineTo(q.x, q.y);
@@ -328,10 +337,11 @@
     ctx.strokeStyle = colour.dark;
     p.width(0.012, 2);
     p.line([{ x: m.radio_switch.x, h: radio.h1 }, m.radio_switch]);
-    if (radioPlaying) {
+    if (radioPlaying) {  // notes above the radio, where extent keeps room, as in the animation
       ctx.fillStyle = colour.radio;
       ctx.font = `bold ${Math.max(12, 0.12 * v.scale)}px sans-serif`;
-      const q = toPixel(v, { x: radio.x1, h: radio.h1 + 0.05 });
+      ctx.textAlign = 'center';
+      const q = toPixel(v, { x: 0.5 * (radio.x0 + radio.x1), h: radio.h1 + 0.08 });
       ctx.fillText('\u266A \u266B', q.x, q.y);
     }
     ctx.restore();
@@ -376,9 +386,21 @@
     }
   }
 
-  // Lid, seesaw, rope and sandbag. Returns where the sandbag is on the canvas.
+  // How high the end stop stands above the arm [m]: above the sandbag drawn at the arm's end (its
+  // radius is 0.05 m), so that both show (src/viz/animation.cpp draws it so too).
+  const kStopHeight = 0.08;
+
+  // Lid, seesaw, rope and sandbag. Returns where the sandbag is on the canvas. The built machine
+  // stands on its floor: nothing of these is drawn below it (a sandbag lying there, a point in
+  // the model, is half a disc; the seesaw's end resting there a cut bar).
   function drawMoving(ctx, v, run, s, ghost) {
     const m = run.machine, p = painter(ctx, v);
+    ctx.save();
+    if (m.floor) {
+      ctx.beginPath();
+      ctx.rect(0, 0, v.width, toPixel(v, { x: 0, h: groundLevel(m) }).y);
+      ctx.clip();
+    }
     ctx.lineCap = 'round';
     ctx.lineJoin = 'round';
     ctx.strokeStyle = ghost ? colour.ghost : colour.lid;
@@ -393,6 +415,10 @@
     ctx.strokeStyle = ghost ? colour.ghost : colour.seesaw;
     p.width(0.03, 4);
     p.line([polar(-arm, s.phi_s), seesawEnd(m, s.phi_s)]);
+    if (m.end_stop) {  // the end stop: an edge standing up from the left arm's end, as in the animation
+      const end = polar(-arm, s.phi_s);
+      p.line([end, add(end, polar(Math.max(kStopHeight, 10 / v.scale), s.phi_s + Math.PI / 2))]);
+    }
     if (!ghost) {
       ctx.fillStyle = 'black';
       p.circle({ x: 0, h: 0 }, Math.max(2.5, 0.015 * v.scale));
@@ -410,6 +436,7 @@
     ctx.beginPath();
     ctx.arc(bag.x, bag.y, radius, 0, 2 * Math.PI);
     paint(ctx, ghost, colour.sandbag, colour.dark);
+    ctx.restore();
     return { x: bag.x, y: bag.y, radius };
   }
 

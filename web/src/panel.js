@@ -26,16 +26,18 @@
     'start.sandbag_x': [-1.5, -0.01], 'start.sandbag_height': [0, 3], 'start.seesaw_angle': [-60, 60],
     'start.lid_angle': [0, 60], 'run.t_max': [0.5, 30], 'run.output_step': [1e-4, 0.05, 'log'],
     'run.step': [1e-5, 1e-2, 'log'], 'run.tolerance': [1e-14, 1e-4, 'log'], 'run.vertical_margin': [0, 10],
-    'run.gravity': [1, 25],
+    'run.gravity': [1, 25], 'radio.switch_force': [0, 1], 'floor.restitution': [0, 1],
   };
   // What a blank field means for the extension keys that a machine without them does not write
   // (docs/inputs.md).
   const kDefaults = {
     'balloon.rubber_mass': '0', 'balloon.drag_coefficient': '0.47', 'radio.switch_offset': ['0.5', '0'],
     'radio.string_length': '1', 'damping.pivot': '0', 'damping.lid_hinge': '0', 'seesaw.left_arm': 'endless',
-    'seesaw.mass': '0', 'seesaw.inertia': 'bar', 'seesaw.com_offset': 'bar',
+    'seesaw.mass': '0', 'seesaw.inertia': 'bar', 'seesaw.com_offset': 'bar', 'radio.switch_force': '0',
+    'floor.restitution': '0',
   };
-  const kSections = { balloon: 'Balloon', radio: 'Radio', damping: 'Damping', seesaw: 'A seesaw with mass' };
+  const kSections = { balloon: 'Balloon', radio: 'Radio', damping: 'Damping', seesaw: 'The seesaw: its arm, mass and end stop',
+                      floor: 'The floor' };
   const kNumberKinds = ['length', 'mass', 'density', 'angle', 'time', 'acceleration', 'positive'];
   const kSliderSteps = 1000;
   const kProbes = 40;  // slider positions checked for validity
@@ -157,6 +159,9 @@
         return key.endsWith('distance') ? rounded(Math.hypot(dx, dh)) : rounded(Math.atan2(dh, dx) * 180 / Math.PI);
       }
       const v = eff[key];
+      // The knot's default is the lid's free edge, 2 r_L from the hinge (to_toml writes it only
+      // where it is given).
+      if (!v && key === 'geometry.rope_on_lid') return rounded(2 * eff['geometry.lid_half_length'].number);
       if (!v) return kDefaults[key] || '';
       if (v.pair) return v.pair.map(rounded);
       if (v.text !== undefined) return v.text;
@@ -289,11 +294,12 @@
     };
   }
 
-  // A flag that is not given is on when its extension is on in this run.
+  // A flag that is not given is on when its extension is on in this run (floor.enabled: when
+  // floor.restitution is given); to_toml writes the switches that are on.
   function flagMeaning(key, values) {
-    if (key === 'radio.enabled') return Boolean(values.effective['radio.enabled']);
     if (key === 'balloon.drag') return Boolean(values.effective['balloon.drag_coefficient']);
-    return false;
+    const v = values.effective[key];
+    return Boolean(v) && v.number !== 0;
   }
 
   window.whatnextPanel = { create };

@@ -171,6 +171,8 @@
     'sandbag on the level seesaw: the lid never opens': 'Sandsack auf der waagrechten Wippe: der Deckel öffnet nie',
     'a hard hit throws the lid up; it never opens': 'ein harter Schlag wirft den Deckel hoch; er öffnet nie',
     'the balloon switches the radio on': 'der Ballon schaltet das Radio ein',
+    "The students' machine (Konstanz)": 'Die Maschine der Studierenden (Konstanz)',
+    "floor, end stop, the rope at the lid's middle: the radio comes on": 'Boden, Anschlag, das Seil in der Deckelmitte: das Radio geht an',
     'Energy from the pivot\'s height: below it, potential energy is negative.': 'Energie ab der Höhe der Wippenachse: darunter ist die Lageenergie negativ.',
 
     // panel.js
@@ -180,7 +182,8 @@
     Start: 'Anfang',
     'Run: integrator and impact law': 'Lauf: Integrator und Stoßgesetz',
     'Extensions beyond the paper': 'Erweiterungen über den Artikel hinaus',
-    Balloon: 'Ballon', Radio: 'Radio', Damping: 'Dämpfung', 'A seesaw with mass': 'Eine Wippe mit Masse',
+    Balloon: 'Ballon', Radio: 'Radio', Damping: 'Dämpfung', 'The seesaw: its arm, mass and end stop': 'Die Wippe: Arm, Masse und Anschlag',
+    'The floor': 'Der Boden',
     'back to the machine as loaded': 'zurück zur Maschine, wie sie geladen wurde',
     on: 'an',
     'reset {key}': '{key} zurücksetzen',
@@ -194,6 +197,20 @@
     dashed: 'gestrichelt',
     energy: 'Energie',
     impulse: 'Kraftstoß', sandbag: 'Sandsack', rope: 'Seil', lid: 'Deckel',
+    stop: 'Anschlag', 'floor on seesaw': 'Boden auf Wippe', 'floor on sandbag': 'Boden auf Sandsack',
+    'not the {law} law: {note}': 'nicht das Gesetz {law}: {note}',
+    // The reasons an impact takes the rope law instead of the one chosen (src/core/contact_decision.cpp,
+    // impact_laws.cpp), shown in the timeline.
+    'the jerk comes with a bounce on the floor, which no single law covers: the rope law':
+      'mit dem Ruck prallt etwas vom Boden ab, was kein einzelnes Gesetz abdeckt: das Seilgesetz',
+    'the jerk also presses the lid onto the box, which no single law covers: perfectly inelastic (rope law)':
+      'der Ruck drückt auch den Deckel auf die Kiste, was kein einzelnes Gesetz abdeckt: vollkommen unelastisch (Seilgesetz)',
+    'the law has no finite solution at this state: perfectly inelastic (rope law)':
+      'das Gesetz hat in diesem Zustand keine endliche Lösung: vollkommen unelastisch (Seilgesetz)',
+    'no sandbag takes part in this jerk, so linear momentum says nothing: perfectly inelastic (rope law)':
+      'kein Sandsack ist an diesem Ruck beteiligt, daher sagt der Impulssatz nichts: vollkommen unelastisch (Seilgesetz)',
+    'the law would drive a touching contact (the lid into the box, or the sandbag into the arm): perfectly inelastic (rope law)':
+      'das Gesetz triebe einen berührenden Kontakt ineinander (den Deckel in die Kiste oder den Sandsack in den Arm): vollkommen unelastisch (Seilgesetz)',
     // machine.js
     'sandbag {d} m out': 'Sandsack {d} m draußen',
     'balloon {d} m up': 'Ballon {d} m oben',
@@ -227,6 +244,10 @@
     'seesaw.mass': ['Masse der Wippe', 'eine Wippe mit Masse: ein gleichmäßiger Balken von −left_arm bis r_H, außer inertia/com_offset sind angegeben'],
     'seesaw.inertia': ['Trägheitsmoment', 'das Trägheitsmoment der Wippe um die Achse'],
     'seesaw.com_offset': ['Schwerpunkt', 'der Schwerpunkt der Wippe längs des Balkens ab der Achse, + zum Seilende hin'],
+    'seesaw.end_stop': ['Anschlag', 'an: eine Kante am Ende des linken Arms hält den Sandsack auf, der dann dort mitfährt (braucht seesaw.left_arm)'],
+    'radio.switch_force': ['Schaltkraft', 'so stark muss die Schnur ziehen, um den Schalter des Radios umzulegen (ein Wippschalter); 0: jeder Zug'],
+    'floor.enabled': ['Boden', 'an: der Boden, auf dem die Kiste steht; die Enden der Wippe und der Sandsack stehen darauf (braucht seesaw.left_arm)'],
+    'floor.restitution': ['Stoßzahl', 'Newtons Stoßzahl für Stöße auf den Boden, 0 (sie bleiben liegen) bis 1 (sie springen ebenso schnell zurück); sie anzugeben schaltet den Boden ein'],
     'start.sandbag_x': ['Sandsack x', 'Anfangslage des Sandsacks, waagrecht ab der Achse (< 0)'],
     'start.sandbag_height': ['Sandsack Höhe', 'Anfangshöhe des Sandsacks über der Achse'],
     'start.seesaw_angle': ['Winkel der Wippe', 'phiS0, positiv = linker Arm unten'],
@@ -252,6 +273,8 @@
     [/^linkage locked at ([\d.]+) s: the straight rope is in line with the lid or the seesaw's arm; the lid is at ([-\d.]+) deg$/,
       'Gestänge blockiert bei $1 s: das gestreckte Seil liegt in einer Linie mit dem Deckel oder dem Arm der Wippe; der Deckel steht bei $2°'],
     [/^radio on at t = ([\d.]+) s$/, 'Radio an bei t = $1 s'],
+    [/^the balloon's string is straight at ([\d.]+) s but pulls less than radio\.switch_force: the radio stays off$/,
+      'die Ballonschnur ist bei $1 s gestreckt, zieht aber schwächer als radio.switch_force: das Radio bleibt aus'],
     [/^no outcome by t_max = ([\d.]+) s: the lid is at ([-\d.]+) deg$/, 'kein Ergebnis bis t_max = $1 s: der Deckel steht bei $2°'],
     [/^stopped after (\d+) events at ([\d.]+) s$/, 'angehalten nach $1 Ereignissen bei $2 s'],
     [/^M1: sandbag falling, rope slack$/, 'M1: Sandsack fällt, Seil locker'],
@@ -342,6 +365,14 @@
     [/^(\S+) needs (\S+) \(the seesaw's weight acts at its centre of mass\)$/, '$1 braucht $2 (das Gewicht der Wippe greift in ihrem Schwerpunkt an)'],
     [/^(\S+) needs a seesaw with inertia: give (\S+) \(and (\S+)\) too$/, '$1 braucht eine Wippe mit Trägheit: auch $2 (und $3) angeben'],
     [/^(\S+) is shorter than the sandbag's start on the arm \((.*)\)$/, '$1 ist kürzer als der Weg bis zum Anfangsort des Sandsacks auf dem Arm ($2)'],
+    // The built machine's end stop and floor.
+    [/^(\S+) needs (\S+) \(an endless arm has no end for the stop\)$/, '$1 braucht $2 (ein endloser Arm hat kein Ende für den Anschlag)'],
+    [/^(\S+) needs (\S+) \(an endless arm would reach the floor at any angle\)$/, '$1 braucht $2 (ein endloser Arm reichte bei jedem Winkel bis zum Boden)'],
+    [/^(\S+) needs the floor below the pivot: the box's bottom is (\S+) m above it \(hinge height minus the box's edge 2 r_L\)$/,
+      '$1 braucht den Boden unter der Achse: die Unterseite der Kiste liegt $2 m darüber (Höhe des Scharniers minus die Kante der Kiste 2 r_L)'],
+    [/^(\S+) puts the seesaw's (left|right) end (\S+) m below the floor \((\S+); the floor is (\S+) m below the pivot\)$/,
+      (m, k, side, d, flag, floor) => `${k} setzt das ${side === 'left' ? 'linke' : 'rechte'} Ende der Wippe ${d} m unter den Boden (${flag}; der Boden liegt ${floor} m unter der Achse)`],
+    [/^(\S+) is below the floor \((\S+) m < (\S+) m; (\S+)\)$/, '$1 liegt unter dem Boden ($2 m < $3 m; $4)'],
     [/^(\S+) is already straight at the start: the balloon is (\S+) m from the switch \(given (.*)\)$/,
       '$1 ist schon am Anfang gestreckt: der Ballon ist $2 m vom Schalter entfernt (gegeben: $3)'],
     // inp_input.cpp: the paper's whatnext.inp.
@@ -419,6 +450,9 @@
     'sandbag falls off': 'Sandsack fällt herunter', 'sandbag leaves': 'Sandsack hebt ab', 'lid open': 'Deckel offen',
     'seesaw vertical': 'Wippe senkrecht', 'sandbag at pivot': 'Sandsack an der Achse', 'rope locked': 'Gestänge blockiert',
     'radio on': 'Radio an', timeout: 'Zeit abgelaufen', 'event limit': 'Ereignisgrenze',
+    'sandbag at stop': 'Sandsack am Anschlag', 'sandbag leaves stop': 'Sandsack verlässt den Anschlag',
+    'seesaw on floor': 'Wippe auf dem Boden', 'seesaw lifts': 'Wippe hebt ab', 'sandbag on floor': 'Sandsack auf dem Boden',
+    'sandbag bounces': 'Sandsack prallt ab', 'switch stays off': 'Schalter bleibt aus',
   };
 
   const kLanguages = {
