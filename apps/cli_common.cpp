@@ -57,7 +57,7 @@ void hand_over_to_full() {
 
 void add_input_options(CLI::App& cmd, InputOptions& opts) {
   cmd.add_option("FILE", opts.file, "machine as TOML or the paper's whatnext.inp")->type_name("");
-  cmd.add_option("--example", opts.example, "the paper's example N (1-4) instead of FILE")->type_name("N");
+  cmd.add_option("--example", opts.example, "the paper's example N (1-4), or konstanz (the students' machine), instead of FILE")->type_name("N");
   cmd.add_option("--set", opts.sets, "override an input key, e.g. --set geometry.rope_length=0.9")
       ->type_name("KEY=VALUE")
       ->take_all()
@@ -129,7 +129,7 @@ LoadedInput load_input(const InputOptions& opts) {
     struct stat st {};
     if (input.exists && ::stat(opts.file.c_str(), &st) == 0 && S_ISREG(st.st_mode)) g_claims.push_back(input);
   } else {
-    throw InputError("input: give a machine FILE or --example N (1-4)");
+    throw InputError("input: give a machine FILE or --example N (1-4, konstanz)");
   }
   for (const std::string& s : opts.sets) apply_set(in.config, s);
   in.source = input_label(in.source, opts.sets);

@@ -375,8 +375,9 @@ std::array<double, 6> Model::impulses(const Decision& x) const {
   // Per contact, in the order of the event's impulses: either end of the seesaw on the floor is
   // the floor's impulse on the seesaw.
   std::array<double, 6> out{};
+  // An impulse that is rounding (within the decision's tolerance) is none: not reported.
   for (int i = 0; i < contacts_; ++i) {
-    if (contact::has(x.imp.impulsive, i)) out[i <= kFloorLeft ? i : i - 1] += p[i];
+    if (contact::has(x.imp.impulsive, i) && std::fabs(p[i]) > x.ch.impulse_tol) out[i <= kFloorLeft ? i : i - 1] += p[i];
   }
   return out;
 }

@@ -149,7 +149,9 @@ void check_start(const Reader& in, const Scenario& sc) {
   in.plausible("start.sandbag_x", st.sandbag_x, -kMaxLength, -kMinLength);
   const double arm_h = st.sandbag_x * std::tan(st.seesaw_angle);
   const double above = -st.sandbag_x * std::sin(st.seesaw_angle) + st.sandbag_h * std::cos(st.seesaw_angle);
-  if (above < -1e-9) {
+  // Beyond a finite arm's end the sandbag may start below the arm's line: there is no arm there.
+  const double along = -st.sandbag_x * std::cos(st.seesaw_angle) - st.sandbag_h * std::sin(st.seesaw_angle);
+  if (above < -1e-9 && !(along > m.seesaw_left_arm)) {
     in.fail("start.sandbag_height",
             fmt::format("puts the sandbag under the seesaw's left arm, which is at {:.4g} m there (given {})",
                         arm_h, fmt_num(st.sandbag_h)));
