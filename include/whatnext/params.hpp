@@ -58,6 +58,14 @@ struct Machine {
   bool floor = false;              // the floor through the box's bottom: arm ends and sandbag stand on it
   double floor_restitution = 0.0;  // Newton's coefficient of impacts on the floor (0: inelastic)
   double switch_force = 0.0;       // the radio's switch needs the string to pull this hard [N]; 0: any
+  // Newton's restitution of each contact's impacts (docs/extensions.md): 0 perfectly inelastic, the
+  // paper's; the floor's is floor_restitution.
+  struct Restitution {
+    double sandbag = 0.0;  // the sandbag landing on the arm
+    double rope = 0.0;     // the rope's jerk (the rope law's impact)
+    double lid = 0.0;      // the lid landing on the box
+    double stop = 0.0;     // the sandbag reaching the end stop
+  } restitution;
 
   // Where the rope is tied to the lid, from the hinge: a = 2 r_L at the free edge (the paper's).
   double rope_knot() const { return rope_on_lid > 0.0 ? rope_on_lid : 2.0 * lid_half_length; }

@@ -50,9 +50,11 @@ bool solve_dense(int n, std::array<std::array<double, kMaxUnknowns>, kMaxUnknown
 // they act on; massive coordinates follow from M a = f + W^T lambda. A massless coordinate that no
 // closed contact acts on stays at rest.
 //   given[j]:  f_j for motion, the velocity before for an impact
-//   target[i]: the closed contacts' -curvature_i for motion, 0 for an impact
+//   target[i]: the closed contacts' -curvature_i for motion; for an impact their gap rate after it,
+//              0 (inelastic) unless `after` gives one (Newton's restitution)
 // Writes the multipliers and the resulting coordinates' accelerations (or velocities after).
-bool solve_set(const System& sys, Set set, bool impact, PerContact& multiplier, Coords& out) {
+bool solve_set(const System& sys, Set set, bool impact, PerContact& multiplier, Coords& out,
+               const PerContact* after = nullptr) {
   int idx[kMaxContacts];
   int m = 0;
   for (int i = 0; i < sys.contacts; ++i)
@@ -78,7 +80,7 @@ bool solve_set(const System& sys, Set set, bool impact, PerContact& multiplier, 
   for (int a = 0; a < m + p; ++a) std::fill_n(k[a].begin(), m + p, 0.0);
   for (int a = 0; a < m; ++a) {
     const Coords& wa = sys.normal[idx[a]];
-    double r = impact ? 0.0 : -sys.curvature[idx[a]];
+    double r = impact ? (after ? (*after)[idx[a]] : 0.0) : -sys.curvature[idx[a]];
     for (int j = 0; j < sys.coords; ++j) {
       if (!(sys.mass[j] > 0.0)) continue;
       const double wm = wa[j] * inv_mass[j];
@@ -149,14 +151,14 @@ double System::rate(int i, const Coords& v) const {
   return s;
 }
 
-Impact solve_impact(const System& sys, Set touching, const Choice& choice) {
+Impact solve_impact(const System& sys, Set touching, const Choice& choice, const PerContact* after) {
   Impact best;
   in_order_of_preference(touching, choice, sys.contacts, [&](Set s) {
     Impact cand;
-    if (!choice.consistent(s) || !solve_set(sys, s, true, cand.impulse, cand.velocity)) return false;
+    if (!choice.consistent(s) || !solve_set(sys, s, true, cand.impulse, cand.velocity, after)) return false;
     for (int i = 0; i < sys.contacts; ++i) {
       if (!has(touching, i) || !choice.present(s, i)) continue;
-      cand.rate[i] = has(s, i) ? 0.0 : sys.rate(i, cand.velocity);
+      cand.rate[i] = has(s, i) ? (after ? (*after)[i] : 0.0) : sys.rate(i, cand.velocity);
       if (has(s, i) ? cand.impulse[i] < -choice.impulse_tol : cand.rate[i] < -choice.closing_tol)
         return false;
     }

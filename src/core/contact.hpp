@@ -66,8 +66,9 @@ struct Impact {
 };
 
 // Perfectly inelastic impact of the touching contacts: closed ones get impulses >= 0 and end with
-// zero gap rate, the others separate (rate >= 0).
-Impact solve_impact(const System& sys, Set touching, const Choice& choice);
+// zero gap rate, the others separate (rate >= 0). With `after`, the contacts that take an impulse
+// end with that gap rate instead (Newton's restitution: -e times the rate they came with).
+Impact solve_impact(const System& sys, Set touching, const Choice& choice, const PerContact* after = nullptr);
 
 struct Motion {
   bool ok = false;

@@ -213,47 +213,41 @@ void Model::impact_on_velocities(const Discrete& d, Decision& x, double t) const
   if (!x.imp.ok) no_consistent("impact", t, d.mode());
   x.u = x.imp.velocity;
   x.rate = x.imp.rate;
-  if (e_floor_ > 0.0) rebound(x);
+  if (restitution_) rebound(x);
   x.impacted = false;
   for (int i = 0; i < contacts_; ++i) x.impacted = x.impacted || x.impulsive(i);
 }
 
 void Model::rebound(Decision& x) const {
-  // Newton's restitution on the floor: whatever stood on it leaves with -e times the speed it
-  // came with. Poisson's form of it: the floor's impulses once more, times e, on the masses (the
-  // floor needs a seesaw with mass, so each coordinate it acts on has one); then the touching
-  // contacts once more decide inelastically, so that a rebound never drives one into another.
-  const Set floor = bit(kFloorLeft) | bit(kFloorRight) | bit(kBagFloor);
-  if ((x.imp.impulsive & floor) == 0) return;
-  contact::System sys = x.sys;
-  for (int i : {kFloorLeft, kFloorRight, kBagFloor}) {
-    if (!x.impulsive(i)) continue;
-    for (int j = 0; j < sys.coords; ++j) {
-      if (sys.mass[j] > 0.0) x.u[j] += e_floor_ * x.imp.impulse[i] * sys.normal[i][j] / sys.mass[j];
-    }
+  // Newton's restitution, as event-driven methods have it: a contact that takes an impulse leaves
+  // with -e times the gap rate it came with (e per contact: docs/extensions.md), the others do not
+  // close; the same complementarity problem as the inelastic impact, with those rates as targets.
+  contact::PerContact after{};
+  bool any = false;
+  for (int i = 0; i < contacts_; ++i) {
+    if (!x.impulsive(i) || !(e_[i] > 0.0)) continue;
+    const double came = x.sys.rate(i, x.sys.velocity);
+    if (came < 0.0) after[i] = -e_[i] * came, any = true;
   }
-  sys.velocity = x.u;
-  const contact::Impact again = contact::solve_impact(sys, x.touch, x.ch);
-  if (!again.ok) return;  // then the inelastic impact stands
-  // Poisson's rebound with several contacts at once can come out with more kinetic energy than
-  // the machine brought in: then the inelastic impact stands (an impact never gains energy).
+  if (!any) return;
+  const contact::Impact bounce = contact::solve_impact(x.sys, x.touch, x.ch, &after);
+  if (!bounce.ok) return;  // then the inelastic impact stands
+  // Restitution at several contacts at once can come out with more kinetic energy than the
+  // machine brought in: then the inelastic impact stands (an impact never gains energy).
   auto kinetic = [&](const contact::Coords& v) {
     double e = 0.0;
-    for (int j = 0; j < sys.coords; ++j) e += 0.5 * sys.mass[j] * v[j] * v[j];
+    for (int j = 0; j < x.sys.coords; ++j) e += 0.5 * x.sys.mass[j] * v[j] * v[j];
     return e;
   };
-  if (kinetic(again.velocity) > kinetic(x.sys.velocity)) return;
-  // The impulses of both phases; the floor's contacts that bounced gave one but are not held.
-  contact::Impact both = again;
+  if (kinetic(bounce.velocity) > kinetic(x.sys.velocity)) return;
+  // A contact that bounced took an impulse but is not held (unless its rebound is rounding).
   for (int i = 0; i < contacts_; ++i) {
-    const bool floor_i = contact::has(floor, i);
-    both.impulse[i] = x.imp.impulse[i] * (1.0 + (floor_i ? e_floor_ : 0.0)) + again.impulse[i];
-    if (floor_i && x.impulsive(i) && !contact::has(again.impulsive, i)) x.bounced |= bit(i);
+    const double speed = i == kLid ? 2.0 * r_l_ * after[i] : after[i];
+    if (contact::has(bounce.impulsive, i) && speed > x.ch.rate_tol) x.bounced |= bit(i);
   }
-  both.impulsive = again.impulsive | x.bounced;
-  x.imp = both;
-  x.u = again.velocity;
-  x.rate = again.rate;
+  x.imp = bounce;
+  x.u = bounce.velocity;
+  x.rate = bounce.rate;
 }
 
 void Model::apply_impact_law(Decision& x) const {

@@ -46,10 +46,14 @@ Model::Model(const Scenario& scenario)
       stop_(scenario.machine.end_stop),
       floor_(scenario.machine.floor),
       h_floor_(scenario.machine.floor_height()),
-      e_floor_(scenario.machine.floor_restitution),
       // An end on the floor: -L sin phiS = h_floor (left), r_H sin phiS = h_floor (right); an arm
       // too short to reach the floor never stands on it (NaN).
       grounded_left_(std::asin(-h_floor_ / arm_)),
-      grounded_right_(std::asin(h_floor_ / scenario.machine.seesaw_right_arm)) {}
+      grounded_right_(std::asin(h_floor_ / scenario.machine.seesaw_right_arm)) {
+  const Machine& m = scenario.machine;
+  e_ = {m.restitution.sandbag, m.restitution.rope, m.restitution.lid,        m.restitution.stop,
+        m.floor_restitution,   m.floor_restitution, m.floor_restitution};
+  for (double e : e_) restitution_ = restitution_ || e > 0.0;
+}
 
 }  // namespace whatnext

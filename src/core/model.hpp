@@ -278,7 +278,9 @@ class Model {
   // height, the restitution of impacts on it, and the seesaw's angles standing on it.
   int contacts_;
   bool stop_, floor_;
-  double h_floor_, e_floor_, grounded_left_, grounded_right_;
+  double h_floor_, grounded_left_, grounded_right_;
+  std::array<double, kContactCount> e_{};  // Newton's restitution per contact (0: inelastic)
+  bool restitution_ = false;               // some contact has one
   double grounded_angle(int side) const { return side > 0 ? grounded_left_ : grounded_right_; }
   void ground(Kinematics& k, int side, bool carries) const;
 };

@@ -43,6 +43,13 @@ void build_built_machine(const Reader& in, Machine& m) {
     in.fail("floor.enabled", "is false but floor.restitution is given: remove one");
   }
   m.floor_restitution = in.in_range("floor.restitution", 0.0, 0.0, true, 1.0, true);
+  m.restitution.sandbag = in.in_range("restitution.sandbag", 0.0, 0.0, true, 1.0, true);
+  m.restitution.rope = in.in_range("restitution.rope", 0.0, 0.0, true, 1.0, true);
+  m.restitution.lid = in.in_range("restitution.lid", 0.0, 0.0, true, 1.0, true);
+  m.restitution.stop = in.in_range("restitution.stop", 0.0, 0.0, true, 1.0, true);
+  if (m.restitution.stop > 0.0 && !m.end_stop) {
+    in.fail("restitution.stop", "needs seesaw.end_stop (there is no stop to bounce off)");
+  }
   // An endless arm has no end to stop the sandbag, and would touch the floor at any angle.
   if (m.end_stop && !std::isfinite(m.seesaw_left_arm)) {
     in.fail("seesaw.end_stop", "needs seesaw.left_arm (an endless arm has no end for the stop)");
@@ -151,6 +158,12 @@ void check_extension_start(const Reader& in, const Scenario& sc) {
     in.fail("seesaw.left_arm",
             fmt::format("is shorter than the sandbag's start on the arm ({:.4g} m < {:.4g} m)",
                         m.seesaw_left_arm, along));
+  }
+  if (m.restitution.rope > 0.0 && sc.run.impact_law != ImpactLaw::rope) {
+    // The other laws set the jerk's velocities themselves; a rebound on top of them is no law.
+    in.fail("restitution.rope",
+            fmt::format("bounces the rope law's jerk; it cannot go with run.impact_law = {} (given {})",
+                        to_string(sc.run.impact_law), fmt_num(m.restitution.rope)));
   }
   if (m.floor) {
     // Nothing starts below the floor (a seesaw may start standing on it).

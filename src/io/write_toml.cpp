@@ -91,6 +91,14 @@ std::string to_toml(const Scenario& sc, const Config* given) {
     out += "\n[floor]\nenabled = true\n";
     line("restitution", m.floor_restitution);
   }
+  const Machine::Restitution& e = m.restitution;
+  if (e.sandbag > 0.0 || e.rope > 0.0 || e.lid > 0.0 || e.stop > 0.0) {
+    out += "\n[restitution]\n";
+    line("sandbag", e.sandbag);
+    line("rope", e.rope);
+    line("lid", e.lid);
+    line("stop", e.stop);
+  }
   out += "\n[start]\n";
   line("sandbag_x", st.sandbag_x);
   line("sandbag_height", st.sandbag_h);

@@ -1304,6 +1304,8 @@ const checks = {
       ['seesaw.left_arm=1.2', 'floor.enabled=true', 'start.seesaw_angle=30', 'start.sandbag_x=-1.5', 'start.sandbag_height=-0.8',
        'geometry.rope_length=1.4'],
       ['floor.restitution=2'], ['floor.enabled=false', 'floor.restitution=0.5'], ['radio.switch_force=-1'], ['seesaw.end_stop=maybe'],
+      // Restitution on the paper's contacts (issue 20).
+      ['restitution.stop=0.5'], ['restitution.rope=0.5', 'run.impact_law=kinetic-energy'], ['restitution.lid=1.5'],
     ];
     const files = {
       'a.toml': '[foo]\n', 'b.toml': '[geometry]\nrope_length = \n', 'c.toml': '"masses.sandbag" = 0.5\n',
