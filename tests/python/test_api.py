@@ -72,6 +72,20 @@ def test_examples_equal_the_cli(tmp_path, n):
     assert_same_run(whatnext.simulate(whatnext.example(n)), stdout, events_text, table)
 
 
+def test_the_built_machine_equals_the_cli(tmp_path):
+    # The students' machine (issue 19): its floor, stop and switch, and the stop's and floor's
+    # impulses in the samples and events, as the command line has them.
+    konstanz = EXAMPLES / "konstanz.toml"
+    stdout, events_text, table = cli_run(tmp_path, [konstanz])
+    run = whatnext.simulate(whatnext.load(konstanz))
+    assert whatnext.example("konstanz").to_toml() == whatnext.load(konstanz).to_toml()
+    assert run.outcome.type == "radio_on"
+    assert run.event("sandbag_at_stop").impulses["stop_N_s"] > 0.0
+    assert "impulse_floor_seesaw_N_s" in run.samples
+    assert "impulse_stop_N_s" not in whatnext.simulate(whatnext.example(1)).samples  # the paper's has 3
+    assert_same_run(run, stdout, events_text, table)
+
+
 def test_file_inputs_equal_the_cli(tmp_path):
     # A TOML file (the radio runs on after lid_open) and the paper's whatnext.inp layout.
     radio = EXAMPLES / "example1-radio.toml"
