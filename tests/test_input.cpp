@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -423,6 +424,28 @@ TEST(Keys, EveryKeyHasAUnitKindAndADefaultToShow) {
   EXPECT_EQ(wn::nearest_word("--event", {"--events", "--csv", "--dat"}), "--events");
   EXPECT_EQ(wn::nearest_word("rn", {"run", "plot", "sweep"}), "run");
   EXPECT_EQ(wn::nearest_word("xyzzy", {"run", "plot", "sweep"}), "");
+}
+
+// One default per key (issue 18): a key left out is the key table's default, the number it
+// documents; the same machine as with that number given. Keys whose presence is itself a switch
+// (giving them turns the radio, the drag or the floor on, or needs another key) are left out here.
+TEST(Keys, AKeyLeftOutIsTheTablesDefault) {
+  const std::set<std::string> switches = {"balloon.drag_coefficient", "radio.string_length", "radio.switch_force",
+                                          "floor.restitution", "restitution.stop"};
+  int checked = 0;
+  for (const wn::KeySpec& k : wn::known_keys()) {
+    const double d = wn::key_default(k.key);
+    if (std::isnan(d) || switches.count(std::string(k.key))) continue;
+    wn::Config left = wn::example_config(1);
+    left.values.erase(std::string(k.key));
+    wn::Config given = left;
+    wn::set_number(given, std::string(k.key), d);
+    EXPECT_EQ(wn::to_toml(wn::build_scenario(left)), wn::to_toml(wn::build_scenario(given))) << k.key;
+    ++checked;
+  }
+  EXPECT_GE(checked, 25);
+  EXPECT_TRUE(std::isnan(wn::key_default("balloon.radius")));  // r_L: depends on the machine
+  EXPECT_EQ(wn::key_default("geometry.seesaw_right_arm"), 0.6);
 }
 
 // --- the message cases of issue 22 ---------------------------------------------------------------

@@ -31,6 +31,10 @@ struct KeySpec {
 // Every key an input may set, in documentation order.
 const std::vector<KeySpec>& known_keys();
 const KeySpec* find_key(std::string_view key);
+// The key's default as a number: the table's default_text read as one. The one place a key's
+// default is written (validation falls back on it, sweeps spread around it); NaN where the default
+// is not a number ("r_L", "bar", "endless") or the key is unknown.
+double key_default(std::string_view key);
 
 // A value as written (before unit conversion) and where it came from, for error messages.
 struct ConfigValue {

@@ -266,8 +266,8 @@ double base_value(const Config& config, const std::string& key, std::string_view
   const auto it = config.values.find(key);
   if (it != config.values.end() && it->second.type == ConfigValue::Type::number) return it->second.number;
   const KeySpec* spec = find_key(key);
-  double v = 0.0;
-  if (it == config.values.end() && spec && parse_double(spec->default_text, v)) return v;
+  const double v = key_default(key);
+  if (it == config.values.end() && !std::isnan(v)) return v;
   throw InputError(
       fmt::format("{} {}: the machine does not give {} as a number (its default is '{}'); give it "
                   "with --set {}=VALUE",

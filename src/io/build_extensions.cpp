@@ -42,11 +42,11 @@ void build_built_machine(const Reader& in, Machine& m) {
   if (!m.floor && restitution_given && in.find("floor.enabled")) {
     in.fail("floor.enabled", "is false but floor.restitution is given: remove one");
   }
-  m.floor_restitution = in.in_range("floor.restitution", 0.0, 0.0, true, 1.0, true);
-  m.restitution.sandbag = in.in_range("restitution.sandbag", 0.0, 0.0, true, 1.0, true);
-  m.restitution.rope = in.in_range("restitution.rope", 0.0, 0.0, true, 1.0, true);
-  m.restitution.lid = in.in_range("restitution.lid", 0.0, 0.0, true, 1.0, true);
-  m.restitution.stop = in.in_range("restitution.stop", 0.0, 0.0, true, 1.0, true);
+  m.floor_restitution = in.in_range("floor.restitution", 0.0, true, 1.0, true);
+  m.restitution.sandbag = in.in_range("restitution.sandbag", 0.0, true, 1.0, true);
+  m.restitution.rope = in.in_range("restitution.rope", 0.0, true, 1.0, true);
+  m.restitution.lid = in.in_range("restitution.lid", 0.0, true, 1.0, true);
+  m.restitution.stop = in.in_range("restitution.stop", 0.0, true, 1.0, true);
   if (m.restitution.stop > 0.0 && !m.end_stop) {
     in.fail("restitution.stop", "needs seesaw.end_stop (there is no stop to bounce off)");
   }
@@ -75,16 +75,16 @@ void build_extensions(const Reader& in, Machine& m) {
   Vec2 offset{0.5, 0.0};
   if (in.find("radio.switch_offset")) offset = in.pair("radio.switch_offset");
   m.radio_switch = m.hinge + Vec2{2.0 * m.lid_half_length, 0.0} + offset;
-  m.string_length = in.length("radio.string_length", 1.0);
+  m.string_length = in.length("radio.string_length");
   const bool any_radio = in.find("radio.switch_offset") || in.find("radio.string_length") ||
                          in.find("radio.switch_force");
   m.radio = flag(in, "radio.enabled", any_radio);
-  m.switch_force = in.in_range("radio.switch_force", 0.0, 0.0, true, kMaxForce, true);
+  m.switch_force = in.in_range("radio.switch_force", 0.0, true, kMaxForce, true);
   if (!m.radio && any_radio && in.find("radio.enabled")) {
     in.fail("radio.enabled", "is false but other radio keys are given: remove them or enable the radio");
   }
 
-  m.balloon_rubber_mass = in.number("balloon.rubber_mass", 0.0);
+  m.balloon_rubber_mass = in.number("balloon.rubber_mass");
   if (!(m.balloon_rubber_mass >= 0.0)) {
     in.fail("balloon.rubber_mass", fmt::format("must be >= 0 kg (given {})", fmt_num(m.balloon_rubber_mass)));
   }
@@ -101,14 +101,14 @@ void build_extensions(const Reader& in, Machine& m) {
   if (!drag && drag_given && in.find("balloon.drag")) {
     in.fail("balloon.drag", "is false but balloon.drag_coefficient is given: remove one");
   }
-  m.balloon_drag_coefficient = drag ? in.positive("balloon.drag_coefficient", 0.47) : 0.0;
+  m.balloon_drag_coefficient = drag ? in.positive("balloon.drag_coefficient") : 0.0;
   in.plausible("balloon.drag_coefficient", m.balloon_drag_coefficient, 0.0, kMaxDrag);
 
-  m.pivot_damping = in.in_range("damping.pivot", 0.0, 0.0, true, kMaxDamping, true);
-  m.lid_hinge_damping = in.in_range("damping.lid_hinge", 0.0, 0.0, true, kMaxDamping, true);
+  m.pivot_damping = in.in_range("damping.pivot", 0.0, true, kMaxDamping, true);
+  m.lid_hinge_damping = in.in_range("damping.lid_hinge", 0.0, true, kMaxDamping, true);
 
   if (in.find("seesaw.left_arm")) m.seesaw_left_arm = in.length("seesaw.left_arm", 1.0);
-  m.seesaw_mass = in.number("seesaw.mass", 0.0);
+  m.seesaw_mass = in.number("seesaw.mass");
   if (!(m.seesaw_mass >= 0.0)) {
     in.fail("seesaw.mass", fmt::format("must be >= 0 kg (given {})", fmt_num(m.seesaw_mass)));
   }

@@ -15,9 +15,9 @@ namespace {
 
 // The linkage: arms, lid, rope and the hinge (given as distance and angle, or as an offset).
 void read_geometry(const Reader& in, const Config& cfg, Machine& m) {
-  m.seesaw_right_arm = in.length("geometry.seesaw_right_arm", 0.6);
-  m.lid_half_length = in.length("geometry.lid_half_length", 0.2);
-  m.rope_length = in.length("geometry.rope_length", 1.0);
+  m.seesaw_right_arm = in.length("geometry.seesaw_right_arm");
+  m.lid_half_length = in.length("geometry.lid_half_length");
+  m.rope_length = in.length("geometry.rope_length");
   if (in.find("geometry.rope_on_lid")) {  // the knot along the lid (docs/model.md §3); on the lid
     m.rope_on_lid = in.length("geometry.rope_on_lid", 2.0 * m.lid_half_length);
     if (m.rope_on_lid > 2.0 * m.lid_half_length) {
@@ -41,20 +41,20 @@ void read_geometry(const Reader& in, const Config& cfg, Machine& m) {
     }
     m.hinge = {v.x, -v.h};
   } else {
-    const double f = in.length("geometry.hinge_distance", 0.8);
+    const double f = in.length("geometry.hinge_distance");
     const double gamma =
-        in.in_range("geometry.hinge_angle", 27.0, -180.0, true, 180.0, true) * units::kRadiansPerDegree;
+        in.in_range("geometry.hinge_angle", -180.0, true, 180.0, true) * units::kRadiansPerDegree;
     m.hinge = {f * std::cos(gamma), -f * std::sin(gamma)};
   }
 }
 
 // Masses, air, balloon and gravity, then the extensions, which need them.
 void read_bodies(const Reader& in, Machine& m) {
-  m.sandbag_mass = in.mass("masses.sandbag", 0.6);
-  m.lid_mass = in.mass("masses.lid", 0.5);
-  m.air_density = in.positive("air.density", 1.29);
+  m.sandbag_mass = in.mass("masses.sandbag");
+  m.lid_mass = in.mass("masses.lid");
+  m.air_density = in.positive("air.density");
   in.plausible("air.density", m.air_density, kMinDensity, kMaxDensity);
-  m.helium_density = in.number("air.helium_density", 0.18);
+  m.helium_density = in.number("air.helium_density");
   if (!(m.helium_density > 0.0 && m.helium_density < m.air_density)) {
     in.fail("air.helium_density",
             fmt::format("must be > 0 and below air.density ({} kg/m^3) so that the balloon rises (given {})",
@@ -66,7 +66,7 @@ void read_bodies(const Reader& in, Machine& m) {
     in.fail("balloon.model",
             fmt::format("must be program, lagrangian or added-mass (given '{}')", printable(bmodel)));
   }
-  m.gravity = in.positive("run.gravity", 9.81);
+  m.gravity = in.positive("run.gravity");
   in.plausible("run.gravity", m.gravity, kMinGravity, kMaxGravity);
   build_extensions(in, m);
   if (m.balloon_acceleration() > kMaxBalloonG * m.gravity) {
@@ -80,24 +80,24 @@ void read_bodies(const Reader& in, Machine& m) {
 
 // Where the sandbag, seesaw and lid start.
 void read_start(const Reader& in, Start& st) {
-  st.sandbag_x = in.number("start.sandbag_x", -0.3);
-  st.sandbag_h = in.offset("start.sandbag_height", 1.0);
+  st.sandbag_x = in.number("start.sandbag_x");
+  st.sandbag_h = in.offset("start.sandbag_height");
   st.seesaw_angle =
-      in.in_range("start.seesaw_angle", -25.0, -90.0, false, 90.0, false) * units::kRadiansPerDegree;
-  st.lid_angle = in.in_range("start.lid_angle", 5.0, 0.0, true, 90.0, false) * units::kRadiansPerDegree;
+      in.in_range("start.seesaw_angle", -90.0, false, 90.0, false) * units::kRadiansPerDegree;
+  st.lid_angle = in.in_range("start.lid_angle", 0.0, true, 90.0, false) * units::kRadiansPerDegree;
 }
 
 // How to run: end time, output spacing, integrator, impact law, and the work that asks for.
 void read_run(const Reader& in, const Machine& m, RunSettings& run) {
-  run.t_max = in.positive("run.t_max", 5.0);
+  run.t_max = in.positive("run.t_max");
   in.plausible("run.t_max", run.t_max, 0.0, kMaxTime);
-  run.output_step = in.positive("run.output_step", 1e-3);
-  run.step = in.positive("run.step", 1e-3);
+  run.output_step = in.positive("run.output_step");
+  run.step = in.positive("run.step");
   // Tighter than 1e-15 the error estimate is rounding noise and the steps shrink without end;
   // looser than 1e-3 events are located on a state that is wrong in the third digit.
-  run.tolerance = in.in_range("run.tolerance", 1e-12, kMinTolerance, true, kMaxTolerance, true);
+  run.tolerance = in.in_range("run.tolerance", kMinTolerance, true, kMaxTolerance, true);
   run.vertical_margin =
-      in.in_range("run.vertical_margin", 0.9, 0.0, true, 90.0, false) * units::kRadiansPerDegree;
+      in.in_range("run.vertical_margin", 0.0, true, 90.0, false) * units::kRadiansPerDegree;
   const std::string integ = in.text("run.integrator", "adaptive");
   if (!parse_integrator(integ, run.integrator)) {
     in.fail("run.integrator", fmt::format("must be adaptive, euler or rk4 (given '{}')", printable(integ)));

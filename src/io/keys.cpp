@@ -1,7 +1,11 @@
 // The input keys: the table of every key with its unit, default and meaning (docs/inputs.md), and
 // the suggestions for a misspelt key or word.
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "input_common.hpp"
@@ -114,6 +118,23 @@ namespace io {
 }  // namespace io
 
 const std::vector<KeySpec>& known_keys() { return kKeys; }
+
+double key_default(std::string_view key) {
+  // Read once: validation asks for the defaults of every key a machine leaves out, per machine of
+  // a sweep.
+  static const std::unordered_map<std::string_view, double> table = [] {
+    std::unordered_map<std::string_view, double> t;
+    for (const KeySpec& k : kKeys) {
+      const std::string text(k.default_text);
+      char* end = nullptr;
+      const double v = std::strtod(text.c_str(), &end);
+      if (!text.empty() && end == text.c_str() + text.size() && std::isfinite(v)) t.emplace(k.key, v);
+    }
+    return t;
+  }();
+  const auto it = table.find(key);
+  return it == table.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
+}
 
 const KeySpec* find_key(std::string_view key) {
   for (const KeySpec& k : kKeys) {

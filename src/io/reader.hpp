@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -60,9 +62,25 @@ struct Reader {
     const KeySpec* spec = find_key(key);
     return spec ? std::string(spec->unit) : std::string();
   }
+  // Without a fallback the key table's default stands for a key not given (key_default: the one
+  // place it is written), looked up only then.
+  static constexpr double kTable = std::numeric_limits<double>::quiet_NaN();
+  static double table_default(std::string_view key) {
+    const double x = key_default(key);
+    if (std::isnan(x)) throw std::logic_error("no numeric default in the key table for " + std::string(key));
+    return x;
+  }
+  double number(std::string_view key) const { return number(key, kTable); }
+  double positive(std::string_view key) const { return positive(key, kTable); }
+  double length(std::string_view key) const { return length(key, kTable); }
+  double mass(std::string_view key) const { return mass(key, kTable); }
+  double offset(std::string_view key) const { return offset(key, kTable); }
+  double in_range(std::string_view key, double lo, bool lo_closed, double hi, bool hi_closed) const {
+    return in_range(key, kTable, lo, lo_closed, hi, hi_closed);
+  }
   double number(std::string_view key, double fallback) const {
     const ConfigValue* v = find(key);
-    if (!v) return fallback;
+    if (!v) return std::isnan(fallback) ? table_default(key) : fallback;
     if (!std::isfinite(v->number))
       fail(key, fmt::format("must be a finite number (given {})", shown(key, v->number)));
     return v->number;
