@@ -570,162 +570,213 @@ Distribution distribution(const SweepResult& result, std::string_view value) {
   return d;
 }
 
-SweepResult run(const Config& base, const Machines& machines, const RunOptions& options) {
-  const std::int64_t total = machines.size();
-  const std::vector<std::string> keys = machines.plan().keys();
-  SweepResult res;
-  if (options.keep_rows) res.rows.resize(static_cast<std::size_t>(total));
-  res.done.assign(static_cast<std::size_t>(total), 0);
-  res.lines.resize(static_cast<std::size_t>(total));
-  // A resumed sweep: the rows already in the file and the known ones are done before any worker
-  // starts (workers skip them; nothing else writes their slots).
-  const std::int64_t already = std::clamp<std::int64_t>(options.rows_written, 0, total);
-  std::int64_t known = 0;
-  for (std::int64_t i = 0; i < already; ++i) res.done[static_cast<std::size_t>(i)] = 1;
-  for (const auto& [index, line] : options.known) {
-    if (index < already || index >= total || res.done[static_cast<std::size_t>(index)]) continue;
-    res.done[static_cast<std::size_t>(index)] = 1;
-    res.lines[static_cast<std::size_t>(index)] = line;
-    ++known;
+namespace {
+// One sweep as it runs: what its workers and the calling thread, which writes their rows, share.
+// Workers claim small blocks of indices; each row lands in its own slot, so the rows (and the
+// CSV) do not depend on which thread ran which machine. A finished block is marked done under
+// the lock, which also hands its lines to the calling thread.
+class SweepRun {
+ public:
+  SweepRun(const Config& base, const Machines& machines, const RunOptions& options)
+      : base_(base),
+        machines_(machines),
+        options_(options),
+        total_(machines.size()),
+        keys_(machines.plan().keys()) {}
+
+  SweepResult run() {
+    prepare();
+    std::vector<std::thread> pool = start_workers();
+    write_while_running();
+    for (std::thread& t : pool) t.join();
+    if (failure_) std::rethrow_exception(failure_);
+    return finish();
   }
 
-  // Workers claim small blocks of indices; each row lands in its own slot, so the rows (and the
-  // CSV) do not depend on which thread ran which machine. A finished block is marked done under
-  // the lock, which also hands its lines to the calling thread.
-  constexpr std::int64_t kBlock = 8, kWake = 256;
-  std::atomic<std::int64_t> next{already}, completed{already + known}, written{already}, invalid{0},
-      failed_runs{0};
-  int running = 0;
-  std::mutex m;
-  std::condition_variable cv;
-  // An exception in a worker (out of memory) stops the others and is thrown again by this thread;
-  // escaping a worker it would end whatnext through std::terminate, with the .part file left.
-  std::exception_ptr failure;
-  std::atomic<bool> failed{false};
-  auto stopped = [&] {
-    return failed.load(std::memory_order_relaxed) ||
-           (options.stop && options.stop->load(std::memory_order_relaxed));
-  };
-  auto worker = [&] {
+ private:
+  static constexpr std::int64_t kBlock = 8, kWake = 256;
+
+  // The result's slots, and a resumed sweep's rows: those already in the file and the known ones
+  // are done before any worker starts (workers skip them; nothing else writes their slots).
+  void prepare() {
+    if (options_.keep_rows) res_.rows.resize(static_cast<std::size_t>(total_));
+    res_.done.assign(static_cast<std::size_t>(total_), 0);
+    res_.lines.resize(static_cast<std::size_t>(total_));
+    const std::int64_t already = std::clamp<std::int64_t>(options_.rows_written, 0, total_);
+    for (std::int64_t i = 0; i < already; ++i) res_.done[static_cast<std::size_t>(i)] = 1;
+    for (const auto& [index, line] : options_.known) {
+      if (index < already || index >= total_ || res_.done[static_cast<std::size_t>(index)]) continue;
+      res_.done[static_cast<std::size_t>(index)] = 1;
+      res_.lines[static_cast<std::size_t>(index)] = line;
+      ++known_;
+    }
+    next_ = already, completed_ = already + known_, written_ = already;
+  }
+
+  bool stopped() const {
+    return failed_.load(std::memory_order_relaxed) ||
+           (options_.stop && options_.stop->load(std::memory_order_relaxed));
+  }
+
+  // A worker's life. An exception in it (out of memory) stops the others and is thrown again by
+  // the calling thread; escaping a worker it would end whatnext through std::terminate, with the
+  // .part file left.
+  void work() {
     try {
-      Config work = base;
-      std::vector<double> values(keys.size());
+      Config work = base_;
+      std::vector<double> values(keys_.size());
       for (;;) {
-        const std::int64_t start = next.fetch_add(kBlock);
-        if (start >= total) break;
-        const std::int64_t end = std::min(total, start + kBlock);
-        std::int64_t i = start;
-        for (; i < end && !stopped(); ++i) {
-          const auto slot = static_cast<std::size_t>(i);
-          if (known > 0 && res.done[slot]) continue;  // a known row of a resumed sweep
-          machines.point(i, values.data());
-          Outcome o = evaluate_in(work, keys, values.data(), options.accuracy);
-          if (!o.valid) (o.failed ? failed_runs : invalid).fetch_add(1, std::memory_order_relaxed);
-          res.lines[slot] = csv_row(i, values, o);  // formatted here, on all cores
-          if (options.keep_rows) res.rows[slot] = std::move(o);
-          completed.fetch_add(1, std::memory_order_relaxed);
-        }
+        const std::int64_t start = next_.fetch_add(kBlock);
+        if (start >= total_) break;
+        const std::int64_t end = run_block(work, values, start, std::min(total_, start + kBlock));
         {
-          std::lock_guard<std::mutex> lock(m);
-          for (std::int64_t j = start; j < i; ++j) res.done[static_cast<std::size_t>(j)] = 1;
+          std::lock_guard<std::mutex> lock(m_);
+          for (std::int64_t j = start; j < end; ++j) res_.done[static_cast<std::size_t>(j)] = 1;
         }
         // A few hundred lines waiting: time for the writer (cheap when it is awake already).
-        if (options.csv &&
-            completed.load(std::memory_order_relaxed) - written.load(std::memory_order_relaxed) >= kWake) {
-          cv.notify_one();
+        if (options_.csv &&
+            completed_.load(std::memory_order_relaxed) - written_.load(std::memory_order_relaxed) >= kWake) {
+          cv_.notify_one();
         }
         if (stopped()) break;
       }
     } catch (...) {
-      std::lock_guard<std::mutex> lock(m);
-      if (!failure) failure = std::current_exception();
-      failed = true;
+      std::lock_guard<std::mutex> lock(m_);
+      if (!failure_) failure_ = std::current_exception();
+      failed_ = true;
     }
-    std::lock_guard<std::mutex> lock(m);
-    --running;
-    cv.notify_all();
-  };
-  const int threads =
-      static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>(options.threads, total)));
-  running = threads;
-  std::vector<std::thread> pool;
-  pool.reserve(static_cast<std::size_t>(threads));
-  try {
-    for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
-  } catch (...) {  // no thread to be had (out of memory): stop those started, then say so
-    failed = true;
-    for (std::thread& t : pool) t.join();
-    throw;
+    std::lock_guard<std::mutex> lock(m_);
+    --running_;
+    cv_.notify_all();
   }
 
-  // Meanwhile this thread writes the rows that are done, in index order, and lets their lines go
-  // (their memory is used again: every page a sweep touches costs), every kWake rows (waking it
-  // for every block cost more than it saved), and reports progress about ten times a second.
-  if (options.csv && !options.header_written) write_header(*options.csv, machines.plan());
-  std::vector<std::string> ready;
-  auto write_ready = [&] {
-    for (std::string& line : ready) {
-      options.csv->write(line.data(), static_cast<std::streamsize>(line.size()));
-      std::string().swap(line);
+  // Runs machines start..end-1 (until a stop) into their slots; returns where it stopped.
+  std::int64_t run_block(Config& work, std::vector<double>& values, std::int64_t start, std::int64_t end) {
+    std::int64_t i = start;
+    for (; i < end && !stopped(); ++i) {
+      const auto slot = static_cast<std::size_t>(i);
+      if (known_ > 0 && res_.done[slot]) continue;  // a known row of a resumed sweep
+      machines_.point(i, values.data());
+      Outcome o = evaluate_in(work, keys_, values.data(), options_.accuracy);
+      if (!o.valid) (o.failed ? failed_runs_ : invalid_).fetch_add(1, std::memory_order_relaxed);
+      res_.lines[slot] = csv_row(i, values, o);  // formatted here, on all cores
+      if (options_.keep_rows) res_.rows[slot] = std::move(o);
+      completed_.fetch_add(1, std::memory_order_relaxed);
     }
-    ready.clear();
-  };
-  {
-    std::unique_lock<std::mutex> lock(m);
+    return i;
+  }
+
+  // As many workers as asked and there are machines.
+  std::vector<std::thread> start_workers() {
+    const int threads =
+        static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>(options_.threads, total_)));
+    running_ = threads;
+    std::vector<std::thread> pool;
+    pool.reserve(static_cast<std::size_t>(threads));
+    try {
+      for (int i = 0; i < threads; ++i) pool.emplace_back([this] { work(); });
+    } catch (...) {  // no thread to be had (out of memory): stop those started, then say so
+      failed_ = true;
+      for (std::thread& t : pool) t.join();
+      throw;
+    }
+    return pool;
+  }
+
+  // Meanwhile the calling thread writes the rows that are done, in index order, and lets their
+  // lines go (their memory is used again: every page a sweep touches costs), every kWake rows
+  // (waking it for every block cost more than it saved), and reports progress about ten times a
+  // second, until the workers end.
+  void write_while_running() {
+    if (options_.csv && !options_.header_written) write_header(*options_.csv, machines_.plan());
+    std::unique_lock<std::mutex> lock(m_);
     auto last_progress = std::chrono::steady_clock::now();
     auto last_checkpoint = last_progress;
     for (;;) {
-      if (options.csv) {
-        std::int64_t w = written.load(std::memory_order_relaxed);
-        while (w < total && res.done[static_cast<std::size_t>(w)]) {
-          ready.push_back(std::move(res.lines[static_cast<std::size_t>(w)]));
-          ++w;
-        }
-        written.store(w, std::memory_order_relaxed);
-      }
-      const bool finished = running == 0;
-      if (!ready.empty()) {
+      if (options_.csv) collect_ready();
+      const bool finished = running_ == 0;
+      if (!ready_.empty()) {
         lock.unlock();
         write_ready();
         lock.lock();
       }
       if (finished) break;
       const auto now = std::chrono::steady_clock::now();
-      if (options.checkpoint && now - last_checkpoint >= std::chrono::seconds(1)) {
+      if (options_.checkpoint && now - last_checkpoint >= std::chrono::seconds(1)) {
         last_checkpoint = now;
         lock.unlock();
-        options.checkpoint();
+        options_.checkpoint();
         lock.lock();
       }
-      if (options.progress && now - last_progress >= std::chrono::milliseconds(100)) {
+      if (options_.progress && now - last_progress >= std::chrono::milliseconds(100)) {
         last_progress = now;
         lock.unlock();
-        options.progress(completed.load(), total);
+        options_.progress(completed_.load(), total_);
         lock.lock();
       }
-      if (options.progress || options.csv || options.checkpoint) {
-        cv.wait_for(lock, std::chrono::milliseconds(100));
+      if (options_.progress || options_.csv || options_.checkpoint) {
+        cv_.wait_for(lock, std::chrono::milliseconds(100));
       } else {
-        cv.wait(lock);  // until a worker ends
+        cv_.wait(lock);  // until a worker ends
       }
     }
   }
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
-  if (options.csv) {  // after a stop: the rows done beyond the first one that is not
-    for (std::int64_t i = written.load(); i < total; ++i) {
-      const auto slot = static_cast<std::size_t>(i);
-      if (res.done[slot]) ready.push_back(std::move(res.lines[slot]));
+
+  // Under the lock: the lines of the rows done from the first one not written on, in order.
+  void collect_ready() {
+    std::int64_t w = written_.load(std::memory_order_relaxed);
+    while (w < total_ && res_.done[static_cast<std::size_t>(w)]) {
+      ready_.push_back(std::move(res_.lines[static_cast<std::size_t>(w)]));
+      ++w;
     }
-    write_ready();
-    res.lines.clear();
+    written_.store(w, std::memory_order_relaxed);
   }
-  if (options.progress) options.progress(completed.load(), total);  // the final count, not the last tick's
-  res.completed = completed.load();
-  res.invalid = invalid.load();
-  res.failed = failed_runs.load();
-  res.interrupted = res.completed < total;
-  return res;
+
+  void write_ready() {
+    for (std::string& line : ready_) {
+      options_.csv->write(line.data(), static_cast<std::streamsize>(line.size()));
+      std::string().swap(line);
+    }
+    ready_.clear();
+  }
+
+  // The rows left to write after a stop, the final count (not the last tick's) and the tally.
+  SweepResult finish() {
+    if (options_.csv) {  // after a stop: the rows done beyond the first one that is not
+      for (std::int64_t i = written_.load(); i < total_; ++i) {
+        const auto slot = static_cast<std::size_t>(i);
+        if (res_.done[slot]) ready_.push_back(std::move(res_.lines[slot]));
+      }
+      write_ready();
+      res_.lines.clear();
+    }
+    if (options_.progress) options_.progress(completed_.load(), total_);
+    res_.completed = completed_.load();
+    res_.invalid = invalid_.load();
+    res_.failed = failed_runs_.load();
+    res_.interrupted = res_.completed < total_;
+    return std::move(res_);
+  }
+
+  const Config& base_;
+  const Machines& machines_;
+  const RunOptions& options_;
+  const std::int64_t total_;
+  const std::vector<std::string> keys_;
+  SweepResult res_;
+  std::int64_t known_ = 0;  // rows of a resumed sweep given as known lines (not yet written)
+  std::atomic<std::int64_t> next_{0}, completed_{0}, written_{0}, invalid_{0}, failed_runs_{0};
+  int running_ = 0;  // workers not yet ended (under m_)
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::exception_ptr failure_;
+  std::atomic<bool> failed_{false};
+  std::vector<std::string> ready_;  // lines taken under the lock, to be written without it
+};
+}  // namespace
+
+SweepResult run(const Config& base, const Machines& machines, const RunOptions& options) {
+  return SweepRun(base, machines, options).run();
 }
 
 void write_csv(std::ostream& out, const Machines& machines, const SweepResult& result) {
@@ -765,20 +816,18 @@ std::string header_keys(std::string_view line) {
   for (std::size_t p = 0; (p = keys.find(',', p)) != std::string::npos; p += 2) keys.replace(p, 1, ", ");
   return printable(keys, 120);
 }
-}  // namespace
 
-Resumable read_resumable(std::string_view text, const Machines& machines, const Config& base, double accuracy,
-                         std::string_view what, const ResumeWords& words) {
-  Resumable r;
-  const std::string header = csv_header(machines.plan());
+// The header line. Another sweep's columns are refused; false when the line is incomplete (the
+// sweep was killed before it was written whole), and then nothing is kept.
+bool check_header(std::string_view text, const std::string& header, std::string_view what,
+                  const ResumeWords& words) {
   const auto eol = text.find('\n');
-  if (eol == std::string_view::npos) {  // killed before the header was complete: nothing to keep
+  if (eol == std::string_view::npos) {
     if (header.compare(0, text.size(), text) != 0 && text.find('\0') == std::string_view::npos) {
-      throw InputError(
-          fmt::format("{}: is not a CSV of this sweep (its first line is '{}'); {}", what, printable(text, 60),
-                      words.remedy));
+      throw InputError(fmt::format("{}: is not a CSV of this sweep (its first line is '{}'); {}", what,
+                                   printable(text, 60), words.remedy));
     }
-    return r;
+    return false;
   }
   const std::string_view first = text.substr(0, eol + 1);
   if (first != header) {
@@ -787,37 +836,79 @@ Resumable read_resumable(std::string_view text, const Machines& machines, const 
                     what, header_keys(first.substr(0, first.size() - 1)),
                     header_keys(std::string_view(header).substr(0, header.size() - 1)), words.remedy));
   }
+  return true;
+}
+
+// A row's machine index, or -1 for a damaged line (the zeros a power cut can leave, a line cut
+// short): it and all after it are run again.
+std::int64_t row_index(std::string_view line) {
+  if (line.find('\0') != std::string_view::npos) return -1;
+  std::int64_t index = 0;
+  std::size_t k = 0;
+  while (k < line.size() && line[k] >= '0' && line[k] <= '9' && k < 12)
+    index = index * 10 + (line[k++] - '0');
+  if (k == 0 || k >= line.size() || line[k] != ',') return -1;
+  return index;
+}
+
+// A row of machine index (after the row of machine previous) must be this sweep's: in order, and
+// with this plan's values. Returns what follows the values: the outcome's columns.
+std::string_view checked_outcome(std::string_view line, std::int64_t index, std::int64_t previous,
+                                 const Machines& machines, std::vector<double>& values, std::string_view what,
+                                 const ResumeWords& words) {
+  if (index <= previous || index >= machines.size()) {
+    throw InputError(
+        fmt::format("{}: holds a row for machine {}{}, which this sweep does not have there; the "
+                    "file is another sweep's ({}): {}",
+                    what, index, index <= previous ? " out of order" : "", words.plan, words.remedy));
+  }
+  const std::string start = row_start(machines, index, values);
+  if (line.compare(0, start.size(), start) != 0) {
+    throw InputError(
+        fmt::format("{}: its row for machine {} has other values than this sweep's ({}); the file "
+                    "is another sweep's ({}): {}",
+                    what, index, printable(start.substr(0, start.size() - 1), 80), words.plan, words.remedy));
+  }
+  return line.substr(start.size());
+}
+
+// Running the first and the last kept machine again checks what the rows do not show: the
+// machine the values were set on and the accuracy.
+void check_by_running_again(const std::pair<std::int64_t, std::string_view> (&rows)[2],
+                            const Machines& machines, const Config& base, double accuracy,
+                            std::string_view what, const ResumeWords& words) {
+  std::vector<double> values(machines.plan().ranges.size());
+  const std::vector<std::string> keys = machines.plan().keys();
+  for (const auto& [index, line] : rows) {
+    machines.point(index, values.data());
+    const std::string again = csv_row(index, values, evaluate(base, keys, values.data(), accuracy));
+    if (again != line) {
+      throw InputError(
+          fmt::format("{}: machine {} gives another row now than in the file; the file is another "
+                      "sweep's ({}): {}",
+                      what, index, words.machine, words.remedy));
+    }
+  }
+}
+}  // namespace
+
+Resumable read_resumable(std::string_view text, const Machines& machines, const Config& base, double accuracy,
+                         std::string_view what, const ResumeWords& words) {
+  Resumable r;
+  const std::string header = csv_header(machines.plan());
+  if (!check_header(text, header, what, words)) return r;
   r.header = true;
-  r.prefix_bytes = first.size();
+  r.prefix_bytes = header.size();
   std::vector<double> values(machines.plan().ranges.size());
   std::int64_t previous = -1;
-  std::int64_t check_first = -1, check_last = -1;
-  std::string_view check_first_line, check_last_line;
-  for (std::size_t pos = first.size(); pos < text.size();) {
+  std::pair<std::int64_t, std::string_view> checked[2] = {{-1, {}}, {-1, {}}};  // the first and last row
+  for (std::size_t pos = header.size(); pos < text.size();) {
     const auto end = text.find('\n', pos);
     if (end == std::string_view::npos) break;  // a partial last line
     const std::string_view line = text.substr(pos, end + 1 - pos);
-    // A damaged line (the zeros a power cut can leave, a line cut short): it and all after it are run again.
-    if (line.find('\0') != std::string_view::npos) break;
-    std::int64_t index = 0;
-    std::size_t k = 0;
-    while (k < line.size() && line[k] >= '0' && line[k] <= '9' && k < 12)
-      index = index * 10 + (line[k++] - '0');
-    if (k == 0 || k >= line.size() || line[k] != ',') break;
-    if (index <= previous || index >= machines.size()) {
-      throw InputError(
-          fmt::format("{}: holds a row for machine {}{}, which this sweep does not have there; the "
-                      "file is another sweep's ({}): {}",
-                      what, index, index <= previous ? " out of order" : "", words.plan, words.remedy));
-    }
-    const std::string start = row_start(machines, index, values);
-    if (line.compare(0, start.size(), start) != 0) {
-      throw InputError(
-          fmt::format("{}: its row for machine {} has other values than this sweep's ({}); the file "
-                      "is another sweep's ({}): {}",
-                      what, index, printable(start.substr(0, start.size() - 1), 80), words.plan, words.remedy));
-    }
-    const std::string_view rest = line.substr(start.size());
+    const std::int64_t index = row_index(line);
+    if (index < 0) break;
+    const std::string_view rest = checked_outcome(line, index, previous, machines, values, what, words);
     if (rest.rfind("invalid,", 0) == 0) ++r.invalid;
     if (rest.rfind("failed,", 0) == 0) ++r.failed;
     if (index == r.prefix_rows && r.later.empty()) {
@@ -826,28 +917,13 @@ Resumable read_resumable(std::string_view text, const Machines& machines, const 
     } else {
       r.later.emplace_back(index, std::string(line));
     }
-    if (check_first < 0) check_first = index, check_first_line = line;
-    check_last = index, check_last_line = line;
+    if (checked[0].first < 0) checked[0] = {index, line};
+    checked[1] = {index, line};
     previous = index;
     ++r.kept;
     pos = end + 1;
   }
-  if (check_last >= 0) {
-    // Running the first and the last kept machine again checks what the rows do not show: the
-    // machine the values were set on and the accuracy.
-    const std::vector<std::string> keys = machines.plan().keys();
-    for (const auto& [index, line] :
-         {std::pair(check_first, check_first_line), std::pair(check_last, check_last_line)}) {
-      machines.point(index, values.data());
-      const std::string again = csv_row(index, values, evaluate(base, keys, values.data(), accuracy));
-      if (again != line) {
-        throw InputError(
-            fmt::format("{}: machine {} gives another row now than in the file; the file is another "
-                        "sweep's ({}): {}",
-                        what, index, words.machine, words.remedy));
-      }
-    }
-  }
+  if (checked[1].first >= 0) check_by_running_again(checked, machines, base, accuracy, what, words);
   return r;
 }
 

@@ -2,31 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <stdexcept>
+#include <vector>
 
-#include <fmt/format.h>
-#include <plplot/plplot.h>
+#include "png_chart.hpp"
 
 namespace whatnext::viz {
 
 namespace {
-constexpr PLINT kInk = 1, kBar = 2, kMark = 3;
-
-void fill_rect(double x0, double x1, double y0, double y1) {
-  PLFLT x[4] = {x0, x1, x1, x0};
-  PLFLT y[4] = {y0, y0, y1, y1};
-  plfill(4, x, y);
-}
+using png_chart::fill_rect;
+using png_chart::kInk;
+constexpr PLINT kBar = png_chart::kFirstColour, kMark = kBar + 1;
 }  // namespace
 
 void draw_histogram(const std::string& path, const std::vector<double>& values, double mark,
                     const HistogramText& text) {
-  {
-    // PLplot ends the process when it cannot open its file, so find that out first.
-    std::ofstream probe(path, std::ios::binary | std::ios::trunc);
-    if (!probe) throw std::runtime_error(fmt::format("{}: cannot write this file", path));
-  }
+  png_chart::check_writable(path);
   double lo = INFINITY, hi = -INFINITY;
   for (double v : values) {
     if (!std::isfinite(v)) continue;
@@ -34,11 +24,7 @@ void draw_histogram(const std::string& path, const std::vector<double>& values, 
     hi = std::fmax(hi, v);
   }
   if (std::isfinite(mark)) lo = std::fmin(lo, mark), hi = std::fmax(hi, mark);
-  if (!(lo <= hi)) lo = 0.0, hi = 1.0;
-  if (hi - lo < 1e-12 * (1.0 + std::fabs(hi))) {
-    const double pad = std::fmax(1e-9, 1e-3 * std::fabs(hi));
-    lo -= pad, hi += pad;
-  }
+  png_chart::usable_range(lo, hi);
   // About the square root of the count of bins (at least 10, at most 60): enough to show the
   // shape without every bin being noise.
   const int bins = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(values.size()))), 10, 60);
@@ -51,16 +37,7 @@ void draw_histogram(const std::string& path, const std::vector<double>& values, 
   }
   const double top = std::max(1.0, *std::max_element(count.begin(), count.end())) * 1.08;
 
-  plsdev("pngcairo");
-  plsfnam(path.c_str());
-  plspage(0.0, 0.0, 960, 640, 0, 0);
-  plscolbg(255, 255, 255);
-  plscol0(kInk, 0, 0, 0);
-  plscol0(kBar, 59, 82, 139);
-  plscol0(kMark, 220, 80, 30);
-  plinit();
-  pladv(0);
-  plschr(0.0, 0.9);
+  png_chart::begin(path, {960, 640, {{59, 82, 139}, {220, 80, 30}}, {}});  // kBar, kMark
   plvpor(0.10, 0.95, 0.18, 0.90);
   plsxax(8, 0);  // times as they are (0.55), not scaled to 5.5 with an (x10^-1) beside the axis
   plwind(lo - 0.02 * (hi - lo), hi + 0.02 * (hi - lo), 0.0, top);
