@@ -575,6 +575,21 @@ TEST_F(SweepCli, OptimizeWritesATomlThatRunAccepts) {
   EXPECT_FALSE(fs::exists(none));
 }
 
+// An optimum on a knife edge: example 2 with a 1 m rope and a 0.94 kg sandbag has its lid just
+// reach the vertical (at tolerance 1e-9 and below it opens at 1.268 s; at the sweep's accuracy it
+// falls back, and the sandbag slides 17.9 m): the file is the search's optimum, and the command says
+// that at the file's own tolerance it is not, in one line, instead of blaming the TOML writer.
+TEST_F(SweepCli, AnOptimumOnAKnifeEdgeIsSaidToBeOne) {
+  const fs::path best = dir_ / "edge.toml";
+  const CliResult r = whatnext("optimize --example 2 --vary geometry.rope_length=0.62:1.0 --vary "
+                               "masses.sandbag=0.2:2.0 --maximize final_r --grid 5 --starts 2 --out " + best.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err.find("to_toml"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("knife edge"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(fs::exists(best));
+}
+
 // The fast paths behind sweep throughput (docs/performance.md) must agree with the plain formulas.
 TEST(FastPaths, ClosureMatchesLidAngleAndTransfer) {
   Machine m;
