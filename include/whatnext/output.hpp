@@ -23,6 +23,24 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Buffered writes to a file descriptor that keep the errno of the first one that failed (then
+// nothing more is written): the outputs' files and a sweep's resumable .part file.
+class FdStreamBuf : public std::streambuf {
+ public:
+  explicit FdStreamBuf(int descriptor = -1);
+  int fd = -1;
+  int error = 0;  // errno of the first failed write
+
+ protected:
+  int_type overflow(int_type ch) override;
+  int sync() override;
+  std::streamsize xsputn(const char* s, std::streamsize n) override;
+
+ private:
+  bool drain();
+  char buffer_[1 << 16];
+};
+
 // An output file, checked when constructed (before any work; InputError naming `option` and the
 // path otherwise) and complete only after commit():
 //  * "-" is standard output; /dev/stdout, /dev/stderr and /dev/fd/N are those open descriptors;
@@ -65,20 +83,6 @@ class AtomicFile {
   static void check_distinct(const std::vector<const AtomicFile*>& files);
 
  private:
-  class FdBuf : public std::streambuf {
-   public:
-    FdBuf();
-    int fd = -1;
-    int error = 0;  // errno of the first failed write
-   protected:
-    int_type overflow(int_type ch) override;
-    int sync() override;
-    std::streamsize xsputn(const char* s, std::streamsize n) override;
-
-   private:
-    bool drain();
-    char buffer_[1 << 16];
-  };
   std::string option_, path_, target_, tmp_, tmp_name_;
   int dir_fd_ = -1;       // target's folder (the temporary's), for renameat and unlinkat
   bool through_ = false;  // written in place (no temporary)
@@ -88,7 +92,7 @@ class AtomicFile {
   unsigned long long dev_ = 0, ino_ = 0;  // identity, for check_distinct (0: a new file)
   bool null_device_ = false;
   mutable bool named_ = false;  // temp_path() was handed out: written by name
-  FdBuf buf_;
+  FdStreamBuf buf_;
   std::ostream out_{&buf_};
   [[noreturn]] void fail(const std::string& why) const;
   [[noreturn]] void write_failed(const std::string& why) const;

@@ -17,44 +17,6 @@
 
 namespace whatnext::explore {
 
-// Buffered writes to the .part file's descriptor; the first failed write's errno is kept.
-class SweepFile::Buf : public std::streambuf {
- public:
-  explicit Buf(int fd) : fd_(fd) { setp(buffer_, buffer_ + sizeof buffer_); }
-  int error = 0;
-
- protected:
-  int_type overflow(int_type ch) override {
-    if (!drain()) return traits_type::eof();
-    if (!traits_type::eq_int_type(ch, traits_type::eof())) {
-      *pptr() = traits_type::to_char_type(ch);
-      pbump(1);
-    }
-    return traits_type::not_eof(ch);
-  }
-  int sync() override { return drain() ? 0 : -1; }
-
- private:
-  bool drain() {
-    const char* p = pbase();
-    std::size_t left = static_cast<std::size_t>(pptr() - pbase());
-    while (left > 0 && error == 0) {
-      const ssize_t n = ::write(fd_, p, left);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        error = n < 0 ? errno : EIO;
-        break;
-      }
-      p += n;
-      left -= static_cast<std::size_t>(n);
-    }
-    setp(buffer_, buffer_ + sizeof buffer_);
-    return error == 0;
-  }
-  int fd_;
-  char buffer_[1 << 16];
-};
-
 SweepFile::SweepFile(std::string target, std::string given, std::string option)
     : target_(std::move(target)), part_(target_ + ".part"), given_(std::move(given)), option_(std::move(option)) {
   struct stat st {};
@@ -141,7 +103,7 @@ void SweepFile::start(std::string_view kept) {
   if (!in_place && ::stat(target_.c_str(), &st) == 0) (void)::fchmod(fd_, st.st_mode & 07777);
   if (::lseek(fd_, 0, SEEK_END) < 0) fail("cannot write its .part file", false);
   started_ = true;
-  buf_ = std::make_unique<Buf>(fd_);
+  buf_ = std::make_unique<FdStreamBuf>(fd_);
   out_ = std::make_unique<std::ostream>(buf_.get());
   if (!in_place) out_->write(kept.data(), static_cast<std::streamsize>(kept.size()));
   out_->flush();

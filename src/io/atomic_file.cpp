@@ -32,9 +32,9 @@ using namespace io;
 
 // --- AtomicFile --------------------------------------------------------------------------------
 
-AtomicFile::FdBuf::FdBuf() { setp(buffer_, buffer_ + sizeof buffer_); }
+FdStreamBuf::FdStreamBuf(int descriptor) : fd(descriptor) { setp(buffer_, buffer_ + sizeof buffer_); }
 
-bool AtomicFile::FdBuf::drain() {
+bool FdStreamBuf::drain() {
   const char* p = pbase();
   std::size_t left = static_cast<std::size_t>(pptr() - pbase());
   while (left > 0 && error == 0) {
@@ -51,7 +51,7 @@ bool AtomicFile::FdBuf::drain() {
   return error == 0;
 }
 
-AtomicFile::FdBuf::int_type AtomicFile::FdBuf::overflow(int_type ch) {
+FdStreamBuf::int_type FdStreamBuf::overflow(int_type ch) {
   if (!drain()) return traits_type::eof();
   if (!traits_type::eq_int_type(ch, traits_type::eof())) {
     *pptr() = traits_type::to_char_type(ch);
@@ -60,9 +60,9 @@ AtomicFile::FdBuf::int_type AtomicFile::FdBuf::overflow(int_type ch) {
   return traits_type::not_eof(ch);
 }
 
-int AtomicFile::FdBuf::sync() { return drain() ? 0 : -1; }
+int FdStreamBuf::sync() { return drain() ? 0 : -1; }
 
-std::streamsize AtomicFile::FdBuf::xsputn(const char* s, std::streamsize n) {
+std::streamsize FdStreamBuf::xsputn(const char* s, std::streamsize n) {
   std::streamsize done = 0;
   while (done < n) {
     if (pptr() == epptr() && !drain()) return done;

@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "whatnext/output.hpp"
+
 namespace whatnext::explore {
 
 // The rows go to TARGET.part beside the target (in index order, as explore::run writes them) and
@@ -46,12 +48,11 @@ class SweepFile {
   void commit();
 
  private:
-  class Buf;
   std::string target_, part_, given_, option_;
   int fd_ = -1;
   bool created_ = false;  // TARGET.part did not exist before: removed again if never started
   bool started_ = false, from_part_ = false;
-  std::unique_ptr<Buf> buf_;
+  std::unique_ptr<FdStreamBuf> buf_;  // output.hpp
   std::unique_ptr<std::ostream> out_;
   [[noreturn]] void fail(const std::string& why, bool output) const;
 };
