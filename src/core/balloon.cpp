@@ -230,7 +230,13 @@ void Model::small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k
     hs.y[slot::balloon_h] = q;
     hs.y[slot::balloon_v] = k0.balloon_vx * c + k0.balloon_v * s - sb_.radius * k0.dphi_l;
     SmallBalloon::Limit lim{0.0, 0.0, 0.0};
-    if (sb_.limit(c, s, lim) && q >= lim.q - 1e-12 * length_scale_) d.balloon_held = true;
+    if (sb_.limit(c, s, lim) && q >= lim.q - 1e-12 * length_scale_) {
+      // Lid and wall found at one instant: the centre is put on both exactly. The step (of the
+      // order of the events' location error) changes its lift's potential: booked with the catch.
+      d.balloon_held = true;
+      const double h1 = kinematics(d, hs.y).balloon_h;
+      d.books.balloon_catch += m_b_ * a_b_ * (h1 - k0.balloon_h);
+    }
     out.push_back(make_event(EventType::balloon_caught, hs, before, before));
   } else if (fired == kGuardBalloonCorner) {
     d.balloon_held = true;  // reached the wall or its corner, sliding into it: stopped there
