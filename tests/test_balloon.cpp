@@ -141,6 +141,22 @@ TEST(SmallBalloon, EscapesOnlyPastTheCornerAndRisesFromTheLidsEdge) {
   }
 }
 
+TEST(SmallBalloon, HeldUnderTheLidItEscapesJustPastTheCornersAngle) {
+  // Example 3 with r_B = 0.15, r_L = 0.2: caught by the lid, held in the corner, then sliding
+  // along the lid; the corner lets it by from asin(0.75) = 48.59 deg, and it is out where its
+  // centre passes the perpendicular from the wall's top, on the lid: p = 2 r_L cos phiL u + r_B n.
+  const wn::Scenario sc = example(3, {"balloon.radius=0.15", "radio.enabled=true"});
+  const wn::Result res = wn::simulate(sc);
+  const wn::Event* out = find(res.events, wn::EventType::balloon_escapes);
+  ASSERT_NE(out, nullptr);
+  ASSERT_TRUE(out->after.balloon_stuck);
+  const double phi = out->after.phi_l, c0 = std::cos(phi), s0 = std::sin(phi);
+  EXPECT_GE(phi, std::asin(0.75));
+  EXPECT_LT(phi, std::asin(0.75) + 2.0 * kDeg);  // it slides out soon after the corner lets go
+  EXPECT_NEAR(out->after.balloon_x, 0.4 * c0 * c0 + 0.15 * s0, 1e-9);
+  EXPECT_NEAR(out->after.balloon_h, 0.4 * c0 * s0 - 0.15 * c0, 1e-9);
+}
+
 TEST(SmallBalloon, ThePapersBalloonIsUntouched) {
   // r_B = r_L: drawn and computed at the box's centre as ever, and it never escapes.
   const wn::Scenario sc = example(2, {"radio.enabled=true"});
@@ -219,4 +235,43 @@ TEST(SmallBalloon, NeverInsideTheLidOrAWallOnRandomMachines) {
   EXPECT_GE(worst, -1e-9) << "machine " << worst_machine << ": " << worst_sets << " at " << worst_where;
   std::printf("small balloons: %d runs, %d escaped, smallest margin %.3g m (machine %d)\n", runs, escaped, worst,
               worst_machine);
+}
+
+TEST(SmallBalloon, TheSameEventsAtTolerances1e10And1e14) {
+  // The balloon's events (and every other) do not depend on the integrator's tolerance.
+  std::mt19937_64 gen(1914);
+  auto uni = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen); };
+  int runs = 0, differ = 0;
+  std::string first;
+  for (int i = 0; i < 60; ++i) {
+    const int ex = 1 + i % 4;
+    const std::vector<std::string> sets{"balloon.radius=" + std::to_string(0.2 * uni(0.3, 0.97)),
+                                        "run.t_max=2.0", "start.sandbag_height=" + std::to_string(uni(0.3, 1.6)),
+                                        i % 2 ? "radio.enabled=false" : "radio.enabled=true"};
+    std::vector<wn::EventType> types[2];
+    int k = 0;
+    for (const char* tol : {"run.tolerance=1e-10", "run.tolerance=1e-14"}) {
+      std::vector<std::string> all = sets;
+      all.push_back(tol);
+      wn::Scenario sc;
+      try {
+        sc = example(ex, all);
+      } catch (const std::exception&) {
+        break;
+      }
+      for (const wn::Event& e : wn::simulate(sc).events) types[k].push_back(e.type);
+      ++k;
+    }
+    if (k < 2) continue;
+    ++runs;
+    if (types[0] != types[1]) {
+      ++differ;
+      if (first.empty()) {
+        first = "--example " + std::to_string(ex);
+        for (const std::string& x : sets) first += " --set " + x;
+      }
+    }
+  }
+  EXPECT_GT(runs, 40);
+  EXPECT_EQ(differ, 0) << first;
 }
