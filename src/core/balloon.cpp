@@ -89,20 +89,19 @@ void Model::small_balloon_guards(const Discrete& d, const Kinematics& k, GuardVa
     if (rates) (*rates)[kGuardBalloonEscape] = k.balloon_dq + sb_.lid * k.sin_l * k.dphi_l;
     return;
   }
-  // Free: the lid's underside catches it (while the point below the lid it would touch is on the
-  // lid); out of the box once it is higher than the lid can ever reach.
+  // Free (below the lid: it comes from there): the lid's underside catches it, beside the lid its
+  // free edge E stops it. Out of the box once it is higher than the lid can ever reach, or beside
+  // the lid and above the lid's line (nothing of the box over it any more).
   const Vec2 p{k.balloon_x, k.balloon_h};
   const Vec2 u{k.cos_l, k.sin_l}, n{k.sin_l, -k.cos_l};
-  if (dot(p, u) <= sb_.lid) {
-    if (dot(p, n) > 0.0) {
-      g[kGuardBalloon] = r - dot(p, n);
-      if (rates) (*rates)[kGuardBalloon] = -(k.balloon_vx * n.x + k.balloon_v * n.h + k.dphi_l * dot(p, u));
-    }
+  const bool beside = dot(p, u) > sb_.lid;
+  if (!beside) {
+    g[kGuardBalloon] = r - dot(p, n);
+    if (rates) (*rates)[kGuardBalloon] = -(k.balloon_vx * n.x + k.balloon_v * n.h + k.dphi_l * dot(p, u));
   } else {
-    g[kGuardBalloon] = r - norm(p - sb_.lid * u);  // beside the lid: its free edge E
+    g[kGuardBalloon] = r - norm(p - sb_.lid * u);
   }
-  g[kGuardBalloonEscape] = k.balloon_h - (sb_.lid + r);
-  if (rates) (*rates)[kGuardBalloonEscape] = k.balloon_v;
+  g[kGuardBalloonEscape] = std::fmax(k.balloon_h - (sb_.lid + r), beside ? -dot(p, n) : kInactive);
   // The walls: the far wall's face below its top, the top corner W above it, the hinge's wall.
   double wall = r - p.x;
   if (p.h <= 0.0) {
