@@ -172,7 +172,8 @@ TEST(SmallBalloon, NeverInsideTheLidOrAWallOnRandomMachines) {
   // off, with and without drag: every sample until the balloon is out keeps its disc out of the
   // lid (the segment from the hinge to the free edge) and on the box's side of both walls and
   // of the far wall's top corner.
-  const int kMachines = std::getenv("WHATNEXT_BALLOON_MACHINES") ? std::atoi(std::getenv("WHATNEXT_BALLOON_MACHINES")) : 300;
+  const int kMachines =
+      std::getenv("WHATNEXT_BALLOON_MACHINES") ? std::atoi(std::getenv("WHATNEXT_BALLOON_MACHINES")) : 300;
   std::mt19937_64 gen(19);
   auto uni = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen); };
   int runs = 0, escaped = 0, worst_machine = -1;
@@ -243,8 +244,8 @@ TEST(SmallBalloon, NeverInsideTheLidOrAWallOnRandomMachines) {
   EXPECT_GT(runs, kMachines * 5 / 6);
   EXPECT_GT(escaped, kMachines / 6);
   EXPECT_GE(worst, -1e-9) << "machine " << worst_machine << ": " << worst_sets << " at " << worst_where;
-  std::printf("small balloons: %d runs, %d escaped, smallest margin %.3g m (machine %d)\n", runs, escaped, worst,
-              worst_machine);
+  std::printf("small balloons: %d runs, %d escaped, smallest margin %.3g m (machine %d)\n", runs, escaped,
+              worst, worst_machine);
 }
 
 TEST(SmallBalloon, TheSameEventsAtTolerances1e10And1e14) {
@@ -256,7 +257,8 @@ TEST(SmallBalloon, TheSameEventsAtTolerances1e10And1e14) {
   for (int i = 0; i < 60; ++i) {
     const int ex = 1 + i % 4;
     const std::vector<std::string> sets{"balloon.radius=" + std::to_string(0.2 * uni(0.3, 0.97)),
-                                        "run.t_max=2.0", "start.sandbag_height=" + std::to_string(uni(0.3, 1.6)),
+                                        "run.t_max=2.0",
+                                        "start.sandbag_height=" + std::to_string(uni(0.3, 1.6)),
                                         i % 2 ? "radio.enabled=false" : "radio.enabled=true"};
     std::vector<wn::EventType> types[2];
     int k = 0;

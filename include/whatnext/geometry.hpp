@@ -129,8 +129,8 @@ struct BalloonLimit {
 // below W, against W itself (|p - W| = r_B) above it, and not at all once the gap from W to the
 // lid, 2 r_L sin phiL, is 2 r_B or more.
 struct SmallBalloon {
-  double radius;  // r_B
-  double lid;     // 2 r_L
+  double radius;                                // r_B
+  double lid;                                   // 2 r_L
   double wall() const { return lid - radius; }  // the centre's x against the far wall's face
   // q_max and its first two derivatives with respect to phiL; false once the corner lets it by.
   struct Limit {

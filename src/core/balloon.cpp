@@ -62,7 +62,8 @@ Model::BalloonForces Model::small_balloon_forces(const Discrete& d, const Kinema
   return out;
 }
 
-void Model::small_balloon_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const {
+void Model::small_balloon_guards(const Discrete& d, const Kinematics& k, GuardValues& g,
+                                 GuardValues* rates) const {
   const double tol = slack(a_b_, g_), r = sb_.radius;
   if (d.balloon_out && !d.balloon_stuck) return;  // nothing is in its way any more
   if (d.balloon_stuck) {
@@ -140,8 +141,8 @@ void Model::small_balloon_settle(HybridState& hs, Mode before, std::vector<Event
       SmallBalloon::Limit lim{0.0, 0.0, 0.0};
       const bool corner = sb_.limit(ks.cos_l, ks.sin_l, lim);
       // Sliding must move it off the wall: q'' below q_max'' (or no wall any more).
-      const double apart = corner ? small_balloon_slide(ks) - (lim.ddq * ks.dphi_l * ks.dphi_l + lim.dq * ks.ddphi_l)
-                                  : -1.0;
+      const double apart =
+          corner ? small_balloon_slide(ks) - (lim.ddq * ks.dphi_l * ks.dphi_l + lim.dq * ks.ddphi_l) : -1.0;
       if (apart <= tol && small_balloon_forces(slide, ks).lid >= -tol) {
         hs.d.balloon_held = false;
         hs.y = y;
@@ -157,10 +158,12 @@ void Model::small_balloon_settle(HybridState& hs, Mode before, std::vector<Event
       return;
     }
     SmallBalloon::Limit lim{0.0, 0.0, 0.0};
-    if (!hs.d.balloon_out && sb_.limit(k.cos_l, k.sin_l, lim) && k.balloon_q >= lim.q - 1e-12 * length_scale_) {
+    if (!hs.d.balloon_out && sb_.limit(k.cos_l, k.sin_l, lim) &&
+        k.balloon_q >= lim.q - 1e-12 * length_scale_) {
       // At the wall: held there if it moves into it (an inelastic stop), or, at the wall's own
       // rate, if it would accelerate into it.
-      const double closing = k.balloon_dq - lim.dq * k.dphi_l, rate_tol = 1e-9 * std::sqrt(g_ * length_scale_);
+      const double closing = k.balloon_dq - lim.dq * k.dphi_l,
+                   rate_tol = 1e-9 * std::sqrt(g_ * length_scale_);
       const double apart = small_balloon_slide(k) - (lim.ddq * k.dphi_l * k.dphi_l + lim.dq * k.ddphi_l);
       if (closing > rate_tol || (closing >= -rate_tol && apart > tol)) {
         hs.d.balloon_held = true;
@@ -206,7 +209,8 @@ void Model::small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k
     book(hs);
     return;
   }
-  if (fired == kGuardBalloon && !d.balloon_stuck && k0.balloon_x * k0.cos_l + k0.balloon_h * k0.sin_l > sb_.lid) {
+  if (fired == kGuardBalloon && !d.balloon_stuck &&
+      k0.balloon_x * k0.cos_l + k0.balloon_h * k0.sin_l > sb_.lid) {
     // It meets the lid's free edge E from beside: it loses its velocity into E relative to E's
     // own (inelastic, without friction) and goes on free.
     const Vec2 p{k0.balloon_x, k0.balloon_h}, e{sb_.lid * k0.cos_l, sb_.lid * k0.sin_l};
@@ -244,7 +248,8 @@ void Model::small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k
   book(hs);
 }
 
-void Model::small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0, std::vector<Event>& out) const {
+void Model::small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0,
+                                         std::vector<Event>& out) const {
   // The machine's impact changed the lid's rate: the balloon keeps its velocity along the lid; a
   // lid that jumped away from it leaves it behind.
   if (!hs.d.balloon_stuck || hs.d.balloon_out) return;
@@ -252,7 +257,7 @@ void Model::small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0, 
   if (k.dphi_l == k0.dphi_l) return;
   const double c = k.cos_l, s = k.sin_l, q = k.balloon_q;
   const double v_n = k0.balloon_vx * s - k0.balloon_v * c;  // the balloon's velocity along n
-  const double lid_n = -q * k.dphi_l;                        // the lid's there
+  const double lid_n = -q * k.dphi_l;                       // the lid's there
   const Mode m = hs.d.mode();
   if (v_n > lid_n + 1e-7 * std::sqrt(g_ * length_scale_)) {
     small_balloon_free(hs, k0);

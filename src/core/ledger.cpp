@@ -28,7 +28,8 @@ double Model::balloon_energy(double h, double v) const { return 0.5 * m_b_ * v *
 
 double Model::balloon_energy(const Kinematics& k) const {
   // A balloon smaller than the box moves sideways too (the paper's: balloon_vx = 0).
-  return small_ ? 0.5 * m_b_ * (k.balloon_v * k.balloon_v + k.balloon_vx * k.balloon_vx) - m_b_ * a_b_ * k.balloon_h
+  return small_ ? 0.5 * m_b_ * (k.balloon_v * k.balloon_v + k.balloon_vx * k.balloon_vx) -
+                      m_b_ * a_b_ * k.balloon_h
                 : balloon_energy(k.balloon_h, k.balloon_v);
 }
 
@@ -36,8 +37,7 @@ double Model::lid_push_now(const Discrete& d, const Kinematics& k, const State& 
   // While stuck the balloon's energy changes only by the lid's push and the air drag.
   const Books& b = d.books;
   if (!d.balloon_stuck) return b.lid_push;
-  return b.lid_push + (balloon_energy(k) - b.balloon_e_mark) +
-         (y[slot::lost_drag] - b.drag_mark);
+  return b.lid_push + (balloon_energy(k) - b.balloon_e_mark) + (y[slot::lost_drag] - b.drag_mark);
 }
 
 Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full, bool memo) const {
@@ -73,7 +73,7 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
   s.seesaw_kinetic = 0.5 * i_s_ * k.dphi_s * k.dphi_s;
   s.seesaw_potential = w_s_ * g_ * std::sin(k.phi_s);
   s.balloon_kinetic = small_ ? 0.5 * m_b_ * (k.balloon_v * k.balloon_v + k.balloon_vx * k.balloon_vx)
-                            : 0.5 * m_b_ * k.balloon_v * k.balloon_v;
+                             : 0.5 * m_b_ * k.balloon_v * k.balloon_v;
   s.balloon_potential = -m_b_ * a_b_ * k.balloon_h;
   const Books& b = d.books;
   s.lost_impacts = b.impacts;
@@ -89,16 +89,7 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
 Positions Model::positions(double t, const Discrete& d, const State& y) const {
   // snapshot(t, d, y, false, false)'s positions, computed the same way.
   const Kinematics k = kinematics(d, y, false, false);
-  return {t,
-          k.x,
-          k.h,
-          k.phi_s,
-          k.phi_l,
-          balloon_limit_height(k),
-          k.balloon_h,
-          d.mode(),
-          d.taut,
-          k.balloon_x};
+  return {t, k.x, k.h, k.phi_s, k.phi_l, balloon_limit_height(k), k.balloon_h, d.mode(), d.taut, k.balloon_x};
 }
 
 void Model::open_books(HybridState& hs, const Kinematics& k) const {

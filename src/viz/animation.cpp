@@ -181,7 +181,9 @@ double landing_distance(const Scenario& sc) {
 
 // Where the model has it: the box's centre for the paper's balloon, anywhere in the plane for one
 // smaller than the box (docs/extensions.md "A balloon smaller than the box").
-Vec2 balloon_centre(const Machine& m, const Snapshot& s) { return {m.hinge.x + s.balloon_x, m.hinge.h + s.balloon_h}; }
+Vec2 balloon_centre(const Machine& m, const Snapshot& s) {
+  return {m.hinge.x + s.balloon_x, m.hinge.h + s.balloon_h};
+}
 
 double ground_level(const Machine& m) { return m.hinge.h - 2.0 * m.lid_half_length; }
 
