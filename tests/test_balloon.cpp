@@ -158,6 +158,27 @@ TEST(SmallBalloon, HeldUnderTheLidItEscapesJustPastTheCornersAngle) {
   EXPECT_NEAR(out->after.balloon_h, 0.4 * c0 * s0 - 0.15 * c0, 1e-9);
 }
 
+TEST(SmallBalloon, UnderAStillSteepLidItSlidesOutInTheTimeWorkedByHand) {
+  // Lid resting at 24 deg, r_B = 0.08, r_L = 0.2: sin 24 deg = 0.407 >= r_B / r_L, so the wall's
+  // top lets it by from the start. It starts touching the lid above the far wall's face,
+  // q0 = (2 r_L - r_B - r_B sin phi) / cos phi, and slides along the still lid with q'' = a_B sin phi
+  // (no drag) to the escape line q = 2 r_L cos phi: t = sqrt(2 (2 r_L cos phi - q0) / (a_B sin phi)).
+  const wn::Scenario sc = example(1, {"balloon.radius=0.08", "start.lid_angle=24"});
+  const double phi = 24.0 * kDeg, c = std::cos(phi), s = std::sin(phi);
+  const double q0 = (0.4 - 0.08 - 0.08 * s) / c, a = sc.machine.balloon_acceleration();
+  const double t = std::sqrt(2.0 * (0.4 * c - q0) / (a * s));
+  const wn::Result res = wn::simulate(sc);
+  const wn::Event* out = find(res.events, wn::EventType::balloon_escapes);
+  ASSERT_NE(out, nullptr);
+  ASSERT_LT(out->t, res.events.front().t + 1e-12);  // before anything else happens
+  EXPECT_NEAR(out->t, t, 1e-9);
+  EXPECT_NEAR(out->after.balloon_x, 0.4 * c * c + 0.08 * s, 1e-12);
+  // ... and a lid steeper still lets it out at once.
+  const wn::Result steep = wn::simulate(example(1, {"balloon.radius=0.08", "start.lid_angle=60"}));
+  ASSERT_NE(find(steep.events, wn::EventType::balloon_escapes), nullptr);
+  EXPECT_EQ(find(steep.events, wn::EventType::balloon_escapes)->t, 0.0);
+}
+
 TEST(SmallBalloon, ThePapersBalloonIsUntouched) {
   // r_B = r_L: drawn and computed at the box's centre as ever, and it never escapes.
   const wn::Scenario sc = example(2, {"radio.enabled=true"});
@@ -199,6 +220,7 @@ TEST(SmallBalloon, NeverInsideTheLidOrAWallOnRandomMachines) {
       sets.push_back("geometry.rope_on_lid=" + std::to_string(rl * uni(1.0, 2.0)));
     }
     if (i % 11 == 5) sets.push_back("damping.lid_hinge=" + std::to_string(uni(0.0, 0.05)));
+    if (i % 13 == 4) sets.push_back("start.lid_angle=" + std::to_string(uni(15.0, 60.0)));  // the later wins
     wn::Scenario sc;
     try {
       for (const std::string& s : sets) wn::apply_set(cfg, s);

@@ -60,6 +60,14 @@ HybridState Model::initial(std::vector<Event>& out) const {
   hs.y.fill(0.0);
   place(hs, k);
   hs.y[slot::balloon_h] = limit_.height(phi_l0_);
+  SmallBalloon::Limit corner{0.0, 0.0, 0.0};
+  if (small_ && !sb_.limit(k.cos_l, k.sin_l, corner)) {
+    // A lid resting so steep that the wall's top lets a smaller balloon by: it starts under the
+    // lid above the far wall's face (docs/extensions.md), free to slide along the lid.
+    d.balloon_held = false;
+    hs.y[slot::balloon_h] = (sb_.wall() - sb_.radius * k.sin_l) / k.cos_l;
+    hs.y[slot::balloon_v] = 0.0;
+  }
   for (int i = 0; i < contacts_; ++i) {
     if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
     const Guard gi = guard_of(i);
