@@ -137,6 +137,10 @@ struct SmallBalloon {
     double q, dq, ddq;
   };
   bool limit(double cos_l, double sin_l, Limit& out) const;
+  // The same against the hinge's wall (x = r_B), which holds it at q >= q_min(phiL).
+  void hinge(double cos_l, double sin_l, Limit& out) const { face(radius, cos_l, sin_l, out); }
+  // Against a wall's face at the centre's x = x: q = (x - r_B sin phiL) / cos phiL.
+  void face(double x, double cos_l, double sin_l, Limit& out) const;
   // The centre p (relative to the hinge) touching the lid at q.
   Vec2 centre(double q, double cos_l, double sin_l) const {
     return {q * cos_l + radius * sin_l, q * sin_l - radius * cos_l};

@@ -43,7 +43,7 @@ Model::BalloonForces Model::small_balloon_forces(const Discrete& d, const Kinema
     return out;
   }
   SmallBalloon::Limit lim{0.0, 0.0, 0.0};
-  if (!sb_.limit(c, s, lim)) {  // the corner no longer holds it: the lid alone does
+  if (!small_balloon_wall(d.balloon_side, c, s, lim)) {  // the corner no longer holds it: the lid alone does
     out.wall = -1.0;
     return out;
   }
@@ -52,10 +52,13 @@ Model::BalloonForces Model::small_balloon_forces(const Discrete& d, const Kinema
   const Vec2 p_1 = (lim.dq + r) * u + lim.q * up;
   const Vec2 p_2 = (lim.ddq - lim.q) * u + (2.0 * lim.dq + r) * up;
   const Vec2 b = (w1 * w1) * p_2 + w2 * p_1 - f;
-  // The wall's push: off its face (-1, 0), or off its top corner W = (2 r_L, 0) radially.
+  // The wall's push: off the far wall's face (-1, 0), or off its top corner W = (2 r_L, 0)
+  // radially; off the hinge's wall (1, 0).
   const bool face = sb_.wall() * s <= r;
   const Vec2 p = sb_.centre(lim.q, c, s);
-  const Vec2 m = face ? Vec2{-1.0, 0.0} : (1.0 / r) * (p - Vec2{sb_.lid, 0.0});
+  const Vec2 m = d.balloon_side < 0 ? Vec2{1.0, 0.0}
+                 : face             ? Vec2{-1.0, 0.0}
+                                    : (1.0 / r) * (p - Vec2{sb_.lid, 0.0});
   const double det = cross(n, m);
   out.lid = cross(b, m) / det;
   out.wall = cross(n, b) / det;
@@ -78,8 +81,12 @@ void Model::small_balloon_guards(const Discrete& d, const Kinematics& k, GuardVa
       if (rates) (*rates)[kGuardBalloonEscape] = k.balloon_dq;
       return;
     }
-    SmallBalloon::Limit lim{0.0, 0.0, 0.0};
-    if (sb_.limit(k.cos_l, k.sin_l, lim)) {
+    // The walls' gaps along the lid: q - q_max (far wall or its top), q_min - q (hinge's wall).
+    SmallBalloon::Limit lim{0.0, 0.0, 0.0}, hinge{0.0, 0.0, 0.0};
+    sb_.hinge(k.cos_l, k.sin_l, hinge);
+    g[kGuardBalloonCorner] = hinge.q - k.balloon_q;
+    if (rates) (*rates)[kGuardBalloonCorner] = hinge.dq * k.dphi_l - k.balloon_dq;
+    if (sb_.limit(k.cos_l, k.sin_l, lim) && k.balloon_q - lim.q > g[kGuardBalloonCorner]) {
       g[kGuardBalloonCorner] = k.balloon_q - lim.q;
       if (rates) (*rates)[kGuardBalloonCorner] = k.balloon_dq - lim.dq * k.dphi_l;
     }
@@ -139,10 +146,13 @@ void Model::small_balloon_settle(HybridState& hs, Mode before, std::vector<Event
       y[slot::balloon_v] = k.balloon_dq;
       const Kinematics ks = kinematics(slide, y);
       SmallBalloon::Limit lim{0.0, 0.0, 0.0};
-      const bool corner = sb_.limit(ks.cos_l, ks.sin_l, lim);
-      // Sliding must move it off the wall: q'' below q_max'' (or no wall any more).
+      const int side = hs.d.balloon_side;
+      const bool corner = small_balloon_wall(side, ks.cos_l, ks.sin_l, lim);
+      // Sliding must move it off the wall: q'' below q_max'' (above q_min'' at the hinge's wall),
+      // or no wall any more.
       const double apart =
-          corner ? small_balloon_slide(ks) - (lim.ddq * ks.dphi_l * ks.dphi_l + lim.dq * ks.ddphi_l) : -1.0;
+          corner ? side * (small_balloon_slide(ks) - (lim.ddq * ks.dphi_l * ks.dphi_l + lim.dq * ks.ddphi_l))
+                 : -1.0;
       if (apart <= tol && small_balloon_forces(slide, ks).lid >= -tol) {
         hs.d.balloon_held = false;
         hs.y = y;
@@ -157,20 +167,28 @@ void Model::small_balloon_settle(HybridState& hs, Mode before, std::vector<Event
       out.push_back(make_event(EventType::balloon_free, hs, before, before));
       return;
     }
-    SmallBalloon::Limit lim{0.0, 0.0, 0.0};
-    if (!hs.d.balloon_out && sb_.limit(k.cos_l, k.sin_l, lim) &&
-        k.balloon_q >= lim.q - 1e-12 * length_scale_) {
-      // At the wall: held there if it moves into it (an inelastic stop), or, at the wall's own
-      // rate, if it would accelerate into it.
-      const double closing = k.balloon_dq - lim.dq * k.dphi_l,
-                   rate_tol = 1e-9 * std::sqrt(g_ * length_scale_);
-      const double apart = small_balloon_slide(k) - (lim.ddq * k.dphi_l * k.dphi_l + lim.dq * k.ddphi_l);
-      if (closing > rate_tol || (closing >= -rate_tol && apart > tol)) {
-        hs.d.balloon_held = true;
+    if (hs.d.balloon_out) return;
+    bool held = false;
+    for (int side : {1, -1}) {
+      SmallBalloon::Limit lim{0.0, 0.0, 0.0};
+      if (!small_balloon_wall(side, k.cos_l, k.sin_l, lim) ||
+          side * (k.balloon_q - lim.q) < -1e-12 * length_scale_) {
         continue;
       }
+      // At a wall: held there if it moves into it (an inelastic stop), or, at the wall's own
+      // rate, if it would accelerate into it.
+      const double closing = side * (k.balloon_dq - lim.dq * k.dphi_l),
+                   rate_tol = 1e-9 * std::sqrt(g_ * length_scale_);
+      const double apart =
+          side * (small_balloon_slide(k) - (lim.ddq * k.dphi_l * k.dphi_l + lim.dq * k.ddphi_l));
+      if (closing > rate_tol || (closing >= -rate_tol && apart > tol)) {
+        hs.d.balloon_held = true;
+        hs.d.balloon_side = side;
+        held = true;
+        break;
+      }
     }
-    return;
+    if (!held) return;
   }
 }
 
@@ -237,12 +255,18 @@ void Model::small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k
       // Lid and wall found at one instant: the centre is put on both exactly. The step (of the
       // order of the events' location error) changes its lift's potential: booked with the catch.
       d.balloon_held = true;
+      d.balloon_side = 1;
       const double h1 = kinematics(d, hs.y).balloon_h;
       d.books.balloon_catch += m_b_ * a_b_ * (h1 - k0.balloon_h);
     }
     out.push_back(make_event(EventType::balloon_caught, hs, before, before));
   } else if (fired == kGuardBalloonCorner) {
-    d.balloon_held = true;  // reached the wall or its corner, sliding into it: stopped there
+    // Reached a wall (or the far wall's top) sliding into it: stopped there.
+    SmallBalloon::Limit far{0.0, 0.0, 0.0}, hinge{0.0, 0.0, 0.0};
+    sb_.hinge(k0.cos_l, k0.sin_l, hinge);
+    const bool corner = sb_.limit(k0.cos_l, k0.sin_l, far);
+    d.balloon_side = corner && k0.balloon_q - far.q >= hinge.q - k0.balloon_q ? 1 : -1;
+    d.balloon_held = true;
   }
   small_balloon_settle(hs, before, out);
   book(hs);

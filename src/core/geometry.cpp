@@ -183,13 +183,18 @@ double BalloonLimit::acceleration_at(double cos_l, double sin_l, double dphi_l, 
   return radius * (ddphi_l / s - dphi_l * dphi_l * cos_l / (s * s));
 }
 
+void SmallBalloon::face(double x, double c, double s, Limit& out) const {
+  // p.x = q cos + r sin = x, so q = (x - r sin) / cos.
+  const double r = radius;
+  out.q = (x - r * s) / c;
+  out.dq = (x * s - r) / (c * c);
+  out.ddq = (x * c * c + 2.0 * s * (x * s - r)) / (c * c * c);
+}
+
 bool SmallBalloon::limit(double c, double s, Limit& out) const {
   const double r = radius, x = wall();
   if (x * s <= r) {
-    // Against the face: p.x = q cos + r sin = x, so q = (x - r sin) / cos.
-    out.q = (x - r * s) / c;
-    out.dq = (x * s - r) / (c * c);
-    out.ddq = (x * c * c + 2.0 * s * (x * s - r)) / (c * c * c);
+    face(x, c, s, out);
     return true;
   }
   // Against the corner W: the nearer of the two points of the line p.n = r_B at |p - W| = r_B.

@@ -236,7 +236,7 @@ struct Model::KinematicsPass {
       return;
     }
     SmallBalloon::Limit lim{0.0, 0.0, 0.0};
-    if (d.balloon_held && m.sb_.limit(k.cos_l, k.sin_l, lim)) {
+    if (d.balloon_held && m.small_balloon_wall(d.balloon_side, k.cos_l, k.sin_l, lim)) {
       k.balloon_q = lim.q;
       k.balloon_dq = lim.dq * k.dphi_l;
     } else {

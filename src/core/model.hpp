@@ -203,6 +203,12 @@ class Model {
   };
   BalloonForces small_balloon_forces(const Discrete& d, const Kinematics& k) const;
   Vec2 small_balloon_force(const Kinematics& k) const;  // lift and drag per unit mass
+  // The wall that holds it (Discrete::balloon_side): its q limit; false where it does not.
+  bool small_balloon_wall(int side, double cos_l, double sin_l, SmallBalloon::Limit& lim) const {
+    if (side > 0) return sb_.limit(cos_l, sin_l, lim);
+    sb_.hinge(cos_l, sin_l, lim);
+    return true;
+  }
   double small_balloon_slide(const Kinematics& k) const;  // q'' sliding along the lid
   void small_balloon_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const;
   void small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before,
