@@ -44,6 +44,7 @@ struct Discrete {
   bool balloon_held = true;
   bool balloon_out = false;
   int balloon_side = 1;  // held by the far wall (+1) or by the hinge's wall (-1)
+  bool balloon_edge = false;  // out, rolling round the lid's free edge (its slots: the angle, rate)
   bool fallen_off = false;     // sandbag slid off the arm's end: it never lands again
   bool latched = false;        // radio: lid latched open after lid_open, rope slack for good
   bool heavy = false;          // the seesaw has inertia (copied from the machine at the start)

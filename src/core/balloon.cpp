@@ -30,6 +30,23 @@ double Model::small_balloon_slide(const Kinematics& k) const {
   return fu - sb_.radius * k.ddphi_l + k.balloon_q * k.dphi_l * k.dphi_l;
 }
 
+// Round the free edge E = 2 r_L u: p = E + r_B e, e = (cos psi, sin psi), e_perp = (-sin psi, cos psi);
+// E'' = 2 r_L (phiL'' u_perp - phiL'^2 u). Along e_perp: r_B psi'' = (f - E'').e_perp; along e the
+// edge pushes with E''.e - r_B psi'^2 - f.e.
+double Model::small_balloon_roll(const Kinematics& k, double psi) const {
+  const Vec2 f = small_balloon_force(k), e{std::cos(psi), std::sin(psi)}, ep{-e.h, e.x};
+  const Vec2 u{k.cos_l, k.sin_l}, up{-k.sin_l, k.cos_l};
+  const Vec2 edge = sb_.lid * (k.ddphi_l * up - (k.dphi_l * k.dphi_l) * u);
+  return dot(f - edge, ep) / sb_.radius;
+}
+
+double Model::small_balloon_edge_push(const Kinematics& k, double psi, double dpsi) const {
+  const Vec2 f = small_balloon_force(k), e{std::cos(psi), std::sin(psi)};
+  const Vec2 u{k.cos_l, k.sin_l}, up{-k.sin_l, k.cos_l};
+  const Vec2 edge = sb_.lid * (k.ddphi_l * up - (k.dphi_l * k.dphi_l) * u);
+  return dot(edge, e) - sb_.radius * dpsi * dpsi - dot(f, e);
+}
+
 Model::BalloonForces Model::small_balloon_forces(const Discrete& d, const Kinematics& k) const {
   BalloonForces out;
   if (!d.balloon_stuck) return out;
@@ -37,6 +54,10 @@ Model::BalloonForces Model::small_balloon_forces(const Discrete& d, const Kinema
   const Vec2 f = small_balloon_force(k);
   const Vec2 u{c, s}, up{-s, c}, n{s, -c};
   const double q = k.balloon_q, dq = k.balloon_dq;
+  if (d.balloon_edge) {
+    out.lid = small_balloon_edge_push(k, k.balloon_q, k.balloon_dq);
+    return out;
+  }
   if (!d.balloon_held) {
     // Across the lid: (2 q' phiL' + r_B phiL'^2 + q phiL'') = f.u_perp - push.
     out.lid = dot(f, up) - (2.0 * dq * w1 + r * w1 * w1 + q * w2);
@@ -76,6 +97,10 @@ void Model::small_balloon_guards(const Discrete& d, const Kinematics& k, GuardVa
       return;
     }
     g[kGuardBalloon] = -f.lid - tol;
+    if (d.balloon_edge) {  // round the edge until its push vanishes, at most to the lid's top
+      g[kGuardBalloonEscape] = k.balloon_q - (std::atan2(k.sin_l, k.cos_l) + kHalfPi);
+      return;
+    }
     if (d.balloon_out) {  // outside, under the lid: it leaves the lid at its free edge
       g[kGuardBalloonEscape] = k.balloon_q - sb_.lid;
       if (rates) (*rates)[kGuardBalloonEscape] = k.balloon_dq;
@@ -123,6 +148,7 @@ void Model::small_balloon_guards(const Discrete& d, const Kinematics& k, GuardVa
 void Model::small_balloon_free(HybridState& hs, const Kinematics& k) const {
   hs.d.balloon_stuck = false;
   hs.d.balloon_held = false;
+  hs.d.balloon_edge = false;
   hs.y[slot::balloon_x] = k.balloon_x;
   hs.y[slot::balloon_h] = k.balloon_h;
   hs.y[slot::balloon_vx] = k.balloon_vx;
@@ -163,8 +189,10 @@ void Model::small_balloon_settle(HybridState& hs, Mode before, std::vector<Event
       return;
     }
     if (f.lid < -tol) {
+      const bool edge = hs.d.balloon_edge;
       small_balloon_free(hs, k);
-      out.push_back(make_event(EventType::balloon_free, hs, before, before));
+      // Leaving the lid's free edge, out of the box, is no event: it is on its way up.
+      if (!edge) out.push_back(make_event(EventType::balloon_free, hs, before, before));
       return;
     }
     if (hs.d.balloon_out) return;
@@ -196,8 +224,17 @@ void Model::small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k
                                std::vector<Event>& out) const {
   Discrete& d = hs.d;
   if (fired == kGuardBalloonEscape) {
-    if (d.balloon_out) {  // off the lid's free edge: free from now on
+    if (d.balloon_edge) {  // round the edge onto the lid's top: free from now on
       small_balloon_free(hs, k0);
+      d.balloon_edge = false;
+      book(hs);
+      return;
+    }
+    if (d.balloon_out) {  // at the lid's free edge: it rolls round it while the edge pushes
+      d.balloon_edge = true;
+      hs.y[slot::balloon_h] = std::atan2(k0.sin_l, k0.cos_l) - kHalfPi;
+      hs.y[slot::balloon_v] = (k0.balloon_dq + sb_.radius * k0.dphi_l) / sb_.radius;
+      small_balloon_settle(hs, before, out);
       book(hs);
       return;
     }
@@ -276,9 +313,21 @@ void Model::small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0,
                                          std::vector<Event>& out) const {
   // The machine's impact changed the lid's rate: the balloon keeps its velocity along the lid; a
   // lid that jumped away from it leaves it behind.
-  if (!hs.d.balloon_stuck || hs.d.balloon_out) return;
+  if (!hs.d.balloon_stuck) return;
   const Kinematics k = kinematics(hs.d, hs.y);
   if (k.dphi_l == k0.dphi_l) return;
+  if (hs.d.balloon_edge) {
+    // Round the edge: its velocity across e kept; an edge that jumped away from it leaves it.
+    const double psi = hs.y[slot::balloon_h];
+    const Vec2 e{std::cos(psi), std::sin(psi)}, ep{-e.h, e.x};
+    const Vec2 v0{k0.balloon_vx, k0.balloon_v}, ve{-sb_.lid * k.sin_l * k.dphi_l, sb_.lid * k.cos_l * k.dphi_l};
+    if (dot(v0 - ve, e) > 1e-7 * std::sqrt(g_ * length_scale_)) {
+      small_balloon_free(hs, k0);
+    } else {
+      hs.y[slot::balloon_v] = dot(v0 - ve, ep) / sb_.radius;
+    }
+    return;
+  }
   const double c = k.cos_l, s = k.sin_l, q = k.balloon_q;
   const double v_n = k0.balloon_vx * s - k0.balloon_v * c;  // the balloon's velocity along n
   const double lid_n = -q * k.dphi_l;                       // the lid's there

@@ -146,10 +146,10 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
       dy[slot::balloon_vx] = f.x;
       dy[slot::balloon_h] = y[slot::balloon_v];
       dy[slot::balloon_v] = f.h;
-    } else if (!d.balloon_held) {  // sliding along the lid
+    } else if (!d.balloon_held) {  // sliding along the lid, or rolling round its free edge
       const Kinematics k = kinematics(d, y);
       dy[slot::balloon_h] = y[slot::balloon_v];
-      dy[slot::balloon_v] = small_balloon_slide(k);
+      dy[slot::balloon_v] = d.balloon_edge ? small_balloon_roll(k, y[slot::balloon_h]) : small_balloon_slide(k);
     }
   } else if (!d.balloon_stuck) {
     dy[slot::balloon_h] = y[slot::balloon_v];

@@ -63,9 +63,10 @@ HybridState Model::initial(std::vector<Event>& out) const {
   SmallBalloon::Limit corner{0.0, 0.0, 0.0};
   if (small_ && !sb_.limit(k.cos_l, k.sin_l, corner)) {
     // A lid resting so steep that the wall's top lets a smaller balloon by: it starts under the
-    // lid above the far wall's face (docs/extensions.md), free to slide along the lid.
+    // lid above the far wall's face (docs/extensions.md), free to slide along the lid; at most at
+    // the line where it is out (beyond it the face's point may lie past the lid's free edge).
     d.balloon_held = false;
-    hs.y[slot::balloon_h] = (sb_.wall() - sb_.radius * k.sin_l) / k.cos_l;
+    hs.y[slot::balloon_h] = std::fmin((sb_.wall() - sb_.radius * k.sin_l) / k.cos_l, sb_.lid * k.cos_l);
     hs.y[slot::balloon_v] = 0.0;
   }
   for (int i = 0; i < contacts_; ++i) {

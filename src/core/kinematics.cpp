@@ -235,6 +235,19 @@ struct Model::KinematicsPass {
       if (rates) k.balloon_vx = y[slot::balloon_vx], k.balloon_v = y[slot::balloon_v];
       return;
     }
+    if (d.balloon_edge) {  // p = E + r_B e(psi), E = 2 r_L u
+      const double psi = y[slot::balloon_h], ce = std::cos(psi), se = std::sin(psi), r = m.sb_.radius;
+      k.balloon_q = psi;  // in place of q: the angle round the edge and its rate
+      if (rates) k.balloon_dq = y[slot::balloon_v];
+      k.balloon_x = m.sb_.lid * k.cos_l + r * ce;
+      k.balloon_h = m.sb_.lid * k.sin_l + r * se;
+      if (rates) {
+        const double w = y[slot::balloon_v];
+        k.balloon_vx = -m.sb_.lid * k.sin_l * k.dphi_l - r * se * w;
+        k.balloon_v = m.sb_.lid * k.cos_l * k.dphi_l + r * ce * w;
+      }
+      return;
+    }
     SmallBalloon::Limit lim{0.0, 0.0, 0.0};
     if (d.balloon_held && m.small_balloon_wall(d.balloon_side, k.cos_l, k.sin_l, lim)) {
       k.balloon_q = lim.q;

@@ -210,6 +210,9 @@ class Model {
     return true;
   }
   double small_balloon_slide(const Kinematics& k) const;  // q'' sliding along the lid
+  // psi'' rolling round the lid's free edge E, and the edge's push (per unit mass) there.
+  double small_balloon_roll(const Kinematics& k, double psi) const;
+  double small_balloon_edge_push(const Kinematics& k, double psi, double dpsi) const;
   void small_balloon_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const;
   void small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before,
                           std::vector<Event>& out) const;

@@ -176,7 +176,10 @@ void check_extension_start(const Reader& in, const Scenario& sc) {
     const SmallBalloon sb{m.balloon_radius, 2.0 * m.lid_half_length};
     const double c = std::cos(st.lid_angle), s = std::sin(st.lid_angle);
     if (m.balloon_radius < m.lid_half_length) {
-      if (!sb.limit(c, s, lim)) sb.face(sb.wall(), c, s, lim);  // a lid so steep the wall's top lets it by
+      if (!sb.limit(c, s, lim)) {  // a lid so steep the wall's top lets it by
+        sb.face(sb.wall(), c, s, lim);
+        lim.q = std::fmin(lim.q, sb.lid * c);
+      }
       balloon = m.hinge + sb.centre(lim.q, c, s);
     }
     const double reach = norm(balloon - m.radio_switch);
