@@ -320,7 +320,8 @@ void Model::small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0,
     // Round the edge: its velocity across e kept; an edge that jumped away from it leaves it.
     const double psi = hs.y[slot::balloon_h];
     const Vec2 e{std::cos(psi), std::sin(psi)}, ep{-e.h, e.x};
-    const Vec2 v0{k0.balloon_vx, k0.balloon_v}, ve{-sb_.lid * k.sin_l * k.dphi_l, sb_.lid * k.cos_l * k.dphi_l};
+    const Vec2 v0{k0.balloon_vx, k0.balloon_v},
+        ve{-sb_.lid * k.sin_l * k.dphi_l, sb_.lid * k.cos_l * k.dphi_l};
     if (dot(v0 - ve, e) > 1e-7 * std::sqrt(g_ * length_scale_)) {
       small_balloon_free(hs, k0);
     } else {
