@@ -12,6 +12,7 @@ set(WHATNEXT_CORE_SOURCES
   src/core/contact_decision.cpp
   src/core/impact_laws.cpp
   src/core/jumps.cpp
+  src/core/balloon.cpp
   src/core/ledger.cpp
   src/core/columns.cpp
   src/core/names.cpp

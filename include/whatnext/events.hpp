@@ -18,6 +18,7 @@ enum class EventType {
   lid_lifts,
   balloon_caught,
   balloon_free,
+  balloon_escapes,    // extensions: a balloon smaller than the box gets past the far wall's top
   sandbag_falls_off,  // extensions: slides off the end of a finite left arm
   sandbag_leaves,     // extensions: the arm's normal force on the sandbag reaches zero (heavy seesaw)
   sandbag_at_stop,    // built machine: the sandbag reaches the end stop and rides there

@@ -121,4 +121,35 @@ struct BalloonLimit {
   double acceleration_at(double cos_l, double sin_l, double dphi_l, double ddphi_l) const;
 };
 
+// A balloon smaller than the box (r_B < r_L, docs/extensions.md "A balloon smaller than the box"),
+// in coordinates from the hinge. Touching the lid's underside its centre is p = q u + r_B n with
+// u = (cos phiL, sin phiL) along the lid, n = (sin phiL, -cos phiL) away from it into the box, and
+// q the distance along the lid of the point it touches. The far wall (x = 2 r_L, its top corner W
+// at the hinge's level) holds it at q <= q_max(phiL): against the wall's face while that point is
+// below W, against W itself (|p - W| = r_B) above it, and not at all once the gap from W to the
+// lid, 2 r_L sin phiL, is 2 r_B or more.
+struct SmallBalloon {
+  double radius;                                // r_B
+  double lid;                                   // 2 r_L
+  double wall() const { return lid - radius; }  // the centre's x against the far wall's face
+  // q_max and its first two derivatives with respect to phiL; false once the corner lets it by.
+  struct Limit {
+    double q, dq, ddq;
+  };
+  bool limit(double cos_l, double sin_l, Limit& out) const;
+  // The same against the hinge's wall (x = r_B), which holds it at q >= q_min(phiL).
+  void hinge(double cos_l, double sin_l, Limit& out) const { face(radius, cos_l, sin_l, out); }
+  // Against a wall's face at the centre's x = x: q = (x - r_B sin phiL) / cos phiL.
+  void face(double x, double cos_l, double sin_l, Limit& out) const;
+  // The centre p (relative to the hinge) touching the lid at q.
+  Vec2 centre(double q, double cos_l, double sin_l) const {
+    return {q * cos_l + radius * sin_l, q * sin_l - radius * cos_l};
+  }
+  // Its velocity: p' = (q' + r_B phiL') u + q phiL' u_perp, u_perp = (-sin phiL, cos phiL).
+  Vec2 velocity(double q, double dq, double cos_l, double sin_l, double dphi_l) const {
+    const double a = dq + radius * dphi_l, b = q * dphi_l;
+    return {a * cos_l - b * sin_l, a * sin_l + b * cos_l};
+  }
+};
+
 }  // namespace whatnext

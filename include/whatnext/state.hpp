@@ -20,6 +20,7 @@ struct Books {
   double balloon_catch = 0.0;  // balloon energy lost when the lid forces its velocity [J]
   double lid_push = 0.0;       // work of the (one-way) lid contact on the balloon, to the mark [J]
   double machine_mark = 0.0, balloon_v_mark = 0.0, balloon_e_mark = 0.0, drag_mark = 0.0;
+  double balloon_vx_mark = 0.0;  // a balloon smaller than the box moves sideways too
 };
 
 // A guard that is zero where a smooth piece starts but known to turn negative at once, because a
@@ -31,13 +32,19 @@ struct GuardStart {
   double lead = 0.0;
   double floor = 0.0;
 };
-constexpr int kGuardSlots = 14;
+constexpr int kGuardSlots = 16;
 
 struct Discrete {
   bool on_seesaw = false;      // sandbag on the arm (massless seesaw: once landed, for good)
   bool taut = false;           // rope straight
   bool lid_resting = true;     // lid lying at its lowest angle phiL0
   bool balloon_stuck = true;   // balloon pressed against the lid
+  // A balloon smaller than the box (docs/extensions.md): while it touches the lid, held in the
+  // corner by the far wall or its top (else sliding along the lid); out of the box for good.
+  bool balloon_held = true;
+  bool balloon_out = false;
+  int balloon_side = 1;  // held by the far wall (+1) or by the hinge's wall (-1)
+  bool balloon_edge = false;  // out, rolling round the lid's free edge (its slots: the angle, rate)
   bool fallen_off = false;     // sandbag slid off the arm's end: it never lands again
   bool latched = false;        // radio: lid latched open after lid_open, rope slack for good
   bool heavy = false;          // the seesaw has inertia (copied from the machine at the start)
@@ -74,13 +81,17 @@ struct Discrete {
 // height and rate (unused while it is stuck under the lid); then a seesaw with inertia's angle and
 // rate while the sandbag is off it; then the energy dissipated so far by the damped pivot, the
 // damped lid hinge and the balloon's air drag (zero rates unless those switches are on).
-using State = std::array<double, 13>;
+// A balloon smaller than the box: while it slides along the lid its two slots hold the distance
+// along the lid of the point it touches and its rate; while free its height and vertical rate,
+// with its x (from the hinge) and horizontal rate in the last two slots.
+using State = std::array<double, 15>;
 namespace slot {
 constexpr int x = 0, h = 1, vx = 2, vh = 3;
 constexpr int r = 0, phi_s = 1, dr = 2, dphi_s = 3;
 constexpr int phi_l = 4, dphi_l = 5, balloon_h = 6, balloon_v = 7;
 constexpr int seesaw_phi = 8, seesaw_dphi = 9;
 constexpr int lost_pivot = 10, lost_hinge = 11, lost_drag = 12;
+constexpr int balloon_x = 13, balloon_vx = 14;
 }  // namespace slot
 
 struct HybridState {
@@ -99,6 +110,7 @@ struct Snapshot {
   double phi_s = 0, dphi_s = 0;               // seesaw
   double phi_l = 0, dphi_l = 0, ddphi_l = 0;  // lid
   double balloon_h = 0, balloon_v = 0;        // balloon centre, from the hinge level
+  double balloon_x = 0, balloon_vx = 0;       // ... and from the hinge sideways (not a CSV column)
   double balloon_limit = 0, balloon_limit_rate = 0;
   double tension = 0;  // rope tension [N]
   double sandbag_kinetic = 0, sandbag_potential = 0, lid_kinetic = 0, lid_potential = 0;
@@ -130,6 +142,7 @@ struct Positions {
   double t = 0.0, x = 0.0, h = 0.0, phi_s = 0.0, phi_l = 0.0, balloon_limit = 0.0, balloon_h = 0.0;
   Mode mode = Mode::M1;
   bool rope_taut = false;
+  double balloon_x = 0.0;  // the balloon's centre from the hinge sideways
 };
 
 }  // namespace whatnext

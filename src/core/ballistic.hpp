@@ -53,8 +53,9 @@ class BallisticStepper {
         d_(&d),
         g_(gravity),
         growth_(max_dt),
-        // Nothing else moves while the lid rests (or is latched open) and the balloon is stuck under it.
-        still_((d.lid_resting || d.latched) && d.balloon_stuck),
+        // Nothing else moves while the lid rests (or is latched open) and the balloon is stuck under it
+        // (a smaller one held in its corner, not sliding along the lid: docs/extensions.md).
+        still_((d.lid_resting || d.latched) && d.balloon_stuck && d.balloon_held),
         inner_(make_dopri5<Moving>(tolerance, max_dt)) {}
   BallisticStepper(const BallisticStepper&) = delete;  // flow_ points at this one
   BallisticStepper& operator=(const BallisticStepper&) = delete;

@@ -138,7 +138,20 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
               : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi]).ddphi_s;
     }
   }
-  if (!d.balloon_stuck) {
+  if (small_) {
+    if (!d.balloon_stuck) {  // free in the plane: lift and drag
+      const Kinematics k = kinematics(d, y);
+      const Vec2 f = small_balloon_force(k);
+      dy[slot::balloon_x] = y[slot::balloon_vx];
+      dy[slot::balloon_vx] = f.x;
+      dy[slot::balloon_h] = y[slot::balloon_v];
+      dy[slot::balloon_v] = f.h;
+    } else if (!d.balloon_held) {  // sliding along the lid, or rolling round its free edge
+      const Kinematics k = kinematics(d, y);
+      dy[slot::balloon_h] = y[slot::balloon_v];
+      dy[slot::balloon_v] = d.balloon_edge ? small_balloon_roll(k, y[slot::balloon_h]) : small_balloon_slide(k);
+    }
+  } else if (!d.balloon_stuck) {
     dy[slot::balloon_h] = y[slot::balloon_v];
     dy[slot::balloon_v] = balloon_acceleration(y[slot::balloon_v]);
   }
@@ -149,7 +162,7 @@ void Model::dissipation(const Discrete& /*d*/, const Kinematics& k, State& dy) c
   // Power turned into heat (the pivot's damper comes with a seesaw that has inertia).
   dy[slot::lost_pivot] = c_p_ * k.dphi_s * k.dphi_s;
   dy[slot::lost_hinge] = c_l_ * k.dphi_l * k.dphi_l;
-  const double v = std::fabs(k.balloon_v);
+  const double v = small_ ? std::hypot(k.balloon_vx, k.balloon_v) : std::fabs(k.balloon_v);
   dy[slot::lost_drag] = m_b_ * drag_ * v * v * v;
 }
 

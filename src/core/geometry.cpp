@@ -183,4 +183,32 @@ double BalloonLimit::acceleration_at(double cos_l, double sin_l, double dphi_l, 
   return radius * (ddphi_l / s - dphi_l * dphi_l * cos_l / (s * s));
 }
 
+void SmallBalloon::face(double x, double c, double s, Limit& out) const {
+  // p.x = q cos + r sin = x, so q = (x - r sin) / cos.
+  const double r = radius;
+  out.q = (x - r * s) / c;
+  out.dq = (x * s - r) / (c * c);
+  out.ddq = (x * c * c + 2.0 * s * (x * s - r)) / (c * c * c);
+}
+
+bool SmallBalloon::limit(double c, double s, Limit& out) const {
+  const double r = radius, x = wall();
+  if (x * s <= r) {
+    face(x, c, s, out);
+    return true;
+  }
+  // Against the corner W: the nearer of the two points of the line p.n = r_B at |p - W| = r_B.
+  // With D = W.n = 2 r_L sin phiL: q = 2 r_L cos phiL - sqrt(D (2 r_B - D)).
+  const double d = lid * s, dd = lid * c, ddd = -lid * s;
+  const double w = d * (2.0 * r - d);
+  if (!(w > 0.0)) return false;
+  const double root = std::sqrt(w);
+  const double droot = (r - d) * dd / root;
+  const double ddroot = ((r - d) * ddd - dd * dd - droot * droot) / root;
+  out.q = lid * c - root;
+  out.dq = -lid * s - droot;
+  out.ddq = -lid * c - ddroot;
+  return true;
+}
+
 }  // namespace whatnext

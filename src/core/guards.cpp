@@ -15,14 +15,16 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   g.fill(kInactive);
   if (rates) rates->fill(std::numeric_limits<double>::quiet_NaN());
   const Kinematics k = kinematics(d, y);
-  if (radio_) g[kGuardRadioOn] = radio_gap(k.balloon_h);
-  if (d.balloon_stuck) {
+  if (radio_) g[kGuardRadioOn] = radio_gap(k);
+  if (small_) {
+    small_balloon_guards(d, k, g, rates);
+  } else if (d.balloon_stuck) {
     g[kGuardBalloon] =
         limit_.acceleration_at(k.cos_l, k.sin_l, k.dphi_l, k.ddphi_l) - balloon_acceleration(k.balloon_v);
   } else if (!d.latched) {
     g[kGuardBalloon] = y[slot::balloon_h] - limit_.height_at(k.cos_l, k.sin_l);
   }
-  if (rates && !d.balloon_stuck && !d.latched) {
+  if (rates && !small_ && !d.balloon_stuck && !d.latched) {
     (*rates)[kGuardBalloon] = y[slot::balloon_v] - limit_.rate_at(k.sin_l, k.dphi_l);
   }
   // The radio's wait: only the balloon matters now; the built machine's seesaw and sandbag still
@@ -130,6 +132,8 @@ double Model::guard_floor(Guard g, const Discrete& d) const {
     case kGuardFloor: return d.grounded != 0 ? 1e-10 * weight : 1e-12 * len;
     case kGuardBagFloor: return 1e-12 * len;
     case kGuardBalloon: return d.balloon_stuck ? 1e-10 * g_ : 1e-12 * len;
+    case kGuardBalloonCorner:
+    case kGuardBalloonEscape: return 1e-12 * len;
     default: return 0.0;
   }
 }

@@ -20,6 +20,7 @@ HybridState Model::initial(std::vector<Event>& out) const {
   Discrete& d = hs.d;
   d.parked_seesaw = st.seesaw_angle;
   d.balloon_stuck = true;
+  d.balloon_held = true;  // a balloon smaller than the box: in the corner at the far wall
   d.heavy = heavy_;
   d.on_seesaw = false;
   d.taut = false;
@@ -59,6 +60,15 @@ HybridState Model::initial(std::vector<Event>& out) const {
   hs.y.fill(0.0);
   place(hs, k);
   hs.y[slot::balloon_h] = limit_.height(phi_l0_);
+  SmallBalloon::Limit corner{0.0, 0.0, 0.0};
+  if (small_ && !sb_.limit(k.cos_l, k.sin_l, corner)) {
+    // A lid resting so steep that the wall's top lets a smaller balloon by: it starts under the
+    // lid above the far wall's face (docs/extensions.md), free to slide along the lid; at most at
+    // the line where it is out (beyond it the face's point may lie past the lid's free edge).
+    d.balloon_held = false;
+    hs.y[slot::balloon_h] = std::fmin((sb_.wall() - sb_.radius * k.sin_l) / k.cos_l, sb_.lid * k.cos_l);
+    hs.y[slot::balloon_v] = 0.0;
+  }
   for (int i = 0; i < contacts_; ++i) {
     if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
     const Guard gi = guard_of(i);
@@ -69,8 +79,8 @@ HybridState Model::initial(std::vector<Event>& out) const {
 
   const Kinematics k1 = kinematics(d, hs.y);
   Books& b = d.books;
-  b.initial_total = energy(k1) + balloon_energy(k1.balloon_h, k1.balloon_v);
-  b.balloon_e_mark = balloon_energy(k1.balloon_h, k1.balloon_v);  // nothing pushed yet
+  b.initial_total = energy(k1) + balloon_energy(k1);
+  b.balloon_e_mark = balloon_energy(k1);  // nothing pushed yet
   open_books(hs, k1);
   // A rope or a sandbag that touches at the start but lets go at once is an event at t = 0 (a lid
   // that lifts at once just starts in M4).
@@ -124,9 +134,19 @@ void Model::free_balloon(HybridState& hs, const Kinematics& k, double v) const {
   hs.y[slot::balloon_v] = v;
 }
 
-void Model::release_balloon_if_lid_jumped(HybridState& hs, double limit_rate_before, const Books& opened,
-                                          std::vector<Event>& out) const {
+void Model::release_balloon_if_lid_jumped(HybridState& hs, const Kinematics& k0, double limit_rate_before,
+                                          const Books& opened, std::vector<Event>& out) const {
   if (!hs.d.balloon_stuck) return;
+  if (small_) {
+    // Booked once, at the jump's end, for the whole change of the balloon's velocity.
+    Books& b = hs.d.books;
+    b.balloon_catch = opened.balloon_catch;
+    b.lid_push = opened.lid_push;
+    b.balloon_v_mark = opened.balloon_v_mark;
+    b.balloon_vx_mark = opened.balloon_vx_mark;
+    small_balloon_after_lid_jump(hs, k0, out);
+    return;
+  }
   const Kinematics k = kinematics(hs.d, hs.y);
   const double rate = limit_.rate(k.phi_l, k.dphi_l);
   // A jump, not rounding: beyond what the contact decision calls a zero rate.
@@ -183,7 +203,11 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   out.push_back(make_event(EventType::lid_open, hs, before, hs.d.mode()));
   if (hs.d.balloon_stuck) {
     const Mode m = hs.d.mode();
-    free_balloon(hs, k0, limit_rate0);
+    if (small_) {
+      small_balloon_free(hs, k0);
+    } else {
+      free_balloon(hs, k0, limit_rate0);
+    }
     out.push_back(make_event(EventType::balloon_free, hs, m, m));
   }
 }
@@ -241,7 +265,15 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
     case kGuardArmEnd:  // off the end of a finite arm, velocity kept; it never lands again
       resolve(hs, k0, kBag, Trend::forced_off, out);
       break;
-    case kGuardBalloon: balloon_meets_lid(hs, k0, limit_rate0, before, out); return false;
+    case kGuardBalloon:
+      if (small_) {
+        small_balloon_jump(fired, hs, k0, before, out);
+        return false;
+      }
+      balloon_meets_lid(hs, k0, limit_rate0, before, out);
+      return false;
+    case kGuardBalloonCorner:
+    case kGuardBalloonEscape: small_balloon_jump(fired, hs, k0, before, out); return false;
     case kGuardLidOpen:
       if (!radio_) return stop(EventType::lid_open);
       latch_open(hs, k0, limit_rate0, before, out);
@@ -260,7 +292,7 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
       return false;
     case kGuardCount: break;
   }
-  release_balloon_if_lid_jumped(hs, limit_rate0, opened, out);
+  release_balloon_if_lid_jumped(hs, k0, limit_rate0, opened, out);
   book(hs);  // a jump may end with a change that no event reports
   return false;
 }

@@ -216,12 +216,53 @@ struct Model::KinematicsPass {
   void finish() {
     if (!trig_s) k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s);
     if (!trig_l) k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
+    if (m.small_) return small_balloon();
+    k.balloon_x = m.r_l_;
     if (d.balloon_stuck) {
       k.balloon_h = m.limit_.height_at(k.cos_l, k.sin_l);
       if (rates) k.balloon_v = m.limit_.rate_at(k.sin_l, k.dphi_l);
     } else {
       k.balloon_h = y[slot::balloon_h];
       if (rates) k.balloon_v = y[slot::balloon_v];
+    }
+  }
+  // A balloon smaller than the box (docs/extensions.md): on the lid at q, held in the corner
+  // (q = q_max(phiL)) or sliding (q integrated); free in the plane.
+  void small_balloon() {
+    if (!d.balloon_stuck) {
+      k.balloon_x = y[slot::balloon_x];
+      k.balloon_h = y[slot::balloon_h];
+      if (rates) k.balloon_vx = y[slot::balloon_vx], k.balloon_v = y[slot::balloon_v];
+      return;
+    }
+    if (d.balloon_edge) {  // p = E + r_B e(psi), E = 2 r_L u
+      const double psi = y[slot::balloon_h], ce = std::cos(psi), se = std::sin(psi), r = m.sb_.radius;
+      k.balloon_q = psi;  // in place of q: the angle round the edge and its rate
+      if (rates) k.balloon_dq = y[slot::balloon_v];
+      k.balloon_x = m.sb_.lid * k.cos_l + r * ce;
+      k.balloon_h = m.sb_.lid * k.sin_l + r * se;
+      if (rates) {
+        const double w = y[slot::balloon_v];
+        k.balloon_vx = -m.sb_.lid * k.sin_l * k.dphi_l - r * se * w;
+        k.balloon_v = m.sb_.lid * k.cos_l * k.dphi_l + r * ce * w;
+      }
+      return;
+    }
+    SmallBalloon::Limit lim{0.0, 0.0, 0.0};
+    if (d.balloon_held && m.small_balloon_wall(d.balloon_side, k.cos_l, k.sin_l, lim)) {
+      k.balloon_q = lim.q;
+      k.balloon_dq = lim.dq * k.dphi_l;
+    } else {
+      k.balloon_q = y[slot::balloon_h];
+      k.balloon_dq = y[slot::balloon_v];
+    }
+    const Vec2 p = m.sb_.centre(k.balloon_q, k.cos_l, k.sin_l);
+    k.balloon_x = p.x;
+    k.balloon_h = p.h;
+    if (rates) {
+      const Vec2 v = m.sb_.velocity(k.balloon_q, k.balloon_dq, k.cos_l, k.sin_l, k.dphi_l);
+      k.balloon_vx = v.x;
+      k.balloon_v = v.h;
     }
   }
 };

@@ -11,9 +11,10 @@ using namespace model_detail;
 
 // --- energies and the snapshot -------------------------------------------------------------------
 
-double Model::radio_gap(double balloon_h) const {
+double Model::radio_gap(const Kinematics& k) const {
   // Distance from the switch to the balloon's centre, minus the string: >= 0 when it is straight.
-  const Vec2 b{balloon_x_ - switch_.x, rope_.hinge().h + balloon_h - switch_.h};
+  const double x = small_ ? rope_.hinge().x + k.balloon_x : balloon_x_;
+  const Vec2 b{x - switch_.x, rope_.hinge().h + k.balloon_h - switch_.h};
   return std::hypot(b.x, b.h) - string_;
 }
 
@@ -25,12 +26,18 @@ double Model::energy(const Kinematics& k) const {
 
 double Model::balloon_energy(double h, double v) const { return 0.5 * m_b_ * v * v - m_b_ * a_b_ * h; }
 
+double Model::balloon_energy(const Kinematics& k) const {
+  // A balloon smaller than the box moves sideways too (the paper's: balloon_vx = 0).
+  return small_ ? 0.5 * m_b_ * (k.balloon_v * k.balloon_v + k.balloon_vx * k.balloon_vx) -
+                      m_b_ * a_b_ * k.balloon_h
+                : balloon_energy(k.balloon_h, k.balloon_v);
+}
+
 double Model::lid_push_now(const Discrete& d, const Kinematics& k, const State& y) const {
   // While stuck the balloon's energy changes only by the lid's push and the air drag.
   const Books& b = d.books;
   if (!d.balloon_stuck) return b.lid_push;
-  return b.lid_push + (balloon_energy(k.balloon_h, k.balloon_v) - b.balloon_e_mark) +
-         (y[slot::lost_drag] - b.drag_mark);
+  return b.lid_push + (balloon_energy(k) - b.balloon_e_mark) + (y[slot::lost_drag] - b.drag_mark);
 }
 
 Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full, bool memo) const {
@@ -45,11 +52,13 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
   s.x = k.x, s.h = k.h, s.vx = k.vx, s.vh = k.vh, s.r = k.r, s.dr = k.dr;
   s.phi_s = k.phi_s, s.dphi_s = k.dphi_s;
   s.phi_l = k.phi_l, s.dphi_l = k.dphi_l, s.ddphi_l = k.ddphi_l;
-  s.balloon_limit = limit_.height_at(k.cos_l, k.sin_l);
+  s.balloon_limit = balloon_limit_height(k);
   s.balloon_h = k.balloon_h;
+  s.balloon_x = k.balloon_x;
   if (!full) return s;
-  s.balloon_limit_rate = limit_.rate_at(k.sin_l, k.dphi_l);
+  s.balloon_limit_rate = balloon_limit_rate(k);
   s.balloon_v = k.balloon_v;
+  s.balloon_vx = k.balloon_vx;
   if (!d.latched) {
     contact::PerContact f;
     contact_forces(d, k, f);
@@ -63,7 +72,8 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
   s.lid_potential = m_l_ * g_ * r_l_ * std::sin(k.phi_l);
   s.seesaw_kinetic = 0.5 * i_s_ * k.dphi_s * k.dphi_s;
   s.seesaw_potential = w_s_ * g_ * std::sin(k.phi_s);
-  s.balloon_kinetic = 0.5 * m_b_ * k.balloon_v * k.balloon_v;
+  s.balloon_kinetic = small_ ? 0.5 * m_b_ * (k.balloon_v * k.balloon_v + k.balloon_vx * k.balloon_vx)
+                             : 0.5 * m_b_ * k.balloon_v * k.balloon_v;
   s.balloon_potential = -m_b_ * a_b_ * k.balloon_h;
   const Books& b = d.books;
   s.lost_impacts = b.impacts;
@@ -79,7 +89,7 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
 Positions Model::positions(double t, const Discrete& d, const State& y) const {
   // snapshot(t, d, y, false, false)'s positions, computed the same way.
   const Kinematics k = kinematics(d, y, false, false);
-  return {t, k.x, k.h, k.phi_s, k.phi_l, limit_.height_at(k.cos_l, k.sin_l), k.balloon_h, d.mode(), d.taut};
+  return {t, k.x, k.h, k.phi_s, k.phi_l, balloon_limit_height(k), k.balloon_h, d.mode(), d.taut, k.balloon_x};
 }
 
 void Model::open_books(HybridState& hs, const Kinematics& k) const {
@@ -87,7 +97,8 @@ void Model::open_books(HybridState& hs, const Kinematics& k) const {
   b.lid_push = lid_push_now(hs.d, k, hs.y);
   b.machine_mark = energy(k);
   b.balloon_v_mark = k.balloon_v;
-  b.balloon_e_mark = balloon_energy(k.balloon_h, k.balloon_v);
+  b.balloon_vx_mark = k.balloon_vx;
+  b.balloon_e_mark = balloon_energy(k);
   b.drag_mark = hs.y[slot::lost_drag];
 }
 
@@ -101,11 +112,34 @@ void Model::book(HybridState& hs) const {
   b.impacts += b.machine_mark - e;
   b.machine_mark = e;
   const double v = k.balloon_v, dv = v - b.balloon_v_mark;
-  b.balloon_catch += 0.5 * m_b_ * dv * dv;
-  b.lid_push += m_b_ * v * dv;
+  if (small_) {  // the same in the plane (the wall and its corner stand still: no work)
+    const double vx = k.balloon_vx, dvx = vx - b.balloon_vx_mark;
+    b.balloon_catch += 0.5 * m_b_ * (dv * dv + dvx * dvx);
+    b.lid_push += m_b_ * (v * dv + vx * dvx);
+    b.balloon_vx_mark = vx;
+  } else {
+    b.balloon_catch += 0.5 * m_b_ * dv * dv;
+    b.lid_push += m_b_ * v * dv;
+  }
   b.balloon_v_mark = v;
-  b.balloon_e_mark = balloon_energy(k.balloon_h, v);
+  b.balloon_e_mark = balloon_energy(k);
   b.drag_mark = hs.y[slot::lost_drag];
+}
+
+double Model::balloon_limit_height(const Kinematics& k) const {
+  if (!small_) return limit_.height_at(k.cos_l, k.sin_l);
+  // A balloon smaller than the box: the height of its corner under the lid at the far wall (its
+  // own height once the corner lets it by).
+  SmallBalloon::Limit lim{0.0, 0.0, 0.0};
+  if (!sb_.limit(k.cos_l, k.sin_l, lim)) return k.balloon_h;
+  return sb_.centre(lim.q, k.cos_l, k.sin_l).h;
+}
+
+double Model::balloon_limit_rate(const Kinematics& k) const {
+  if (!small_) return limit_.rate_at(k.sin_l, k.dphi_l);
+  SmallBalloon::Limit lim{0.0, 0.0, 0.0};
+  if (!sb_.limit(k.cos_l, k.sin_l, lim)) return k.balloon_v;
+  return sb_.velocity(lim.q, lim.dq * k.dphi_l, k.cos_l, k.sin_l, k.dphi_l).h;
 }
 
 }  // namespace whatnext

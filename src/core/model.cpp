@@ -13,13 +13,15 @@ bool fires_at_once(Guard g) {
   // A contact guard at zero is a contact that touches (decided where the piece starts); the balloon
   // is decided by the model (Model::jump) since it is both kinds.
   return !(g == kGuardBag || g == kGuardRope || g == kGuardLid || g == kGuardStop || g == kGuardFloor ||
-           g == kGuardBagFloor || g == kGuardBalloon);
+           g == kGuardBagFloor || g == kGuardBalloon || g == kGuardBalloonCorner);
 }
 
 Model::Model(const Scenario& scenario)
     : sc_(scenario),
       rope_(scenario.machine),
       limit_{scenario.machine.balloon_radius},
+      small_(scenario.machine.balloon_radius < scenario.machine.lid_half_length),
+      sb_{scenario.machine.balloon_radius, 2.0 * scenario.machine.lid_half_length},
       g_(scenario.machine.gravity),
       m_s_(scenario.machine.sandbag_mass),
       m_l_(scenario.machine.lid_mass),

@@ -32,6 +32,10 @@ enum Guard : int {
   kGuardBagFloor, // sandbag off the arm: the floor's height minus its own
   kGuardArmEnd,   // sandbag on a finite arm reaches its end
   kGuardBalloon,  // free balloon reaches the lid, or the lid pulls away faster than it can follow
+  // A balloon smaller than the box (docs/extensions.md): sliding along the lid it reaches the far
+  // wall or its top corner; it gets out of the box.
+  kGuardBalloonCorner,
+  kGuardBalloonEscape,
   kGuardLidOpen,
   kGuardSeesawVertical,
   kGuardAtPivot,
@@ -68,6 +72,9 @@ struct Kinematics {
   double r = 0, dr = 0, ddr = 0, phi_s = 0, dphi_s = 0, ddphi_s = 0;  // ddr: on the arm only
   double phi_l = 0, dphi_l = 0, ddphi_l = 0;
   double balloon_h = 0, balloon_v = 0;                // the balloon's centre from the hinge level
+  // A balloon smaller than the box: its centre's x from the hinge and rate; q and q' along the lid
+  // while it touches it (geometry.hpp SmallBalloon).
+  double balloon_x = 0, balloon_vx = 0, balloon_q = 0, balloon_dq = 0;
   Transfer transfer;                                  // valid while the rope is taut
   double cos_s = 1, sin_s = 0, cos_l = 1, sin_l = 0;  // of phi_s and phi_l, computed once
 };
@@ -142,6 +149,10 @@ class Model {
   double energy(const Kinematics& k) const;
   // The balloon's: (1/2) m_B v^2 - m_B a_B h (its net lift as a potential).
   double balloon_energy(double h, double v) const;
+  double balloon_energy(const Kinematics& k) const;
+  // The height the balloon's centre may reach under the lid (the snapshot's balloon_limit) and its rate.
+  double balloon_limit_height(const Kinematics& k) const;
+  double balloon_limit_rate(const Kinematics& k) const;
   // The balloon's upward acceleration at speed v (lift, weights and air drag): the flow, the
   // balloon guard and the jumps all use this one function.
   double balloon_acceleration(double v) const { return a_b_ - drag_ * v * std::fabs(v); }
@@ -185,7 +196,29 @@ class Model {
   double along_arm_acceleration(double r, double sin_s, double dphi_s) const {
     return g_ * sin_s + r * dphi_s * dphi_s;
   }
-  double radio_gap(double balloon_h) const;
+  double radio_gap(const Kinematics& k) const;
+  // A balloon smaller than the box (balloon.cpp, docs/extensions.md).
+  struct BalloonForces {
+    double lid = 0.0, wall = 0.0;  // the lid's and the wall's (or its corner's) push per unit mass
+  };
+  BalloonForces small_balloon_forces(const Discrete& d, const Kinematics& k) const;
+  Vec2 small_balloon_force(const Kinematics& k) const;  // lift and drag per unit mass
+  // The wall that holds it (Discrete::balloon_side): its q limit; false where it does not.
+  bool small_balloon_wall(int side, double cos_l, double sin_l, SmallBalloon::Limit& lim) const {
+    if (side > 0) return sb_.limit(cos_l, sin_l, lim);
+    sb_.hinge(cos_l, sin_l, lim);
+    return true;
+  }
+  double small_balloon_slide(const Kinematics& k) const;  // q'' sliding along the lid
+  // psi'' rolling round the lid's free edge E, and the edge's push (per unit mass) there.
+  double small_balloon_roll(const Kinematics& k, double psi) const;
+  double small_balloon_edge_push(const Kinematics& k, double psi, double dpsi) const;
+  void small_balloon_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const;
+  void small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before,
+                          std::vector<Event>& out) const;
+  void small_balloon_free(HybridState& hs, const Kinematics& k) const;
+  void small_balloon_settle(HybridState& hs, Mode before, std::vector<Event>& out) const;
+  void small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0, std::vector<Event>& out) const;
   void dissipation(const Discrete& d, const Kinematics& k, State& dy) const;
   // The sandbag's height above the arm's line and its distance along it from the pivot.
   static double height_above_arm(const Kinematics& k);
@@ -250,7 +283,8 @@ class Model {
   void place(HybridState& hs, const Kinematics& k) const;
   static Kinematics with_velocity(Kinematics k, const contact::Coords& u);
   Event make_event(EventType type, HybridState& hs, Mode before, Mode after) const;
-  void release_balloon_if_lid_jumped(HybridState& hs, double limit_rate_before, const Books& opened,
+  void release_balloon_if_lid_jumped(HybridState& hs, const Kinematics& k0, double limit_rate_before,
+                                     const Books& opened,
                                      std::vector<Event>& out) const;
   void free_balloon(HybridState& hs, const Kinematics& k, double v) const;
   // The balloon guard fired: a stuck balloon left behind, or a free one caught by the lid.
@@ -267,6 +301,8 @@ class Model {
   Scenario sc_;
   RopeGeometry rope_;
   BalloonLimit limit_;
+  bool small_;  // balloon.radius < r_L
+  SmallBalloon sb_;
   double g_, m_s_, m_l_, i_l_, r_l_, a_b_, phi_l0_, vertical_;
   // Extensions (zero or infinite: the paper's machine, docs/model.md §1).
   double drag_, m_b_, i_s_, w_s_, c_p_, c_l_, arm_;

@@ -44,7 +44,7 @@ constexpr std::array<std::pair<BalloonModel, std::string_view>, 3> kBalloonModel
     {BalloonModel::lagrangian, "lagrangian"},
     {BalloonModel::added_mass, "added-mass"},
 }};
-constexpr std::array<std::pair<EventType, std::string_view>, 23> kEvents{{
+constexpr std::array<std::pair<EventType, std::string_view>, 24> kEvents{{
     {EventType::sandbag_lands, "sandbag_lands"},
     {EventType::rope_taut, "rope_taut"},
     {EventType::rope_slack, "rope_slack"},
@@ -52,6 +52,7 @@ constexpr std::array<std::pair<EventType, std::string_view>, 23> kEvents{{
     {EventType::lid_lifts, "lid_lifts"},
     {EventType::balloon_caught, "balloon_caught"},
     {EventType::balloon_free, "balloon_free"},
+    {EventType::balloon_escapes, "balloon_escapes"},
     {EventType::sandbag_falls_off, "sandbag_falls_off"},
     {EventType::sandbag_leaves, "sandbag_leaves"},
     {EventType::sandbag_at_stop, "sandbag_at_stop"},

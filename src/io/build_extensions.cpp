@@ -181,8 +181,20 @@ void check_extension_start(const Reader& in, const Scenario& sc) {
     }
   }
   if (m.radio) {
+    // Where the balloon starts: in the box's middle, or (smaller than the box) in the corner
+    // between the lid and the far wall (docs/extensions.md).
     const BalloonLimit limit{m.balloon_radius};
-    const Vec2 balloon{m.hinge.x + m.lid_half_length, m.hinge.h + limit.height(st.lid_angle)};
+    Vec2 balloon{m.hinge.x + m.lid_half_length, m.hinge.h + limit.height(st.lid_angle)};
+    SmallBalloon::Limit lim{0.0, 0.0, 0.0};
+    const SmallBalloon sb{m.balloon_radius, 2.0 * m.lid_half_length};
+    const double c = std::cos(st.lid_angle), s = std::sin(st.lid_angle);
+    if (m.balloon_radius < m.lid_half_length) {
+      if (!sb.limit(c, s, lim)) {  // a lid so steep the wall's top lets it by
+        sb.face(sb.wall(), c, s, lim);
+        lim.q = std::fmin(lim.q, sb.lid * c);
+      }
+      balloon = m.hinge + sb.centre(lim.q, c, s);
+    }
     const double reach = norm(balloon - m.radio_switch);
     if (reach >= m.string_length) {
       in.fail(

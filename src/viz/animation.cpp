@@ -179,8 +179,10 @@ double landing_distance(const Scenario& sc) {
   return std::fabs(sc.start.sandbag_x) / std::max(0.2, std::cos(sc.start.seesaw_angle));
 }
 
+// Where the model has it: the box's centre for the paper's balloon, anywhere in the plane for one
+// smaller than the box (docs/extensions.md "A balloon smaller than the box").
 Vec2 balloon_centre(const Machine& m, const Snapshot& s) {
-  return {m.hinge.x + m.lid_half_length, m.hinge.h + s.balloon_h};
+  return {m.hinge.x + s.balloon_x, m.hinge.h + s.balloon_h};
 }
 
 double ground_level(const Machine& m) { return m.hinge.h - 2.0 * m.lid_half_length; }
@@ -277,6 +279,7 @@ std::string_view short_words(EventType type) {
     case EventType::lid_lifts: return "lid lifts";
     case EventType::balloon_caught: return "caught";
     case EventType::balloon_free: return "balloon free";
+    case EventType::balloon_escapes: return "balloon out";
     case EventType::sandbag_falls_off: return "falls off";
     case EventType::sandbag_leaves: return "leaves arm";
     case EventType::sandbag_at_stop: return "at stop";

@@ -67,6 +67,8 @@ Snapshot Recording::at(double t) const {
                               &Snapshot::ddphi_l,
                               &Snapshot::balloon_h,
                               &Snapshot::balloon_v,
+                              &Snapshot::balloon_x,
+                              &Snapshot::balloon_vx,
                               &Snapshot::balloon_limit,
                               &Snapshot::balloon_limit_rate,
                               &Snapshot::tension,
