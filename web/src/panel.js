@@ -308,5 +308,5 @@
     return Boolean(v) && v.number !== 0;
   }
 
-  window.whatnextPanel = { create };
+  window.whatnextPanel = { create, point, shown };
 })();
