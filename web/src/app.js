@@ -932,7 +932,9 @@
     $('compare-law').hidden = c.mode !== 'law';
     $('compare-law').value = c.law;
     $('compare-step-box').hidden = c.mode !== 'euler';
-    $('compare-step').value = c.step;
+    // The step as the page's language writes it (kept with a point for the link), not rewritten
+    // while it is typed in.
+    if (document.activeElement !== $('compare-step')) $('compare-step').value = window.whatnextPanel.shown(c.step);
   }
   for (const law of names['run.impact_law']) $('compare-law').append(new Option(law, law));
   const compareChanged = () => {
@@ -945,7 +947,7 @@
   };
   $('compare').addEventListener('change', (e) => { st.compare.mode = e.target.value; compareChanged(); });
   $('compare-law').addEventListener('change', (e) => { st.compare.law = e.target.value; compareChanged(); });
-  $('compare-step').addEventListener('input', (e) => { st.compare.step = e.target.value.trim(); compareChanged(); });
+  $('compare-step').addEventListener('input', (e) => { st.compare.step = window.whatnextPanel.point(e.target.value.trim()); compareChanged(); });
 
   document.addEventListener('keydown', (e) => {
     const target = e.target;

@@ -3,6 +3,7 @@
 // `--set KEY=VALUE`, so that the page's machine and messages are the command line's.
 (function () {
   'use strict';
+  const S = window.whatnextStrings;
 
   const kGroups = [
     { title: 'Geometry', match: (k) => k.startsWith('geometry.') },
@@ -47,8 +48,10 @@
   const number = (x) => String(Number(x.toPrecision(12)));
   // A decimal comma, as German and most of Europe write numbers ("0,7"), is a point to the library.
   const point = (text) => (/^\s*[-+]?\d*,\d+([eE][-+]?\d+)?\s*$/.test(text) ? text.replace(',', '.') : text);
+  // And back: a number as the page's language writes it ("0,6" in German). Only what the panel
+  // shows; what it sends (the link, the library, the TOML) keeps the point.
+  const shown = (text) => (S.decimal !== '.' && /^\s*[-+]?\d*\.\d+([eE][-+]?\d+)?\s*$/.test(text) ? text.replace('.', S.decimal) : text);
   const rounded = (x) => String(Number(x.toPrecision(6)));  // for values the page works out
-  const S = window.whatnextStrings;
   const words = (key) => S.keyName(key, key.slice(key.indexOf('.') + 1).replace(/_/g, ' '));
 
   function element(tag, attrs, ...children) {
@@ -113,7 +116,7 @@
           row.append(element('span', { class: 'part', text: part }), input);
         }
         const pairText = () => {
-          const [a, b] = field.inputs.map((inp) => point(inp.value.trim()) || inp.placeholder);
+          const [a, b] = field.inputs.map((inp) => point(inp.value.trim()) || point(inp.placeholder));
           return field.inputs.every((inp) => !inp.value.trim()) ? null : `[${a}, ${b}]`;
         };
         for (const input of field.inputs) {
@@ -123,7 +126,7 @@
       } else {
         const input = element('input', { id, type: 'text', inputmode: 'decimal', size: 9 });
         const moveSlider = () => {
-          const v = Number(point(input.value.trim()) || input.placeholder);
+          const v = Number(point(input.value.trim()) || point(input.placeholder));
           if (field.slider && input.value.trim() !== '' && Number.isFinite(v)) field.slider.value = String(Math.round(field.toSlider(v)));
         };
         input.addEventListener('input', () => { moveSlider(); send(point(input.value.trim()) || null, false); });
@@ -137,7 +140,7 @@
           field.toSlider = (v) => kSliderSteps * (log ? Math.log(v / lo) / Math.log(hi / lo) : (v - lo) / (hi - lo));
           field.fromSlider = (p) => (log ? lo * Math.pow(hi / lo, p / kSliderSteps) : lo + (hi - lo) * p / kSliderSteps);
           const text = () => String(Number(field.fromSlider(Number(slider.value)).toPrecision(3)));
-          slider.addEventListener('input', () => { input.value = text(); send(input.value, false); });
+          slider.addEventListener('input', () => { input.value = shown(text()); send(text(), false); });
           slider.addEventListener('change', () => send(text(), true));
           field.slider = slider;
         }
@@ -234,13 +237,14 @@
             let parts = ['', ''];
             if (set !== undefined) parts = set.replace(/[[\]\s]/g, '').split(',');
             else if (given && given.pair) parts = given.pair.map(number);
-            field.inputs.forEach((inp, i) => { put(inp, 'value', parts[i] || ''); put(inp, 'placeholder', blank[i] || ''); });
+            field.inputs.forEach((inp, i) => { put(inp, 'value', shown(parts[i] || '')); put(inp, 'placeholder', shown(blank[i] || '')); });
           } else {
             const input = field.inputs[0];
-            put(input, 'value', set !== undefined ? set : given && given.number !== undefined ? number(given.number) : '');
-            put(input, 'placeholder', blank);
+            const text = set !== undefined ? set : given && given.number !== undefined ? number(given.number) : '';
+            put(input, 'value', shown(text));
+            put(input, 'placeholder', shown(blank));
             if (field.slider) {
-              const v = Number(input.value || blank);
+              const v = Number(point(text) || blank);
               if (Number.isFinite(v)) put(field.slider, 'value', String(Math.round(field.toSlider(v))));
             }
           }
@@ -304,5 +308,5 @@
     return Boolean(v) && v.number !== 0;
   }
 
-  window.whatnextPanel = { create };
+  window.whatnextPanel = { create, point, shown };
 })();

@@ -544,6 +544,7 @@
     keyName: (key, english) => (L().keys[key] ? L().keys[key][0] : english),
     keyHelp: (key, english) => (L().keys[key] ? L().keys[key][1] : english),
     get lang() { return lang; },
+    get decimal() { return L().decimal; },  // the decimal sign of the page's numbers
     languages: Object.fromEntries(Object.entries(kLanguages).map(([k, v]) => [k, v.name])),
     set(code) {
       if (!kLanguages[code]) return;

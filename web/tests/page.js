@@ -1274,6 +1274,78 @@ const checks = {
     }, { locale: 'de-DE', viewport: { width: 1366, height: 768 } });
   },
 
+  // German numbers in the panel (issue 21): every field, placeholder and slider value with a
+  // decimal comma; what the page sends and keeps (the library's input, the link, the TOML) with a
+  // point; the switch to English shows the point again.
+  async decimal_comma() {
+    fs.mkdirSync(outDir, { recursive: true });
+    await withPage(async (page, { downloads: dir }) => {
+      assert.equal(await page.getAttribute('html', 'lang'), 'de');
+      assert.equal(await page.inputValue(fieldId('geometry.rope_length')), '1');
+      assert.equal(await page.inputValue(fieldId('geometry.lid_half_length')), '0,2');
+      // Blank fields: the grey value they stand for, a pair's too.
+      assert.equal(await page.getAttribute(fieldId('balloon.drag_coefficient'), 'placeholder'), '0,47');
+      assert.equal(await page.getAttribute(fieldId('radio.switch_offset'), 'placeholder'), '0,5');
+
+      // A slider dragged with the mouse: the field shows its value with a comma.
+      const slider = `[data-key="geometry.lid_half_length"] input.slider`;
+      await page.locator(slider).scrollIntoViewIfNeeded();
+      const box = await page.locator(slider).boundingBox();
+      await page.mouse.move(box.x + box.width * 0.3, box.y + box.height / 2);
+      await page.mouse.down();
+      await page.mouse.move(box.x + box.width * 0.37, box.y + box.height / 2, { steps: 5 });
+      await page.mouse.up();
+      await idle(page);
+      const dragged = await page.inputValue(fieldId('geometry.lid_half_length'));
+      assert.match(dragged, /^0,\d+$/, 'the dragged value');
+      await page.click(`[data-key="geometry.lid_half_length"] button.reset`);
+      await idle(page);
+      assert.equal(await page.inputValue(fieldId('geometry.lid_half_length')), '0,2');
+
+      // Typed with a comma: the machine runs with 0.7 m, as the command line does.
+      await setFieldAndRun(page, 'geometry.rope_length', '0,7');
+      assert.equal(await page.inputValue(fieldId('geometry.rope_length')), '0,7');
+      const args = ['--example', '1', '--set', 'geometry.rope_length=0.7'];
+      const expected = await page.evaluate((text) => window.whatnext.words(text), cliOutcome(args));
+      assert.equal(await outcomeText(page), `Ergebnis: ${expected}.`);
+      assert.notEqual(cliOutcome(args), cliOutcome(['--example', '1']), '0.7 m changes the outcome');
+      await page.waitForFunction(() => location.hash.includes('rope_length'));
+      assert.match(page.url(), /[#&]geometry\.rope_length=0\.7$/, 'the link keeps the point');
+      const toml = await download(page, '#dl-toml', dir);
+      assert.match(fs.readFileSync(toml, 'utf8'), /^rope_length = 0\.7\b/m);
+      assert.equal(`Ergebnis: ${await page.evaluate((text) => window.whatnext.words(text), cliOutcome([toml]))}.`, await outcomeText(page));
+      // The comparison's Euler step too: shown with a comma, typed with one, kept with a point.
+      await page.selectOption('#compare', 'euler');
+      await idle(page);
+      assert.equal(await page.inputValue('#compare-step'), '0,001');
+      await page.fill('#compare-step', '0,002');
+      await idle(page);
+      const euler = cliOutcome([...args, ...sets(['run.integrator=euler', 'run.step=0.002'])]);
+      assert.equal(await page.textContent('#compare-outcome'),
+                   `Gestrichelt, Euler, Schritt 0,002 s: ${await page.evaluate((text) => window.whatnext.words(text), euler)}.`);
+      assert.match(page.url(), /compare=euler%3A0\.002$/);
+      await page.selectOption('#compare', 'none');
+      await idle(page);
+      // A pair with one part typed: the other is its grey "0,5", sent as 0.5.
+      await page.click('details.group:last-of-type > summary');  // "Extensions beyond the paper"
+      await page.check(fieldId('radio.enabled'));
+      await idle(page);
+      await setFieldAndRun(page, 'radio.switch_offset-dh', '0,1');
+      args.push(...sets(['radio.enabled=true', 'radio.switch_offset=[0.5, 0.1]']));
+      assert.equal(await outcomeText(page), `Ergebnis: ${await page.evaluate((text) => window.whatnext.words(text), cliOutcome(args))}.`);
+      assert.deepEqual([await page.inputValue(fieldId('radio.switch_offset')), await page.inputValue(fieldId('radio.switch_offset-dh'))], ['0,5', '0,1']);
+      await page.screenshot({ path: path.join(outDir, 'web-german-commas.png') });
+
+      await page.selectOption('#lang', 'en');
+      await page.waitForFunction(() => document.documentElement.lang === 'en' && document.body.dataset.ready);
+      assert.equal(await page.inputValue(fieldId('geometry.rope_length')), '0.7');
+      assert.equal(await page.inputValue(fieldId('geometry.lid_half_length')), '0.2');
+      assert.equal(await page.getAttribute(fieldId('balloon.drag_coefficient'), 'placeholder'), '0.47');
+      assert.deepEqual([await page.inputValue(fieldId('radio.switch_offset')), await page.inputValue(fieldId('radio.switch_offset-dh'))], ['0.5', '0.1']);
+      assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(args)}.`);
+    }, { locale: 'de-DE', viewport: { width: 1366, height: 768 } });
+  },
+
   // German: the library's rarer messages too (issue 21). First every message the command line
   // gives for a list of bad inputs (values out of range, rules between keys, words where numbers
   // belong, unknown keys and sections, files that are not TOML or not a whatnext.inp) and every
