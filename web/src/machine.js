@@ -34,7 +34,8 @@
   // Where the rope is tied: the lid's free edge unless geometry.rope_on_lid ties it nearer the hinge.
   const ropeKnot = (m, phiL) => add(m.hinge, polar(m.rope_knot, phiL));
   const groundLevel = (m) => m.hinge.h - 2 * m.lid_half_length;
-  const balloonCentre = (m, s) => ({ x: m.hinge.x + m.lid_half_length, h: m.hinge.h + s.balloon_h });
+  // Where the model has it (src/viz/animation.cpp's balloon_centre): from the hinge, sideways and up.
+  const balloonCentre = (m, s) => ({ x: m.hinge.x + s.balloon_x, h: m.hinge.h + s.balloon_h });
 
   // The radio stands on the ground under its switch (or hangs below a switch that is lower).
   function radioBox(m) {
@@ -194,7 +195,7 @@
 
   // The state at time t: continuous quantities interpolated between the recorded states around
   // t, the contacts and the mode from the last recorded state at or before t (after an event at t).
-  const kContinuous = ['x', 'h', 'r', 'phi_s', 'phi_l', 'balloon_h', 'tension', 'energy'];
+  const kContinuous = ['x', 'h', 'r', 'phi_s', 'phi_l', 'balloon_h', 'balloon_x', 'tension', 'energy'];
   const kDiscrete = ['on_seesaw', 'rope_taut', 'mode', 'lid_resting', 'balloon_stuck'];
   function stateAt(samples, t) {
     const ts = samples.t;
@@ -249,7 +250,7 @@
       const armEnd = polar(-shown, phiS);
       put({ x: armEnd.x, h: Math.max(armEnd.h, g) });
       if (Math.hypot(s.x[i], s.h[i]) <= reach) put({ x: s.x[i], h: Math.max(s.h[i], g) });
-      const c = balloonCentre(m, { balloon_h: s.balloon_h[i] });
+      const c = balloonCentre(m, { balloon_h: s.balloon_h[i], balloon_x: s.balloon_x[i] });
       if (c.h - m.hinge.h <= reach) {
         put(add(c, { x: m.balloon_radius, h: m.balloon_radius }));
         put(sub(c, { x: m.balloon_radius, h: m.balloon_radius }));
@@ -257,7 +258,7 @@
     }
     if (m.radio) {
       for (const i of [0, n - 1]) {
-        for (const p of stringPath(m, balloonCentre(m, { balloon_h: s.balloon_h[i] }))) {
+        for (const p of stringPath(m, balloonCentre(m, { balloon_h: s.balloon_h[i], balloon_x: s.balloon_x[i] }))) {
           if (norm(sub(p, m.radio_switch)) <= reach) put({ x: p.x, h: Math.max(p.h, g) });
         }
       }

@@ -462,6 +462,7 @@
     'sandbag at stop': 'Sandsack am Anschlag', 'sandbag leaves stop': 'Sandsack verlässt den Anschlag',
     'seesaw on floor': 'Wippe auf dem Boden', 'seesaw lifts': 'Wippe hebt ab', 'sandbag on floor': 'Sandsack auf dem Boden',
     'sandbag bounces': 'Sandsack prallt ab', 'switch stays off': 'Schalter bleibt aus',
+    'balloon escapes': 'Ballon entweicht',
   };
 
   const kLanguages = {

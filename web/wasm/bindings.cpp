@@ -108,6 +108,7 @@ const Column kColumns[] = {
     WHATNEXT_COLUMN(phi_l),
     WHATNEXT_COLUMN(dphi_l),
     WHATNEXT_COLUMN(balloon_h),
+    WHATNEXT_COLUMN(balloon_x),  // from the hinge sideways: a balloon smaller than the box moves
     WHATNEXT_COLUMN(balloon_v),
     WHATNEXT_COLUMN(balloon_limit),
     WHATNEXT_COLUMN(tension),
