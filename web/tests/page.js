@@ -1070,13 +1070,21 @@ const checks = {
       c.on('error', () => resolve(false));
       c.on('timeout', () => { c.destroy(); resolve(false); });
     });
+    // A port found free may be taken by another process (a test running beside this one) before
+    // the server binds it: then the server exits, and another free port is tried.
     const start = async (args) => {
-      const port = await freePort();
-      const p = spawn('/usr/bin/python3', [path.join(sourceDir, 'web/serve.py'), webDir, ...args, '--port', String(port)]);
-      let out = '';
-      p.stdout.on('data', (d) => { out += d; });
-      for (let i = 0; i < 100 && !/Ctrl-C/.test(out); ++i) await new Promise((r) => setTimeout(r, 50));
-      return { p, port, out: () => out };
+      for (let attempt = 0; ; ++attempt) {
+        const port = await freePort();
+        const p = spawn('/usr/bin/python3', [path.join(sourceDir, 'web/serve.py'), webDir, ...args, '--port', String(port)]);
+        let out = '', exited = false;
+        p.stdout.on('data', (d) => { out += d; });
+        p.on('exit', () => { exited = true; });
+        // Served once its last line is out (with --lan the QR code comes after "Ctrl-C").
+        const ready = args.includes('--lan') ? /whatnext\.html/ : /Ctrl-C/;
+        for (let i = 0; i < 100 && !ready.test(out) && !exited; ++i) await new Promise((r) => setTimeout(r, 50));
+        if (ready.test(out) || attempt >= 4) return { p, port, out: () => out };
+        p.kill();
+      }
     };
     // The address other machines reach this one by, as the server finds it.
     const lanHost = Object.values(os.networkInterfaces()).flat().find((a) => a.family === 'IPv4' && !a.internal);
