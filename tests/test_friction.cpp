@@ -291,7 +291,9 @@ TEST(FrictionOnTheArm, FrictionNeverGainsEnergyAndTheBooksClose) {
     EXPECT_GT(watch.last, 0.0) << mu;
     EXPECT_LT(watch.worst, 1e-6) << mu;
     for (const wn::Event& e : r.events) {
-      if (e.impact) EXPECT_LE(e.energy_after, e.energy_before + 1e-12) << mu << " " << wn::to_string(e.type);
+      if (e.impact) {
+        EXPECT_LE(e.energy_after, e.energy_before + 1e-12) << mu << " " << wn::to_string(e.type);
+      }
       EXPECT_GE(e.after.normal_force, -1e-9);
     }
   }

@@ -260,7 +260,7 @@ Motion solve_motion(const System& sys, Set candidates, const Choice& choice) {
         if (!has(candidates, i) || !choice.present(s, i)) continue;
         if (sys.friction[i] != 0) {
           if (has(s, i)) {
-            if (std::fabs(cand.force[i]) > friction_bound(sys, i, cand.force) + choice.force_tol) return false;
+            if (std::fabs(cand.force[i]) > friction_bound(sys, i, cand.force) + choice.friction_tol) return false;
             continue;
           }
           cand.gap_acceleration[i] = sys.rate(i, cand.acceleration) + sys.curvature[i];
@@ -285,8 +285,10 @@ Motion solve_motion(const System& sys, Set candidates, const Choice& choice) {
 }
 
 bool constrained_velocity(const System& sys, Set closed, Coords& velocity) {
+  // Without friction: the projection in the kinetic energy's metric, which can only lose energy
+  // (a slip's push direction would make it oblique).
   PerContact impulse;
-  return solve_set(sys, closed, true, sys.slip, impulse, velocity);
+  return solve_set(sys, closed, true, {}, impulse, velocity);
 }
 
 bool constrained_motion(const System& sys, Set active, Coords& acceleration, PerContact& force) {

@@ -61,6 +61,9 @@ struct Choice {
   double rate_tol = 1e-9;      // gap rates within rate_tol of 0 are zero (held, decided on forces)
   double closing_tol = 1e-12;  // an impact leaves no contact closing faster than this
   double accel_tol = 1e-9;     // gap accelerations >= -accel_tol count as separating or holding
+  // A sticking friction force may exceed its bound by this much: below the band in which its
+  // guard counts as zero, so that a guard that fires finds the stick broken.
+  double friction_tol = 1e-9;
   // Contacts that exist only together with others (an edge on a surface: the end stop holds the
   // sandbag only while it lies on the arm): in a set without all of needs[i], contact i is
   // neither closed nor checked for separation.

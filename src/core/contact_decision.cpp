@@ -81,6 +81,7 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
   c.rate_tol = 1e-6 * v;
   c.closing_tol = 1e-12 * v;
   c.accel_tol = 1e-9 * acc;
+  c.friction_tol = 0.1 * guard_floor(kGuardBagSlip, with_contacts(d, bit(kBag) | bit(kBagSlip)));
   (void)sys;
   return c;
 }

@@ -13,7 +13,7 @@ bool fires_at_once(Guard g) {
   // A contact guard at zero is a contact that touches (decided where the piece starts); the balloon
   // is decided by the model (Model::jump) since it is both kinds.
   return !(g == kGuardBag || g == kGuardRope || g == kGuardLid || g == kGuardStop || g == kGuardFloor ||
-           g == kGuardBagFloor || g == kGuardBalloon || g == kGuardBalloonCorner);
+           g == kGuardBagFloor || g == kGuardBagSlip || g == kGuardBalloon || g == kGuardBalloonCorner);
 }
 
 Model::Model(const Scenario& scenario)
