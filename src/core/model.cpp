@@ -56,6 +56,9 @@ Model::Model(const Scenario& scenario)
   e_ = {m.restitution.sandbag, m.restitution.rope, m.restitution.lid,        m.restitution.stop,
         m.floor_restitution,   m.floor_restitution, m.floor_restitution};
   for (double e : e_) restitution_ = restitution_ || e > 0.0;
+  stretchy_ = m.stretchy_rope();
+  k_rope_ = m.rope_stiffness;
+  c_rope_ = m.rope_damping;
 }
 
 }  // namespace whatnext

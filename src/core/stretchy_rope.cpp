@@ -1,0 +1,147 @@
+// A rope that stretches (docs/impact.md): a one-sided spring-damper in place of the rope's contact.
+//
+// While the sandbag rides the paper's massless seesaw the rope is no contact of the contact problem:
+// once longer than l_R it pulls with
+//     T = max(0, k (span - l_R) + c span'),
+// never pushing (a rope buckles), as a generalised force Q = -T d span/dq on phiS and phiL. The
+// seesaw has no inertia, so the arm's push on the sandbag balances the rope's torque,
+// N r = -Q_S: the seesaw and sandbag swing as a point mass m_S r^2 (docs/extensions.md's J with
+// I_S = 0). "Stretched" is a discrete flag: the span crossing l_R is a guard (rope_taut, rope_slack),
+// no impact, so that every smooth piece has a smooth force (with damping T jumps to c span' there).
+//
+// Energy: the spring's (1/2) k (span - l_R)^2 counts in the machine's energy; what the rope turns
+// into heat, (T - k s) s' with s = span - l_R > 0, is integrated in slot::lost_rope. With the
+// damper pulling that is c s'^2; where the damper would push and T is held at 0, the spring's
+// energy given up, -k s s' > 0: the law never gains energy.
+//
+// The unloaded massless seesaw cannot stretch the rope (nothing on it has inertia): there the rope
+// stays the inextensible contact, which carries no force on it (it follows the lid, M2, as before).
+#include <cmath>
+
+#include "model.hpp"
+#include "model_internal.hpp"
+#include "whatnext/simulate.hpp"
+
+namespace whatnext {
+
+using namespace model_detail;
+
+Model::RopePull Model::rope_pull(const Discrete& d, const Kinematics& k) const {
+  RopePull p;
+  const double rh = sc_.machine.seesaw_right_arm, knot = sc_.machine.rope_knot();
+  const Vec2 r{rh * k.cos_s, rh * k.sin_s}, el{knot * k.cos_l, knot * k.sin_l};
+  const Vec2 dv = r - (rope_.hinge() + el);  // D = R - E
+  const double span = norm(dv);
+  if (!(span > 0.0)) return p;
+  const Vec2 r_s{-r.h, r.x}, e_l{-el.h, el.x};  // dR/dphiS, dE/dphiL
+  const double ds = dot(dv, r_s) / span, dl = -dot(dv, e_l) / span;  // d span / d phiS, d phiL
+  p.stretch = span - rope_.rope_length();
+  p.rate = ds * k.dphi_s + dl * k.dphi_l;
+  if (d.stretched) p.tension = std::fmax(0.0, k_rope_ * p.stretch + c_rope_ * p.rate);
+  p.q_s = -p.tension * ds;
+  p.q_l = -p.tension * dl;
+  return p;
+}
+
+double Model::rope_energy(const Kinematics& k) const {
+  const double s = rope_.span(Vec2{k.cos_s, k.sin_s}, Vec2{k.cos_l, k.sin_l}) - rope_.rope_length();
+  return s > 0.0 ? 0.5 * k_rope_ * s * s : 0.0;
+}
+
+void Model::stretchy_flow(const Discrete& d, const State& y, State& dy) const {
+  if (!spring_rope(d)) return;
+  const Kinematics k = kinematics(d, y);
+  const RopePull p = rope_pull(d, k);
+  // The sandbag in Cartesian free fall (M3), pushed by the arm with N = -Q_S / r along the arm's
+  // normal (-sin phiS, cos phiS).
+  if (k.r > 0.0) {
+    const double push = -p.q_s / (k.r * m_s_);
+    dy[slot::vx] += -push * k.sin_s;
+    dy[slot::vh] += push * k.cos_s;
+  }
+  if (!d.lid_resting) dy[slot::dphi_l] += p.q_l / i_l_;
+  dy[slot::lost_rope] = (p.tension - k_rope_ * std::fmax(p.stretch, 0.0)) * p.rate;
+}
+
+void Model::stretchy_kinematics(const Discrete& d, Kinematics& k) const {
+  if (!spring_rope(d)) return;
+  const RopePull p = rope_pull(d, k);
+  // phiS = atan2(-h, -x): the arm's push adds -N / (m r) = Q_S / (m r^2) to the free fall's phiS''.
+  if (k.r > 0.0) k.ddphi_s += p.q_s / (m_s_ * k.r * k.r);
+  if (!d.lid_resting) k.ddphi_l += p.q_l / i_l_;
+}
+
+void Model::stretchy_accelerations(const Discrete& d, const Kinematics& k, contact::Coords& a) const {
+  if (!spring_rope(d) || !(k.r > 0.0)) return;
+  const double push = -rope_pull(d, k).q_s / (k.r * m_s_);
+  a[0] += -push * k.sin_s;
+  a[1] += push * k.cos_s;
+}
+
+void Model::stretchy_force(const Discrete& d, const Kinematics& k, contact::System& s) const {
+  // The contact problem sees the pull as a force like gravity: a decision at an event (the lid
+  // lifting, the arm's push) is made with it.
+  if (!spring_rope(d)) return;
+  const RopePull p = rope_pull(d, k);
+  s.force[2] += p.q_s;
+  s.force[3] += p.q_l;
+}
+
+void Model::stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const {
+  if (!spring_rope(d) || !d.stretched) return;  // slack: the rope's ordinary gap, span - l_R
+  const RopePull p = rope_pull(d, k);
+  g[kGuardRope] = -p.stretch;  // slack again when the span is back at l_R
+  if (rates) (*rates)[kGuardRope] = -p.rate;
+  // The box lets the lid go when the pull's torque outweighs the lid.
+  if (d.lid_resting) g[kGuardLid] = p.q_l - m_l_ * g_ * r_l_ * k.cos_l;
+  // The arm pushes the sandbag with N = T (d span/d phiS) / r: it would have to pull where the
+  // linkage's k turns negative (the massless seesaw then cannot hold the rope).
+  const double rh = sc_.machine.seesaw_right_arm, knot = sc_.machine.rope_knot();
+  const Vec2 r{rh * k.cos_s, rh * k.sin_s};
+  const Vec2 dv = r - (rope_.hinge() + Vec2{knot * k.cos_l, knot * k.sin_l});
+  if (p.tension > 0.0) g[kGuardBag] = -dot(dv, Vec2{-r.h, r.x});
+}
+
+bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before,
+                          std::vector<Event>& out) const {
+  if (fired == kGuardBag) {
+    throw SimulationError(
+        "the stretched rope would pull the sandbag off the massless seesaw (the linkage's k < 0), which the "
+        "model of a rope that stretches does not cover (docs/impact.md)");
+  }
+  // The span crossed l_R: the spring starts or stops pulling. No impact, nothing jumps.
+  Discrete& d = hs.d;
+  d.stretched = !d.stretched;
+  const RopePull p = rope_pull(d, k0);
+  // The guard starts at zero and moves away from it at the span's rate.
+  const double lead = -std::fabs(p.rate);
+  d.armed[kGuardRope] = lead < 0.0 ? GuardStart{1, lead} : GuardStart{2, kUnknownLead};
+  d.armed[kGuardRope].floor = guard_floor(kGuardRope, d);
+  out.push_back(make_event(d.stretched ? EventType::rope_taut : EventType::rope_slack, hs, before, d.mode()));
+  return false;
+}
+
+void Model::stretchy_modes(const Discrete& d, std::vector<Event>& out, std::size_t first) {
+  // While the spring pulls, M3 (on the arm, the rope's contact open) is M4 or M5: the lid's contact
+  // after each event follows from the events in order.
+  if (!d.stretched || !d.on_seesaw) return;
+  auto named = [](Mode m, bool resting) { return m == Mode::M3 ? (resting ? Mode::M5 : Mode::M4) : m; };
+  for (std::size_t i = first; i < out.size(); ++i) {
+    Event& e = out[i];
+    const bool rests_before = e.mode_before == Mode::M5 || (i > first ? out[i - 1].mode_after == Mode::M5 : false);
+    const bool rests_after = e.type == EventType::lid_rests || (e.type != EventType::lid_lifts && rests_before);
+    if (e.type != EventType::rope_taut && e.type != EventType::rope_slack) {
+      e.mode_before = named(e.mode_before, rests_before);
+      e.mode_after = named(e.mode_after, rests_after);
+    }
+  }
+}
+
+void Model::stretchy_snapshot(const Discrete& d, const Kinematics& k, const State& y, Snapshot& s) const {
+  s.rope_taut = d.taut || d.stretched;
+  s.rope_potential = rope_energy(k);
+  s.dissipated_rope = y[slot::lost_rope];
+  if (spring_rope(d)) s.tension = rope_pull(d, k).tension;
+}
+
+}  // namespace whatnext
