@@ -336,6 +336,7 @@ class Model {
   void stretchy_kinematics(const Discrete& d, Kinematics& k) const;
   void stretchy_accelerations(const Discrete& d, const Kinematics& k, contact::Coords& a) const;
   void stretchy_force(const Discrete& d, const Kinematics& k, contact::System& s) const;
+  double lid_lift(const Kinematics& k, const RopePull& p) const;  // minus the box's push on the lid
   void stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const;
   bool stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before, std::vector<Event>& out) const;
   static void stretchy_modes(const Discrete& d, std::vector<Event>& out, std::size_t first);

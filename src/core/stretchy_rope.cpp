@@ -17,6 +17,7 @@
 // The unloaded massless seesaw cannot stretch the rope (nothing on it has inertia): there the rope
 // stays the inextensible contact, which carries no force on it (it follows the lid, M2, as before).
 #include <cmath>
+#include <limits>
 
 #include "model.hpp"
 #include "model_internal.hpp"
@@ -52,6 +53,10 @@ void Model::stretchy_flow(const Discrete& d, const State& y, State& dy) const {
   if (!spring_rope(d)) return;
   const Kinematics k = kinematics(d, y);
   const RopePull p = rope_pull(d, k);
+  // Slack but still longer than l_R (it let go where its damper would have pushed), the spring's
+  // energy goes as the span shrinks: booked as lost (-k s s').
+  dy[slot::lost_rope] = (p.tension - k_rope_ * std::fmax(p.stretch, 0.0)) * p.rate;
+  if (!d.stretched) return;
   // The sandbag in Cartesian free fall (M3), pushed by the arm with N = -Q_S / r along the arm's
   // normal (-sin phiS, cos phiS).
   if (k.r > 0.0) {
@@ -60,7 +65,6 @@ void Model::stretchy_flow(const Discrete& d, const State& y, State& dy) const {
     dy[slot::vh] += push * k.cos_s;
   }
   if (!d.lid_resting) dy[slot::dphi_l] += p.q_l / i_l_;
-  dy[slot::lost_rope] = (p.tension - k_rope_ * std::fmax(p.stretch, 0.0)) * p.rate;
 }
 
 void Model::stretchy_kinematics(const Discrete& d, Kinematics& k) const {
@@ -88,18 +92,34 @@ void Model::stretchy_force(const Discrete& d, const Kinematics& k, contact::Syst
 }
 
 void Model::stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const {
-  if (!spring_rope(d) || !d.stretched) return;  // slack: the rope's ordinary gap, span - l_R
+  if (!spring_rope(d)) return;
+  // The rope pulls while k s + c s' > 0 with s = span - l_R: both its ends as guards, in metres
+  // (divided by k). Pulling, it goes slack when that pull reaches zero (s = 0 without damping, s > 0
+  // with it: the damper would have to push). Slack, it pulls again when s >= 0 and the pull would
+  // be positive: min(s, s + (c/k) s') crosses zero (at s = 0 on an ordinary tightening, where s'
+  // > 0; before s = 0 returns, if the ends are driven apart while still stretched).
   const RopePull p = rope_pull(d, k);
-  g[kGuardRope] = -p.stretch;  // slack again when the span is back at l_R
-  if (rates) (*rates)[kGuardRope] = -p.rate;
+  const double tau = c_rope_ / k_rope_, pull = p.stretch + tau * p.rate;
+  if (d.stretched) {
+    g[kGuardRope] = -pull;
+    if (rates) (*rates)[kGuardRope] = c_rope_ > 0.0 ? std::numeric_limits<double>::quiet_NaN() : -p.rate;
+  } else {
+    g[kGuardRope] = std::fmin(p.stretch, pull);
+    if (rates) (*rates)[kGuardRope] = p.rate >= 0.0 ? p.rate : std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
   // The box lets the lid go when the pull's torque outweighs the lid.
-  if (d.lid_resting) g[kGuardLid] = p.q_l - m_l_ * g_ * r_l_ * k.cos_l;
+  if (d.lid_resting) g[kGuardLid] = lid_lift(k, p);
   // The arm pushes the sandbag with N = T (d span/d phiS) / r: it would have to pull where the
   // linkage's k turns negative (the massless seesaw then cannot hold the rope).
   const double rh = sc_.machine.seesaw_right_arm, knot = sc_.machine.rope_knot();
   const Vec2 r{rh * k.cos_s, rh * k.sin_s};
   const Vec2 dv = r - (rope_.hinge() + Vec2{knot * k.cos_l, knot * k.sin_l});
   if (p.tension > 0.0) g[kGuardBag] = -dot(dv, Vec2{-r.h, r.x});
+}
+
+double Model::lid_lift(const Kinematics& k, const RopePull& p) const {
+  return p.q_l - m_l_ * g_ * r_l_ * k.cos_l;
 }
 
 bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before,
@@ -109,15 +129,19 @@ bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mo
         "the stretched rope would pull the sandbag off the massless seesaw (the linkage's k < 0), which the "
         "model of a rope that stretches does not cover (docs/impact.md)");
   }
-  // The span crossed l_R: the spring starts or stops pulling. No impact, nothing jumps.
+  // The rope starts or stops pulling. No impact, nothing jumps.
   Discrete& d = hs.d;
   d.stretched = !d.stretched;
-  const RopePull p = rope_pull(d, k0);
-  // The guard starts at zero and moves away from it at the span's rate.
-  const double lead = -std::fabs(p.rate);
-  d.armed[kGuardRope] = lead < 0.0 ? GuardStart{1, lead} : GuardStart{2, kUnknownLead};
-  d.armed[kGuardRope].floor = guard_floor(kGuardRope, d);
   out.push_back(make_event(d.stretched ? EventType::rope_taut : EventType::rope_slack, hs, before, d.mode()));
+  if (d.stretched && d.lid_resting && lid_lift(k0, rope_pull(d, k0)) > 0.0) {
+    // A damped rope pulls c s' at once: a lid that this lifts is decided now, as an impact's would be.
+    resolve(hs, kinematics(d, hs.y), kLid, Trend::releasing, out);
+  }
+  // The guard starts at zero and turns negative (without damping at the span's rate).
+  const RopePull p = rope_pull(d, k0);
+  const double lead = c_rope_ > 0.0 ? 0.0 : -std::fabs(p.rate);
+  d.armed[kGuardRope] = lead < 0.0 ? GuardStart{1, lead} : GuardStart{1, kUnknownLead};
+  d.armed[kGuardRope].floor = guard_floor(kGuardRope, d);
   return false;
 }
 
