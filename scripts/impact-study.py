@@ -14,6 +14,7 @@ import math
 import subprocess
 import sys
 import tempfile
+import time
 import tomllib
 from pathlib import Path
 
@@ -28,8 +29,13 @@ ZETAS = (0.0, 0.1, 1.0, 10.0)
 STIFFNESS = [10.0 ** (2 + i / 2) for i in range(13)]  # 1e2 ... 1e8 N/m, half decades
 
 
+STATS = {"runs": 0, "residual": 0.0, "slowest": (0.0, "")}
+
+
 def run(exe, example, sets):
     """The events and outcome of one run (None and the message if it fails)."""
+    STATS["runs"] += 1
+    start = time.perf_counter()
     with tempfile.TemporaryDirectory() as tmp:
         ev = Path(tmp) / "e.json"
         args = [exe, "run", "--example", str(example), "--events", str(ev)]
@@ -38,7 +44,12 @@ def run(exe, example, sets):
         p = subprocess.run(args, capture_output=True, text=True)
         if p.returncode != 0:
             return None, (p.stderr.strip() or p.stdout.strip()).splitlines()[-1]
-        return json.loads(ev.read_text()), None
+        doc = json.loads(ev.read_text())
+        took = time.perf_counter() - start
+        if took > STATS["slowest"][0]:
+            STATS["slowest"] = (took, f"example {example} " + " ".join(sets))
+        STATS["residual"] = max([STATS["residual"]] + [abs(e["ledger"]["residual"]) for e in doc["events"]])
+        return doc, None
 
 
 def first_jerk_end(doc):
@@ -158,6 +169,8 @@ def main():
                 (w, t), (o, to) = a, b
                 print(f"  zeta {z:5g} k {k:9.3g} (c {2 * z * math.sqrt(k * m_eff):9.4g}): lid {w:9.2f} deg/s "
                       f"at {t:.6f} s; {o} {to:.4f} s")
+    print(f"\n{STATS['runs']} runs; the largest ledger residual {STATS['residual']:.2g} J; the slowest run "
+          f"{STATS['slowest'][0]:.2f} s: {STATS['slowest'][1]}")
     plot(results, es, out)
 
 

@@ -251,3 +251,14 @@ TEST(StretchyRope, BadInputIsOneClearError) {
     }
   }
 }
+
+TEST(StretchyRope, WrittenBackAsTomlItIsTheSameMachine) {
+  const wn::Scenario sc = example(2, {"rope.stiffness=2.5e6", "rope.damping=31.25"});
+  const std::string text = wn::to_toml(sc);
+  EXPECT_NE(text.find("[rope]"), std::string::npos) << text;
+  const wn::Scenario back = wn::build_scenario(wn::parse_toml(text, "back.toml"));
+  EXPECT_EQ(back.machine.rope_stiffness, 2.5e6);
+  EXPECT_EQ(back.machine.rope_damping, 31.25);
+  // Without the keys nothing about the rope is written.
+  EXPECT_EQ(wn::to_toml(example(2)).find("[rope]"), std::string::npos);
+}
