@@ -80,7 +80,10 @@ void build_stretchy_rope(const Reader& in, Machine& m) {
   }
   if (in.find("rope.damping")) {
     m.rope_damping = in.in_range("rope.damping", 0.0, true, 1e9, true);
-    if (!m.stretchy_rope()) in.fail("rope.damping", "needs rope.stiffness (without it the rope does not stretch)");
+    // 0, the table's default, is what leaving the key out means.
+    if (m.rope_damping > 0.0 && !m.stretchy_rope()) {
+      in.fail("rope.damping", "needs rope.stiffness (without it the rope does not stretch)");
+    }
   }
   if (!m.stretchy_rope()) return;
   const auto no = [&](const char* key, const char* why) {
