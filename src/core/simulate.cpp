@@ -6,7 +6,6 @@
 #include "ballistic.hpp"
 #include "integrate.hpp"
 #include "model.hpp"
-#include "stiff_stepper.hpp"
 
 namespace whatnext {
 
@@ -150,15 +149,7 @@ class Runner {
     const RunSettings& run = sc_.run;
     switch (run.integrator) {
       case IntegratorKind::adaptive:
-        if (stiff_piece()) {  // a damped rope that stretches pulls (stiff_stepper.hpp, docs/impact.md)
-          const Model* m = &model_;
-          const Discrete* d = &hs_.d;
-          auto flow = [m, d](const State& y, State& dy) { m->flow(*d, y, dy); };
-          RosenbrockStepper<State, decltype(flow)> stepper(flow, run.tolerance, kMaxAdaptiveStep);
-          c = integrate_dense(stepper, sys, hs_.y, t_, run.t_max, run.tolerance, kMaxAdaptiveStep,
-                              run.event_time_tolerance, kMaxAdaptiveSteps - res_.stats.steps, grid_, sample,
-                              res_.stats);
-        } else if (BallisticStepper::applies(model_, sc_, hs_.d, hs_.y)) {  // the sandbag's parabola in closed form
+        if (BallisticStepper::applies(model_, sc_, hs_.d, hs_.y)) {  // the sandbag's parabola in closed form
           BallisticStepper stepper(model_, hs_.d, sc_.machine.gravity, run.tolerance, kMaxAdaptiveStep);
           c = integrate_dense(stepper, sys, hs_.y, t_, run.t_max, run.tolerance, kMaxAdaptiveStep,
                               run.event_time_tolerance, kMaxAdaptiveSteps - res_.stats.steps, grid_, sample,
@@ -180,8 +171,6 @@ class Runner {
     if (observer_) hand_over();  // the piece's samples, before its events
     return c;
   }
-
-  bool stiff_piece() const { return sc_.machine.rope_damping > 0.0 && hs_.d.stretched && hs_.d.on_seesaw; }
 
   void hand_over() {
     if (batch_.size() > 0) observer_->on_samples(batch_);
