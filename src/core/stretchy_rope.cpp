@@ -2,17 +2,18 @@
 //
 // While the sandbag rides the paper's massless seesaw the rope is no contact of the contact problem:
 // once longer than l_R it pulls with
-//     T = max(0, k (span - l_R) + c span'),
-// never pushing (a rope buckles), as a generalised force Q = -T d span/dq on phiS and phiL. The
-// seesaw has no inertia, so the arm's push on the sandbag balances the rope's torque,
+//     T = k (span - l_R) + c span'
+// until that reaches zero (rope_slack): it never pushes (a rope buckles). The pull acts as a
+// generalised force Q = -T d span/dq on phiS and phiL. The seesaw has no inertia, so the arm's push on the sandbag balances the rope's torque,
 // N r = -Q_S: the seesaw and sandbag swing as a point mass m_S r^2 (docs/extensions.md's J with
-// I_S = 0). "Stretched" is a discrete flag: the span crossing l_R is a guard (rope_taut, rope_slack),
-// no impact, so that every smooth piece has a smooth force (with damping T jumps to c span' there).
+// I_S = 0). "Stretched" is a discrete flag, set and cleared by guards (rope_taut where the span
+// passes l_R, rope_slack where the pull reaches zero), no impact: every smooth piece has a smooth
+// force (with damping T jumps to c span' at the taut instant).
 //
 // Energy: the spring's (1/2) k (span - l_R)^2 counts in the machine's energy; what the rope turns
 // into heat, (T - k s) s' with s = span - l_R > 0, is integrated in slot::lost_rope. With the
-// damper pulling that is c s'^2; where the damper would push and T is held at 0, the spring's
-// energy given up, -k s s' > 0: the law never gains energy.
+// damper pulling that is c s'^2; slack while still longer than l_R (the damper would have had to
+// push), the spring's energy given up without work, -k s s' > 0: the law never gains energy.
 //
 // The unloaded massless seesaw cannot stretch the rope (nothing on it has inertia): there the rope
 // stays the inextensible contact, which carries no force on it (it follows the lid, M2, as before).
@@ -38,7 +39,9 @@ Model::RopePull Model::rope_pull(const Discrete& d, const Kinematics& k) const {
   const double ds = dot(dv, r_s) / span, dl = -dot(dv, e_l) / span;  // d span / d phiS, d phiL
   p.stretch = span - rope_.rope_length();
   p.rate = ds * k.dphi_s + dl * k.dphi_l;
-  if (d.stretched) p.tension = std::fmax(0.0, k_rope_ * p.stretch + c_rope_ * p.rate);
+  // No clamp at zero inside the piece: the guard ends the pull where it reaches zero, so the flow
+  // stays smooth (the stiff integrator's Jacobian sees the spring, not a corner).
+  if (d.stretched) p.tension = k_rope_ * p.stretch + c_rope_ * p.rate;
   p.q_s = -p.tension * ds;
   p.q_l = -p.tension * dl;
   return p;
@@ -165,7 +168,7 @@ void Model::stretchy_snapshot(const Discrete& d, const Kinematics& k, const Stat
   s.rope_taut = d.taut || d.stretched;
   s.rope_potential = rope_energy(k);
   s.dissipated_rope = y[slot::lost_rope];
-  if (spring_rope(d)) s.tension = rope_pull(d, k).tension;
+  if (spring_rope(d)) s.tension = std::fmax(0.0, rope_pull(d, k).tension);  // -rounding at the slack
 }
 
 }  // namespace whatnext
