@@ -241,6 +241,7 @@ TEST(StretchyRope, BadInputIsOneClearError) {
       {{"rope.stiffness=1e5", "run.integrator=rk4"}, "run.integrator"},
       {{"rope.stiffness=1e5", "seesaw.mass=1", "seesaw.left_arm=2"}, "rope.stiffness"},
       {{"rope.stiffness=1e5", "restitution.rope=0.5"}, "rope.stiffness"},
+      {{"rope.stiffness=1e5", "friction.sandbag=0.3"}, "rope.stiffness"},
   };
   for (const auto& [sets, key] : bad) {
     try {

@@ -21,7 +21,8 @@ nlohmann::json ledger(const Snapshot& s) {
       {"balloon_kinetic", clean(s.balloon_kinetic)},   {"balloon_potential", clean(s.balloon_potential)},
       {"lost_impacts", clean(s.lost_impacts)},         {"lost_balloon_catch", clean(s.lost_balloon_catch)},
       {"dissipated_pivot", clean(s.dissipated_pivot)}, {"dissipated_lid_hinge", clean(s.dissipated_hinge)},
-      {"dissipated_drag", clean(s.dissipated_drag)},   {"lid_push_on_balloon", clean(s.lid_push_work)},
+      {"dissipated_drag", clean(s.dissipated_drag)},
+      {"dissipated_friction", clean(s.dissipated_friction)},   {"lid_push_on_balloon", clean(s.lid_push_work)},
       {"initial_total", clean(s.initial_total)},       {"residual", s.ledger_residual()}};
 }
 }  // namespace

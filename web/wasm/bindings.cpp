@@ -126,6 +126,7 @@ const Column kColumns[] = {
     WHATNEXT_COLUMN(dissipated_pivot),
     WHATNEXT_COLUMN(dissipated_hinge),
     WHATNEXT_COLUMN(dissipated_drag),
+    WHATNEXT_COLUMN(dissipated_friction),
     WHATNEXT_COLUMN(lid_push_work),
     WHATNEXT_COLUMN(initial_total),
     WHATNEXT_COLUMN(on_seesaw),
