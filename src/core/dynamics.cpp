@@ -166,7 +166,6 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
   }
   if (c_p_ > 0.0 || c_l_ > 0.0 || drag_ > 0.0) dissipation(d, kinematics(d, y), dy);
   if (stretchy_) stretchy_flow(d, y, dy);
-  if (stretchy_) stretchy_flow(d, y, dy);
 }
 
 void Model::dissipation(const Discrete& d, const Kinematics& k, State& dy) const {
