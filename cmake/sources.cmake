@@ -14,6 +14,7 @@ set(WHATNEXT_CORE_SOURCES
   src/core/jumps.cpp
   src/core/balloon.cpp
   src/core/ledger.cpp
+  src/core/stretchy_rope.cpp
   src/core/columns.cpp
   src/core/names.cpp
   src/core/simulate.cpp)

@@ -156,7 +156,7 @@ TEST_F(Docs, UserPagesCiteNoMissingSpecification) {
   for (const char* page :
        {"README.md", "CONTRIBUTING.md", "docs/architecture.md", "docs/inputs.md", "docs/pictures.md",
         "docs/explore.md", "docs/model.md",
-        "docs/extensions.md", "docs/performance.md", "docs/python.md", "docs/web.md",
+        "docs/extensions.md", "docs/impact.md", "docs/performance.md", "docs/python.md", "docs/web.md",
         "examples/example1.toml", "examples/example2.toml", "examples/example3.toml",
         "examples/example4.toml", "examples/example1-radio.toml", "examples/whatnext.inp"}) {
     EXPECT_EQ(slurp(kSource + "/" + page).find("MODEL.md"), std::string::npos) << page;

@@ -53,6 +53,9 @@ struct Machine {
   double seesaw_inertia = 0.0;     // about the pivot [kg m^2]; > 0 makes the seesaw "heavy"
   double seesaw_com_offset = 0.0;  // centre of mass along the bar, + towards r_H [m]
   double rope_on_lid = 0.0;        // the rope's knot, from the hinge along the lid [m]; 0: the free edge
+  // A rope that stretches (docs/impact.md): a one-sided spring-damper; 0 stiffness: inextensible.
+  double rope_stiffness = 0.0;  // [N/m]
+  double rope_damping = 0.0;    // [N s/m]
   // The built machine (docs/extensions.md "The machine students build").
   bool end_stop = false;           // an edge at the left arm's end: the sandbag rides there
   bool floor = false;              // the floor through the box's bottom: arm ends and sandbag stand on it
@@ -81,6 +84,7 @@ struct Machine {
   // What the balloon's string pulls with once straight and holding the balloon still: its net lift.
   double balloon_pull() const { return balloon_inertia() * balloon_acceleration(); }
   bool built_contacts() const { return end_stop || floor; }
+  bool stretchy_rope() const { return rope_stiffness > 0.0; }
   bool has_friction() const { return friction.sandbag > 0.0 || friction.pivot > 0.0 || friction.lid_hinge > 0.0; }
 
   // Uniform plate hinged at one edge: I = m (2 r_L)^2 / 3.

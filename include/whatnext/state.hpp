@@ -68,10 +68,13 @@ struct Discrete {
   // On the rope's closure (lid swinging on a straight rope, something with inertia on the seesaw)
   // the angle integrated is the seesaw's, or the lid's near the lid's dead centre (|k| large).
   bool lid_chart = false;
+  // A rope that stretches (docs/impact.md): longer than l_R and pulling as a spring-damper. The rope
+  // contact (taut) stays open then; the mode names it as straight.
+  bool stretched = false;
   std::array<GuardStart, kGuardSlots> armed{};  // for the smooth piece that starts here
   Books books;
 
-  Mode mode() const { return mode_of(on_seesaw, taut, lid_resting); }
+  Mode mode() const { return mode_of(on_seesaw, taut || stretched, lid_resting); }
   static Mode mode_of(bool on, bool taut, bool resting) {
     if (!on) return taut ? Mode::M2 : Mode::M1;
     if (!taut) return Mode::M3;
@@ -96,8 +99,9 @@ struct Discrete {
 // damped lid hinge and the balloon's air drag (zero rates unless those switches are on).
 // A balloon smaller than the box: while it slides along the lid its two slots hold the distance
 // along the lid of the point it touches and its rate; while free its height and vertical rate,
-// with its x (from the hinge) and horizontal rate in slots 13 and 14. Last, the heat of Coulomb friction.
-using State = std::array<double, 16>;
+// with its x (from the hinge) and horizontal rate in slots 13 and 14. Then the heat of Coulomb
+// friction, and the energy a rope that stretches has lost (its damper, docs/impact.md).
+using State = std::array<double, 17>;
 namespace slot {
 constexpr int x = 0, h = 1, vx = 2, vh = 3;
 constexpr int r = 0, phi_s = 1, dr = 2, dphi_s = 3;
@@ -106,6 +110,7 @@ constexpr int seesaw_phi = 8, seesaw_dphi = 9;
 constexpr int lost_pivot = 10, lost_hinge = 11, lost_drag = 12;
 constexpr int balloon_x = 13, balloon_vx = 14;
 constexpr int lost_friction = 15;
+constexpr int lost_rope = 16;
 }  // namespace slot
 
 struct HybridState {
@@ -137,15 +142,16 @@ struct Snapshot {
   double dissipated_pivot = 0, dissipated_hinge = 0, dissipated_drag = 0;  // integrated
   double dissipated_friction = 0;  // Coulomb friction's heat, integrated
   double lid_push_work = 0;  // work done on the balloon by the lid that does not feel it
+  double rope_potential = 0, dissipated_rope = 0;  // a rope that stretches: its spring, its damper
   double initial_total = 0;
   // The machine: sandbag, lid and seesaw (the balloon does not act on it).
   double energy() const {
     return sandbag_kinetic + sandbag_potential + lid_kinetic + lid_potential + seesaw_kinetic +
-           seesaw_potential;
+           seesaw_potential + rope_potential;
   }
   double total_energy() const { return energy() + balloon_kinetic + balloon_potential; }
   double dissipated() const {
-    return dissipated_pivot + dissipated_hinge + dissipated_drag + dissipated_friction;
+    return dissipated_pivot + dissipated_hinge + dissipated_drag + dissipated_friction + dissipated_rope;
   }
   double lost() const { return lost_impacts + lost_balloon_catch; }
   // initial = now + lost + dissipated - work put in by the lid's push on the balloon.

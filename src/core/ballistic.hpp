@@ -30,8 +30,8 @@ class BallisticStepper {
   // sandbag rests on, is never taken for one).
   static bool applies(const Model& model, const Scenario& sc, const Discrete& d, const State& y) {
     const Machine& m = sc.machine;
-    if (d.polar() || d.heavy || m.heavy_seesaw() || m.pivot_damping > 0.0 || m.lid_hinge_damping > 0.0 ||
-        m.balloon_drag_rate() > 0.0 || m.has_friction()) {
+    if (d.polar() || d.heavy || d.stretched || m.heavy_seesaw() || m.pivot_damping > 0.0 ||
+        m.lid_hinge_damping > 0.0 || m.balloon_drag_rate() > 0.0 || m.has_friction()) {
       return false;
     }
     State dy;

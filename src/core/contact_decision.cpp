@@ -23,7 +23,7 @@ contact::Set Model::touching(const Discrete& d, const Kinematics& k) const {
     if (std::fabs(height_above_arm(k)) <= kContact && along >= 0.0 && along <= arm_) s |= bit(kBag);
   }
   if (d.latched) return s | touching_built(d, k);  // the rope let go for good, the lid held open
-  if (!d.taut && std::fabs(rope_.span(k.phi_s, k.phi_l) - rope_.rope_length()) <= kContact &&
+  if (!d.taut && !spring_rope(d) && std::fabs(rope_.span(k.phi_s, k.phi_l) - rope_.rope_length()) <= kContact &&
       rope_.lid_below_rope(k.phi_s, k.phi_l)) {
     s |= bit(kRope);
   }
@@ -206,6 +206,9 @@ Model::Decision Model::decide_touching(const Discrete& d, const Kinematics& k_ev
   x.s0 = active_set(d);
   x.touch = x.s0 | touching(d, k_event);
   if (trend == Trend::closing) x.touch |= bit(trigger);
+  // A rope that stretches is a spring, not a contact, once the sandbag rides the seesaw: a landing
+  // takes no impulse through it (docs/impact.md).
+  if (stretchy_ && trigger == kBag && trend == Trend::closing) x.touch &= ~bit(kRope);
   if (trend == Trend::forced_off) {
     x.touch &= ~bit(trigger);
     // Off the end of an arm that stands on the floor: the sandbag is on the floor at once.

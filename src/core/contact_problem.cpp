@@ -26,7 +26,6 @@ contact::System Model::contact_system(const Discrete& d, const Kinematics& k) co
   const double cs = k.cos_s, sn = k.sin_s, cl = k.cos_l, sl = k.sin_l;
   // The pivot's damper needs a seesaw with inertia (validation rejects it on a massless one).
   s.force = {0.0, -m_s_ * g_, -w_s_ * g_ * cs - c_p_ * k.dphi_s, -m_l_ * g_ * r_l_ * cl - c_l_ * k.dphi_l};
-  (void)d;
 
   const double height = -k.x * sn + k.h * cs;
   s.normal[kBag] = {-sn, cs, -k.x * cs - k.h * sn, 0.0};
@@ -47,6 +46,7 @@ contact::System Model::contact_system(const Discrete& d, const Kinematics& k) co
   s.normal[kLid] = {0.0, 0.0, 0.0, 1.0};
   s.curvature[kLid] = 0.0;
   if (contacts_ > 3) built_contacts(s, k);
+  if (stretchy_ && d.stretched) stretchy_force(d, k, s);
   if (friction_) friction_contacts(d, s, k);
   return s;
 }
@@ -103,7 +103,11 @@ contact::Set Model::active_set(const Discrete& d) {
 }
 
 contact::Coords Model::accelerations(const Discrete& d, const Kinematics& k) const {
-  if (!d.polar()) return {0.0, d.bag_on_floor ? 0.0 : -g_, k.ddphi_s, k.ddphi_l};  // falls, or lies
+  if (!d.polar()) {  // falls, or lies; on the massless seesaw pushed by the arm against a stretched rope
+    contact::Coords a{0.0, d.bag_on_floor ? 0.0 : -g_, k.ddphi_s, k.ddphi_l};
+    if (stretchy_ && d.stretched) stretchy_accelerations(d, k, a);
+    return a;
+  }
   // x = -r cos phiS, h = -r sin phiS: along the arm r'' - r phiS'^2, across it 2 r' phiS' + r phiS''.
   const double along = k.ddr - k.r * k.dphi_s * k.dphi_s, across = 2.0 * k.dr * k.dphi_s + k.r * k.ddphi_s;
   return {-along * k.cos_s + across * k.sin_s, -along * k.sin_s - across * k.cos_s, k.ddphi_s, k.ddphi_l};

@@ -171,6 +171,7 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     dy[slot::balloon_v] = balloon_acceleration(y[slot::balloon_v]);
   }
   if (c_p_ > 0.0 || c_l_ > 0.0 || drag_ > 0.0 || friction_) dissipation(d, kinematics(d, y), dy);
+  if (stretchy_) stretchy_flow(d, y, dy);
 }
 
 void Model::dissipation(const Discrete& d, const Kinematics& k, State& dy) const {

@@ -106,6 +106,7 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   const bool seesaw_moves = d.on_seesaw || d.heavy || d.taut;
   if (seesaw_moves) g[kGuardSeesawVertical] = std::fabs(k.phi_s) - vertical_;
   if (d.on_seesaw && arm_ < kNoEnd && !stop_) g[kGuardArmEnd] = k.r - arm_;
+  if (stretchy_) stretchy_guards(d, k, g, rates);
 }
 
 void Model::built_guards(const Discrete& d, const Kinematics& k, const contact::System& sys, GuardValues& g,

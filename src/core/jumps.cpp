@@ -43,6 +43,8 @@ HybridState Model::initial(std::vector<Event>& out) const {
     k.h = -r * s;
   }
   if (rope_.span(st.seesaw_angle, phi_l0_) >= rope_.rope_length() - kContact) touch |= bit(kRope);
+  // A rope that stretches is no contact while the sandbag rides the seesaw (docs/impact.md).
+  if (stretchy_ && contact::has(touch, kBag)) touch &= ~bit(kRope);
   k = with_velocity(k, contact::Coords{});
   if (contacts_ > 3) {  // a seesaw that starts standing on the floor (a sandbag on it at the stop)
     Discrete dt = d;
@@ -222,6 +224,16 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
 }
 
 bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
+  if (stretchy_) {  // the contact decision names modes by its contacts: add the stretched rope
+    const std::size_t first = out.size();
+    const bool end = jump_contacts(fired, hs, out);
+    stretchy_modes(hs.d, out, first);
+    return end;
+  }
+  return jump_contacts(fired, hs, out);
+}
+
+bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out) const {
   hs.d.armed = {};
   const Mode before = hs.d.mode();
   const Kinematics k0 = kinematics(hs.d, hs.y);
@@ -237,6 +249,7 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
   if (hs.d.on_seesaw && k0.r <= kContact && !fires_at_once(fired)) return stop(EventType::sandbag_at_pivot);
   switch (fired) {
     case kGuardBag:
+      if (spring_rope(hs.d) && hs.d.stretched) return stretchy_jump(fired, hs, k0, before, out);
       if (hs.d.on_seesaw) {
         resolve(hs, k0, kBag, Trend::releasing, out);
         break;
@@ -258,6 +271,7 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
       // The linkage (docs/model.md §3): the rope straightens on the lid-below-rope side only; on the other
       // it would run under the hinge, through the box, and the model cannot go on.
       if (!hs.d.taut && !rope_.lid_below_rope(k0.phi_s, k0.phi_l)) return stop(EventType::rope_locked);
+      if (spring_rope(hs.d)) return stretchy_jump(fired, hs, k0, before, out);
       resolve(hs, k0, kRope, hs.d.taut ? Trend::releasing : Trend::closing, out);
       break;
     case kGuardLid: resolve(hs, k0, kLid, hs.d.lid_resting ? Trend::releasing : Trend::closing, out); break;

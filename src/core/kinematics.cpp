@@ -284,6 +284,7 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool
     pass.cartesian(layout);
   }
   pass.finish();
+  if (stretchy_ && rates && d.stretched) stretchy_kinematics(d, k);
   return k;
 }
 

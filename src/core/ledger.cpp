@@ -19,9 +19,10 @@ double Model::radio_gap(const Kinematics& k) const {
 }
 
 double Model::energy(const Kinematics& k) const {
-  return 0.5 * m_s_ * (k.vx * k.vx + k.vh * k.vh) + m_s_ * g_ * k.h + 0.5 * i_l_ * k.dphi_l * k.dphi_l +
-         m_l_ * g_ * r_l_ * std::sin(k.phi_l) + 0.5 * i_s_ * k.dphi_s * k.dphi_s +
-         w_s_ * g_ * std::sin(k.phi_s);
+  const double e = 0.5 * m_s_ * (k.vx * k.vx + k.vh * k.vh) + m_s_ * g_ * k.h +
+                   0.5 * i_l_ * k.dphi_l * k.dphi_l + m_l_ * g_ * r_l_ * std::sin(k.phi_l) +
+                   0.5 * i_s_ * k.dphi_s * k.dphi_s + w_s_ * g_ * std::sin(k.phi_s);
+  return stretchy_ ? e + rope_energy(k) : e;
 }
 
 double Model::balloon_energy(double h, double v) const { return 0.5 * m_b_ * v * v - m_b_ * a_b_ * h; }
@@ -84,13 +85,14 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
   s.dissipated_friction = y[slot::lost_friction];
   s.lid_push_work = lid_push_now(d, k, y);
   s.initial_total = b.initial_total;
+  if (stretchy_) stretchy_snapshot(d, k, y, s);
   return s;
 }
 
 Positions Model::positions(double t, const Discrete& d, const State& y) const {
   // snapshot(t, d, y, false, false)'s positions, computed the same way.
   const Kinematics k = kinematics(d, y, false, false);
-  return {t, k.x, k.h, k.phi_s, k.phi_l, balloon_limit_height(k), k.balloon_h, d.mode(), d.taut, k.balloon_x};
+  return {t, k.x, k.h, k.phi_s, k.phi_l, balloon_limit_height(k), k.balloon_h, d.mode(), d.taut || d.stretched, k.balloon_x};
 }
 
 void Model::open_books(HybridState& hs, const Kinematics& k) const {

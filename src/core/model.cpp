@@ -62,6 +62,9 @@ Model::Model(const Scenario& scenario)
   t_h_ = m.friction.lid_hinge;
   friction_ = m.has_friction();
   for (double e : e_) restitution_ = restitution_ || e > 0.0;
+  stretchy_ = m.stretchy_rope();
+  k_rope_ = m.rope_stiffness;
+  c_rope_ = m.rope_damping;
 }
 
 }  // namespace whatnext

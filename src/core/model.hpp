@@ -114,6 +114,7 @@ class Model {
   // and (unless an impact) energy_before are the state the motion goes on with once every event
   // of the instant is decided: simulate() fills them in then, once for all of them.
   bool jump(Guard fired, HybridState& hs, std::vector<Event>& out) const;
+  bool jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out) const;
   // The run ends at t_max.
   void timeout(HybridState& hs, std::vector<Event>& out) const;
   // The rounding band of a guard in d (see GuardStart): values within it count as zero.
@@ -354,6 +355,27 @@ class Model {
   bool restitution_ = false;               // some contact has one
   double grounded_angle(int side) const { return side > 0 ? grounded_left_ : grounded_right_; }
   void ground(Kinematics& k, int side, bool carries) const;
+
+  // A rope that stretches (stretchy_rope.cpp, docs/impact.md): a one-sided spring-damper instead of
+  // the rope's contact while the sandbag rides the massless seesaw; its pull is a generalised force.
+  bool stretchy_ = false;
+  double k_rope_ = 0.0, c_rope_ = 0.0;
+  struct RopePull {
+    double stretch = 0, rate = 0, tension = 0;  // span - l_R [m], its rate [m/s], the pull [N]
+    double q_s = 0, q_l = 0;                    // the pull's torques on the seesaw and the lid [N m]
+  };
+  bool spring_rope(const Discrete& d) const { return stretchy_ && d.on_seesaw && !d.latched; }
+  RopePull rope_pull(const Discrete& d, const Kinematics& k) const;
+  double rope_energy(const Kinematics& k) const;
+  void stretchy_flow(const Discrete& d, const State& y, State& dy) const;
+  void stretchy_kinematics(const Discrete& d, Kinematics& k) const;
+  void stretchy_accelerations(const Discrete& d, const Kinematics& k, contact::Coords& a) const;
+  void stretchy_force(const Discrete& d, const Kinematics& k, contact::System& s) const;
+  double lid_lift(const Kinematics& k, const RopePull& p) const;  // minus the box's push on the lid
+  void stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const;
+  bool stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before, std::vector<Event>& out) const;
+  static void stretchy_modes(const Discrete& d, std::vector<Event>& out, std::size_t first);
+  void stretchy_snapshot(const Discrete& d, const Kinematics& k, const State& y, Snapshot& s) const;
 };
 
 }  // namespace whatnext

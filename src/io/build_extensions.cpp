@@ -1,6 +1,7 @@
 // Validation of the switches beyond the paper (docs/extensions.md): radio, balloon rubber and
 // drag, damping, a seesaw with mass.
 #include <cmath>
+#include <utility>
 
 #include "reader.hpp"
 
@@ -73,6 +74,41 @@ void build_built_machine(const Reader& in, Machine& m) {
 
 // The switches beyond the paper (docs/extensions.md); with none of their keys given the machine
 // is docs/model.md's.
+// A rope that stretches (docs/impact.md): a spring-damper on the paper's massless seesaw. Its
+// stretch needs the sandbag's inertia on the arm: the heavy seesaw, the built machine's floor and
+// stop, and a bouncing rope are not combined with it (yet); fixed steps cannot resolve a stiff one.
+namespace {
+void build_stretchy_rope(const Reader& in, Machine& m) {
+  if (in.find("rope.stiffness")) {
+    m.rope_stiffness = in.positive("rope.stiffness");
+    in.plausible("rope.stiffness", m.rope_stiffness, 1e-3, 1e12);
+  }
+  if (in.find("rope.damping")) {
+    m.rope_damping = in.in_range("rope.damping", 0.0, true, 1e9, true);
+    // 0, the table's default, is what leaving the key out means.
+    if (m.rope_damping > 0.0 && !m.stretchy_rope()) {
+      in.fail("rope.damping", "needs rope.stiffness (without it the rope does not stretch)");
+    }
+  }
+  if (!m.stretchy_rope()) return;
+  const auto no = [&](const char* key, const char* why) {
+    if (in.find(key)) in.fail("rope.stiffness", fmt::format("does not go with {} ({})", key, why));
+  };
+  no("seesaw.mass", "a rope that stretches is modelled on the paper's massless seesaw only");
+  no("floor.enabled", "the built machine's floor is not modelled with a rope that stretches");
+  no("floor.restitution", "the built machine's floor is not modelled with a rope that stretches");
+  no("seesaw.end_stop", "the end stop is not modelled with a rope that stretches");
+  no("restitution.rope", "the rope that stretches has no impact: it bounces by itself");
+  // Coulomb friction given above zero (zero is leaving it out).
+  const std::pair<const char*, double> frictions[] = {{"friction.sandbag", m.friction.sandbag},
+                                                      {"friction.pivot", m.friction.pivot},
+                                                      {"friction.lid_hinge", m.friction.lid_hinge}};
+  for (const auto& [key, value] : frictions) {
+    if (value > 0.0) no(key, "the flows of a stretched rope do not carry Coulomb friction yet");
+  }
+}
+}  // namespace
+
 void build_extensions(const Reader& in, Machine& m) {
   // Kermit's radio stands 0.5 m right of the box, its switch level with the box's top. The radio is
   // opt-in: radio.enabled, or any other radio key, turns it on.
@@ -144,6 +180,7 @@ void build_extensions(const Reader& in, Machine& m) {
     }
   }
   build_built_machine(in, m);
+  build_stretchy_rope(in, m);
   if (m.pivot_damping > 0.0 && !m.heavy_seesaw()) {
     // A massless seesaw can only take the damper's torque from the sandbag pushing the arm, which
     // would have to pull whenever the seesaw turns back: no consistent motion (docs/extensions.md).

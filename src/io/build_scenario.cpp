@@ -113,6 +113,10 @@ void read_run(const Reader& in, const Machine& m, RunSettings& run) {
             fmt::format("gives {:.3g} steps up to run.t_max = {} s; at most {:.0e} are allowed (given {})",
                         run.t_max / run.step, fmt_num(run.t_max), kMaxSteps, fmt_num(run.step)));
   }
+  if (run.integrator != IntegratorKind::adaptive && m.stretchy_rope()) {
+    // A stiff spring's period is far below any fixed step that would finish (docs/impact.md).
+    in.fail("run.integrator", fmt::format("must be adaptive with rope.stiffness (given '{}')", printable(integ)));
+  }
   if (run.integrator != IntegratorKind::adaptive) {
     // An explicit fixed step is unstable when a damper takes the motion's speed away within one
     // step: the lid then swings through its rest to -243 deg. Stay below the decay time I / c.

@@ -84,6 +84,11 @@ const std::vector<KeySpec> kKeys = {
      "0"},
     {"restitution.stop", KeyKind::positive, "",
      "Newton's coefficient of the sandbag reaching the end stop: 0 to 1 (needs seesaw.end_stop)", "0"},
+    {"rope.stiffness", KeyKind::positive, "N/m",
+     "a rope that stretches: a one-sided spring-damper pulling k (span - l_R) + c span', never pushing; "
+     "no impact law (docs/impact.md)",
+     "inextensible"},
+    {"rope.damping", KeyKind::positive, "N s/m", "c of the rope that stretches (needs rope.stiffness)", "0"},
     {"start.sandbag_x", KeyKind::length, "m", "sandbag's start, horizontal from the pivot (< 0)", "-0.3"},
     {"start.sandbag_height", KeyKind::length, "m", "sandbag's start height above the pivot", "1.0"},
     {"start.seesaw_angle", KeyKind::angle, "deg", "phiS0, positive = left arm down", "-25"},

@@ -99,6 +99,11 @@ std::string to_toml(const Scenario& sc, const Config* given) {
     line("lid", e.lid);
     line("stop", e.stop);
   }
+  if (m.stretchy_rope()) {
+    out += "\n[rope]\n";
+    line("stiffness", m.rope_stiffness);
+    line("damping", m.rope_damping);
+  }
   out += "\n[start]\n";
   line("sandbag_x", st.sandbag_x);
   line("sandbag_height", st.sandbag_h);

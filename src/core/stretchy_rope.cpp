@@ -1,0 +1,174 @@
+// A rope that stretches (docs/impact.md): a one-sided spring-damper in place of the rope's contact.
+//
+// While the sandbag rides the paper's massless seesaw the rope is no contact of the contact problem:
+// once longer than l_R it pulls with
+//     T = k (span - l_R) + c span'
+// until that reaches zero (rope_slack): it never pushes (a rope buckles). The pull acts as a
+// generalised force Q = -T d span/dq on phiS and phiL. The seesaw has no inertia, so the arm's push on the sandbag balances the rope's torque,
+// N r = -Q_S: the seesaw and sandbag swing as a point mass m_S r^2 (docs/extensions.md's J with
+// I_S = 0). "Stretched" is a discrete flag, set and cleared by guards (rope_taut where the span
+// passes l_R, rope_slack where the pull reaches zero), no impact: every smooth piece has a smooth
+// force (with damping T jumps to c span' at the taut instant).
+//
+// Energy: the spring's (1/2) k (span - l_R)^2 counts in the machine's energy; what the rope turns
+// into heat, (T - k s) s' with s = span - l_R > 0, is integrated in slot::lost_rope. With the
+// damper pulling that is c s'^2; slack while still longer than l_R (the damper would have had to
+// push), the spring's energy given up without work, -k s s' > 0: the law never gains energy.
+//
+// The unloaded massless seesaw cannot stretch the rope (nothing on it has inertia): there the rope
+// stays the inextensible contact, which carries no force on it (it follows the lid, M2, as before).
+#include <cmath>
+#include <limits>
+
+#include "model.hpp"
+#include "model_internal.hpp"
+#include "whatnext/simulate.hpp"
+
+namespace whatnext {
+
+using namespace model_detail;
+
+Model::RopePull Model::rope_pull(const Discrete& d, const Kinematics& k) const {
+  RopePull p;
+  const double rh = sc_.machine.seesaw_right_arm, knot = sc_.machine.rope_knot();
+  const Vec2 r{rh * k.cos_s, rh * k.sin_s}, el{knot * k.cos_l, knot * k.sin_l};
+  const Vec2 dv = r - (rope_.hinge() + el);  // D = R - E
+  const double span = norm(dv);
+  if (!(span > 0.0)) return p;
+  const Vec2 r_s{-r.h, r.x}, e_l{-el.h, el.x};  // dR/dphiS, dE/dphiL
+  const double ds = dot(dv, r_s) / span, dl = -dot(dv, e_l) / span;  // d span / d phiS, d phiL
+  p.stretch = span - rope_.rope_length();
+  p.rate = ds * k.dphi_s + dl * k.dphi_l;
+  // No clamp at zero inside the piece: the guard ends the pull where it reaches zero, so the flow
+  // stays smooth (the stiff integrator's Jacobian sees the spring, not a corner).
+  if (d.stretched) p.tension = k_rope_ * p.stretch + c_rope_ * p.rate;
+  p.q_s = -p.tension * ds;
+  p.q_l = -p.tension * dl;
+  return p;
+}
+
+double Model::rope_energy(const Kinematics& k) const {
+  const double s = rope_.span(Vec2{k.cos_s, k.sin_s}, Vec2{k.cos_l, k.sin_l}) - rope_.rope_length();
+  return s > 0.0 ? 0.5 * k_rope_ * s * s : 0.0;
+}
+
+void Model::stretchy_flow(const Discrete& d, const State& y, State& dy) const {
+  if (!spring_rope(d)) return;
+  const Kinematics k = kinematics(d, y);
+  const RopePull p = rope_pull(d, k);
+  // Slack but still longer than l_R (it let go where its damper would have pushed), the spring's
+  // energy goes as the span shrinks: booked as lost (-k s s').
+  dy[slot::lost_rope] = (p.tension - k_rope_ * std::fmax(p.stretch, 0.0)) * p.rate;
+  if (!d.stretched) return;
+  // The sandbag in Cartesian free fall (M3), pushed by the arm with N = -Q_S / r along the arm's
+  // normal (-sin phiS, cos phiS).
+  if (k.r > 0.0) {
+    const double push = -p.q_s / (k.r * m_s_);
+    dy[slot::vx] += -push * k.sin_s;
+    dy[slot::vh] += push * k.cos_s;
+  }
+  if (!d.lid_resting) dy[slot::dphi_l] += p.q_l / i_l_;
+}
+
+void Model::stretchy_kinematics(const Discrete& d, Kinematics& k) const {
+  if (!spring_rope(d)) return;
+  const RopePull p = rope_pull(d, k);
+  // phiS = atan2(-h, -x): the arm's push adds -N / (m r) = Q_S / (m r^2) to the free fall's phiS''.
+  if (k.r > 0.0) k.ddphi_s += p.q_s / (m_s_ * k.r * k.r);
+  if (!d.lid_resting) k.ddphi_l += p.q_l / i_l_;
+}
+
+void Model::stretchy_accelerations(const Discrete& d, const Kinematics& k, contact::Coords& a) const {
+  if (!spring_rope(d) || !(k.r > 0.0)) return;
+  const double push = -rope_pull(d, k).q_s / (k.r * m_s_);
+  a[0] += -push * k.sin_s;
+  a[1] += push * k.cos_s;
+}
+
+void Model::stretchy_force(const Discrete& d, const Kinematics& k, contact::System& s) const {
+  // The contact problem sees the pull as a force like gravity: a decision at an event (the lid
+  // lifting, the arm's push) is made with it.
+  if (!spring_rope(d)) return;
+  const RopePull p = rope_pull(d, k);
+  s.force[2] += p.q_s;
+  s.force[3] += p.q_l;
+}
+
+void Model::stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const {
+  if (!spring_rope(d)) return;
+  // The rope pulls while k s + c s' > 0 with s = span - l_R: both its ends as guards, in metres
+  // (divided by k). Pulling, it goes slack when that pull reaches zero (s = 0 without damping, s > 0
+  // with it: the damper would have to push). Slack, it pulls again when s >= 0 and the pull would
+  // be positive: min(s, s + (c/k) s') crosses zero (at s = 0 on an ordinary tightening, where s'
+  // > 0; before s = 0 returns, if the ends are driven apart while still stretched).
+  const RopePull p = rope_pull(d, k);
+  const double tau = c_rope_ / k_rope_, pull = p.stretch + tau * p.rate;
+  if (d.stretched) {
+    g[kGuardRope] = -pull;
+    if (rates) (*rates)[kGuardRope] = c_rope_ > 0.0 ? std::numeric_limits<double>::quiet_NaN() : -p.rate;
+  } else {
+    g[kGuardRope] = std::fmin(p.stretch, pull);
+    if (rates) (*rates)[kGuardRope] = p.rate >= 0.0 ? p.rate : std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  // The box lets the lid go when the pull's torque outweighs the lid.
+  if (d.lid_resting) g[kGuardLid] = lid_lift(k, p);
+  // The arm pushes the sandbag with N = T (d span/d phiS) / r: it would have to pull where the
+  // linkage's k turns negative (the massless seesaw then cannot hold the rope).
+  const double rh = sc_.machine.seesaw_right_arm, knot = sc_.machine.rope_knot();
+  const Vec2 r{rh * k.cos_s, rh * k.sin_s};
+  const Vec2 dv = r - (rope_.hinge() + Vec2{knot * k.cos_l, knot * k.sin_l});
+  if (p.tension > 0.0) g[kGuardBag] = -dot(dv, Vec2{-r.h, r.x});
+}
+
+double Model::lid_lift(const Kinematics& k, const RopePull& p) const {
+  return p.q_l - m_l_ * g_ * r_l_ * k.cos_l;
+}
+
+bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before,
+                          std::vector<Event>& out) const {
+  if (fired == kGuardBag) {
+    throw SimulationError(
+        "the stretched rope would pull the sandbag off the massless seesaw (the linkage's k < 0), which the "
+        "model of a rope that stretches does not cover (docs/impact.md)");
+  }
+  // The rope starts or stops pulling. No impact, nothing jumps.
+  Discrete& d = hs.d;
+  d.stretched = !d.stretched;
+  out.push_back(make_event(d.stretched ? EventType::rope_taut : EventType::rope_slack, hs, before, d.mode()));
+  if (d.stretched && d.lid_resting && lid_lift(k0, rope_pull(d, k0)) > 0.0) {
+    // A damped rope pulls c s' at once: a lid that this lifts is decided now, as an impact's would be.
+    resolve(hs, kinematics(d, hs.y), kLid, Trend::releasing, out);
+  }
+  // The guard starts at zero and turns negative (without damping at the span's rate).
+  const RopePull p = rope_pull(d, k0);
+  const double lead = c_rope_ > 0.0 ? 0.0 : -std::fabs(p.rate);
+  d.armed[kGuardRope] = lead < 0.0 ? GuardStart{1, lead} : GuardStart{1, kUnknownLead};
+  d.armed[kGuardRope].floor = guard_floor(kGuardRope, d);
+  return false;
+}
+
+void Model::stretchy_modes(const Discrete& d, std::vector<Event>& out, std::size_t first) {
+  // While the spring pulls, M3 (on the arm, the rope's contact open) is M4 or M5: the lid's contact
+  // after each event follows from the events in order.
+  if (!d.stretched || !d.on_seesaw) return;
+  auto named = [](Mode m, bool resting) { return m == Mode::M3 ? (resting ? Mode::M5 : Mode::M4) : m; };
+  for (std::size_t i = first; i < out.size(); ++i) {
+    Event& e = out[i];
+    const bool rests_before = e.mode_before == Mode::M5 || (i > first ? out[i - 1].mode_after == Mode::M5 : false);
+    const bool rests_after = e.type == EventType::lid_rests || (e.type != EventType::lid_lifts && rests_before);
+    if (e.type != EventType::rope_taut && e.type != EventType::rope_slack) {
+      e.mode_before = named(e.mode_before, rests_before);
+      e.mode_after = named(e.mode_after, rests_after);
+    }
+  }
+}
+
+void Model::stretchy_snapshot(const Discrete& d, const Kinematics& k, const State& y, Snapshot& s) const {
+  s.rope_taut = d.taut || d.stretched;
+  s.rope_potential = rope_energy(k);
+  s.dissipated_rope = y[slot::lost_rope];
+  if (spring_rope(d)) s.tension = std::fmax(0.0, rope_pull(d, k).tension);  // -rounding at the slack
+}
+
+}  // namespace whatnext
