@@ -524,3 +524,30 @@ TEST(Set, ADerivedInertiaBlamesTheKeysGiven) {
 }
 
 }  // namespace
+
+// A number key given as its table's default word ("endless", "inextensible") is the key left out,
+// so a rope that stretches can be set back to the inextensible one (the page's comparison).
+TEST(Input, ANumberKeyGivenAsItsDefaultWordIsTheKeyLeftOut) {
+  whatnext::Config cfg = whatnext::example_config(1);
+  whatnext::apply_set(cfg, "rope.stiffness=1e5");
+  EXPECT_TRUE(cfg.has("rope.stiffness"));
+  whatnext::apply_set(cfg, "rope.stiffness=inextensible");
+  EXPECT_FALSE(cfg.has("rope.stiffness"));
+  EXPECT_FALSE(whatnext::build_scenario(cfg).machine.stretchy_rope());
+  whatnext::apply_set(cfg, "seesaw.left_arm=endless");
+  EXPECT_FALSE(cfg.has("seesaw.left_arm"));
+  // Other words are still refused, in one line naming the key.
+  EXPECT_THROW(whatnext::apply_set(cfg, "rope.stiffness=stiff"), whatnext::InputError);
+}
+
+TEST(Toml, FrictionIsWrittenBackAndReadsBackTheSame) {
+  wn::Config cfg = wn::parse_toml(std::string(wn::example_toml("konstanz")), "konstanz.toml");
+  wn::apply_set(cfg, "friction.sandbag=0.35");
+  wn::apply_set(cfg, "friction.lid_hinge=0.05");
+  const wn::Scenario a = wn::build_scenario(cfg);
+  const wn::Scenario b = wn::build_scenario(wn::parse_toml(wn::to_toml(a), "round.toml"));
+  EXPECT_EQ(b.machine.friction.sandbag, 0.35);
+  EXPECT_EQ(b.machine.friction.lid_hinge, 0.05);
+  EXPECT_EQ(b.machine.friction.pivot, 0.0);
+  EXPECT_EQ(wn::to_toml(b), wn::to_toml(a));
+}

@@ -1,4 +1,5 @@
 // Overrides: --set KEY=VALUE (VALUE as in TOML, bare words as text) and set_number for sweeps.
+#include <cctype>
 #include <string>
 
 #include "input_common.hpp"
@@ -28,6 +29,13 @@ void apply_set(Config& cfg, std::string_view assignment) {
   if (key.empty()) throw InputError(fmt::format("{}: expected KEY=VALUE (no key before '=')", origin));
   const KeySpec* spec = find_key(key);
   if (!spec) unknown_key("--set", key);
+  // A number given as its table's default word ("endless", "inextensible", "bar") is the key left
+  // out: how a rope that stretches is set back to the inextensible one (the page compares them).
+  const bool word_default = !spec->default_text.empty() && std::isalpha(static_cast<unsigned char>(spec->default_text[0]));
+  if (word_default && spec->kind != KeyKind::text && spec->kind != KeyKind::flag && value == spec->default_text) {
+    cfg.values.erase(key);
+    return;
+  }
   if (value.empty()) throw InputError(fmt::format("{}: give a value after '='", origin));
   toml::table parsed;
   bool ok = true;

@@ -99,6 +99,12 @@ std::string to_toml(const Scenario& sc, const Config* given) {
     line("lid", e.lid);
     line("stop", e.stop);
   }
+  if (m.has_friction()) {
+    out += "\n[friction]\n";
+    if (m.friction.sandbag > 0.0) line("sandbag", m.friction.sandbag);
+    if (m.friction.pivot > 0.0) line("pivot", m.friction.pivot);
+    if (m.friction.lid_hinge > 0.0) line("lid_hinge", m.friction.lid_hinge);
+  }
   if (m.stretchy_rope()) {
     out += "\n[rope]\n";
     line("stiffness", m.rope_stiffness);

@@ -335,6 +335,14 @@
   const kGhosts = [{ colour: 'rgb(60,90,200)', dash: [8, 5] }, { colour: 'rgb(20,140,60)', dash: [2, 3] },
                    { colour: 'rgb(150,40,170)', dash: [12, 4, 2, 4] }];
 
+  // Whether the machine shown has a rope that stretches, or friction: from the run's own values.
+  const given = (key) => {
+    const v = st.run && st.run.values ? st.run.values.effective[key] : undefined;
+    return v !== undefined && v !== '' && Number(v) > 0;
+  };
+  const stretches = () => given('rope.stiffness');
+  const rubs = () => given('friction.sandbag') || given('friction.pivot') || given('friction.lid_hinge');
+
   async function runCompare() {
     const c = st.compare;
     c.run = null;
@@ -360,6 +368,16 @@
     } else if (c.mode === 'euler') {
       input = inputFor(st.base, st.good, ['run.integrator=euler', `run.step=${c.step}`]);
       c.label = T('Euler, step {step} s', { step: S.decimals(c.step) });
+    } else if (c.mode === 'rigid') {
+      // The same machine with the paper's inextensible rope (docs/impact.md): the table's default
+      // word for rope.stiffness is the key left out.
+      if (!stretches()) c.message = T('This rope does not stretch: give it a stiffness (rope.stiffness) to compare it with the one that does not.');
+      else input = inputFor(st.base, st.good, ['rope.stiffness=inextensible', 'rope.damping=0']);
+      c.label = T('the rope that does not stretch');
+    } else if (c.mode === 'frictionless') {
+      if (!rubs()) c.message = T('This machine has no friction: give friction.sandbag, friction.pivot or friction.lid_hinge to compare it with none.');
+      else input = inputFor(st.base, st.good, ['friction.sandbag=0', 'friction.pivot=0', 'friction.lid_hinge=0']);
+      c.label = T('no friction');
     } else if (c.mode === 'previous') {
       // While a change is under way (a slider moving) the machine before it; after it, the one
       // before the last change.
@@ -756,6 +774,7 @@
     const c = st.compare;
     if (c.mode === 'law') p.set('compare', `law:${c.law}`);
     if (c.mode === 'laws') p.set('compare', 'laws:');
+    if (c.mode === 'rigid' || c.mode === 'frictionless') p.set('compare', `${c.mode}:`);
     // A step that does not run is not passed on in the link.
     if (c.mode === 'euler' && validStep(c.step) && c.run) p.set('compare', `euler:${c.step}`);
     history.replaceState(null, '', `#${p.toString()}`);
@@ -796,7 +815,8 @@
       if (kind === 'law' && names['run.impact_law'].includes(what)) compare = { mode: 'law', law: what };
       else if (kind === 'laws' && what === '') compare = { mode: 'laws' };
       else if (kind === 'euler' && validStep(what)) compare = { mode: 'euler', step: what };
-      else problems.push(T('The link\'s compare={given} is not a comparison (law:NAME with NAME one of {laws}; laws:; euler:STEP with a step in seconds above 0) and was left out.', { given: p.get('compare'), laws: names['run.impact_law'].join(', ') }));
+      else if ((kind === 'rigid' || kind === 'frictionless') && what === '') compare = { mode: kind };
+      else problems.push(T('The link\'s compare={given} is not a comparison (law:NAME with NAME one of {laws}; laws:; euler:STEP with a step in seconds above 0; rigid:; frictionless:) and was left out.', { given: p.get('compare'), laws: names['run.impact_law'].join(', ') }));
     }
     return { base, sets, compare, problems };
   }

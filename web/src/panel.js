@@ -30,6 +30,7 @@
     'run.gravity': [1, 25], 'radio.switch_force': [0, 1], 'floor.restitution': [0, 1],
     'restitution.sandbag': [0, 1], 'restitution.rope': [0, 1], 'restitution.lid': [0, 1], 'restitution.stop': [0, 1],
     'friction.sandbag': [0, 1.5], 'friction.pivot': [0, 2], 'friction.lid_hinge': [0, 1],
+    'rope.stiffness': [10, 1e8, 'log'], 'rope.damping': [0, 100],
   };
   // What a blank field means for the extension keys that a machine without them does not write
   // (docs/inputs.md).
@@ -39,10 +40,11 @@
     'seesaw.mass': '0', 'seesaw.inertia': 'bar', 'seesaw.com_offset': 'bar', 'radio.switch_force': '0',
     'floor.restitution': '0', 'restitution.sandbag': '0', 'restitution.rope': '0', 'restitution.lid': '0',
     'restitution.stop': '0', 'friction.sandbag': '0', 'friction.pivot': '0', 'friction.lid_hinge': '0',
+    'rope.stiffness': 'inextensible', 'rope.damping': '0',
   };
   const kSections = { balloon: 'Balloon', radio: 'Radio', damping: 'Damping', seesaw: 'The seesaw: its arm, mass and end stop',
                       floor: 'The floor', restitution: 'Restitution: impacts that bounce',
-                      friction: 'Friction' };
+                      friction: 'Friction', rope: 'A rope that stretches' };
   const kNumberKinds = ['length', 'mass', 'density', 'angle', 'time', 'acceleration', 'positive'];
   const kSliderSteps = 1000;
   const kProbes = 40;  // slider positions checked for validity
