@@ -335,9 +335,10 @@
   const kGhosts = [{ colour: 'rgb(60,90,200)', dash: [8, 5] }, { colour: 'rgb(20,140,60)', dash: [2, 3] },
                    { colour: 'rgb(150,40,170)', dash: [12, 4, 2, 4] }];
 
-  // Whether the machine shown has a rope that stretches, or friction: from the run's own values.
+  // Whether the machine shown has a rope that stretches, or friction: its changes, else its run's values.
   const given = (key) => {
-    const v = st.run && st.run.values ? st.run.values.effective[key] : undefined;
+    const set = [...st.good].find(([k]) => k === key);
+    const v = set ? set[1] : st.run && st.run.values ? st.run.values.effective[key] : undefined;
     return v !== undefined && v !== '' && Number(v) > 0;
   };
   const stretches = () => given('rope.stiffness');

@@ -671,6 +671,27 @@ const checks = {
     });
   },
 
+  // Issue 20: a rope that stretches compared with the one that does not, and friction with none;
+  // each run's outcome is the command line's, and the link holds the comparison.
+  async stretch_friction() {
+    await withPage(async (page, { open }) => {
+      page = await open('#machine=example1&rope.stiffness=100000&compare=rigid:');
+      await idle(page);
+      assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(['--example', '1', '--set', 'rope.stiffness=100000'])}.`);
+      assert.equal(await page.textContent('#compare-outcome'),
+                   `Dashed, the rope that does not stretch: ${cliOutcome(['--example', '1'])}.`);
+      assert.match(page.url(), /compare=rigid%3A/);
+      page = await open('#machine=konstanz&friction.sandbag=0.3&compare=frictionless:');
+      await idle(page);
+      assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(['--example', 'konstanz', '--set', 'friction.sandbag=0.3'])}.`);
+      assert.equal(await page.textContent('#compare-outcome'), `Dashed, no friction: ${cliOutcome(['--example', 'konstanz'])}.`);
+      // A machine without friction says so instead of comparing it with itself.
+      page = await open('#machine=example1&compare=frictionless:');
+      await idle(page);
+      assert.match(await page.textContent('#compare-outcome'), /^This machine has no friction/);
+    });
+  },
+
   // The drawing as `whatnext animate` draws it: a slack rope never hangs through the closed lid
   // into the box (it lies on the lid and hangs from the hinge); a sandbag far out is an arrow with
   // its distance in the caption, not over the machine; a window too short for the picture still
