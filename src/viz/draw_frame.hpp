@@ -1,6 +1,7 @@
 // Drawing one frame of the animation with Cairo, part by part: the machine's parts from the scene's
 // geometry (draw_machine.cpp) and the texts around it (frame_text.cpp). render_frame
-// (animation.cpp) calls them in order; each keeps Cairo's state as it found it unless it says so.
+// (animation.cpp) calls them in order, which is the order of the parts in front of each other; each
+// sets the colour and line width it needs and leaves them set.
 #pragma once
 
 #include <cairo.h>

@@ -124,10 +124,10 @@ Bar bar_of(const View& v, const Recording& rec) {
 // Leaves the font size of the names set.
 struct NameRows {
   int rows = 1;
-  double size = 0.0;                               // font size [px]
-  std::vector<double> widths;                      // of each name
-  std::vector<std::vector<std::size_t>> members;   // the names in each row
-  std::vector<std::vector<double>> pos;            // and their centres [px]
+  double size = 0.0;                              // font size [px]
+  std::vector<double> widths;                     // of each name
+  std::vector<std::vector<std::size_t>> members;  // the names in each row
+  std::vector<std::vector<double>> pos;           // and their centres [px]
 };
 NameRows place_names(cairo_t* cr, const View& v, const std::vector<std::string>& names,
                      const std::vector<double>& want) {

@@ -16,7 +16,6 @@ thread_local int g_write_errno = 0;
 
 namespace {
 
-
 // ---- palette: a 6x7x6 colour cube, three greys and the transparent index 255 ----
 constexpr int kLevelsRB = 6, kLevelsG = 7;
 constexpr int kCube = kLevelsRB * kLevelsG * kLevelsRB;  // 252

@@ -231,7 +231,7 @@ std::vector<Vec2> rope_path(const Recording& rec, const Snapshot& s) {
   // seesaw swinging back brings its end near enough again.
   bool off = scene::beyond_rope(geo, s);
   for (auto it = std::lower_bound(rec.states.begin(), rec.states.end(), latch,
-                                  [](const Snapshot& q, double t) { return q.t < t; });
+                                  [](const Snapshot&q, double t) { return q.t < t; });
        !off && it != rec.states.end() && it->t <= s.t; ++it) {
     off = scene::beyond_rope(geo, *it);
   }

@@ -62,9 +62,9 @@ struct StillParts {
   double box_side = 0.0;        //   down and to the right
   std::array<Vec2, 4> walls{};  // the box's walls and floor, from the hinge round to the far top
   RadioBox radio{};
-  Vec2 dial{};               // the radio's dial: its centre,
-  double dial_radius = 0.0;  //   its radius for a square radio [m],
-  double dial_squash = 1.0;  //   and the factor for a flat one
+  Vec2 dial{};                       // the radio's dial: its centre,
+  double dial_radius = 0.0;          //   its radius for a square radio [m],
+  double dial_squash = 1.0;          //   and the factor for a flat one
   std::array<Vec2, 2> radio_post{};  // from the radio's top up to the switch, where the string is tied
   Vec2 notes{};                      // where the notes rise from once the radio is on
 };
@@ -72,15 +72,15 @@ StillParts still_parts(const Machine& m);
 
 // The parts that move, in one state of the run.
 struct MovingParts {
-  Vec2 hinge{}, lid_end{};             // the whole lid (the rope is tied at its knot)
-  Vec2 arm_left{}, arm_right{};        // the seesaw, its left arm as long as drawn_arm
-  bool end_stop = false;               // an edge standing up from the left arm's end,
-  Vec2 stop_top{};                     //   above the sandbag drawn there
-  std::vector<Vec2> rope;              // rope_path
-  Vec2 sandbag{};                      // the simulated point
-  Vec2 balloon{};                      // the balloon's centre
+  Vec2 hinge{}, lid_end{};       // the whole lid (the rope is tied at its knot)
+  Vec2 arm_left{}, arm_right{};  // the seesaw, its left arm as long as drawn_arm
+  bool end_stop = false;         // an edge standing up from the left arm's end,
+  Vec2 stop_top{};               //   above the sandbag drawn there
+  std::vector<Vec2> rope;        // rope_path
+  Vec2 sandbag{};                // the simulated point
+  Vec2 balloon{};                // the balloon's centre
   double balloon_radius = 0.0;
-  std::vector<Vec2> string;            // string_path
+  std::vector<Vec2> string;  // string_path
 };
 // `arm`: the left arm's drawn length; `stop_height`: how high the end stop stands [m].
 MovingParts moving_parts(const Recording& rec, const Snapshot& s, double arm, double stop_height);

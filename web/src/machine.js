@@ -1,5 +1,5 @@
 // The machine drawn to scale on a canvas, with the parts, colours and conventions of the
-// animation that `whatnext animate` writes (src/viz/animation.cpp): x to the right, h up, metres,
+// animation that `whatnext animate` writes (src/viz/scene.cpp, the scene's geometry): x to the right, h up, metres,
 // origin at the seesaw's pivot. A second run can be drawn as a ghost over the first.
 (function () {
   'use strict';
@@ -34,7 +34,7 @@
   // Where the rope is tied: the lid's free edge unless geometry.rope_on_lid ties it nearer the hinge.
   const ropeKnot = (m, phiL) => add(m.hinge, polar(m.rope_knot, phiL));
   const groundLevel = (m) => m.hinge.h - 2 * m.lid_half_length;
-  // Where the model has it (src/viz/animation.cpp's balloon_centre): from the hinge, sideways and up.
+  // Where the model has it (src/viz/scene.cpp's balloon_centre): from the hinge, sideways and up.
   const balloonCentre = (m, s) => ({ x: m.hinge.x + s.balloon_x, h: m.hinge.h + s.balloon_h });
 
   // The radio stands on the ground under its switch (or hangs below a switch that is lower).
@@ -85,7 +85,7 @@
   }
 
   // The slack rope from the seesaw's end a to the lid's edge e, as `whatnext animate` draws it
-  // (src/viz/animation.cpp): a parabola under its chord, as long as the rope, unless that would
+  // (src/viz/scene.cpp): a parabola under its chord, as long as the rope, unless that would
   // hang through the lid into the box. Then the rope lies on the lid from its edge back towards the
   // hinge and hangs from the hinge (or, with less rope to spare, runs straight from the seesaw to
   // a point on the lid).
@@ -150,7 +150,7 @@
     return r;
   }
 
-  // The rope as drawn in state s of a run (src/viz/animation.cpp's rope_path): straight when taut,
+  // The rope as drawn in state s of a run (src/viz/scene.cpp's rope_path): straight when taut,
   // else slack. Before the latch the model keeps its ends within the rope's length. After it, once
   // the seesaw's end has been farther from the lid's edge than the rope reaches, the rope is off the
   // seesaw for good and hangs from the lid's edge; within the tolerance it is straight, a hair short
@@ -388,7 +388,7 @@
   }
 
   // How high the end stop stands above the arm [m]: above the sandbag drawn at the arm's end (its
-  // radius is 0.05 m), so that both show (src/viz/animation.cpp draws it so too).
+  // radius is 0.05 m), so that both show (src/viz/scene.cpp has it so too).
   const kStopHeight = 0.08;
 
   // Lid, seesaw, rope and sandbag. Returns where the sandbag is on the canvas. The built machine
