@@ -109,6 +109,9 @@ Vec2 balloon_centre(const Machine& m, const Snapshot& s) {
   return {m.hinge.x + s.balloon_x, m.hinge.h + s.balloon_h};
 }
 
+Vec2 seesaw_end(const Machine& m, double phi_s) { return RopeGeometry(m).seesaw_end(phi_s); }
+Vec2 lid_end(const Machine& m, double phi_l) { return m.hinge + polar(2.0 * m.lid_half_length, phi_l); }
+
 double ground_level(const Machine& m) { return m.hinge.h - 2.0 * m.lid_half_length; }
 
 // The rope let go at the seesaw's end: hanging from the lid's edge e straight down into the open
@@ -156,15 +159,27 @@ double drawn_arm(const Recording& rec, double endless_default, double t) {
   return std::max(endless_default, far + 0.1);
 }
 
-// The radio's latch: lid_open in a run with the radio, which lets the rope go for good (without
-// the radio lid_open ends the run); infinity if there is none.
-double latch_time(const Recording& rec) {
-  if (rec.scenario.machine.radio) {
-    for (const Event& e : rec.result.events) {
-      if (e.type == EventType::lid_open) return e.t;
+Release release_of(const Recording& rec) {
+  Release r;
+  if (!rec.scenario.machine.radio) return r;
+  for (const Event& e : rec.result.events) {
+    if (e.type == EventType::lid_open) {
+      r.latch = e.t;
+      break;
     }
   }
-  return std::numeric_limits<double>::infinity();
+  // Once pulled off the seesaw's end the rope stays off, even where a seesaw swinging back
+  // brings its end near enough again.
+  const RopeGeometry geo(rec.scenario.machine);
+  for (auto it = std::lower_bound(rec.states.begin(), rec.states.end(), r.latch,
+                                  [](const Snapshot&q, double t) { return q.t < t; });
+       it != rec.states.end(); ++it) {
+    if (beyond_rope(geo, *it)) {
+      r.off = it->t;
+      break;
+    }
+  }
+  return r;
 }
 
 bool beyond_rope(const RopeGeometry& geo, const Snapshot& s) {
@@ -195,17 +210,16 @@ StillParts still_parts(const Machine& m) {
   return p;
 }
 
-MovingParts moving_parts(const Recording& rec, const Snapshot& s, double arm, double stop_height) {
-  const Machine& m = rec.scenario.machine;
-  const RopeGeometry geo(m);
+MovingParts moving_parts(const Machine& m, const Snapshot& s, const Release& release, double arm,
+                         double stop_height) {
   MovingParts p;
   p.hinge = m.hinge;
-  p.lid_end = m.hinge + polar(2.0 * m.lid_half_length, s.phi_l);
+  p.lid_end = lid_end(m, s.phi_l);
   p.arm_left = polar(-arm, s.phi_s);
-  p.arm_right = geo.seesaw_end(s.phi_s);
+  p.arm_right = seesaw_end(m, s.phi_s);
   p.end_stop = m.end_stop;
   p.stop_top = p.arm_left + polar(stop_height, s.phi_s + 0.5 * units::kPi);
-  p.rope = rope_path(rec, s);
+  p.rope = rope_at(m, s, release);
   p.sandbag = {s.x, s.h};
   p.balloon = balloon_centre(m, s);
   p.balloon_radius = m.balloon_radius;
@@ -213,33 +227,28 @@ MovingParts moving_parts(const Recording& rec, const Snapshot& s, double arm, do
   return p;
 }
 
-}  // namespace whatnext::viz::scene
-
-namespace whatnext::viz {
-
-std::vector<Vec2> rope_path(const Recording& rec, const Snapshot& s) {
-  const Machine& m = rec.scenario.machine;
+std::vector<Vec2> rope_at(const Machine& m, const Snapshot& s, const Release& release) {
   const RopeGeometry geo(m);
   const Vec2 r = geo.seesaw_end(s.phi_s), e = geo.lid_edge(s.phi_l);
   if (s.rope_taut) return {r, e};
   // Before the latch the model keeps the span within the rope's length (to its tolerance; a frame
   // between two recorded taut states, its angles interpolated, has the ends up to 3e-5 m too far
   // apart in example 3, a hundredth of a pixel): the slack rope sags, or is straight at full stretch.
-  const double latch = scene::latch_time(rec);
-  if (s.t < latch) return scene::slack_rope(m, r, e, m.rope_length);
-  // After it nothing holds the rope. Once pulled off the seesaw's end it stays off, even where a
-  // seesaw swinging back brings its end near enough again.
-  bool off = scene::beyond_rope(geo, s);
-  for (auto it = std::lower_bound(rec.states.begin(), rec.states.end(), latch,
-                                  [](const Snapshot&q, double t) { return q.t < t; });
-       !off && it != rec.states.end() && it->t <= s.t; ++it) {
-    off = scene::beyond_rope(geo, *it);
-  }
-  if (off) return scene::hanging_rope(m, e, m.rope_length);
+  if (s.t < release.latch) return slack_rope(m, r, e, m.rope_length);
+  // After it nothing holds the rope: off the seesaw's end since release.off, or now.
+  if (s.t >= release.off || beyond_rope(geo, s)) return hanging_rope(m, e, m.rope_length);
   // Within the tolerance of the rope's length: straight, and a hair short of the seesaw's end.
   const double span = norm(r - e);
   if (span > m.rope_length) return {e + (m.rope_length / span) * (r - e), e};
-  return scene::slack_rope(m, r, e, m.rope_length);
+  return slack_rope(m, r, e, m.rope_length);
+}
+
+}  // namespace whatnext::viz::scene
+
+namespace whatnext::viz {
+
+std::vector<Vec2> rope_path(const Recording& rec, const Snapshot& s) {
+  return scene::rope_at(rec.scenario.machine, s, scene::release_of(rec));
 }
 
 }  // namespace whatnext::viz

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -24,6 +25,10 @@ double ground_level(const Machine& m);
 // Where the model has the balloon's centre: the box's centre for the paper's balloon, anywhere in
 // the plane for one smaller than the box (docs/extensions.md "A balloon smaller than the box").
 Vec2 balloon_centre(const Machine& m, const Snapshot& s);
+
+// The seesaw's right end (where the rope is tied) and the lid's free edge, at these angles.
+Vec2 seesaw_end(const Machine& m, double phi_s);
+Vec2 lid_end(const Machine& m, double phi_l);
 
 // The radio: its body stands on the ground under the switch (or hangs below a switch that is lower).
 struct RadioBox {
@@ -46,10 +51,19 @@ std::vector<Vec2> string_path(const Machine& m, Vec2 balloon);
 
 // Drawn length of the left arm at time t (the model's arm is endless; see scene.cpp).
 double drawn_arm(const Recording& rec, double endless_default, double t);
-// The radio's latch: lid_open in a run with the radio; infinity if there is none.
-double latch_time(const Recording& rec);
 // Is the seesaw's end farther from the lid's edge than the rope reaches?
 bool beyond_rope(const RopeGeometry& geo, const Snapshot& s);
+
+// With the radio, lid_open latches the lid and lets the rope go for good: when that is (latch),
+// and the time of the first recorded state at or after it with the seesaw's end beyond the rope's
+// reach (off: the rope has come off the seesaw's end then, for good). Infinity for none.
+struct Release {
+  double latch = std::numeric_limits<double>::infinity();
+  double off = std::numeric_limits<double>::infinity();
+};
+Release release_of(const Recording& rec);
+// The rope in state s as drawn (rope_path in animation.hpp), from the run's release.
+std::vector<Vec2> rope_at(const Machine& m, const Snapshot& s, const Release& release);
 
 // The parts that never move.
 struct StillParts {
@@ -83,6 +97,7 @@ struct MovingParts {
   std::vector<Vec2> string;  // string_path
 };
 // `arm`: the left arm's drawn length; `stop_height`: how high the end stop stands [m].
-MovingParts moving_parts(const Recording& rec, const Snapshot& s, double arm, double stop_height);
+MovingParts moving_parts(const Machine& m, const Snapshot& s, const Release& release, double arm,
+                         double stop_height);
 
 }  // namespace whatnext::viz::scene
