@@ -63,10 +63,6 @@
   const kStopHeight = 0.08;
   const stopHeight = (v) => Math.max(kStopHeight, 10 / v.scale);
 
-  function landingDistance(m) {
-    return Math.abs(m.start.sandbag_x) / Math.max(0.2, Math.cos(m.start.seesaw_angle));
-  }
-
   // Left arm as drawn: a finite arm as it is; the paper's endless arm long enough to hold the
   // sandbag, and before the landing long enough to catch it.
   function drawnArm(m, endless, s) {
@@ -111,8 +107,10 @@
   // that slides or flies far, a balloon on a long string) a part leaves the picture; an arrow at
   // the edge points to the sandbag or the balloon, and the caption says how far (draw).
   function extent(run) {
-    const m = run.machine, s = run.samples;
-    const leftArm = Math.max(m.seesaw_right_arm, 1.2 * landingDistance(m));
+    const m = run.machine, s = run.samples, n = s.t.length;
+    const first = scene(run, sampleAt(s, 0), 0, kStopHeight), last = scene(run, sampleAt(s, n - 1), 0, kStopHeight);
+    // The left arm before the sandbag lands: long enough to catch it, as the animation draws it.
+    const leftArm = Math.max(m.seesaw_right_arm, 1.2 * first.landingDistance);
     const reach = reachOf(m);
     const box = { x0: Infinity, x1: -Infinity, h0: Infinity, h1: -Infinity, leftArm };
     const put = (p) => {
@@ -120,8 +118,6 @@
       box.x0 = Math.min(box.x0, p.x); box.x1 = Math.max(box.x1, p.x);
       box.h0 = Math.min(box.h0, p.h); box.h1 = Math.max(box.h1, p.h);
     };
-    const n = s.t.length;
-    const first = scene(run, sampleAt(s, 0), leftArm, kStopHeight), last = scene(run, sampleAt(s, n - 1), leftArm, kStopHeight);
     const g = first.ground, radio = first.radio, walls = first.walls, rl = m.lid_half_length;
     put({ x: 0, h: 0 }); put({ x: -0.15, h: g }); put({ x: 0.15, h: g });
     put({ x: walls[0].x - 0.05, h: g }); put({ x: walls[3].x + 0.05, h: walls[3].h });

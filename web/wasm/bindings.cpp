@@ -382,12 +382,14 @@ const Scenario& drawn_scenario(const val& input) {
 // in state `state` of a run of `input` whose rope was let go as `release` says ({latch, off} of
 // the run's result), with the left arm `arm` long and the end stop `stopHeight` high [m]. The
 // page draws from this, so that its picture and the animation's have the same points:
-// {ground, floor, floorPieces, stand, walls, radio {x0, x1, h0, h1}, dial, dialRadius, dialSquash,
+// {landingDistance, ground, floor, floorPieces, stand, walls, radio {x0, x1, h0, h1}, dial, dialRadius,
+// dialSquash,
 //  radioPost, notes, hinge, lidEnd, armLeft, armRight, endStop, stopTop, rope, sandbag, balloon,
 //  balloonRadius, string}, points as {x, h} in metres.
 val scene(val input, val state, double arm, double stop_height, val release) {
   return guarded([&] {
-    const Machine& m = drawn_scenario(input).machine;
+    const Scenario& sc = drawn_scenario(input);
+    const Machine& m = sc.machine;
     Snapshot s;  // what the scene reads of a state
     s.t = state["t"].as<double>();
     s.x = state["x"].as<double>();
@@ -404,6 +406,7 @@ val scene(val input, val state, double arm, double stop_height, val release) {
     const viz::scene::MovingParts moving = viz::scene::moving_parts(m, s, r, arm, stop_height);
     val v = val::object();
     v.set("ok", true);
+    v.set("landingDistance", viz::scene::landing_distance(sc));
     v.set("ground", still.ground);
     v.set("floor", still.floor);
     val pieces = val::array();
