@@ -87,63 +87,54 @@ val xy(Vec2 p) {
   return v;
 }
 
-// Every quantity of a Snapshot, by name: the columns of the samples and the fields of an event's
-// state. Angles stay in radians (the page converts at its edge, like the CLI's writers).
+// The columns of the samples and the fields of an event's state, by name: the state's columns of
+// columns.hpp in SI units under their json_key (x, balloon_h, energy, lost_impacts, ...), then
+// what the page needs beyond them: the angles and their rates in radians (the table reports them
+// in degrees; the page converts at its edge, like the CLI's writers), the velocities, the
+// balloon's sideways position, the contacts and the mode.
 struct Column {
-  const char* name;
+  std::string name;
   double (*get)(const Snapshot&);
 };
 #define WHATNEXT_COLUMN(f)                                         \
   Column {                                                         \
 #f, [](const Snapshot& s) { return static_cast<double>(s.f); } \
   }
-const Column kColumns[] = {
-    WHATNEXT_COLUMN(t),
-    WHATNEXT_COLUMN(x),
-    WHATNEXT_COLUMN(h),
-    WHATNEXT_COLUMN(vx),
-    WHATNEXT_COLUMN(vh),
-    WHATNEXT_COLUMN(r),
-    WHATNEXT_COLUMN(dr),
-    WHATNEXT_COLUMN(phi_s),
-    WHATNEXT_COLUMN(dphi_s),
-    WHATNEXT_COLUMN(phi_l),
-    WHATNEXT_COLUMN(dphi_l),
-    WHATNEXT_COLUMN(balloon_h),
-    WHATNEXT_COLUMN(balloon_x),  // from the hinge sideways: a balloon smaller than the box moves
-    WHATNEXT_COLUMN(balloon_v),
-    WHATNEXT_COLUMN(balloon_limit),
-    WHATNEXT_COLUMN(tension),
-    WHATNEXT_COLUMN(normal_force),
-    WHATNEXT_COLUMN(sandbag_kinetic),
-    WHATNEXT_COLUMN(sandbag_potential),
-    WHATNEXT_COLUMN(lid_kinetic),
-    WHATNEXT_COLUMN(lid_potential),
-    WHATNEXT_COLUMN(seesaw_kinetic),
-    WHATNEXT_COLUMN(seesaw_potential),
-    WHATNEXT_COLUMN(balloon_kinetic),
-    WHATNEXT_COLUMN(balloon_potential),
-    WHATNEXT_COLUMN(lost_impacts),
-    WHATNEXT_COLUMN(lost_balloon_catch),
-    WHATNEXT_COLUMN(dissipated_pivot),
-    WHATNEXT_COLUMN(dissipated_hinge),
-    WHATNEXT_COLUMN(dissipated_drag),
-    WHATNEXT_COLUMN(lid_push_work),
-    WHATNEXT_COLUMN(initial_total),
-    WHATNEXT_COLUMN(on_seesaw),
-    WHATNEXT_COLUMN(rope_taut),
-    WHATNEXT_COLUMN(lid_resting),
-    WHATNEXT_COLUMN(balloon_stuck),
-    Column{"mode", [](const Snapshot& s) { return static_cast<double>(static_cast<int>(s.mode)); }},
-    Column{"energy", [](const Snapshot& s) { return s.energy(); }},
-    Column{"total_energy", [](const Snapshot& s) { return s.total_energy(); }},
-    Column{"dissipated", [](const Snapshot& s) { return s.dissipated(); }},
-};
+const std::vector<Column>& columns() {
+  static const std::vector<Column> all = [] {
+    std::vector<Column> out{WHATNEXT_COLUMN(t)};
+    for (const StateColumn& c : state_columns()) {
+      if (json_key(c) != c.name) out.push_back({std::string(json_key(c)), c.value});  // an SI column
+    }
+    for (Column c : {
+             WHATNEXT_COLUMN(vx),
+             WHATNEXT_COLUMN(vh),
+             WHATNEXT_COLUMN(phi_s),
+             WHATNEXT_COLUMN(dphi_s),
+             WHATNEXT_COLUMN(phi_l),
+             WHATNEXT_COLUMN(dphi_l),
+             WHATNEXT_COLUMN(balloon_x),  // from the hinge sideways: a balloon smaller than the box moves
+             WHATNEXT_COLUMN(normal_force),
+             WHATNEXT_COLUMN(initial_total),
+             WHATNEXT_COLUMN(on_seesaw),
+             WHATNEXT_COLUMN(rope_taut),
+             WHATNEXT_COLUMN(lid_resting),
+             WHATNEXT_COLUMN(balloon_stuck),
+             Column{"mode", [](const Snapshot& s) { return static_cast<double>(static_cast<int>(s.mode)); }},
+             Column{"total_energy", [](const Snapshot& s) { return s.total_energy(); }},
+             Column{"dissipated", [](const Snapshot& s) { return s.dissipated(); }},
+         }) {
+      out.push_back(c);
+    }
+    return out;
+  }();
+  return all;
+}
 #undef WHATNEXT_COLUMN
 
 val snapshot_object(const Snapshot& s) {
   val v = val::object();
-  for (const Column& c : kColumns) v.set(c.name, c.get(s));
+  for (const Column& c : columns()) v.set(c.name, c.get(s));
   return v;
 }
 
@@ -175,7 +166,7 @@ class Columns : public Observer {
 
   val to_js() const {
     val out = val::object();
-    for (std::size_t c = 0; c < std::size(kColumns); ++c) out.set(kColumns[c].name, array(data_[c]));
+    for (std::size_t c = 0; c < columns().size(); ++c) out.set(columns()[c].name, array(data_[c]));
     out.set("event", array(event_));
     out.set("stride", static_cast<double>(stride_));
     return out;
@@ -183,7 +174,7 @@ class Columns : public Observer {
 
  private:
   void add(const Snapshot& s, double event) {
-    for (std::size_t c = 0; c < std::size(kColumns); ++c) data_[c].push_back(kColumns[c].get(s));
+    for (std::size_t c = 0; c < columns().size(); ++c) data_[c].push_back(columns()[c].get(s));
     event_.push_back(event);
   }
   void watch_release(const Snapshot& s) {
@@ -200,7 +191,7 @@ class Columns : public Observer {
   viz::scene::Release release_;
   long samples_ = 0, events_ = 0;
   double reported_ = emscripten_get_now();
-  std::vector<double> data_[std::size(kColumns)];
+  std::vector<std::vector<double>> data_ = std::vector<std::vector<double>>(columns().size());
   std::vector<double> event_;
 };
 
