@@ -131,10 +131,9 @@ void draw_mode_strip(const Panel& p, const PanelGeometry& g, const PageGeometry&
   plbox("bc", 0.0, 0, "bc", 0.0, 0);
 }
 
-void draw_panel(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) {
+// The axes with their grid, tick numbers and titles.
+void draw_axes(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) {
   const double ch = g.h;
-  if (!p.modes.empty()) draw_mode_strip(p, g, pg);
-
   viewport(pg, g.axes);
   plwind(g.wx0, g.wx1, g.wy0, g.wy1);
   plschr(ch, 1.0);
@@ -153,7 +152,10 @@ void draw_panel(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) 
   plschr(g.ylabel_h, 1.0);
   plmtex("l", g.ylabel_at / g.ylabel_h, 0.5, 0.5, p.ylabel.c_str());
   plschr(ch, 1.0);
+}
 
+// The reference levels (dotted) and the events (dashed), in the data window.
+void draw_reference_lines(const Panel& p, const PanelGeometry& g) {
   for (const auto& l : p.hlines) {
     plcol0(kGrey);
     pllsty(3);
@@ -170,8 +172,11 @@ void draw_panel(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) 
     plline(2, xs, ys);
   }
   pllsty(1);
+}
 
-  plschr(ch, 1.0);
+// The curves (lines or dots) and the marked points.
+void draw_curves(const Panel& p, const PanelGeometry& g) {
+  plschr(g.h, 1.0);
   for (const Curve& c : p.curves) {
     if (c.x.empty()) continue;
     plcol0(c.colour);
@@ -187,13 +192,15 @@ void draw_panel(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) 
   plcol0(kRed);
   for (const Mark& m : p.marks) plptex(m.x, m.y, 1.0, 0.0, 0.5, "•");
   plwidth(1.0);
+}
 
-  // Everything placed in millimetres: legends, event numbers, leaders, labels, the title.
+// Everything placed in millimetres: legends, event numbers, leaders, labels, the title.
+void draw_placed(const PanelGeometry& g, const PageGeometry& pg) {
   mm_space(pg);
   for (const Segment& s : g.strokes) {
     plcol0(s.colour);
     if (s.style == 0) {
-      plschr(ch, 1.0);
+      plschr(g.h, 1.0);
       plptex(s.x0, s.y0, 1.0, 0.0, 0.5, "•");
       continue;
     }
@@ -205,6 +212,14 @@ void draw_panel(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) 
   pllsty(1);
   plwidth(1.0);
   for (const Text& t : g.texts) draw_text(t);
+}
+
+void draw_panel(const Panel& p, const PanelGeometry& g, const PageGeometry& pg) {
+  if (!p.modes.empty()) draw_mode_strip(p, g, pg);
+  draw_axes(p, g, pg);
+  draw_reference_lines(p, g);
+  draw_curves(p, g);
+  draw_placed(g, pg);
 }
 
 }  // namespace
