@@ -46,7 +46,7 @@ class Generator {
   // placed on the arm, ropes from taut at the start to long, and (heavy) seesaws with mass and
   // every extension switch. built: the built machine's floor, end stop, bouncing floor and knot
   // along the lid, on seesaws with mass or without.
-  bool next(bool heavy, Machine& out, bool built = false) {
+  bool next(bool heavy, Machine& out, bool built = false, bool friction = false) {
     out.sets.clear();
     auto set = [&](const std::string& key, double v) {
       std::ostringstream o;
@@ -118,6 +118,7 @@ class Generator {
     } else if (pick(0.2)) {
       set("seesaw.left_arm", left_arm);
     }
+    if (friction) set("friction.sandbag", u(0.05, 1.2));  // Coulomb on the arm (issue 20)
     bool rope_bounces = false;
     for (const std::string& s : out.sets) rope_bounces = rope_bounces || s.rfind("restitution.rope", 0) == 0;
     if (!rope_bounces && pick(0.15)) {
@@ -204,10 +205,13 @@ void check_invariants(const Machine& m, const wn::Scenario& sc, const wn::Record
   double latched_at = 1e300;
   for (const wn::Event& e : rec.events)
     if (e.type == wn::EventType::lid_open && sc.machine.radio) latched_at = e.t;
-  double prev_t = -1.0, prev_l = 0.0, prev_w = 0.0;
+  double prev_t = -1.0, prev_l = 0.0, prev_w = 0.0, heat = 0.0;
   for (const wn::Snapshot& s : rec.samples) {
     if (s.t > latched_at) break;
     check(s, "sample");
+    // Friction never does positive work: its heat only grows.
+    if (s.dissipated_friction < heat - 1e-12) out.fail(m, "friction gives back heat at t=" + std::to_string(s.t));
+    heat = s.dissipated_friction;
     // phiL is continuous: between samples it moves no further than its rate allows (an impact
     // in between changes the rate, so such intervals are left out).
     bool jerked = false;
@@ -281,14 +285,14 @@ std::string story(const wn::Result& r) {
   return s;
 }
 
-void run_machines(bool heavy, std::uint64_t seed, int count, bool built = false) {
+void run_machines(bool heavy, std::uint64_t seed, int count, bool built = false, bool friction = false) {
   Generator gen(seed);
   Checked checked;
   int ran = 0, tried = 0;
   while (ran < count && tried < 20 * count) {
     ++tried;
     Machine m;
-    if (!gen.next(heavy, m, built)) continue;
+    if (!gen.next(heavy, m, built, friction)) continue;
     ++ran;
     checked.current = ran;
     // The invariants at the default tolerance; the story at 1e-10 and 1e-14.
@@ -349,6 +353,14 @@ TEST(RandomMachines, BuiltMachineWithMassInvariantsAndToleranceIndependence) {
 }
 TEST(RandomMachines, BuiltMachineMasslessInvariantsAndToleranceIndependence) {
   run_machines(false, 20261127, machine_count(600), true);
+}
+
+// Coulomb friction on the arm (issue 20), on the paper's machine and the built one.
+TEST(RandomMachines, FrictionWithMassInvariantsAndToleranceIndependence) {
+  run_machines(true, 20261128, machine_count(400), true, true);
+}
+TEST(RandomMachines, FrictionMasslessInvariantsAndToleranceIndependence) {
+  run_machines(false, 20261129, machine_count(400), false, true);
 }
 
 TEST(RandomMachines, MasslessSeesawInvariantsAndToleranceIndependence) {

@@ -167,7 +167,7 @@ TEST_F(Docs, UserPagesCiteNoMissingSpecification) {
 TEST_F(Docs, InputsPageNamesEveryOutputColumnAndKey) {
   const std::set<std::string> documented = backticked(slurp(kSource + "/docs/inputs.md"));
   const auto header = split(CsvWriter::header(std::size(kImpulseColumns)), ',');
-  EXPECT_EQ(header.size(), 38u);  // 4 leading, 28 of the state, 6 impulses (3 with the paper's contacts)
+  EXPECT_EQ(header.size(), 39u);  // 4 leading, 29 of the state, 6 impulses (3 with the paper's contacts)
   for (const std::string& column : header) EXPECT_TRUE(documented.count(column)) << "CSV column " << column;
 
   const Scenario ex1 = build_scenario(example_config(1));

@@ -27,6 +27,8 @@ enum class EventType {
   seesaw_lifts,       // ... and leaves it
   sandbag_on_floor,   // built machine: the sandbag lands on the floor
   sandbag_bounces,    // ... and leaves it again (floor.restitution > 0)
+  sandbag_sticks,     // friction: the sandbag stops sliding on the arm and sticks there
+  sandbag_slips,      // ... and starts sliding again
   lid_open,
   seesaw_vertical,
   sandbag_at_pivot,

@@ -32,7 +32,7 @@ struct GuardStart {
   double lead = 0.0;
   double floor = 0.0;
 };
-constexpr int kGuardSlots = 16;
+constexpr int kGuardSlots = 20;
 
 struct Discrete {
   bool on_seesaw = false;      // sandbag on the arm (massless seesaw: once landed, for good)
@@ -54,6 +54,10 @@ struct Discrete {
   bool at_stop = false;
   int grounded = 0;
   bool bag_on_floor = false;
+  // Coulomb friction (docs/extensions.md "Friction"): the sandbag sticks on the arm, or slips along
+  // it in the direction of bag_slip (+1 outwards, -1 towards the pivot; 0 where no friction acts).
+  bool bag_stuck = false;
+  int bag_slip = 0;
   double parked_seesaw = 0.0;  // seesaw angle while nothing moves it (M1) [rad]
   int side = 1;                // R's side of the line P-E, for the inverse closure phiS(phiL)
   // On the rope's closure (lid swinging on a straight rope, something with inertia on the seesaw)
@@ -83,8 +87,8 @@ struct Discrete {
 // damped lid hinge and the balloon's air drag (zero rates unless those switches are on).
 // A balloon smaller than the box: while it slides along the lid its two slots hold the distance
 // along the lid of the point it touches and its rate; while free its height and vertical rate,
-// with its x (from the hinge) and horizontal rate in the last two slots.
-using State = std::array<double, 15>;
+// with its x (from the hinge) and horizontal rate in slots 13 and 14. Last, the heat of Coulomb friction.
+using State = std::array<double, 16>;
 namespace slot {
 constexpr int x = 0, h = 1, vx = 2, vh = 3;
 constexpr int r = 0, phi_s = 1, dr = 2, dphi_s = 3;
@@ -92,6 +96,7 @@ constexpr int phi_l = 4, dphi_l = 5, balloon_h = 6, balloon_v = 7;
 constexpr int seesaw_phi = 8, seesaw_dphi = 9;
 constexpr int lost_pivot = 10, lost_hinge = 11, lost_drag = 12;
 constexpr int balloon_x = 13, balloon_vx = 14;
+constexpr int lost_friction = 15;
 }  // namespace slot
 
 struct HybridState {
@@ -121,6 +126,7 @@ struct Snapshot {
   double seesaw_kinetic = 0, seesaw_potential = 0, balloon_kinetic = 0, balloon_potential = 0;
   double lost_impacts = 0, lost_balloon_catch = 0;                         // booked at jumps
   double dissipated_pivot = 0, dissipated_hinge = 0, dissipated_drag = 0;  // integrated
+  double dissipated_friction = 0;  // Coulomb friction's heat, integrated
   double lid_push_work = 0;  // work done on the balloon by the lid that does not feel it
   double initial_total = 0;
   // The machine: sandbag, lid and seesaw (the balloon does not act on it).
@@ -129,7 +135,9 @@ struct Snapshot {
            seesaw_potential;
   }
   double total_energy() const { return energy() + balloon_kinetic + balloon_potential; }
-  double dissipated() const { return dissipated_pivot + dissipated_hinge + dissipated_drag; }
+  double dissipated() const {
+    return dissipated_pivot + dissipated_hinge + dissipated_drag + dissipated_friction;
+  }
   double lost() const { return lost_impacts + lost_balloon_catch; }
   // initial = now + lost + dissipated - work put in by the lid's push on the balloon.
   double ledger_residual() const {

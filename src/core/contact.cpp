@@ -47,25 +47,44 @@ bool solve_dense(int n, std::array<std::array<double, kMaxUnknowns>, kMaxUnknown
 
 // The linear problem shared by impacts and motion. With the set's contacts closed, the unknowns are
 // their multipliers and the accelerations (velocities, for an impact) of the massless coordinates
-// they act on; massive coordinates follow from M a = f + W^T lambda. A massless coordinate that no
-// closed contact acts on stays at rest.
+// they act on; massive coordinates follow from M a = f + sum_b F_b lambda_b. A massless coordinate
+// that no closed contact acts on stays at rest.
 //   given[j]:  f_j for motion, the velocity before for an impact
 //   target[i]: the closed contacts' -curvature_i for motion; for an impact their gap rate after it,
 //              0 (inelastic) unless `after` gives one (Newton's restitution)
+// F_b is the direction contact b pushes along: its gradient W_b, less mu s W_f where its friction
+// contact f slips with sign s (slip[f]); a slipping friction of fixed bound adds -s bound W_f to
+// the forces (motion only: a finite force gives no impulse).
 // Writes the multipliers and the resulting coordinates' accelerations (or velocities after).
-bool solve_set(const System& sys, Set set, bool impact, PerContact& multiplier, Coords& out,
-               const PerContact* after = nullptr) {
+bool solve_set(const System& sys, Set set, bool impact, const std::array<int, kMaxContacts>& slip,
+               PerContact& multiplier, Coords& out, const PerContact* after = nullptr) {
   int idx[kMaxContacts];
   int m = 0;
   for (int i = 0; i < sys.contacts; ++i)
     if (has(set, i)) idx[m++] = i;
+  // Each closed contact's push direction, and the forces with the fixed-bound slips.
+  Coords push[kMaxContacts];
+  Coords given = impact ? Coords{} : sys.force;
+  for (int a = 0; a < m; ++a) push[a] = sys.normal[idx[a]];
+  for (int f = 0; f < sys.contacts; ++f) {
+    if (sys.friction[f] == 0 || has(set, f) || slip[f] == 0) continue;
+    if (sys.friction[f] == kFixedBound) {
+      if (impact) continue;
+      for (int j = 0; j < sys.coords; ++j) given[j] -= slip[f] * sys.bound[f] * sys.normal[f][j];
+      continue;
+    }
+    for (int a = 0; a < m; ++a) {
+      if (idx[a] != sys.friction[f] - 1) continue;
+      for (int j = 0; j < sys.coords; ++j) push[a][j] -= slip[f] * sys.bound[f] * sys.normal[f][j];
+    }
+  }
   // Massless coordinates that a closed contact acts on.
   int free_coord[kMaxCoords];
   int p = 0;
   for (int j = 0; j < sys.coords; ++j) {
     if (sys.mass[j] > 0.0) continue;
     for (int a = 0; a < m; ++a) {
-      if (sys.normal[idx[a]][j] != 0.0) {
+      if (sys.normal[idx[a]][j] != 0.0 || push[a][j] != 0.0) {
         free_coord[p++] = j;
         break;
       }
@@ -84,16 +103,16 @@ bool solve_set(const System& sys, Set set, bool impact, PerContact& multiplier, 
     for (int j = 0; j < sys.coords; ++j) {
       if (!(sys.mass[j] > 0.0)) continue;
       const double wm = wa[j] * inv_mass[j];
-      r -= impact ? wa[j] * sys.velocity[j] : wm * sys.force[j];
-      for (int b = 0; b < m; ++b) k[a][b] += wm * sys.normal[idx[b]][j];
+      r -= impact ? wa[j] * sys.velocity[j] : wm * given[j];
+      for (int b = 0; b < m; ++b) k[a][b] += wm * push[b][j];
     }
     for (int c = 0; c < p; ++c) k[a][m + c] = wa[free_coord[c]];
     rhs[a] = r;
   }
   for (int c = 0; c < p; ++c) {
     // Balance on a massless coordinate: its force plus the contacts' is zero (impulses: zero).
-    for (int b = 0; b < m; ++b) k[m + c][b] = sys.normal[idx[b]][free_coord[c]];
-    rhs[m + c] = impact ? 0.0 : -sys.force[free_coord[c]];
+    for (int b = 0; b < m; ++b) k[m + c][b] = push[b][free_coord[c]];
+    rhs[m + c] = impact ? 0.0 : -given[free_coord[c]];
   }
   if (!solve_dense(m + p, k, rhs)) return false;
   multiplier.fill(0.0);
@@ -101,8 +120,8 @@ bool solve_set(const System& sys, Set set, bool impact, PerContact& multiplier, 
   out.fill(0.0);
   for (int j = 0; j < sys.coords; ++j) {
     if (!(sys.mass[j] > 0.0)) continue;  // massless: at rest unless solved for below
-    double s = impact ? sys.velocity[j] * sys.mass[j] : sys.force[j];
-    for (int a = 0; a < m; ++a) s += sys.normal[idx[a]][j] * rhs[a];
+    double s = impact ? sys.velocity[j] * sys.mass[j] : given[j];
+    for (int a = 0; a < m; ++a) s += push[a][j] * rhs[a];
     out[j] = s * inv_mass[j];
   }
   for (int c = 0; c < p; ++c) out[free_coord[c]] = rhs[m + c];
@@ -111,6 +130,32 @@ bool solve_set(const System& sys, Set set, bool impact, PerContact& multiplier, 
   for (int a = 0; a < m; ++a)
     if (!std::isfinite(rhs[a])) return false;
   return true;
+}
+
+// A friction contact's bound in a solution: mu times its normal's multiplier, or the fixed one.
+double friction_bound(const System& sys, int f, const PerContact& multiplier) {
+  return sys.friction[f] == kFixedBound ? sys.bound[f] : sys.bound[f] * multiplier[sys.friction[f] - 1];
+}
+
+// Whether friction contact f acts in set s: a fixed bound always, a tangent while its normal is closed.
+bool friction_acts(const System& sys, Set s, int f) {
+  return sys.friction[f] == kFixedBound || (sys.friction[f] > 0 && has(s, sys.friction[f] - 1));
+}
+
+// Tries each sign for the open friction contacts in `open_free` whose slip the solution decides
+// (their slip velocity is zero), in a fixed order, with the others' signs from `slip`: the first
+// combination `valid` accepts is kept. false when none is.
+template <class F>
+bool over_slip_signs(const System& sys, Set open_free, std::array<int, kMaxContacts> slip, F&& valid) {
+  int free[kMaxContacts];
+  int n = 0;
+  for (int f = 0; f < sys.contacts; ++f)
+    if (has(open_free, f)) free[n++] = f;
+  for (unsigned combo = 0; combo < (1u << n); ++combo) {
+    for (int b = 0; b < n; ++b) slip[free[b]] = ((combo >> b) & 1u) ? -1 : 1;
+    if (valid(slip)) return true;
+  }
+  return false;
 }
 
 int cost(Set s, Set among, const Choice& choice, int contacts) {
@@ -152,20 +197,39 @@ double System::rate(int i, const Coords& v) const {
 }
 
 Impact solve_impact(const System& sys, Set touching, const Choice& choice, const PerContact* after) {
+  // A Coulomb torque gives no impulse: its contacts take no part.
+  for (int f = 0; f < sys.contacts; ++f)
+    if (sys.friction[f] == kFixedBound) touching &= ~(1u << f);
   Impact best;
   in_order_of_preference(touching, choice, sys.contacts, [&](Set s) {
-    Impact cand;
-    if (!choice.consistent(s) || !solve_set(sys, s, true, cand.impulse, cand.velocity, after)) return false;
-    for (int i = 0; i < sys.contacts; ++i) {
-      if (!has(touching, i) || !choice.present(s, i)) continue;
-      cand.rate[i] = has(s, i) ? (after ? (*after)[i] : 0.0) : sys.rate(i, cand.velocity);
-      if (has(s, i) ? cand.impulse[i] < -choice.impulse_tol : cand.rate[i] < -choice.closing_tol)
-        return false;
-    }
-    cand.ok = true;
-    cand.impulsive = s;
-    best = cand;
-    return true;
+    if (!choice.consistent(s)) return false;
+    for (int f = 0; f < sys.contacts; ++f)
+      if (has(s, f) && sys.friction[f] != 0 && !friction_acts(sys, s, f)) return false;
+    // Open friction contacts whose normal takes an impulse slip with the sign the impact leaves.
+    Set open_free = 0;
+    for (int f = 0; f < sys.contacts; ++f)
+      if (has(touching, f) && !has(s, f) && sys.friction[f] > 0 && friction_acts(sys, s, f)) open_free |= 1u << f;
+    return over_slip_signs(sys, open_free, {}, [&](const std::array<int, kMaxContacts>& slip) {
+      Impact cand;
+      if (!solve_set(sys, s, true, slip, cand.impulse, cand.velocity, after)) return false;
+      for (int i = 0; i < sys.contacts; ++i) {
+        if (!has(touching, i) || !choice.present(s, i)) continue;
+        const bool tangent = sys.friction[i] != 0;
+        cand.rate[i] = has(s, i) ? (after && !tangent ? (*after)[i] : 0.0) : sys.rate(i, cand.velocity);
+        if (tangent) {
+          if (has(s, i) && std::fabs(cand.impulse[i]) > friction_bound(sys, i, cand.impulse) + choice.impulse_tol)
+            return false;
+          if (has(open_free, i) && slip[i] * cand.rate[i] < -choice.closing_tol) return false;
+          continue;
+        }
+        if (has(s, i) ? cand.impulse[i] < -choice.impulse_tol : cand.rate[i] < -choice.closing_tol) return false;
+      }
+      cand.ok = true;
+      cand.impulsive = s;
+      cand.slip = slip;
+      best = cand;
+      return true;
+    });
   });
   return best;
 }
@@ -173,51 +237,93 @@ Impact solve_impact(const System& sys, Set touching, const Choice& choice, const
 Motion solve_motion(const System& sys, Set candidates, const Choice& choice) {
   Motion best;
   in_order_of_preference(candidates, choice, sys.contacts, [&](Set s) {
-    Motion cand;
-    if (!choice.consistent(s) || !solve_set(sys, s, false, cand.force, cand.acceleration)) return false;
-    for (int i = 0; i < sys.contacts; ++i) {
-      if (!has(candidates, i) || !choice.present(s, i)) continue;
-      if (has(s, i)) {
-        if (cand.force[i] < -choice.force_tol) return false;
-        continue;
+    if (!choice.consistent(s)) return false;
+    for (int f = 0; f < sys.contacts; ++f)
+      if (has(s, f) && sys.friction[f] != 0 && !friction_acts(sys, s, f)) return false;
+    // Open friction contacts that act: slipping with their velocity's sign, or where it is zero
+    // (a candidate: it was sticking or has just stopped) with the sign the motion takes.
+    std::array<int, kMaxContacts> slip{};
+    Set open_free = 0;
+    for (int f = 0; f < sys.contacts; ++f) {
+      if (sys.friction[f] == 0 || has(s, f) || !friction_acts(sys, s, f)) continue;
+      const double v = sys.rate(f, sys.velocity);
+      if (has(candidates, f) && std::fabs(v) <= choice.rate_tol) {
+        open_free |= 1u << f;
+      } else {
+        slip[f] = v > 0.0 ? 1 : (v < 0.0 ? -1 : 0);
       }
-      cand.gap_acceleration[i] = sys.rate(i, cand.acceleration) + sys.curvature[i];
-      if (cand.gap_acceleration[i] < -choice.accel_tol) return false;
     }
-    cand.ok = true;
-    cand.active = s;
-    best = cand;
-    return true;
+    return over_slip_signs(sys, open_free, slip, [&](const std::array<int, kMaxContacts>& signs) {
+      Motion cand;
+      if (!solve_set(sys, s, false, signs, cand.force, cand.acceleration)) return false;
+      for (int i = 0; i < sys.contacts; ++i) {
+        if (!has(candidates, i) || !choice.present(s, i)) continue;
+        if (sys.friction[i] != 0) {
+          if (has(s, i)) {
+            if (std::fabs(cand.force[i]) > friction_bound(sys, i, cand.force) + choice.friction_tol) return false;
+            continue;
+          }
+          cand.gap_acceleration[i] = sys.rate(i, cand.acceleration) + sys.curvature[i];
+          if (has(open_free, i) && signs[i] * cand.gap_acceleration[i] < -choice.accel_tol) return false;
+          continue;
+        }
+        if (has(s, i)) {
+          if (cand.force[i] < -choice.force_tol) return false;
+          continue;
+        }
+        cand.gap_acceleration[i] = sys.rate(i, cand.acceleration) + sys.curvature[i];
+        if (cand.gap_acceleration[i] < -choice.accel_tol) return false;
+      }
+      cand.ok = true;
+      cand.active = s;
+      cand.slip = signs;
+      best = cand;
+      return true;
+    });
   });
   return best;
 }
 
 bool constrained_velocity(const System& sys, Set closed, Coords& velocity) {
+  // Without friction: the projection in the kinetic energy's metric, which can only lose energy
+  // (a slip's push direction would make it oblique).
   PerContact impulse;
-  return solve_set(sys, closed, true, impulse, velocity);
+  return solve_set(sys, closed, true, {}, impulse, velocity);
 }
 
 bool constrained_motion(const System& sys, Set active, Coords& acceleration, PerContact& force) {
-  return solve_set(sys, active, false, force, acceleration);
+  return solve_set(sys, active, false, sys.slip, force, acceleration);
 }
 
 bool multipliers_for(const System& sys, Set active, const Coords& acceleration, PerContact& force) {
-  // W^T lambda = M a - f over all coordinates (a massless one's row reads -f_j = sum W_ij lambda_i),
-  // in the least-squares sense: (W W^T) lambda = W (M a - f), an m x m system for m active contacts,
-  // symmetric and positive definite unless the gradients are dependent: Cholesky, no pivoting.
+  // F^T lambda = M a - f over all coordinates (a massless one's row reads -f_j = sum F_ij lambda_i),
+  // in the least-squares sense: (F F^T) lambda = F (M a - f), an m x m system for m active contacts,
+  // symmetric and positive definite unless the directions are dependent: Cholesky, no pivoting.
+  // F: the directions the contacts push along (their gradients W, with the slips of sys.slip).
   int idx[kMaxContacts];
   int m = 0;
   for (int i = 0; i < sys.contacts; ++i)
     if (has(active, i)) idx[m++] = i;
   Coords residual{};
   for (int j = 0; j < sys.coords; ++j) residual[j] = sys.mass[j] * acceleration[j] - sys.force[j];
+  Coords push[kMaxContacts];
+  for (int a = 0; a < m; ++a) push[a] = sys.normal[idx[a]];
+  for (int f = 0; f < sys.contacts; ++f) {
+    if (sys.friction[f] == 0 || has(active, f) || sys.slip[f] == 0) continue;
+    for (int a = 0; a < m; ++a) {
+      if (sys.friction[f] == kFixedBound || idx[a] != sys.friction[f] - 1) continue;
+      for (int j = 0; j < sys.coords; ++j) push[a][j] -= sys.slip[f] * sys.bound[f] * sys.normal[f][j];
+    }
+    if (sys.friction[f] == kFixedBound)
+      for (int j = 0; j < sys.coords; ++j) residual[j] += sys.slip[f] * sys.bound[f] * sys.normal[f][j];
+  }
   double l[kMaxContacts][kMaxContacts];  // Cholesky: every entry is written before it is read
   double y[kMaxContacts];
   force.fill(0.0);
   for (int a = 0; a < m; ++a) {
-    const Coords& wa = sys.normal[idx[a]];
+    const Coords& wa = push[a];
     for (int b = 0; b <= a; ++b) {
-      const Coords& wb = sys.normal[idx[b]];
+      const Coords& wb = push[b];
       double gram = 0.0;  // W_a . W_b
       for (int j = 0; j < sys.coords; ++j) gram += wa[j] * wb[j];
       double s = gram;

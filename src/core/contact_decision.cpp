@@ -17,7 +17,7 @@ using namespace model_detail;
 contact::Set Model::touching(const Discrete& d, const Kinematics& k) const {
   // Open contacts whose gap is (numerically) closed as well: they take part in the decision.
   Set s = 0;
-  if (d.latched && contacts_ == 3) return s;
+  if (d.latched && !built_) return s;
   if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) {
     const double along = along_arm(k);
     if (std::fabs(height_above_arm(k)) <= kContact && along >= 0.0 && along <= arm_) s |= bit(kBag);
@@ -63,7 +63,8 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
     c.want[kBag] = 1;
     c.weight[kBag] = 16;
   }
-  c.needs[kStop] = bit(kBag);  // the stop is an edge of the arm
+  c.needs[kStop] = bit(kBag);     // the stop is an edge of the arm
+  c.needs[kBagSlip] = bit(kBag);  // friction acts only while the arm pushes
   // "Zero" on the scale of this machine and motion.
   const double len = length_scale_;
   double v = std::sqrt(g_ * len);
@@ -80,6 +81,7 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
   c.rate_tol = 1e-6 * v;
   c.closing_tol = 1e-12 * v;
   c.accel_tol = 1e-9 * acc;
+  c.friction_tol = 0.1 * guard_floor(kGuardBagSlip, with_contacts(d, bit(kBag) | bit(kBagSlip)));
   (void)sys;
   return c;
 }
@@ -146,6 +148,8 @@ Discrete Model::with_contacts(Discrete d, Set s) {
   d.at_stop = contact::has(s, kStop) && d.on_seesaw;  // the stop is an edge of the arm
   d.grounded = contact::has(s, kFloorLeft) ? 1 : (contact::has(s, kFloorRight) ? -1 : 0);
   d.bag_on_floor = contact::has(s, kBagFloor);
+  d.bag_stuck = contact::has(s, kBagSlip) && d.on_seesaw;
+  if (!d.on_seesaw || d.bag_stuck) d.bag_slip = 0;
   return d;
 }
 
@@ -196,6 +200,8 @@ Model::Decision Model::decide_touching(const Discrete& d, const Kinematics& k_ev
     // Off the end of an arm that stands on the floor: the sandbag is on the floor at once.
     if (floor_ && std::fabs(k_event.h - h_floor_) <= kContact) x.touch |= bit(kBagFloor);
   }
+  // Wherever the arm may push the sandbag, friction takes part: it sticks or slips.
+  if (friction_ && contact::has(x.touch, kBag)) x.touch |= bit(kBagSlip);
   // The touching contacts are at zero gap by definition: take back the event's overshoot (the
   // event-time tolerance times the closing speed, or a fixed step's interpolation error) before
   // anything is decided, so that the impact happens where the contacts touch and a contact that
@@ -276,7 +282,7 @@ void Model::apply_impact_law(Decision& x) const {
   bool ok = true;
   contact::PerContact rl = x.rate;
   for (int i = 0; i < contacts_; ++i) {
-    if (!has(x.touch, i)) continue;
+    if (!has(x.touch, i) || i == kBagSlip) continue;  // a slip either way is no gap closing
     rl[i] = has(x.imp.impulsive, i) ? 0.0 : x.sys.rate(i, ul);
     ok = ok && rl[i] >= -x.ch.closing_tol;
   }
@@ -296,6 +302,10 @@ void Model::hold_after_impact(Decision& x) const {
   using contact::has;
   x.held = 0;
   for (int i = 0; i < contacts_; ++i) {
+    if (i == kBagSlip) {  // friction: a candidate to stick where the arm pushes and the slip is zero
+      if (has(x.held, kBag) && std::fabs(x.sys.rate(i, x.u)) <= x.ch.rate_tol) x.held |= bit(i);
+      continue;
+    }
     // The lid's gap is an angle: its rate compared as the speed of the lid's far edge.
     const double speed = i == kLid ? 2.0 * r_l_ * x.rate[i] : x.rate[i];
     const bool stopped = has(x.imp.impulsive, i) && !has(x.bounced, i);
@@ -314,6 +324,13 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
 
   // Released contacts: their gaps start at zero and open, by their rate or their acceleration.
   for (int i = 0; i < contacts_; ++i) {
+    if (i == kBagSlip) {
+      // Friction's guard is minus the slip's speed: it starts at zero where the slip starts from
+      // rest, and falls as fast as the slip picks up.
+      const double a = std::fabs(x.mot.gap_acceleration[i]);
+      x.released[i] = !has(x.held, i) ? GuardStart{} : (a > x.ch.accel_tol ? GuardStart{1, -a} : GuardStart{2, kUnknownLead});
+      continue;
+    }
     if (!has(x.held, i)) {
       x.released[i] = {1, -x.rate[i]};
     } else if (x.mot.gap_acceleration[i] > x.ch.accel_tol) {
@@ -339,10 +356,18 @@ void Model::enter_contacts(HybridState& hs, const Decision& x) const {
   Discrete& d = hs.d;
   d.armed = {};
   set_contacts(d, x.s2, x.k2);
+  if (d.on_seesaw && !d.bag_stuck) d.bag_slip = x.mot.slip[kBagSlip];
   for (int i = 0; i < contacts_; ++i) {
     const Guard gi = guard_of(i);
     if (has(x.touch, i) && !has(x.s2, i)) {
+      if (i == kBagSlip && !has(x.s2, kBag)) continue;  // no friction off the arm
       d.armed[gi] = x.released[i];
+    } else if (i == kBagSlip) {
+      // Sticking with the friction force at its bound already: it can only slip.
+      if (!has(x.s2, i) || has(x.s0, i) ||
+          std::fabs(x.mot.force[i]) < mu_ * x.mot.force[kBag] - x.ch.force_tol)
+        continue;
+      d.armed[gi] = {1, kUnknownLead};
     } else if (has(x.s2, i) && !has(x.s0, i) && x.mot.force[i] <= x.ch.force_tol) {
       d.armed[gi] = {1, kUnknownLead};  // closed with a force still zero: it can only load up
     } else {
@@ -370,7 +395,8 @@ std::array<double, 6> Model::impulses(const Decision& x) const {
   // the floor's impulse on the seesaw.
   std::array<double, 6> out{};
   // An impulse that is rounding (within the decision's tolerance) is none: not reported.
-  for (int i = 0; i < contacts_; ++i) {
+  // Friction's impulse along the arm is not one of them: it is in the sandbag's velocity after.
+  for (int i = 0; i < contacts_ && i < kBagSlip; ++i) {
     if (contact::has(x.imp.impulsive, i) && std::fabs(p[i]) > x.ch.impulse_tol) out[i <= kFloorLeft ? i : i - 1] += p[i];
   }
   return out;
@@ -424,6 +450,10 @@ void Model::report_changes(HybridState& hs, const Decision& x, Mode before, std:
     for (int i = 0; i < contacts_; ++i) {
       if (i == trigger && !trigger_may_change) continue;
       if (has(cur, i) == has(target, i)) continue;
+      if (i == kBagSlip && !has(target, kBag)) {  // off the arm: no friction, nothing to report
+        cur &= ~bit(i);
+        continue;
+      }
       if (has(target, i)) {
         cur |= bit(i);
       } else {
@@ -432,7 +462,9 @@ void Model::report_changes(HybridState& hs, const Decision& x, Mode before, std:
       emit(change_event(i, has(target, i)));
     }
   };
-  step_to(x.held, false);
+  // Friction's stick or slip is reported as the motion goes on (a slip stopped by the stop's
+  // impact is no sticking).
+  step_to(x.held & ~bit(kBagSlip), false);
   step_to(x.s2, trigger_changed && x.trend == Trend::closing);
 }
 

@@ -47,7 +47,21 @@ contact::System Model::contact_system(const Discrete& d, const Kinematics& k) co
   s.normal[kLid] = {0.0, 0.0, 0.0, 1.0};
   s.curvature[kLid] = 0.0;
   if (contacts_ > 3) built_contacts(s, k);
+  if (friction_) friction_contacts(d, s, k);
   return s;
+}
+
+void Model::friction_contacts(const Discrete& d, contact::System& s, const Kinematics& k) const {
+  // The sandbag's slip along the arm is r' (r = -x cos phiS - h sin phiS), bounded by mu times the
+  // arm's push (docs/extensions.md "Friction"); the friction force along the arm passes through
+  // the pivot, so it turns nothing but the sandbag.
+  const double cs = k.cos_s, sn = k.sin_s;
+  s.normal[kBagSlip] = {-cs, -sn, k.x * sn - k.h * cs, 0.0};
+  s.curvature[kBagSlip] =
+      2.0 * k.dphi_s * (k.vx * sn - k.vh * cs) + (k.x * cs + k.h * sn) * k.dphi_s * k.dphi_s;
+  s.friction[kBagSlip] = kBag + 1;
+  s.bound[kBagSlip] = mu_;
+  s.slip[kBagSlip] = d.on_seesaw && !d.bag_stuck ? d.bag_slip : 0;
 }
 
 void Model::built_contacts(contact::System& s, const Kinematics& k) const {
@@ -72,7 +86,8 @@ void Model::built_contacts(contact::System& s, const Kinematics& k) const {
 contact::Set Model::active_set(const Discrete& d) {
   return (d.on_seesaw ? bit(kBag) : 0u) | (d.taut ? bit(kRope) : 0u) | (d.lid_resting ? bit(kLid) : 0u) |
          (d.at_stop ? bit(kStop) : 0u) | (d.grounded > 0 ? bit(kFloorLeft) : 0u) |
-         (d.grounded < 0 ? bit(kFloorRight) : 0u) | (d.bag_on_floor ? bit(kBagFloor) : 0u);
+         (d.grounded < 0 ? bit(kFloorRight) : 0u) | (d.bag_on_floor ? bit(kBagFloor) : 0u) |
+         (d.bag_stuck ? bit(kBagSlip) : 0u);
 }
 
 contact::Coords Model::accelerations(const Discrete& d, const Kinematics& k) const {

@@ -101,19 +101,28 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
   if (d.polar()) {
     dy[slot::r] = y[slot::dr];
     dy[slot::phi_s] = y[slot::dphi_s];
+    const double r = y[slot::r], dr = y[slot::dr];
     if ((d.taut && d.lid_resting) || d.grounded != 0) {
       // M5 (the seesaw held by the rope) or on the floor: the sandbag slides on the fixed arm.
-      dy[slot::dr] = along_arm_acceleration(y[slot::r], std::sin(y[slot::phi_s]), 0.0);
+      const double cs = std::cos(y[slot::phi_s]), sn = std::sin(y[slot::phi_s]);
+      dy[slot::dr] = along_arm_acceleration(r, sn, 0.0);
+      if (d.bag_slip != 0) dy[slot::dr] += bag_friction(d.bag_slip, r, dr, cs, 0.0, 0.0);
     } else if (d.lid_chart && d.taut) {  // M4 near the lid's dead centre: the lid's angle integrated
-      const LidSwing p = swing_by_lid(true, y[slot::r], y[slot::phi_s], y[slot::dr], y[slot::dphi_s], d.side);
+      const double dphi_l = y[slot::dphi_s];
+      const LidSwing p = swing_by_lid(true, r, y[slot::phi_s], dr, dphi_l, d.side);
       dy[slot::dr] = p.ddr;
       dy[slot::dphi_s] = p.ddphi_l;
+      if (d.bag_slip != 0) {  // phiS' = S' phiL', phiS'' = S' phiL'' + S'' phiL'^2
+        dy[slot::dr] += bag_friction(d.bag_slip, r, dr, p.lk.cos_s, p.lk.ds * dphi_l,
+                                     p.lk.ds * p.ddphi_l + p.lk.dds * dphi_l * dphi_l);
+      }
     } else {  // M4, or a heavy seesaw carrying the sandbag
-      const Swing p = swing(true, d.taut, y[slot::r], y[slot::phi_s], y[slot::dr], y[slot::dphi_s]);
+      const Swing p = swing(true, d.taut, r, y[slot::phi_s], dr, y[slot::dphi_s]);
       dy[slot::dr] = p.ddr;
       dy[slot::dphi_s] = p.ddphi_s;
+      if (d.bag_slip != 0) dy[slot::dr] += bag_friction(d.bag_slip, r, dr, p.lk.cos_s, y[slot::dphi_s], p.ddphi_s);
     }
-    if (d.at_stop) dy[slot::dr] = 0.0;  // held at the arm's end
+    if (d.at_stop || d.bag_stuck) dy[slot::dr] = 0.0;  // held at the arm's end, or by friction
     if (!d.taut && !d.lid_resting && !d.latched) {
       dy[slot::phi_l] = y[slot::dphi_l];
       dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l]);
@@ -155,15 +164,19 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     dy[slot::balloon_h] = y[slot::balloon_v];
     dy[slot::balloon_v] = balloon_acceleration(y[slot::balloon_v]);
   }
-  if (c_p_ > 0.0 || c_l_ > 0.0 || drag_ > 0.0) dissipation(d, kinematics(d, y), dy);
+  if (c_p_ > 0.0 || c_l_ > 0.0 || drag_ > 0.0 || friction_) dissipation(d, kinematics(d, y), dy);
 }
 
-void Model::dissipation(const Discrete& /*d*/, const Kinematics& k, State& dy) const {
+void Model::dissipation(const Discrete& d, const Kinematics& k, State& dy) const {
   // Power turned into heat (the pivot's damper comes with a seesaw that has inertia).
   dy[slot::lost_pivot] = c_p_ * k.dphi_s * k.dphi_s;
   dy[slot::lost_hinge] = c_l_ * k.dphi_l * k.dphi_l;
   const double v = small_ ? std::hypot(k.balloon_vx, k.balloon_v) : std::fabs(k.balloon_v);
   dy[slot::lost_drag] = m_b_ * drag_ * v * v * v;
+  // Coulomb friction against the sandbag's slip: mu times the arm's push times the slip's speed.
+  if (d.polar() && d.bag_slip != 0) {
+    dy[slot::lost_friction] = m_s_ * bag_friction(d.bag_slip, k.r, k.dr, k.cos_s, k.dphi_s, k.ddphi_s) * -k.dr;
+  }
 }
 
 }  // namespace whatnext

@@ -29,7 +29,7 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   }
   // The radio's wait: only the balloon matters now; the built machine's seesaw and sandbag still
   // move on its stop and floor.
-  if (d.latched && contacts_ == 3) return;
+  if (d.latched && !built_) return;
 
   // Open contacts: their gaps, negative while open.
   if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) g[kGuardBag] = -height_above_arm(k);
@@ -46,7 +46,7 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   const bool loaded = heavy_ || (d.on_seesaw && d.taut) || held;
   const bool forces = loaded && (d.on_seesaw || d.taut || held) &&
                       (only < 0 || only == kGuardBag || only == kGuardRope || only == kGuardLid ||
-                       only == kGuardStop || only == kGuardFloor);
+                       only == kGuardStop || only == kGuardFloor || only == kGuardBagSlip);
   const bool open = !(d.on_seesaw && d.taut && d.lid_resting);
   contact::System sys;
   if (forces || (rates && open)) sys = contact_system(d, k);
@@ -67,8 +67,13 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
       if (d.lid_resting && d.taut) g[kGuardLid] = -f[kLid];
       if (d.at_stop) g[kGuardStop] = -f[kStop];
       if (d.grounded != 0) g[kGuardFloor] = -f[d.grounded > 0 ? kFloorLeft : kFloorRight];
+      // Sticking: how far the friction force it takes exceeds mu times the arm's push.
+      if (d.bag_stuck) g[kGuardBagSlip] = std::fabs(f[kBagSlip]) - mu_ * f[kBag];
     }
   }
+  // Slipping (only the polar layouts have an arm that pushes): minus the slip's speed, zero where
+  // it stops.
+  if (friction_ && d.polar() && !d.bag_stuck && !d.at_stop && d.bag_slip != 0) g[kGuardBagSlip] = -d.bag_slip * k.dr;
   if (contacts_ > 3) built_guards(d, k, sys, g, rates);
 
   if (!d.latched) g[kGuardLidOpen] = k.phi_l - vertical_;  // a lid resting at or past it is open from the start
@@ -131,6 +136,7 @@ double Model::guard_floor(Guard g, const Discrete& d) const {
     case kGuardStop: return d.at_stop ? 1e-10 * weight : 1e-12 * len;
     case kGuardFloor: return d.grounded != 0 ? 1e-10 * weight : 1e-12 * len;
     case kGuardBagFloor: return 1e-12 * len;
+    case kGuardBagSlip: return d.bag_stuck ? 1e-10 * weight : 1e-12 * len;
     case kGuardBalloon: return d.balloon_stuck ? 1e-10 * g_ : 1e-12 * len;
     case kGuardBalloonCorner:
     case kGuardBalloonEscape: return 1e-12 * len;

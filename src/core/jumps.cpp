@@ -50,6 +50,7 @@ HybridState Model::initial(std::vector<Event>& out) const {
     touch |= touching_built(dt, k);
     k = touch_exactly(dt, touch, k);
   }
+  if (friction_ && contact::has(touch, kBag)) touch |= bit(kBagSlip);  // it sticks, or slips
   // Everything starts at rest, so only forces decide; what touches is kept where they allow it.
   const Discrete dt = with_contacts(d, touch);
   const contact::System sys = contact_system(dt, k);
@@ -57,6 +58,7 @@ HybridState Model::initial(std::vector<Event>& out) const {
   const contact::Motion mot = contact::solve_motion(sys, touch, ch);
   if (!mot.ok) throw SimulationError("no consistent set of contacts at the start (degenerate contact)");
   set_contacts(d, mot.active, k);
+  if (d.on_seesaw && !d.bag_stuck) d.bag_slip = mot.slip[kBagSlip];
   hs.y.fill(0.0);
   place(hs, k);
   hs.y[slot::balloon_h] = limit_.height(phi_l0_);
@@ -72,8 +74,14 @@ HybridState Model::initial(std::vector<Event>& out) const {
   for (int i = 0; i < contacts_; ++i) {
     if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
     const Guard gi = guard_of(i);
-    d.armed[gi] = mot.gap_acceleration[i] > ch.accel_tol ? GuardStart{2, -0.5 * mot.gap_acceleration[i]}
-                                                         : GuardStart{3, kUnknownLead};
+    if (i == kBagSlip) {  // slipping from rest: minus the slip's speed falls as it picks up
+      if (!d.on_seesaw) continue;
+      const double a = std::fabs(mot.gap_acceleration[i]);
+      d.armed[gi] = a > ch.accel_tol ? GuardStart{1, -a} : GuardStart{2, kUnknownLead};
+    } else {
+      d.armed[gi] = mot.gap_acceleration[i] > ch.accel_tol ? GuardStart{2, -0.5 * mot.gap_acceleration[i]}
+                                                           : GuardStart{3, kUnknownLead};
+    }
     d.armed[gi].floor = guard_floor(gi, d);
   }
 
@@ -103,7 +111,7 @@ void Model::place(HybridState& hs, const Kinematics& k) const {
   if (hs.d.polar()) {
     hs.y[slot::r] = hs.d.at_stop ? arm_ : k.r;
     hs.y[slot::phi_s] = angle;
-    hs.y[slot::dr] = hs.d.at_stop ? 0.0 : k.dr;
+    hs.y[slot::dr] = hs.d.at_stop || hs.d.bag_stuck ? 0.0 : k.dr;
     hs.y[slot::dphi_s] = held_rate;
   } else {
     hs.y[slot::x] = k.x;
@@ -194,7 +202,7 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   hs.d.taut = false;
   // The built machine's sandbag stays where it is (on the arm, at the stop): it has a floor to
   // land on and the drawing shows it.
-  if (contacts_ == 3) hs.d.on_seesaw = false;
+  if (!built_) hs.d.on_seesaw = false;
   hs.d.lid_chart = false;
   hs.d.parked_seesaw = k0.phi_s;
   Kinematics k = k0;
@@ -262,6 +270,7 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
       }
       break;
     case kGuardBagFloor: resolve(hs, k0, kBagFloor, Trend::closing, out); break;
+    case kGuardBagSlip: resolve(hs, k0, kBagSlip, hs.d.bag_stuck ? Trend::releasing : Trend::closing, out); break;
     case kGuardArmEnd:  // off the end of a finite arm, velocity kept; it never lands again
       resolve(hs, k0, kBag, Trend::forced_off, out);
       break;

@@ -105,7 +105,11 @@ struct Model::KinematicsPass {
     k.h = -k.r * s;
     if (rates && (layout == Layout::held_by_rope || layout == Layout::grounded_carrying))
       k.ddr = m.along_arm_acceleration(k.r, s, 0.0);  // M5 or on the floor: the arm is fixed
-    if (d.at_stop) k.ddr = 0.0;                       // the stop holds the sandbag at the arm's end
+    if (d.at_stop || d.bag_stuck) {
+      k.ddr = 0.0;  // the stop holds the sandbag at the arm's end, or friction holds it
+    } else if (rates && d.bag_slip != 0) {
+      k.ddr += m.bag_friction(d.bag_slip, k.r, k.dr, c, k.dphi_s, k.ddphi_s);
+    }
     if (rates) {
       k.vx = -k.dr * c + k.r * s * k.dphi_s;
       k.vh = -k.dr * s - k.r * c * k.dphi_s;

@@ -81,6 +81,7 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
   s.dissipated_pivot = y[slot::lost_pivot];
   s.dissipated_hinge = y[slot::lost_hinge];
   s.dissipated_drag = y[slot::lost_drag];
+  s.dissipated_friction = y[slot::lost_friction];
   s.lid_push_work = lid_push_now(d, k, y);
   s.initial_total = b.initial_total;
   return s;

@@ -13,7 +13,7 @@ bool fires_at_once(Guard g) {
   // A contact guard at zero is a contact that touches (decided where the piece starts); the balloon
   // is decided by the model (Model::jump) since it is both kinds.
   return !(g == kGuardBag || g == kGuardRope || g == kGuardLid || g == kGuardStop || g == kGuardFloor ||
-           g == kGuardBagFloor || g == kGuardBalloon || g == kGuardBalloonCorner);
+           g == kGuardBagFloor || g == kGuardBagSlip || g == kGuardBalloon || g == kGuardBalloonCorner);
 }
 
 Model::Model(const Scenario& scenario)
@@ -44,7 +44,7 @@ Model::Model(const Scenario& scenario)
       balloon_x_(scenario.machine.hinge.x + scenario.machine.lid_half_length),
       length_scale_(scenario.machine.seesaw_right_arm + 2.0 * scenario.machine.lid_half_length +
                     scenario.machine.rope_length),
-      contacts_(scenario.machine.built_contacts() ? kContactCount : 3),
+      contacts_(scenario.machine.built_contacts() || scenario.machine.has_friction() ? kContactCount : 3),
       stop_(scenario.machine.end_stop),
       floor_(scenario.machine.floor),
       h_floor_(scenario.machine.floor_height()),
@@ -54,7 +54,10 @@ Model::Model(const Scenario& scenario)
       grounded_right_(std::asin(h_floor_ / scenario.machine.seesaw_right_arm)) {
   const Machine& m = scenario.machine;
   e_ = {m.restitution.sandbag, m.restitution.rope, m.restitution.lid,        m.restitution.stop,
-        m.floor_restitution,   m.floor_restitution, m.floor_restitution};
+        m.floor_restitution,   m.floor_restitution, m.floor_restitution, 0.0};
+  built_ = m.built_contacts();
+  mu_ = m.friction.sandbag;
+  friction_ = m.has_friction();
   for (double e : e_) restitution_ = restitution_ || e > 0.0;
 }
 

@@ -30,6 +30,9 @@ enum Guard : int {
   kGuardStop,     // sandbag against the end stop: r - left_arm, or minus the stop's push
   kGuardFloor,    // seesaw's ends: minus the nearer one's height above the floor, or minus its push
   kGuardBagFloor, // sandbag off the arm: the floor's height minus its own
+  // Coulomb friction on the arm: minus the slip's speed while it slips (it fires when the slip
+  // stops), or the friction force's excess over mu times the arm's push while it sticks.
+  kGuardBagSlip,
   kGuardArmEnd,   // sandbag on a finite arm reaches its end
   kGuardBalloon,  // free balloon reaches the lid, or the lid pulls away faster than it can follow
   // A balloon smaller than the box (docs/extensions.md): sliding along the lid it reaches the far
@@ -53,7 +56,8 @@ bool fires_at_once(Guard g);
 
 // The contacts of the contact problem, and its coordinates (x, h of the sandbag, phiS, phiL).
 // The built machine adds the end stop, the floor under either end of the seesaw and under the
-// sandbag (contacts 3-6, present only when the machine has them).
+// sandbag (contacts 3-6, present only when the machine has them); Coulomb friction the sandbag's
+// slip along the arm (contact 7, the tangent of contact 0, closed while it sticks).
 enum ContactIndex : int {
   kBag = 0,
   kRope = 1,
@@ -62,7 +66,8 @@ enum ContactIndex : int {
   kFloorLeft = 4,
   kFloorRight = 5,
   kBagFloor = 6,
-  kContactCount = 7
+  kBagSlip = 7,
+  kContactCount = 8
 };
 static_assert(kContactCount <= contact::kMaxContacts, "the contact problem holds every contact");
 
@@ -220,6 +225,13 @@ class Model {
   void small_balloon_settle(HybridState& hs, Mode before, std::vector<Event>& out) const;
   void small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0, std::vector<Event>& out) const;
   void dissipation(const Discrete& d, const Kinematics& k, State& dy) const;
+  // Coulomb friction (contact_problem.cpp): the slip's tangent in the contact problem, and the
+  // sandbag's acceleration along the arm from friction while it slips (the arm's push per unit
+  // mass, N/m = g cos phiS - 2 r' phiS' - r phiS'', times mu, against the slip).
+  void friction_contacts(const Discrete& d, contact::System& s, const Kinematics& k) const;
+  double bag_friction(int slip, double r, double dr, double cos_s, double dphi_s, double ddphi_s) const {
+    return -mu_ * slip * (g_ * cos_s - 2.0 * dr * dphi_s - r * ddphi_s);
+  }
   // The sandbag's height above the arm's line and its distance along it from the pivot.
   static double height_above_arm(const Kinematics& k);
   static double along_arm(const Kinematics& k);
@@ -253,7 +265,10 @@ class Model {
     contact::Set s2 = 0;              // the contacts that carry the motion on
     GuardStart released[kContactCount];  // how each contact's gap opens if it is released
     Kinematics k2;                    // the state the motion goes on from
-    bool impulsive(int i) const { return contact::has(imp.impulsive, i) && imp.impulse[i] > ch.impulse_tol; }
+    bool impulsive(int i) const {  // friction's impulse may have either sign
+      return contact::has(imp.impulsive, i) &&
+             (i == kBagSlip ? std::fabs(imp.impulse[i]) : imp.impulse[i]) > ch.impulse_tol;
+    }
   };
   Decision decide_touching(const Discrete& d, const Kinematics& k_event, int trigger, Trend trend) const;
   void impact_on_velocities(const Discrete& d, Decision& x, double t) const;
@@ -316,6 +331,9 @@ class Model {
   bool stop_, floor_;
   double h_floor_, grounded_left_, grounded_right_;
   std::array<double, kContactCount> e_{};  // Newton's restitution per contact (0: inelastic)
+  bool built_;                             // stop or floor (contacts 3-6)
+  double mu_;                              // Coulomb friction on the arm (contact 7); 0: none
+  bool friction_;
   bool restitution_ = false;               // some contact has one
   double grounded_angle(int side) const { return side > 0 ? grounded_left_ : grounded_right_; }
   void ground(Kinematics& k, int side, bool carries) const;

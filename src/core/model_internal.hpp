@@ -26,6 +26,7 @@ inline Guard guard_of(int contact) {
     case kLid: return kGuardLid;
     case kStop: return kGuardStop;
     case kBagFloor: return kGuardBagFloor;
+    case kBagSlip: return kGuardBagSlip;
     default: return kGuardFloor;  // either end of the seesaw
   }
 }
@@ -37,6 +38,7 @@ inline EventType change_event(int contact, bool closes) {
     case kLid: return closes ? EventType::lid_rests : EventType::lid_lifts;
     case kStop: return closes ? EventType::sandbag_at_stop : EventType::sandbag_leaves_stop;
     case kBagFloor: return closes ? EventType::sandbag_on_floor : EventType::sandbag_bounces;
+    case kBagSlip: return closes ? EventType::sandbag_sticks : EventType::sandbag_slips;
     default: return closes ? EventType::seesaw_on_floor : EventType::seesaw_lifts;
   }
 }

@@ -47,6 +47,8 @@ void build_built_machine(const Reader& in, Machine& m) {
   m.restitution.rope = in.in_range("restitution.rope", 0.0, true, 1.0, true);
   m.restitution.lid = in.in_range("restitution.lid", 0.0, true, 1.0, true);
   m.restitution.stop = in.in_range("restitution.stop", 0.0, true, 1.0, true);
+  // Coulomb's mu: beyond 10 no real pair of surfaces (rubber on rubber is about 1).
+  m.friction.sandbag = in.in_range("friction.sandbag", 0.0, true, 10.0, true);
   if (m.restitution.stop > 0.0 && !m.end_stop) {
     in.fail("restitution.stop", "needs seesaw.end_stop (there is no stop to bounce off)");
   }

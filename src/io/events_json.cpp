@@ -20,10 +20,10 @@ constexpr std::string_view kStateKeys[] = {"x_m",         "h_m",
                                            "phi_l_deg",   "dphi_l_deg_per_s",
                                            "balloon_h_m", "energy_J"};
 constexpr std::string_view kLedgerKeys[] = {
-    "sandbag_kinetic_J", "sandbag_potential_J",  "seesaw_kinetic_J",   "seesaw_potential_J",
-    "lid_kinetic_J",     "lid_potential_J",      "balloon_kinetic_J",  "balloon_potential_J",
-    "lost_impacts_J",    "lost_balloon_catch_J", "dissipated_pivot_J", "dissipated_lid_hinge_J",
-    "dissipated_drag_J", "lid_push_on_balloon_J"};
+    "sandbag_kinetic_J", "sandbag_potential_J",   "seesaw_kinetic_J",     "seesaw_potential_J",
+    "lid_kinetic_J",     "lid_potential_J",       "balloon_kinetic_J",    "balloon_potential_J",
+    "lost_impacts_J",    "lost_balloon_catch_J",  "dissipated_pivot_J",   "dissipated_lid_hinge_J",
+    "dissipated_drag_J", "dissipated_friction_J", "lid_push_on_balloon_J"};
 
 template <std::size_t N>
 nlohmann::json columns_object(const Snapshot& s, const std::string_view (&names)[N]) {

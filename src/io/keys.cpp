@@ -71,6 +71,10 @@ const std::vector<KeySpec> kKeys = {
      "Newton's coefficient of the rope's jerk: 0 (the rope law) to 1 (the rope bounces back as fast)", "0"},
     {"restitution.lid", KeyKind::positive, "", "Newton's coefficient of the lid landing on the box: 0 to 1",
      "0"},
+    {"friction.sandbag", KeyKind::positive, "",
+     "Coulomb's mu between the sandbag and the arm: it sticks while the pull along the arm is at most mu "
+     "times the arm's push, else slides against mu times it; 0: it slides freely (the paper's)",
+     "0"},
     {"restitution.stop", KeyKind::positive, "",
      "Newton's coefficient of the sandbag reaching the end stop: 0 to 1 (needs seesaw.end_stop)", "0"},
     {"start.sandbag_x", KeyKind::length, "m", "sandbag's start, horizontal from the pivot (< 0)", "-0.3"},

@@ -28,6 +28,8 @@ std::string_view short_words(EventType type) {
     case EventType::sandbag_leaves: return "leaves arm";
     case EventType::sandbag_at_stop: return "at stop";
     case EventType::sandbag_leaves_stop: return "off stop";
+    case EventType::sandbag_sticks: return "sticks";
+    case EventType::sandbag_slips: return "slips";
     case EventType::seesaw_on_floor: return "on floor";
     case EventType::seesaw_lifts: return "lifts";
     case EventType::sandbag_on_floor: return "bag on floor";

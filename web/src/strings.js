@@ -185,6 +185,7 @@
     Balloon: 'Ballon', Radio: 'Radio', Damping: 'Dämpfung', 'The seesaw: its arm, mass and end stop': 'Die Wippe: Arm, Masse und Anschlag',
     'The floor': 'Der Boden',
     'Restitution: impacts that bounce': 'Stoßzahlen: Stöße, die zurückfedern',
+    Friction: 'Reibung',
     'back to the machine as loaded': 'zurück zur Maschine, wie sie geladen wurde',
     on: 'an',
     'reset {key}': '{key} zurücksetzen',
@@ -253,6 +254,7 @@
     'restitution.rope': ['Stoßzahl Seil', 'Newtons Stoßzahl für den Ruck des Seils: 0 (das Seilgesetz) bis 1 (das Seil federt ebenso schnell zurück)'],
     'restitution.lid': ['Stoßzahl Deckel', 'Newtons Stoßzahl für das Landen des Deckels auf der Kiste: 0 bis 1'],
     'restitution.stop': ['Stoßzahl Anschlag', 'Newtons Stoßzahl für den Sandsack am Anschlag: 0 bis 1 (braucht seesaw.end_stop)'],
+    'friction.sandbag': ['Reibung Sandsack', 'Coulombs Reibungszahl μ zwischen Sandsack und Arm: er haftet, solange der Zug längs des Arms höchstens μ mal den Druck des Arms erreicht, sonst gleitet er gegen μ mal ihn; 0: er gleitet frei (wie im Aufsatz)'],
     'start.sandbag_x': ['Sandsack x', 'Anfangslage des Sandsacks, waagrecht ab der Achse (< 0)'],
     'start.sandbag_height': ['Sandsack Höhe', 'Anfangshöhe des Sandsacks über der Achse'],
     'start.seesaw_angle': ['Winkel der Wippe', 'phiS0, positiv = linker Arm unten'],
@@ -462,7 +464,7 @@
     'sandbag at stop': 'Sandsack am Anschlag', 'sandbag leaves stop': 'Sandsack verlässt den Anschlag',
     'seesaw on floor': 'Wippe auf dem Boden', 'seesaw lifts': 'Wippe hebt ab', 'sandbag on floor': 'Sandsack auf dem Boden',
     'sandbag bounces': 'Sandsack prallt ab', 'switch stays off': 'Schalter bleibt aus',
-    'balloon escapes': 'Ballon entweicht',
+    'balloon escapes': 'Ballon entweicht', 'sandbag sticks': 'Sandsack haftet', 'sandbag slips': 'Sandsack rutscht',
   };
 
   const kLanguages = {

@@ -1,0 +1,318 @@
+// Coulomb friction in the contact problem (issue 20): the classic closed forms the mechanism must
+// reproduce on its own, before any seesaw: a block on a fixed incline, a ball striking it, a wheel
+// with a Coulomb torque. Then the machine's friction (tests further down).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/contact.hpp"
+
+namespace ct = whatnext::contact;
+
+namespace {
+
+constexpr double kG = 9.81;
+constexpr double kMass = 0.7;
+
+// A block (x, h) on the line through the origin at angle theta: contact 0 its height above the
+// line, contact 1 the distance along it (up the slope), friction mu.
+ct::System incline(double theta, double mu, double v_along = 0.0, double v_normal = 0.0) {
+  ct::System s;
+  s.coords = 2;
+  s.contacts = 2;
+  s.mass = {kMass, kMass};
+  s.force = {0.0, -kMass * kG};
+  const double c = std::cos(theta), sn = std::sin(theta);
+  s.normal[0] = {-sn, c};
+  s.normal[1] = {c, sn};
+  s.curvature[0] = s.curvature[1] = 0.0;
+  s.friction[1] = 0 + 1;  // the tangent of contact 0
+  s.bound[1] = mu;
+  s.velocity = {v_along * c - v_normal * sn, v_along * sn + v_normal * c};
+  return s;
+}
+
+ct::Choice tolerances() {
+  ct::Choice ch;
+  for (int i = 0; i < ct::kMaxContacts; ++i) ch.want[i] = 1, ch.weight[i] = 1;  // prefer sticking
+  ch.needs[1] = 1u;
+  return ch;
+}
+
+double along(const ct::System& s, const ct::Coords& a) { return s.rate(1, a) + s.curvature[1]; }
+
+}  // namespace
+
+TEST(FrictionSolver, ABlockOnAnInclineSticksBelowTanThetaEqualsMu) {
+  for (double deg : {5.0, 20.0, 35.0, 50.0}) {
+    const double theta = deg * M_PI / 180.0;
+    for (double mu : {0.8 * std::tan(theta), 1.25 * std::tan(theta)}) {
+      const ct::System s = incline(theta, mu);
+      const ct::Motion m = ct::solve_motion(s, 0b11u, tolerances());
+      ASSERT_TRUE(m.ok) << deg << " " << mu;
+      const bool sticks = mu >= std::tan(theta);
+      EXPECT_EQ(ct::has(m.active, 1), sticks) << deg << " deg, mu " << mu;
+      EXPECT_TRUE(ct::has(m.active, 0));
+      // The normal force is the weight's component across the slope, whatever the friction.
+      EXPECT_NEAR(m.force[0], kMass * kG * std::cos(theta), 1e-12);
+      if (sticks) {
+        EXPECT_NEAR(m.force[1], kMass * kG * std::sin(theta), 1e-12);  // holds the weight's pull
+        EXPECT_NEAR(along(s, m.acceleration), 0.0, 1e-12);
+      } else {
+        EXPECT_EQ(m.slip[1], -1);  // down the slope
+        EXPECT_NEAR(along(s, m.acceleration), -kG * (std::sin(theta) - mu * std::cos(theta)), 1e-12);
+      }
+    }
+  }
+}
+
+TEST(FrictionSolver, ASlidingBlockIsSlowedByMuTimesTheNormalForceEitherWay) {
+  const double theta = 25.0 * M_PI / 180.0, mu = 0.3;
+  // Up the slope: gravity and friction both slow it; down: friction against gravity.
+  const ct::Motion up = ct::solve_motion(incline(theta, mu, 2.0), 0b01u, tolerances());
+  ASSERT_TRUE(up.ok);
+  EXPECT_EQ(up.slip[1], 1);
+  EXPECT_NEAR(along(incline(theta, mu), up.acceleration), -kG * (std::sin(theta) + mu * std::cos(theta)), 1e-12);
+  const ct::Motion down = ct::solve_motion(incline(theta, mu, -2.0), 0b01u, tolerances());
+  ASSERT_TRUE(down.ok);
+  EXPECT_EQ(down.slip[1], -1);
+  EXPECT_NEAR(along(incline(theta, mu), down.acceleration), -kG * (std::sin(theta) - mu * std::cos(theta)),
+              1e-12);
+  // A sliding block is never offered to stick: only a zero slip velocity is (as a candidate).
+  EXPECT_FALSE(ct::has(down.active, 1));
+}
+
+TEST(FrictionSolver, AnImpactWithFrictionKeepsTheSlipOrStopsItAndNeverGainsEnergy) {
+  const double theta = 30.0 * M_PI / 180.0, mu = 0.4;
+  for (double vt : {-3.0, -1.0, -0.2, 0.0, 0.3, 2.5}) {
+    const double vn = -1.5;  // into the slope
+    const ct::System s = incline(theta, mu, vt, vn);
+    const ct::Impact imp = ct::solve_impact(s, 0b11u, tolerances());
+    ASSERT_TRUE(imp.ok) << vt;
+    // Newton's (inelastic) law across, Coulomb's along: the normal impulse m |vn| and a tangential
+    // one of at most mu times it, stopping the slip if that is enough.
+    EXPECT_NEAR(imp.impulse[0], kMass * -vn, 1e-12);
+    const double stop = std::fabs(vt) <= mu * -vn;
+    const double vt_after = stop ? 0.0 : vt - std::copysign(mu * -vn, vt);
+    EXPECT_NEAR(s.rate(1, imp.velocity), vt_after, 1e-12) << vt;
+    EXPECT_NEAR(s.rate(0, imp.velocity), 0.0, 1e-12);
+    EXPECT_EQ(ct::has(imp.impulsive, 1), stop) << vt;
+    const double before = 0.5 * kMass * (vt * vt + vn * vn);
+    const double after = 0.5 * kMass * (s.rate(0, imp.velocity) * s.rate(0, imp.velocity) + vt_after * vt_after);
+    EXPECT_LE(after, before + 1e-12);
+    // The friction impulse opposes the slip it acts on: no positive work.
+    EXPECT_LE(imp.impulse[1] * vt, 1e-12);
+  }
+}
+
+TEST(FrictionSolver, AWheelWithACoulombTorqueTurnsOnlyWhenTheTorqueExceedsIt) {
+  // One coordinate phi with inertia I under a torque tau; contact 0 is its Coulomb bearing.
+  const double inertia = 0.02, limit = 0.5;
+  for (double tau : {-0.8, -0.3, 0.0, 0.4, 0.9}) {
+    for (double w : {0.0, 1.5, -1.5}) {
+      ct::System s;
+      s.coords = 1;
+      s.contacts = 1;
+      s.mass = {inertia};
+      s.force = {tau};
+      s.velocity = {w};
+      s.normal[0] = {1.0};
+      s.curvature[0] = 0.0;
+      s.friction[0] = ct::kFixedBound;
+      s.bound[0] = limit;
+      ct::Choice ch;
+      ch.want[0] = 1, ch.weight[0] = 1;
+      const ct::Motion m = ct::solve_motion(s, w == 0.0 ? 1u : 0u, ch);
+      ASSERT_TRUE(m.ok);
+      double expect = 0.0;
+      if (w != 0.0) {
+        expect = (tau - std::copysign(limit, w)) / inertia;
+      } else if (std::fabs(tau) > limit) {
+        expect = (tau - std::copysign(limit, tau)) / inertia;
+      }
+      EXPECT_NEAR(m.acceleration[0], expect, 1e-12) << tau << " " << w;
+      EXPECT_EQ(ct::has(m.active, 0), w == 0.0 && std::fabs(tau) <= limit);
+      // The bearing's torque never does positive work on a turning wheel.
+      if (w != 0.0) {
+        EXPECT_EQ(m.slip[0], w > 0.0 ? 1 : -1);
+      }
+      // A Coulomb torque transmits no impulse.
+      const ct::Impact imp = ct::solve_impact(s, 1u, ch);
+      ASSERT_TRUE(imp.ok);
+      EXPECT_EQ(imp.velocity[0], w);
+    }
+  }
+}
+
+TEST(FrictionSolver, InverseDynamicsGivesBackTheForcesOfASlidingBlock) {
+  const double theta = 40.0 * M_PI / 180.0, mu = 0.35;
+  ct::System s = incline(theta, mu, -1.0);
+  const ct::Motion m = ct::solve_motion(s, 0b01u, tolerances());
+  ASSERT_TRUE(m.ok);
+  s.slip = m.slip;
+  ct::PerContact f{};
+  ASSERT_TRUE(ct::multipliers_for(s, m.active, m.acceleration, f));
+  EXPECT_NEAR(f[0], m.force[0], 1e-12);
+  EXPECT_NEAR(f[0], kMass * kG * std::cos(theta), 1e-12);
+}
+
+// --- the machine's friction: the sandbag on the arm -------------------------------------------
+
+#include <string>
+#include <vector>
+
+#include "whatnext/config.hpp"
+#include "whatnext/simulate.hpp"
+
+namespace wn = whatnext;
+
+namespace {
+
+// A seesaw standing on the floor with its left end, its arm at 30 degrees: a fixed incline
+// (docs/extensions.md). The rope long enough never to tighten.
+wn::Scenario standing(double mu, const std::vector<std::string>& sets) {
+  wn::Config cfg = wn::parse_toml(R"(
+[geometry]
+seesaw_right_arm = 0.8
+lid_half_length = 0.12
+rope_length = 1.0
+hinge_offset = [0.75, 0.16]
+[masses]
+sandbag = 0.7
+lid = 0.1
+[seesaw]
+left_arm = 0.8
+mass = 0.3
+end_stop = true
+[floor]
+enabled = true
+[start]
+seesaw_angle = 30.0
+lid_angle = 0.0
+[run]
+t_max = 1.5
+)",
+                                  "incline.toml");
+  wn::apply_set(cfg, "friction.sandbag=" + std::to_string(mu));
+  for (const std::string& s : sets) wn::apply_set(cfg, s);
+  return wn::build_scenario(cfg);
+}
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+const wn::Event* find(const std::vector<wn::Event>& ev, wn::EventType type) {
+  for (const wn::Event& e : ev)
+    if (e.type == type) return &e;
+  return nullptr;
+}
+
+constexpr double kS30 = 0.5, kArm = 0.8, kBag = 0.7;
+const double kC30 = std::sqrt(3.0) / 2.0;
+
+}  // namespace
+
+TEST(FrictionOnTheArm, PlacedAtRestItSlidesWithGTimesSinMinusMuCosOrSticks) {
+  const double r0 = 0.3;
+  for (double mu : {0.0, 0.2, 0.5, 0.6, 0.9}) {
+    const wn::Result r = wn::simulate(
+        standing(mu, {"start.sandbag_x=" + num(-r0 * kC30), "start.sandbag_height=" + num(-r0 * kS30)}));
+    const wn::Event* stop = find(r.events, wn::EventType::sandbag_at_stop);
+    if (mu > std::tan(M_PI / 6.0)) {  // tan 30 deg = 0.577: it sticks where it was put
+      EXPECT_EQ(stop, nullptr) << mu;
+      EXPECT_NEAR(r.events.back().after.r, r0, 1e-12) << mu;
+      EXPECT_EQ(find(r.events, wn::EventType::sandbag_slips), nullptr);
+      continue;
+    }
+    ASSERT_NE(stop, nullptr) << mu;
+    const double a = kG * (kS30 - mu * kC30);
+    const double t = std::sqrt(2.0 * (kArm - r0) / a);
+    EXPECT_NEAR(stop->t, t, 1e-9) << mu;
+    // Friction's heat on the way: mu m g cos(30 deg) times the distance slid.
+    EXPECT_NEAR(stop->after.dissipated_friction, mu * kBag * kG * kC30 * (kArm - r0), 1e-9) << mu;
+    EXPECT_NEAR(stop->after.ledger_residual(), 0.0, 1e-9);
+  }
+}
+
+TEST(FrictionOnTheArm, DroppedOnTheInclineItLandsWithCoulombsImpulseThenSlidesOrSticks) {
+  // Dropped from rest 0.25 m above the arm at r1 = 0.4 m: it lands at v = sqrt(2 g d) straight
+  // down, v sin 30 along the arm (outwards) and v cos 30 into it. The inelastic landing stops the
+  // normal speed; friction's impulse, at most mu m v cos 30, takes the rest or all of the slip.
+  const double r1 = 0.4, drop = 0.25, v = std::sqrt(2.0 * kG * drop);
+  for (double mu : {0.1, 0.3, 0.45, 0.7, 1.2}) {
+    const wn::Result r = wn::simulate(
+        standing(mu, {"start.sandbag_x=" + num(-r1 * kC30), "start.sandbag_height=" + num(-r1 * kS30 + drop)}));
+    const wn::Event* lands = find(r.events, wn::EventType::sandbag_lands);
+    ASSERT_NE(lands, nullptr) << mu;
+    EXPECT_NEAR(lands->t, std::sqrt(2.0 * drop / kG), 1e-9);
+    const double u = v * (kS30 - mu * kC30);  // the slip left after the landing
+    const wn::Event* sticks = find(r.events, wn::EventType::sandbag_sticks);
+    const wn::Event* stop = find(r.events, wn::EventType::sandbag_at_stop);
+    if (u <= 0.0) {
+      ASSERT_NE(sticks, nullptr) << mu;
+      EXPECT_EQ(sticks->t, lands->t);
+      EXPECT_EQ(stop, nullptr);
+      EXPECT_NEAR(lands->energy_after, lands->energy_before - 0.5 * kBag * v * v, 1e-9);  // all lost
+      continue;
+    }
+    EXPECT_NEAR(lands->after.dr, u, 1e-9) << mu;
+    // No energy gained in the impact: it loses at least the normal speed's share.
+    EXPECT_LE(lands->energy_after, lands->energy_before - 0.5 * kBag * std::pow(v * kC30, 2) + 1e-12);
+    // Dropped straight down, the slip left and gravity's pull less friction have the same sign
+    // (sin 30 - mu cos 30): it slides on, faster, (L - r1) = u t + a t^2 / 2.
+    const double a = kG * (kS30 - mu * kC30);
+    ASSERT_NE(stop, nullptr) << mu;
+    EXPECT_EQ(sticks, nullptr) << mu;
+    const double t = (-u + std::sqrt(u * u + 2.0 * a * (kArm - r1))) / a;
+    EXPECT_NEAR(stop->t - lands->t, t, 1e-9) << mu;
+  }
+}
+
+TEST(FrictionOnTheArm, FrictionNeverGainsEnergyAndTheBooksClose) {
+  // The built machine with friction, on every sample: the heat only grows, the books close.
+  for (double mu : {0.1, 0.4, 1.5}) {
+    wn::Config cfg = wn::parse_toml(std::string(wn::example_toml("konstanz")), "konstanz.toml");
+    wn::apply_set(cfg, "friction.sandbag=" + num(mu));
+    const wn::Scenario sc = wn::build_scenario(cfg);
+    struct Watch : wn::Observer {
+      double last = 0.0, worst = 0.0;
+      bool ok = true;
+      void on_sample(const wn::Snapshot& s) override {
+        ok = ok && s.dissipated_friction >= last - 1e-15;
+        last = s.dissipated_friction;
+        worst = std::fmax(worst, std::fabs(s.ledger_residual()));
+      }
+    } watch;
+    const wn::Result r = wn::simulate(sc, &watch);
+    EXPECT_TRUE(watch.ok) << mu;
+    EXPECT_GT(watch.last, 0.0) << mu;
+    EXPECT_LT(watch.worst, 1e-6) << mu;
+    for (const wn::Event& e : r.events) {
+      if (e.impact) {
+        EXPECT_LE(e.energy_after, e.energy_before + 1e-12) << mu << " " << wn::to_string(e.type);
+      }
+      EXPECT_GE(e.after.normal_force, -1e-9);
+    }
+  }
+}
+
+TEST(FrictionOnTheArm, TheSameEventsAtTolerances1e10And1e14) {
+  for (const char* example : {"konstanz", "2"}) {
+    std::vector<std::vector<wn::Event>> runs;
+    for (const char* tol : {"1e-10", "1e-14"}) {
+      const std::string_view text = std::string(example) == "2" ? wn::example_toml(2) : wn::example_toml(example);
+      wn::Config cfg = wn::parse_toml(std::string(text), "example.toml");
+      wn::apply_set(cfg, "friction.sandbag=0.35");
+      wn::apply_set(cfg, std::string("run.tolerance=") + tol);
+      runs.push_back(wn::simulate(wn::build_scenario(cfg)).events);
+    }
+    ASSERT_EQ(runs[0].size(), runs[1].size()) << example;
+    for (std::size_t i = 0; i < runs[0].size(); ++i) {
+      EXPECT_EQ(runs[0][i].type, runs[1][i].type) << example << " " << i;
+      EXPECT_NEAR(runs[0][i].t, runs[1][i].t, 1e-7) << example << " " << wn::to_string(runs[0][i].type);
+    }
+  }
+}
