@@ -16,11 +16,10 @@
 
 namespace whatnext::viz::draw {
 
-// ---- colours of the drawing (all on the GIF's palette) ----
-constexpr Rgb kWhite{255, 255, 255}, kBlack{0, 0, 0}, kDark{51, 42, 51}, kGrey{96, 96, 96},
-    kMidGrey{160, 160, 160}, kLightGrey{224, 224, 224}, kSeesaw{153, 85, 51}, kBoxWall{153, 127, 51},
-    kBoxInside{255, 255, 204}, kLid{51, 85, 153}, kRadio{51, 42, 102}, kDial{204, 212, 255},
-    kEventRed{204, 0, 0}, kBagText{153, 85, 0}, kCursor{0, 85, 204};
+// The drawing's colours: the scene's (scene.hpp), which the page paints with too.
+using scene::kBagText, scene::kBlack, scene::kBoxInside, scene::kBoxWall, scene::kCursor, scene::kDark,
+    scene::kDial, scene::kEventRed, scene::kGrey, scene::kLid, scene::kLightGrey, scene::kMidGrey,
+    scene::kRadio, scene::kSeesaw, scene::kWhite;
 
 inline void set(cairo_t* cr, Rgb c) { cairo_set_source_rgb(cr, c.r / 255.0, c.g / 255.0, c.b / 255.0); }
 

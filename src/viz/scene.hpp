@@ -5,14 +5,41 @@
 
 #include <array>
 #include <limits>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "whatnext/geometry.hpp"
 #include "whatnext/vec2.hpp"
+#include "whatnext/viz/animation.hpp"  // Rgb
 #include "whatnext/viz/recording.hpp"
 
 namespace whatnext::viz::scene {
+
+// The parts' colours, all on the GIF's palette (the sandbag's and the balloon's are public:
+// animation.hpp). The page paints with the same ones, by the names of kColourNames.
+constexpr Rgb kWhite{255, 255, 255}, kBlack{0, 0, 0}, kDark{51, 42, 51}, kGrey{96, 96, 96},
+    kMidGrey{160, 160, 160}, kLightGrey{224, 224, 224}, kSeesaw{153, 85, 51}, kBoxWall{153, 127, 51},
+    kBoxInside{255, 255, 204}, kLid{51, 85, 153}, kRadio{51, 42, 102}, kDial{204, 212, 255},
+    kEventRed{204, 0, 0}, kBagText{153, 85, 0}, kCursor{0, 85, 204};
+struct NamedColour {
+  std::string_view name;
+  Rgb rgb;
+};
+inline constexpr NamedColour kColourNames[] = {{"sandbag", kSandbagColour},
+                                               {"balloon", kBalloonColour},
+                                               {"seesaw", kSeesaw},
+                                               {"boxWall", kBoxWall},
+                                               {"boxInside", kBoxInside},
+                                               {"lid", kLid},
+                                               {"radio", kRadio},
+                                               {"dial", kDial},
+                                               {"dark", kDark},
+                                               {"grey", kGrey},
+                                               {"midGrey", kMidGrey},
+                                               {"ground", kLightGrey},
+                                               {"eventRed", kEventRed},
+                                               {"bagText", kBagText}};
 
 // The sandbag's drawn radius [m] (a frame draws it at least 6 px wide; the model has a point).
 constexpr double kSandbagRadius = 0.05;

@@ -4,22 +4,10 @@
 (function () {
   'use strict';
 
+  // The parts' colours are the animation's (src/viz/scene.hpp), from the library (useLibrary);
+  // these two are the page's own: the caption's band and the outline of a run compared.
   const colour = {
-    sandbag: 'rgb(204,127,0)',  // the pixel test looks for this one
-    balloon: 'rgb(255,42,51)',
-    seesaw: 'rgb(153,85,51)',
-    boxWall: 'rgb(153,127,51)',
-    boxInside: 'rgb(255,255,204)',
-    lid: 'rgb(51,85,153)',
-    radio: 'rgb(51,42,102)',
-    dial: 'rgb(204,212,255)',
-    dark: 'rgb(51,42,51)',
-    grey: 'rgb(96,96,96)',
-    midGrey: 'rgb(160,160,160)',
-    ground: 'rgb(224,224,224)',  // below the built machine's floor (the pixel test looks for it)
     band: 'rgb(236,236,236)',
-    eventRed: 'rgb(204,0,0)',
-    bagText: 'rgb(153,85,0)',
     ghost: 'rgb(60,90,200)',
   };
 
@@ -35,7 +23,10 @@
   // the lid, let go at the radio's latch), the lid, the seesaw and its end stop, the balloon and
   // its string, the radio, the stand, the box and the floor.
   let library = null;
-  function useLibrary(module) { library = module; }
+  function useLibrary(module) {
+    library = module;
+    Object.assign(colour, module.colours());
+  }
 
   // The scene of state s of a run, its left arm `arm` long and its end stop `stopHeight` high [m].
   function scene(run, s, arm, stopHeight) {

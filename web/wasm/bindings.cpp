@@ -462,6 +462,16 @@ val scene_trace(val input, val phi_s, val phi_l, val balloon_x, val balloon_h) {
   });
 }
 
+// The parts' colours as `whatnext animate` paints them (scene.hpp): {sandbag: "rgb(204,127,0)", ...}.
+val colours() {
+  val v = val::object();
+  for (const viz::scene::NamedColour& c : viz::scene::kColourNames) {
+    v.set(std::string(c.name), "rgb(" + std::to_string(c.rgb.r) + "," + std::to_string(c.rgb.g) + "," +
+                                   std::to_string(c.rgb.b) + ")");
+  }
+  return v;
+}
+
 // The downloads, as `whatnext run` writes them: TOML (to_toml), --events JSON, --csv.
 val toml(val input) {
   return guarded([&] { return text_result(to_toml(load(input).scenario)); });
@@ -560,6 +570,7 @@ EMSCRIPTEN_BINDINGS(whatnext) {
   emscripten::function("names", &names);
   emscripten::function("scene", &scene);
   emscripten::function("sceneTrace", &scene_trace);
+  emscripten::function("colours", &colours);
 }
 
 }  // namespace whatnext::web
