@@ -1,6 +1,8 @@
 // The machine drawn to scale on a canvas, with the parts, colours and conventions of the
-// animation that `whatnext animate` writes (src/viz/scene.cpp, the scene's geometry): x to the right, h up, metres,
-// origin at the seesaw's pivot. A second run can be drawn as a ghost over the first.
+// animation that `whatnext animate` writes (both from src/viz/scene.cpp): x to the right, h up,
+// metres, origin at the seesaw's pivot. A second run can be drawn as a ghost over the first. What
+// is the page's own: how it frames the machine (extent), how long it draws the endless arm, the
+// arrows to parts beyond the picture and the caption.
 (function () {
   'use strict';
 
@@ -13,7 +15,6 @@
 
   const add = (a, b) => ({ x: a.x + b.x, h: a.h + b.h });
   const sub = (a, b) => ({ x: a.x - b.x, h: a.h - b.h });
-  const scale = (k, a) => ({ x: k * a.x, h: k * a.h });
   const norm = (a) => Math.hypot(a.x, a.h);
   const polar = (length, angle) => ({ x: length * Math.cos(angle), h: length * Math.sin(angle) });
 
