@@ -118,7 +118,15 @@ class Generator {
     } else if (pick(0.2)) {
       set("seesaw.left_arm", left_arm);
     }
-    if (friction) set("friction.sandbag", u(0.05, 1.2));  // Coulomb on the arm (issue 20)
+    if (friction) {  // Coulomb on the arm, at the hinge and (a seesaw with mass) the pivot (issue 20)
+      if (pick(0.7)) set("friction.sandbag", u(0.05, 1.2));
+      // One Coulomb torque at most: two would share the load indeterminately (an input error).
+      if (heavy && pick(0.5)) {
+        set("friction.pivot", u(0.0, 1.0));
+      } else if (pick(0.5)) {
+        set("friction.lid_hinge", u(0.0, 0.6));
+      }
+    }
     bool rope_bounces = false;
     for (const std::string& s : out.sets) rope_bounces = rope_bounces || s.rfind("restitution.rope", 0) == 0;
     if (!rope_bounces && pick(0.15)) {
@@ -179,6 +187,9 @@ void check_invariants(const Machine& m, const wn::Scenario& sc, const wn::Record
   };
   for (const wn::Event& e : rec.events) energy_scale = std::fmax(energy_scale, parts(e.after));
   for (const wn::Snapshot& s : rec.samples) energy_scale = std::fmax(energy_scale, parts(s));
+  // Coulomb's heat is integrated like the dampers' but piece by piece from every stick and slip: a
+  // few more pieces' worth of the integrator's error.
+  const double books = sc.machine.has_friction() ? 3e-9 : 1e-9;
   auto check = [&](const wn::Snapshot& s, const char* where) {
     std::ostringstream o;
     o.precision(10);
@@ -194,7 +205,7 @@ void check_invariants(const Machine& m, const wn::Scenario& sc, const wn::Record
       o << where << " t=" << s.t << ": arm pulls the sandbag, N=" << s.normal_force;
     } else if (s.lid_resting && !(s.box_reaction >= -tol_f)) {
       o << where << " t=" << s.t << ": box pulls the lid, " << s.box_reaction;
-    } else if (!(std::fabs(s.ledger_residual()) <= 1e-9 * energy_scale)) {
+    } else if (!(std::fabs(s.ledger_residual()) <= books * energy_scale)) {
       o << where << " t=" << s.t << ": ledger residual " << s.ledger_residual();
     } else if (s.on_seesaw && !(std::fabs(s.phi_s) < kPi / 2 + 1e-9)) {
       o << where << " t=" << s.t << ": seesaw past vertical " << s.phi_s / kDeg;
@@ -319,7 +330,11 @@ void run_machines(bool heavy, std::uint64_t seed, int count, bool built = false,
     // paper offers only for comparison (angular-momentum-sum, linear-momentum) can multiply the
     // energy many times over; after such an impact 1e-5 s is asked.
     const wn::ImpactLaw law = m.scenario.run.impact_law;
-    const double dt = (law == wn::ImpactLaw::rope || law == wn::ImpactLaw::kinetic_energy) ? 1e-6 : 1e-5;
+    // A slip that creeps to a stop (1e-4 m/s decelerating at 0.07 m/s^2 after a second of near
+    // balance, 1 machine in 400) is found on a velocity that small: 1e-5 s is asked there too.
+    const bool creeps = m.scenario.machine.has_friction();
+    const double dt =
+        (law == wn::ImpactLaw::rope || law == wn::ImpactLaw::kinetic_energy) && !creeps ? 1e-6 : 1e-5;
     // A lid and a rope that bounce (restitution on the paper's contacts) make a chaotic chatter:
     // each impact multiplies a difference of the state, so after many of them (a second) the two
     // tolerances' stories part; up to then they must agree.

@@ -316,3 +316,78 @@ TEST(FrictionOnTheArm, TheSameEventsAtTolerances1e10And1e14) {
     }
   }
 }
+
+// --- Coulomb torques at the pivot and the hinge ----------------------------------------------
+
+TEST(CoulombTorques, TheHingeStopsTheSwingingLidWhereAndWhenItsEnergyAndPeriodIntegralSay) {
+  // Example 1: after the rope's jerk the lid swings up on its own, I phiL'' = -m g r cos phiL - T.
+  // It stops at phi1 where (1/2) I w0^2 = m g r (sin phi1 - sin phi0) + T (phi1 - phi0), after
+  // the time integral of dphi / w(phi), and stays if the hinge's T holds its weight there.
+  const double torque = 1.0;
+  wn::Config cfg = wn::parse_toml(std::string(wn::example_toml(1)), "example1.toml");
+  wn::apply_set(cfg, "friction.lid_hinge=" + num(torque));
+  const wn::Scenario sc = wn::build_scenario(cfg);
+  const wn::Result r = wn::simulate(sc);
+  const wn::Event* slack = find(r.events, wn::EventType::rope_slack);
+  const wn::Event* sticks = find(r.events, wn::EventType::lid_sticks);
+  ASSERT_NE(slack, nullptr);
+  ASSERT_NE(sticks, nullptr);
+  const wn::Machine& m = sc.machine;
+  const double inertia = m.lid_inertia(), weight = m.lid_mass * m.gravity * m.lid_half_length;
+  const double phi0 = slack->after.phi_l, w0 = slack->after.dphi_l;
+  ASSERT_GT(w0, 0.0);
+  auto w2 = [&](double phi) {
+    return w0 * w0 - 2.0 / inertia * (weight * (std::sin(phi) - std::sin(phi0)) + torque * (phi - phi0));
+  };
+  double lo = phi0, hi = M_PI / 2;  // w2 falls monotonically while cos phi > 0
+  ASSERT_LT(w2(hi), 0.0);
+  for (int i = 0; i < 200; ++i) (w2(0.5 * (lo + hi)) > 0.0 ? lo : hi) = 0.5 * (lo + hi);
+  const double phi1 = 0.5 * (lo + hi);
+  ASSERT_LE(weight * std::cos(phi1), torque);  // the hinge holds it there
+  // t = integral of dphi / w over [phi0, phi1]; with phi = phi1 - u^2 the integrand 2u / w is smooth.
+  const double umax = std::sqrt(phi1 - phi0);
+  const int n = 4000;
+  double t = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    const double u = umax * i / n;
+    const double f = i == 0 ? 2.0 / std::sqrt(2.0 / inertia * (weight * std::cos(phi1) + torque))
+                            : 2.0 * u / std::sqrt(w2(phi1 - u * u));
+    t += f * (i == 0 || i == n ? 1.0 : (i % 2 ? 4.0 : 2.0));
+  }
+  t *= umax / n / 3.0;
+  EXPECT_NEAR(sticks->after.phi_l, phi1, 1e-9);
+  EXPECT_NEAR(sticks->t - slack->t, t, 1e-8);
+  EXPECT_EQ(sticks->after.dphi_l, 0.0);
+  // Nothing happened in between, and the heat is the torque times the angle it turned through.
+  for (const wn::Event& e : r.events)
+    if (e.t > slack->t && e.t < sticks->t) ADD_FAILURE() << wn::to_string(e.type) << " at " << e.t;
+  EXPECT_NEAR(sticks->after.dissipated_friction, torque * (phi1 - phi0), 1e-9);
+}
+
+TEST(CoulombTorques, ThePivotHoldsTheSeesawUntilTheSlidingSandbagsTorqueExceedsIt) {
+  // A balanced seesaw with mass (centre of mass at the pivot) at 20 degrees, its pivot holding
+  // T = 1 N m; a sandbag put down at rest on its arm at r0 slides freely down the fixed arm,
+  // r = r0 + g sin(20 deg) t^2 / 2, until its torque m g r cos(20 deg) reaches T.
+  const double phi = 20.0 * M_PI / 180.0, r0 = 0.1, torque = 1.0, mass = 0.7;
+  wn::Config cfg = wn::parse_toml(std::string(wn::example_toml(1)), "example1.toml");
+  for (const std::string& s :
+       {std::string("seesaw.left_arm=2.0"), std::string("seesaw.mass=0.5"), std::string("seesaw.inertia=0.05"),
+        std::string("seesaw.com_offset=0"), "masses.sandbag=" + num(mass), std::string("start.seesaw_angle=20"),
+        "start.sandbag_x=" + num(-r0 * std::cos(phi)), "start.sandbag_height=" + num(-r0 * std::sin(phi)),
+        std::string("geometry.rope_length=1.4"), "friction.pivot=" + num(torque)})
+    wn::apply_set(cfg, s);
+  const wn::Scenario sc = wn::build_scenario(cfg);
+  const wn::Result r = wn::simulate(sc);
+  const wn::Event* slips = find(r.events, wn::EventType::seesaw_slips);
+  ASSERT_NE(slips, nullptr);
+  const double g = sc.machine.gravity, r_star = torque / (mass * g * std::cos(phi));
+  EXPECT_NEAR(slips->t, std::sqrt(2.0 * (r_star - r0) / (g * std::sin(phi))), 1e-9);
+  EXPECT_NEAR(slips->after.r, r_star, 1e-9);
+  EXPECT_NEAR(slips->after.phi_s, phi, 1e-12);  // it had not moved
+  // Then it turns: the Coulomb torque takes what it turns through times T as heat, no more.
+  EXPECT_EQ(r.events.front().type, wn::EventType::seesaw_slips);
+  // A pivot that holds more than the sandbag can ever pull at the arm's end never lets go.
+  wn::apply_set(cfg, "friction.pivot=" + num(mass * g * 2.0 * std::cos(phi) * 1.01));
+  const wn::Result held = wn::simulate(wn::build_scenario(cfg));
+  EXPECT_EQ(find(held.events, wn::EventType::seesaw_slips), nullptr);
+}

@@ -62,7 +62,7 @@ inline constexpr StateColumn kStateColumns[] = {
      [](const Snapshot& s) { return s.dissipated_hinge; }},
     {"dissipated_drag_J", "J", "heat of the balloon's air drag",
      [](const Snapshot& s) { return s.dissipated_drag; }},
-    {"dissipated_friction_J", "J", "heat of Coulomb friction (the sandbag sliding on the arm)",
+    {"dissipated_friction_J", "J", "heat of Coulomb friction (the sandbag on the arm, the pivot, the hinge)",
      [](const Snapshot& s) { return s.dissipated_friction; }},
     {"lid_push_on_balloon_J", "J", "work of the lid on the balloon",
      [](const Snapshot& s) { return s.lid_push_work; }},

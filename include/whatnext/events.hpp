@@ -29,6 +29,10 @@ enum class EventType {
   sandbag_bounces,    // ... and leaves it again (floor.restitution > 0)
   sandbag_sticks,     // friction: the sandbag stops sliding on the arm and sticks there
   sandbag_slips,      // ... and starts sliding again
+  seesaw_sticks,      // friction: the seesaw stops turning and its pivot holds it
+  seesaw_slips,       // ... and turns again
+  lid_sticks,         // friction: the lid stops turning and its hinge holds it
+  lid_slips,          // ... and turns again
   lid_open,
   seesaw_vertical,
   sandbag_at_pivot,

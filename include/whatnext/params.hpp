@@ -68,7 +68,9 @@ struct Machine {
   } restitution;
   // Coulomb friction (docs/extensions.md "Friction"): 0 is the paper's frictionless machine.
   struct Friction {
-    double sandbag = 0.0;  // mu between the sandbag and the arm
+    double sandbag = 0.0;    // mu between the sandbag and the arm
+    double pivot = 0.0;      // Coulomb torque at the seesaw's pivot [N m]
+    double lid_hinge = 0.0;  // Coulomb torque at the lid's hinge [N m]
   } friction;
 
   // Where the rope is tied to the lid, from the hinge: a = 2 r_L at the free edge (the paper's).
@@ -79,7 +81,7 @@ struct Machine {
   // What the balloon's string pulls with once straight and holding the balloon still: its net lift.
   double balloon_pull() const { return balloon_inertia() * balloon_acceleration(); }
   bool built_contacts() const { return end_stop || floor; }
-  bool has_friction() const { return friction.sandbag > 0.0; }
+  bool has_friction() const { return friction.sandbag > 0.0 || friction.pivot > 0.0 || friction.lid_hinge > 0.0; }
 
   // Uniform plate hinged at one edge: I = m (2 r_L)^2 / 3.
   double lid_inertia() const { return lid_mass * 4.0 * lid_half_length * lid_half_length / 3.0; }

@@ -58,6 +58,11 @@ struct Discrete {
   // it in the direction of bag_slip (+1 outwards, -1 towards the pivot; 0 where no friction acts).
   bool bag_stuck = false;
   int bag_slip = 0;
+  // Coulomb torques: the seesaw held on its pivot, or turning (+1 phiS' > 0, -1); the lid likewise.
+  bool seesaw_stuck = false;
+  int seesaw_slip = 0;
+  bool lid_stuck = false;
+  int lid_slip = 0;
   double parked_seesaw = 0.0;  // seesaw angle while nothing moves it (M1) [rad]
   int side = 1;                // R's side of the line P-E, for the inverse closure phiS(phiL)
   // On the rope's closure (lid swinging on a straight rope, something with inertia on the seesaw)
@@ -77,6 +82,10 @@ struct Discrete {
   // The stop and the floor make a massless seesaw's motion polar too: the sandbag at a fixed r, or
   // the arm at a fixed angle.
   bool polar() const { return on_seesaw && (taut || heavy || at_stop || grounded != 0); }
+  // The seesaw held at its angle (by the floor or its pivot's friction); the lid likewise (by the
+  // box or its hinge's friction).
+  bool seesaw_held() const { return grounded != 0 || seesaw_stuck; }
+  bool lid_held() const { return lid_resting || lid_stuck; }
 };
 
 // Continuous state. Cartesian layout: x, h, x', h' of the sandbag; polar layout: r, phiS, r', phiS'

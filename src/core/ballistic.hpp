@@ -24,13 +24,14 @@ class BallisticStepper {
   static constexpr std::array<int, 4> kMoving = {slot::phi_l, slot::dphi_l, slot::balloon_h, slot::balloon_v};
 
   // Whether the piece that starts in (d, y) is such a piece: the sandbag in Cartesian free fall on
-  // a massless seesaw, no damper or drag (whose losses follow the seesaw), and the model's flow
+  // a massless seesaw, no damper, drag or friction (whose losses follow the lid and the seesaw, and
+  // vanish where a slip starts from rest: the check below cannot see them), and the model's flow
   // there the free fall's (checked, so that a contact added to the model later, say a floor the
   // sandbag rests on, is never taken for one).
   static bool applies(const Model& model, const Scenario& sc, const Discrete& d, const State& y) {
     const Machine& m = sc.machine;
     if (d.polar() || d.heavy || m.heavy_seesaw() || m.pivot_damping > 0.0 || m.lid_hinge_damping > 0.0 ||
-        m.balloon_drag_rate() > 0.0) {
+        m.balloon_drag_rate() > 0.0 || m.has_friction()) {
       return false;
     }
     State dy;

@@ -142,6 +142,23 @@ bool friction_acts(const System& sys, Set s, int f) {
   return sys.friction[f] == kFixedBound || (sys.friction[f] > 0 && has(s, sys.friction[f] - 1));
 }
 
+// Open friction contacts whose slip the closed contacts of s hold at zero already (its gradient
+// depends on theirs: sticking would make the set singular) are idle: the load is the closed
+// contacts', the friction force between them indeterminate and taken as zero. The others of
+// `open_free` are returned, to be decided by sign.
+Set without_idle(const System& sys, Set s, Set open_free, bool impact, std::array<int, kMaxContacts>& slip) {
+  for (int f = 0; f < sys.contacts; ++f) {
+    if (!has(open_free, f)) continue;
+    PerContact multiplier;
+    Coords out;
+    if (!solve_set(sys, s | (1u << f), impact, slip, multiplier, out)) {
+      open_free &= ~(1u << f);
+      slip[f] = 0;
+    }
+  }
+  return open_free;
+}
+
 // Tries each sign for the open friction contacts in `open_free` whose slip the solution decides
 // (their slip velocity is zero), in a fixed order, with the others' signs from `slip`: the first
 // combination `valid` accepts is kept. false when none is.
@@ -209,7 +226,9 @@ Impact solve_impact(const System& sys, Set touching, const Choice& choice, const
     Set open_free = 0;
     for (int f = 0; f < sys.contacts; ++f)
       if (has(touching, f) && !has(s, f) && sys.friction[f] > 0 && friction_acts(sys, s, f)) open_free |= 1u << f;
-    return over_slip_signs(sys, open_free, {}, [&](const std::array<int, kMaxContacts>& slip) {
+    std::array<int, kMaxContacts> none{};
+    open_free = without_idle(sys, s, open_free, true, none);
+    return over_slip_signs(sys, open_free, none, [&](const std::array<int, kMaxContacts>& slip) {
       Impact cand;
       if (!solve_set(sys, s, true, slip, cand.impulse, cand.velocity, after)) return false;
       for (int i = 0; i < sys.contacts; ++i) {
@@ -253,6 +272,7 @@ Motion solve_motion(const System& sys, Set candidates, const Choice& choice) {
         slip[f] = v > 0.0 ? 1 : (v < 0.0 ? -1 : 0);
       }
     }
+    open_free = without_idle(sys, s, open_free, false, slip);
     return over_slip_signs(sys, open_free, slip, [&](const std::array<int, kMaxContacts>& signs) {
       Motion cand;
       if (!solve_set(sys, s, false, signs, cand.force, cand.acceleration)) return false;

@@ -23,7 +23,7 @@
 namespace whatnext::contact {
 
 constexpr int kMaxCoords = 4;
-constexpr int kMaxContacts = 8;
+constexpr int kMaxContacts = 10;
 
 using Coords = std::array<double, kMaxCoords>;
 using PerContact = std::array<double, kMaxContacts>;

@@ -81,7 +81,8 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
   c.rate_tol = 1e-6 * v;
   c.closing_tol = 1e-12 * v;
   c.accel_tol = 1e-9 * acc;
-  c.friction_tol = 0.1 * guard_floor(kGuardBagSlip, with_contacts(d, bit(kBag) | bit(kBagSlip)));
+  // Below every friction guard's band: the sandbag's (N) and the torques' (N m).
+  c.friction_tol = 1e-11 * mass * g_ * std::fmin(1.0, len);
   (void)sys;
   return c;
 }
@@ -150,7 +151,17 @@ Discrete Model::with_contacts(Discrete d, Set s) {
   d.bag_on_floor = contact::has(s, kBagFloor);
   d.bag_stuck = contact::has(s, kBagSlip) && d.on_seesaw;
   if (!d.on_seesaw || d.bag_stuck) d.bag_slip = 0;
+  d.seesaw_stuck = contact::has(s, kPivotSlip) && d.grounded == 0;
+  if (d.seesaw_held()) d.seesaw_slip = 0;
+  d.lid_stuck = contact::has(s, kHingeSlip) && !d.lid_resting;
+  if (d.lid_held()) d.lid_slip = 0;
   return d;
+}
+
+void Model::take_slips(Discrete& d, const std::array<int, contact::kMaxContacts>& slip) const {
+  d.bag_slip = mu_ > 0.0 && d.on_seesaw && !d.bag_stuck ? slip[kBagSlip] : 0;
+  d.seesaw_slip = t_p_ > 0.0 && !d.seesaw_held() ? slip[kPivotSlip] : 0;
+  d.lid_slip = t_h_ > 0.0 && !d.lid_held() && !d.latched ? slip[kHingeSlip] : 0;
 }
 
 void Model::set_contacts(Discrete& d, Set s, const Kinematics& k) const {
@@ -200,8 +211,11 @@ Model::Decision Model::decide_touching(const Discrete& d, const Kinematics& k_ev
     // Off the end of an arm that stands on the floor: the sandbag is on the floor at once.
     if (floor_ && std::fabs(k_event.h - h_floor_) <= kContact) x.touch |= bit(kBagFloor);
   }
-  // Wherever the arm may push the sandbag, friction takes part: it sticks or slips.
-  if (friction_ && contact::has(x.touch, kBag)) x.touch |= bit(kBagSlip);
+  // Wherever the arm may push the sandbag, friction takes part: it sticks or slips; so do the
+  // pivot's and the hinge's Coulomb torques.
+  if (mu_ > 0.0 && contact::has(x.touch, kBag)) x.touch |= bit(kBagSlip);
+  if (t_p_ > 0.0) x.touch |= bit(kPivotSlip);
+  if (t_h_ > 0.0 && !d.latched) x.touch |= bit(kHingeSlip);
   // The touching contacts are at zero gap by definition: take back the event's overshoot (the
   // event-time tolerance times the closing speed, or a fixed step's interpolation error) before
   // anything is decided, so that the impact happens where the contacts touch and a contact that
@@ -282,7 +296,7 @@ void Model::apply_impact_law(Decision& x) const {
   bool ok = true;
   contact::PerContact rl = x.rate;
   for (int i = 0; i < contacts_; ++i) {
-    if (!has(x.touch, i) || i == kBagSlip) continue;  // a slip either way is no gap closing
+    if (!has(x.touch, i) || is_friction(i)) continue;  // a slip either way is no gap closing
     rl[i] = has(x.imp.impulsive, i) ? 0.0 : x.sys.rate(i, ul);
     ok = ok && rl[i] >= -x.ch.closing_tol;
   }
@@ -302,8 +316,9 @@ void Model::hold_after_impact(Decision& x) const {
   using contact::has;
   x.held = 0;
   for (int i = 0; i < contacts_; ++i) {
-    if (i == kBagSlip) {  // friction: a candidate to stick where the arm pushes and the slip is zero
-      if (has(x.held, kBag) && std::fabs(x.sys.rate(i, x.u)) <= x.ch.rate_tol) x.held |= bit(i);
+    if (is_friction(i)) {  // friction: a candidate to stick where it acts and the slip is zero
+      const bool acts = i != kBagSlip || has(x.held, kBag);
+      if (has(x.touch, i) && acts && std::fabs(x.sys.rate(i, x.u)) <= x.ch.rate_tol) x.held |= bit(i);
       continue;
     }
     // The lid's gap is an angle: its rate compared as the speed of the lid's far edge.
@@ -324,7 +339,7 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
 
   // Released contacts: their gaps start at zero and open, by their rate or their acceleration.
   for (int i = 0; i < contacts_; ++i) {
-    if (i == kBagSlip) {
+    if (is_friction(i)) {
       // Friction's guard is minus the slip's speed: it starts at zero where the slip starts from
       // rest, and falls as fast as the slip picks up.
       const double a = std::fabs(x.mot.gap_acceleration[i]);
@@ -356,17 +371,16 @@ void Model::enter_contacts(HybridState& hs, const Decision& x) const {
   Discrete& d = hs.d;
   d.armed = {};
   set_contacts(d, x.s2, x.k2);
-  if (d.on_seesaw && !d.bag_stuck) d.bag_slip = x.mot.slip[kBagSlip];
+  take_slips(d, x.mot.slip);
   for (int i = 0; i < contacts_; ++i) {
     const Guard gi = guard_of(i);
     if (has(x.touch, i) && !has(x.s2, i)) {
       if (i == kBagSlip && !has(x.s2, kBag)) continue;  // no friction off the arm
       d.armed[gi] = x.released[i];
-    } else if (i == kBagSlip) {
+    } else if (is_friction(i)) {
       // Sticking with the friction force at its bound already: it can only slip.
-      if (!has(x.s2, i) || has(x.s0, i) ||
-          std::fabs(x.mot.force[i]) < mu_ * x.mot.force[kBag] - x.ch.force_tol)
-        continue;
+      const double bound = i == kBagSlip ? mu_ * x.mot.force[kBag] : (i == kPivotSlip ? t_p_ : t_h_);
+      if (!has(x.s2, i) || has(x.s0, i) || std::fabs(x.mot.force[i]) < bound - x.ch.force_tol) continue;
       d.armed[gi] = {1, kUnknownLead};
     } else if (has(x.s2, i) && !has(x.s0, i) && x.mot.force[i] <= x.ch.force_tol) {
       d.armed[gi] = {1, kUnknownLead};  // closed with a force still zero: it can only load up
@@ -464,7 +478,8 @@ void Model::report_changes(HybridState& hs, const Decision& x, Mode before, std:
   };
   // Friction's stick or slip is reported as the motion goes on (a slip stopped by the stop's
   // impact is no sticking).
-  step_to(x.held & ~bit(kBagSlip), false);
+  const Set frictions = bit(kBagSlip) | bit(kPivotSlip) | bit(kHingeSlip);
+  step_to((x.held & ~frictions) | (x.s0 & frictions), false);
   step_to(x.s2, trigger_changed && x.trend == Trend::closing);
 }
 

@@ -62,6 +62,17 @@ void Model::friction_contacts(const Discrete& d, contact::System& s, const Kinem
   s.friction[kBagSlip] = kBag + 1;
   s.bound[kBagSlip] = mu_;
   s.slip[kBagSlip] = d.on_seesaw && !d.bag_stuck ? d.bag_slip : 0;
+  // The seesaw's and the lid's turning, bounded by the pivot's and the hinge's Coulomb torques.
+  s.normal[kPivotSlip] = {0.0, 0.0, 1.0, 0.0};
+  s.curvature[kPivotSlip] = 0.0;
+  s.friction[kPivotSlip] = contact::kFixedBound;
+  s.bound[kPivotSlip] = t_p_;
+  s.slip[kPivotSlip] = d.seesaw_stuck ? 0 : d.seesaw_slip;
+  s.normal[kHingeSlip] = {0.0, 0.0, 0.0, 1.0};
+  s.curvature[kHingeSlip] = 0.0;
+  s.friction[kHingeSlip] = contact::kFixedBound;
+  s.bound[kHingeSlip] = t_h_;
+  s.slip[kHingeSlip] = d.lid_stuck ? 0 : d.lid_slip;
 }
 
 void Model::built_contacts(contact::System& s, const Kinematics& k) const {
@@ -87,7 +98,8 @@ contact::Set Model::active_set(const Discrete& d) {
   return (d.on_seesaw ? bit(kBag) : 0u) | (d.taut ? bit(kRope) : 0u) | (d.lid_resting ? bit(kLid) : 0u) |
          (d.at_stop ? bit(kStop) : 0u) | (d.grounded > 0 ? bit(kFloorLeft) : 0u) |
          (d.grounded < 0 ? bit(kFloorRight) : 0u) | (d.bag_on_floor ? bit(kBagFloor) : 0u) |
-         (d.bag_stuck ? bit(kBagSlip) : 0u);
+         (d.bag_stuck ? bit(kBagSlip) : 0u) | (d.seesaw_stuck ? bit(kPivotSlip) : 0u) |
+         (d.lid_stuck ? bit(kHingeSlip) : 0u);
 }
 
 contact::Coords Model::accelerations(const Discrete& d, const Kinematics& k) const {

@@ -11,40 +11,44 @@ using namespace model_detail;
 
 // --- flows -------------------------------------------------------------------------------------
 
-double Model::lid_free_acceleration(double phi_l, double dphi_l) const {
-  return (-m_l_ * g_ * r_l_ * std::cos(phi_l) - c_l_ * dphi_l) / i_l_;
+double Model::lid_free_acceleration(double phi_l, double dphi_l, double q_l) const {
+  return (-m_l_ * g_ * r_l_ * std::cos(phi_l) - c_l_ * dphi_l + q_l) / i_l_;
 }
 
 namespace {
 template <class Memo>
-bool recall(const Memo& m, int flags, double a, double b, double c, double d) {
-  return m.valid && m.flags == flags && m.args[0] == a && m.args[1] == b && m.args[2] == c && m.args[3] == d;
+bool recall(const Memo& m, int flags, double a, double b, double c, double d, double e, double f) {
+  return m.valid && m.flags == flags && m.args[0] == a && m.args[1] == b && m.args[2] == c && m.args[3] == d &&
+         m.args[4] == e && m.args[5] == f;
 }
 template <class Memo, class Value>
-const Value& remember(Memo& m, int flags, double a, double b, double c, double d, const Value& v) {
+const Value& remember(Memo& m, int flags, double a, double b, double c, double d, double e, double f,
+                      const Value& v) {
   m.valid = true, m.flags = flags;
-  m.args[0] = a, m.args[1] = b, m.args[2] = c, m.args[3] = d;
+  m.args[0] = a, m.args[1] = b, m.args[2] = c, m.args[3] = d, m.args[4] = e, m.args[5] = f;
   m.value = v;
   return m.value;
 }
 }  // namespace
 
-Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const {
+Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s, double q_s,
+                          double q_l) const {
   const int flags = (on ? 1 : 0) | (taut ? 2 : 0);
-  if (recall(swing_memo_, flags, r, phi_s, dr, dphi_s)) return swing_memo_.value;
-  return remember(swing_memo_, flags, r, phi_s, dr, dphi_s, compute_swing(on, taut, r, phi_s, dr, dphi_s));
+  if (recall(swing_memo_, flags, r, phi_s, dr, dphi_s, q_s, q_l)) return swing_memo_.value;
+  return remember(swing_memo_, flags, r, phi_s, dr, dphi_s, q_s, q_l,
+                  compute_swing(on, taut, r, phi_s, dr, dphi_s, q_s, q_l));
 }
 
-Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l,
-                                    int side) const {
+Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side,
+                                    double q_s, double q_l) const {
   const int flags = (on ? 1 : 0) | (side > 0 ? 2 : 0);
-  if (recall(lid_swing_memo_, flags, r, phi_l, dr, dphi_l)) return lid_swing_memo_.value;
-  return remember(lid_swing_memo_, flags, r, phi_l, dr, dphi_l,
-                  compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side));
+  if (recall(lid_swing_memo_, flags, r, phi_l, dr, dphi_l, q_s, q_l)) return lid_swing_memo_.value;
+  return remember(lid_swing_memo_, flags, r, phi_l, dr, dphi_l, q_s, q_l,
+                  compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side, q_s, q_l));
 }
 
-Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, double dr,
-                                  double dphi_s) const {
+Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s,
+                                  double q_s, double q_l) const {
   // J phiS'' = Q with J = I_S + [on] m_S r^2 + [taut] I_L k^2. With I_S = 0, no seesaw weight and no
   // damping (docs/model.md §1) the extra terms are exact zeros and this is eqs. (3) and (4) of the paper.
   // This is the flow's hot path: one sincos of phiS serves the weights and the whole linkage.
@@ -55,7 +59,7 @@ Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, do
   } else {
     p.lk.cos_s = cs, p.lk.sin_s = ss;
   }
-  double num = -w_s_ * g_ * cs - c_p_ * dphi_s;
+  double num = -w_s_ * g_ * cs - c_p_ * dphi_s + q_s;
   double den = i_s_;
   if (on) {
     p.ddr = along_arm_acceleration(r, ss, dphi_s);
@@ -64,7 +68,7 @@ Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, do
   }
   if (taut) {
     const double k = p.lk.transfer.k;
-    num -= (m_l_ * g_ * r_l_ * p.lk.cos_l + i_l_ * p.lk.transfer.dk * dphi_s * dphi_s) * k +
+    num -= (m_l_ * g_ * r_l_ * p.lk.cos_l + i_l_ * p.lk.transfer.dk * dphi_s * dphi_s - q_l) * k +
            c_l_ * k * k * dphi_s;
     den += i_l_ * k * k;
   }
@@ -73,7 +77,7 @@ Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, do
 }
 
 Model::LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l,
-                                            int side) const {
+                                            int side, double q_s_coulomb, double q_l_coulomb) const {
   // Along the closure phiS = S(phiL): multiply the seesaw's equation by S' and add the lid's, and
   // the rope's force drops out (its gradient is normal to the closure). With phiS' = S' phiL' and
   // phiS'' = S' phiL'' + S'' phiL'^2:
@@ -84,12 +88,12 @@ Model::LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, dou
   const double ds = p.lk.ds, dphi_s = ds * dphi_l;
   const double cs = p.lk.cos_s;
   const double carried = i_s_ + (on ? m_s_ * r * r : 0.0);
-  double q_s = -w_s_ * g_ * cs - c_p_ * dphi_s;
+  double q_s = -w_s_ * g_ * cs - c_p_ * dphi_s + q_s_coulomb;
   if (on) {
     q_s += m_s_ * g_ * r * cs;
     p.ddr = along_arm_acceleration(r, p.lk.sin_s, dphi_s);
   }
-  const double q_l = -m_l_ * g_ * r_l_ * p.lk.cos_l - c_l_ * dphi_l;
+  const double q_l = -m_l_ * g_ * r_l_ * p.lk.cos_l - c_l_ * dphi_l + q_l_coulomb;
   const double num = ds * q_s + q_l - carried * ds * p.lk.dds * dphi_l * dphi_l -
                      (on ? 2.0 * m_s_ * r * dr * ds * ds * dphi_l : 0.0);
   p.ddphi_l = num / (carried * ds * ds + i_l_);
@@ -102,14 +106,15 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     dy[slot::r] = y[slot::dr];
     dy[slot::phi_s] = y[slot::dphi_s];
     const double r = y[slot::r], dr = y[slot::dr];
-    if ((d.taut && d.lid_resting) || d.grounded != 0) {
+    const double q_s = pivot_coulomb(d), q_l = hinge_coulomb(d);
+    if ((d.taut && d.lid_held()) || d.seesaw_held()) {
       // M5 (the seesaw held by the rope) or on the floor: the sandbag slides on the fixed arm.
       const double cs = std::cos(y[slot::phi_s]), sn = std::sin(y[slot::phi_s]);
       dy[slot::dr] = along_arm_acceleration(r, sn, 0.0);
       if (d.bag_slip != 0) dy[slot::dr] += bag_friction(d.bag_slip, r, dr, cs, 0.0, 0.0);
     } else if (d.lid_chart && d.taut) {  // M4 near the lid's dead centre: the lid's angle integrated
       const double dphi_l = y[slot::dphi_s];
-      const LidSwing p = swing_by_lid(true, r, y[slot::phi_s], dr, dphi_l, d.side);
+      const LidSwing p = swing_by_lid(true, r, y[slot::phi_s], dr, dphi_l, d.side, q_s, q_l);
       dy[slot::dr] = p.ddr;
       dy[slot::dphi_s] = p.ddphi_l;
       if (d.bag_slip != 0) {  // phiS' = S' phiL', phiS'' = S' phiL'' + S'' phiL'^2
@@ -117,15 +122,15 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
                                      p.lk.ds * p.ddphi_l + p.lk.dds * dphi_l * dphi_l);
       }
     } else {  // M4, or a heavy seesaw carrying the sandbag
-      const Swing p = swing(true, d.taut, r, y[slot::phi_s], dr, y[slot::dphi_s]);
+      const Swing p = swing(true, d.taut, r, y[slot::phi_s], dr, y[slot::dphi_s], q_s, q_l);
       dy[slot::dr] = p.ddr;
       dy[slot::dphi_s] = p.ddphi_s;
       if (d.bag_slip != 0) dy[slot::dr] += bag_friction(d.bag_slip, r, dr, p.lk.cos_s, y[slot::dphi_s], p.ddphi_s);
     }
     if (d.at_stop || d.bag_stuck) dy[slot::dr] = 0.0;  // held at the arm's end, or by friction
-    if (!d.taut && !d.lid_resting && !d.latched) {
+    if (!d.taut && !d.lid_held() && !d.latched) {
       dy[slot::phi_l] = y[slot::dphi_l];
-      dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l]);
+      dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l], q_l);
     }
   } else {
     // Sandbag in free fall. On the seesaw with the rope slack (M3) this is the paper's polar free
@@ -134,17 +139,18 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     dy[slot::h] = y[slot::vh];
     dy[slot::vh] = d.bag_on_floor ? 0.0 : -g_;
     // The lid follows a heavy seesaw on the rope, or hangs from one standing on the floor.
-    const bool lid_on_rope = (d.heavy || d.grounded != 0) && d.taut;
-    if (!d.lid_resting && !d.latched && !lid_on_rope) {
+    const bool lid_on_rope = (d.heavy || d.seesaw_held()) && d.taut;
+    const double q_s = pivot_coulomb(d), q_l = hinge_coulomb(d);
+    if (!d.lid_held() && !d.latched && !lid_on_rope) {
       dy[slot::phi_l] = y[slot::dphi_l];
-      dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l]);
+      dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l], q_l);
     }
-    if (d.heavy && !(d.taut && d.lid_resting) && d.grounded == 0) {  // the unloaded heavy seesaw swings
+    if (d.heavy && !(d.taut && d.lid_held()) && !d.seesaw_held()) {  // the unloaded heavy seesaw swings
       dy[slot::seesaw_phi] = y[slot::seesaw_dphi];
       dy[slot::seesaw_dphi] =
           d.lid_chart && d.taut
-              ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side).ddphi_l
-              : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi]).ddphi_s;
+              ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side, q_s, q_l).ddphi_l
+              : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], q_s, q_l).ddphi_s;
     }
   }
   if (small_) {
@@ -173,10 +179,13 @@ void Model::dissipation(const Discrete& d, const Kinematics& k, State& dy) const
   dy[slot::lost_hinge] = c_l_ * k.dphi_l * k.dphi_l;
   const double v = small_ ? std::hypot(k.balloon_vx, k.balloon_v) : std::fabs(k.balloon_v);
   dy[slot::lost_drag] = m_b_ * drag_ * v * v * v;
-  // Coulomb friction against the sandbag's slip: mu times the arm's push times the slip's speed.
-  if (d.polar() && d.bag_slip != 0) {
-    dy[slot::lost_friction] = m_s_ * bag_friction(d.bag_slip, k.r, k.dr, k.cos_s, k.dphi_s, k.ddphi_s) * -k.dr;
-  }
+  // Coulomb friction against the slips: mu times the arm's push times the sandbag's slip, the
+  // pivot's and the hinge's torques times their rates.
+  double heat = 0.0;
+  if (d.polar() && d.bag_slip != 0) heat += m_s_ * bag_friction(d.bag_slip, k.r, k.dr, k.cos_s, k.dphi_s, k.ddphi_s) * -k.dr;
+  if (d.seesaw_slip != 0) heat += -pivot_coulomb(d) * k.dphi_s;
+  if (d.lid_slip != 0) heat += -hinge_coulomb(d) * k.dphi_l;
+  dy[slot::lost_friction] = heat;
 }
 
 }  // namespace whatnext

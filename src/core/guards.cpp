@@ -42,11 +42,13 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   // the sign of k and the rope's the tension.
   // The stop and the floor carry forces on a massless seesaw as well (a pendulum's rod, a seesaw
   // standing on its end).
-  const bool held = d.at_stop || d.grounded != 0;
+  // So do the pivot's and the hinge's friction holding the seesaw or the lid.
+  const bool held = d.at_stop || d.grounded != 0 || d.seesaw_stuck || d.lid_stuck;
   const bool loaded = heavy_ || (d.on_seesaw && d.taut) || held;
   const bool forces = loaded && (d.on_seesaw || d.taut || held) &&
                       (only < 0 || only == kGuardBag || only == kGuardRope || only == kGuardLid ||
-                       only == kGuardStop || only == kGuardFloor || only == kGuardBagSlip);
+                       only == kGuardStop || only == kGuardFloor || only == kGuardBagSlip ||
+                       only == kGuardPivotSlip || only == kGuardHingeSlip);
   const bool open = !(d.on_seesaw && d.taut && d.lid_resting);
   contact::System sys;
   if (forces || (rates && open)) sys = contact_system(d, k);
@@ -69,8 +71,12 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
       if (d.grounded != 0) g[kGuardFloor] = -f[d.grounded > 0 ? kFloorLeft : kFloorRight];
       // Sticking: how far the friction force it takes exceeds mu times the arm's push.
       if (d.bag_stuck) g[kGuardBagSlip] = std::fabs(f[kBagSlip]) - mu_ * f[kBag];
+      if (d.seesaw_stuck) g[kGuardPivotSlip] = std::fabs(f[kPivotSlip]) - t_p_;
+      if (d.lid_stuck) g[kGuardHingeSlip] = std::fabs(f[kHingeSlip]) - t_h_;
     }
   }
+  if (d.seesaw_slip != 0) g[kGuardPivotSlip] = -d.seesaw_slip * k.dphi_s;
+  if (d.lid_slip != 0) g[kGuardHingeSlip] = -d.lid_slip * k.dphi_l;
   // Slipping (only the polar layouts have an arm that pushes): minus the slip's speed, zero where
   // it stops.
   if (friction_ && d.polar() && !d.bag_stuck && !d.at_stop && d.bag_slip != 0) g[kGuardBagSlip] = -d.bag_slip * k.dr;
@@ -83,7 +89,7 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
     if (only < 0 || only == kGuardRopeLocked) g[kGuardRopeLocked] = rope_.lid_side_of_rope(u_s, u_l);
     // Integrate the angle that moves slower: switch charts at |k| = 2 (seesaw) or 1/2 (lid).
     g[kGuardChart] = d.lid_chart ? std::fabs(1.0 / k.transfer.k) - 2.0 : std::fabs(k.transfer.k) - 2.0;
-  } else if (d.taut && !d.lid_resting && !d.latched && d.grounded == 0) {
+  } else if (d.taut && !d.lid_held() && !d.latched && !d.seesaw_held()) {
     // The massless seesaw following the lid: R on the line from the pivot to E, where the seesaw
     // would have to turn infinitely fast.
     g[kGuardRopeLocked] = std::fabs(rope_.cos_rho(k.phi_l)) - (1.0 - 1e-9);
@@ -137,6 +143,8 @@ double Model::guard_floor(Guard g, const Discrete& d) const {
     case kGuardFloor: return d.grounded != 0 ? 1e-10 * weight : 1e-12 * len;
     case kGuardBagFloor: return 1e-12 * len;
     case kGuardBagSlip: return d.bag_stuck ? 1e-10 * weight : 1e-12 * len;
+    case kGuardPivotSlip: return d.seesaw_stuck ? 1e-10 * weight * len : 1e-12;
+    case kGuardHingeSlip: return d.lid_stuck ? 1e-10 * weight * len : 1e-12;
     case kGuardBalloon: return d.balloon_stuck ? 1e-10 * g_ : 1e-12 * len;
     case kGuardBalloonCorner:
     case kGuardBalloonEscape: return 1e-12 * len;

@@ -50,7 +50,8 @@ HybridState Model::initial(std::vector<Event>& out) const {
     touch |= touching_built(dt, k);
     k = touch_exactly(dt, touch, k);
   }
-  if (friction_ && contact::has(touch, kBag)) touch |= bit(kBagSlip);  // it sticks, or slips
+  if (mu_ > 0.0 && contact::has(touch, kBag)) touch |= bit(kBagSlip);  // it sticks, or slips
+  if (t_p_ > 0.0) touch |= bit(kPivotSlip);  // a seesaw at rest on its pivot, unless its torque wins
   // Everything starts at rest, so only forces decide; what touches is kept where they allow it.
   const Discrete dt = with_contacts(d, touch);
   const contact::System sys = contact_system(dt, k);
@@ -58,7 +59,7 @@ HybridState Model::initial(std::vector<Event>& out) const {
   const contact::Motion mot = contact::solve_motion(sys, touch, ch);
   if (!mot.ok) throw SimulationError("no consistent set of contacts at the start (degenerate contact)");
   set_contacts(d, mot.active, k);
-  if (d.on_seesaw && !d.bag_stuck) d.bag_slip = mot.slip[kBagSlip];
+  take_slips(d, mot.slip);
   hs.y.fill(0.0);
   place(hs, k);
   hs.y[slot::balloon_h] = limit_.height(phi_l0_);
@@ -74,8 +75,8 @@ HybridState Model::initial(std::vector<Event>& out) const {
   for (int i = 0; i < contacts_; ++i) {
     if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
     const Guard gi = guard_of(i);
-    if (i == kBagSlip) {  // slipping from rest: minus the slip's speed falls as it picks up
-      if (!d.on_seesaw) continue;
+    if (is_friction(i)) {  // slipping from rest: minus the slip's speed falls as it picks up
+      if (i == kBagSlip && !d.on_seesaw) continue;
       const double a = std::fabs(mot.gap_acceleration[i]);
       d.armed[gi] = a > ch.accel_tol ? GuardStart{1, -a} : GuardStart{2, kUnknownLead};
     } else {
@@ -107,7 +108,7 @@ void Model::place(HybridState& hs, const Kinematics& k) const {
   const bool by_lid = hs.d.lid_chart && on_closure(hs.d);
   const double angle = by_lid ? k.phi_l : k.phi_s, rate = by_lid ? k.dphi_l : k.dphi_s;
   // A closed stop or floor holds its coordinate exactly (its rate is zero within rounding).
-  const double held_rate = hs.d.grounded != 0 ? 0.0 : rate;
+  const double held_rate = hs.d.seesaw_held() ? 0.0 : rate;
   if (hs.d.polar()) {
     hs.y[slot::r] = hs.d.at_stop ? arm_ : k.r;
     hs.y[slot::phi_s] = angle;
@@ -120,7 +121,7 @@ void Model::place(HybridState& hs, const Kinematics& k) const {
     hs.y[slot::vh] = k.vh;
   }
   hs.y[slot::phi_l] = k.phi_l;
-  hs.y[slot::dphi_l] = hs.d.grounded != 0 && hs.d.taut ? 0.0 : k.dphi_l;
+  hs.y[slot::dphi_l] = (hs.d.seesaw_held() && hs.d.taut) || hs.d.lid_stuck ? 0.0 : k.dphi_l;
   hs.y[slot::seesaw_phi] = angle;
   hs.y[slot::seesaw_dphi] = held_rate;
   if (hs.d.bag_on_floor) hs.y[slot::vh] = 0.0;
@@ -271,6 +272,10 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
       break;
     case kGuardBagFloor: resolve(hs, k0, kBagFloor, Trend::closing, out); break;
     case kGuardBagSlip: resolve(hs, k0, kBagSlip, hs.d.bag_stuck ? Trend::releasing : Trend::closing, out); break;
+    case kGuardPivotSlip:
+      resolve(hs, k0, kPivotSlip, hs.d.seesaw_stuck ? Trend::releasing : Trend::closing, out);
+      break;
+    case kGuardHingeSlip: resolve(hs, k0, kHingeSlip, hs.d.lid_stuck ? Trend::releasing : Trend::closing, out); break;
     case kGuardArmEnd:  // off the end of a finite arm, velocity kept; it never lands again
       resolve(hs, k0, kBag, Trend::forced_off, out);
       break;

@@ -14,9 +14,9 @@ using namespace model_detail;
 // accelerations. What every layout shares (the trig of both angles, the balloon) comes last.
 Model::Layout Model::layout(const Discrete& d) {
   if (d.polar()) {
-    if (d.grounded != 0) return Layout::grounded_carrying;
+    if (d.seesaw_held()) return Layout::grounded_carrying;
     if (!d.taut) return Layout::carried_slack;
-    if (d.lid_resting) return Layout::held_by_rope;
+    if (d.lid_held()) return Layout::held_by_rope;
     return d.lid_chart ? Layout::on_rope_by_lid : Layout::on_rope;
   }
   if (d.on_seesaw) return Layout::falling_on_seesaw;
@@ -35,22 +35,25 @@ struct Model::KinematicsPass {
 
   // The memos serve one thread's integration; samples made on other threads compute afresh.
   Swing swing_of(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const {
-    return memo ? m.swing(on, taut, r, phi_s, dr, dphi_s) : m.compute_swing(on, taut, r, phi_s, dr, dphi_s);
+    const double q_s = m.pivot_coulomb(d), q_l = m.hinge_coulomb(d);
+    return memo ? m.swing(on, taut, r, phi_s, dr, dphi_s, q_s, q_l)
+                : m.compute_swing(on, taut, r, phi_s, dr, dphi_s, q_s, q_l);
   }
   LidSwing lid_swing_of(bool on, double r, double phi_l, double dr, double dphi_l, int side) const {
-    return memo ? m.swing_by_lid(on, r, phi_l, dr, dphi_l, side)
-                : m.compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side);
+    const double q_s = m.pivot_coulomb(d), q_l = m.hinge_coulomb(d);
+    return memo ? m.swing_by_lid(on, r, phi_l, dr, dphi_l, side, q_s, q_l)
+                : m.compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side, q_s, q_l);
   }
-  // The lid on its own: resting, latched open, or swinging freely.
+  // The lid on its own: resting, latched open, held by its hinge's friction, or swinging freely.
   void free_lid() {
     if (d.lid_resting) {
       k.phi_l = m.phi_l0_;
-    } else if (d.latched || !rates) {
+    } else if (d.latched || d.lid_stuck || !rates) {
       k.phi_l = y[slot::phi_l];
     } else {
       k.phi_l = y[slot::phi_l];
       k.dphi_l = y[slot::dphi_l];
-      k.ddphi_l = m.lid_free_acceleration(k.phi_l, k.dphi_l);
+      k.ddphi_l = m.lid_free_acceleration(k.phi_l, k.dphi_l, m.hinge_coulomb(d));
     }
   }
   // The lid on the rope's closure, from the seesaw's swing (the seesaw's chart).
@@ -93,7 +96,7 @@ struct Model::KinematicsPass {
       case Layout::carried_slack: carried_slack(); break;
       case Layout::grounded_carrying: on_the_floor(); break;
       case Layout::held_by_rope:
-        k.phi_l = m.phi_l0_;
+        k.phi_l = d.lid_resting ? m.phi_l0_ : y[slot::phi_l];  // on the box, or held by the hinge
         if (rates) k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
         break;
       case Layout::on_rope_by_lid: on_rope_by_lid(); break;
@@ -163,7 +166,7 @@ struct Model::KinematicsPass {
     if (rates) k.vx = y[slot::vx], k.vh = y[slot::vh];
     k.r = std::sqrt(k.x * k.x + k.h * k.h);
     if (rates) k.dr = k.r > 0.0 ? (k.x * k.vx + k.h * k.vh) / k.r : 0.0;
-    if (!((d.heavy || d.grounded != 0) && d.taut)) free_lid();
+    if (!((d.heavy || d.seesaw_held()) && d.taut)) free_lid();
     switch (layout) {
       case Layout::falling_on_seesaw: falling_on_seesaw(); break;
       case Layout::unloaded_heavy: unloaded_heavy(); break;
@@ -186,10 +189,10 @@ struct Model::KinematicsPass {
   void unloaded_heavy() {
     k.phi_s = y[slot::seesaw_phi];
     if (rates) k.dphi_s = y[slot::seesaw_dphi];
-    if (d.grounded != 0) {
+    if (d.seesaw_held()) {
       if (d.taut) on_the_floor();
-    } else if (d.taut && d.lid_resting) {
-      k.phi_l = m.phi_l0_;
+    } else if (d.taut && d.lid_held()) {
+      k.phi_l = d.lid_resting ? m.phi_l0_ : y[slot::phi_l];
       if (rates) k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
     } else if (d.lid_chart && d.taut) {
       const double phi_l = y[slot::seesaw_phi];

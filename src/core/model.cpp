@@ -13,7 +13,8 @@ bool fires_at_once(Guard g) {
   // A contact guard at zero is a contact that touches (decided where the piece starts); the balloon
   // is decided by the model (Model::jump) since it is both kinds.
   return !(g == kGuardBag || g == kGuardRope || g == kGuardLid || g == kGuardStop || g == kGuardFloor ||
-           g == kGuardBagFloor || g == kGuardBagSlip || g == kGuardBalloon || g == kGuardBalloonCorner);
+           g == kGuardBagFloor || g == kGuardBagSlip || g == kGuardPivotSlip || g == kGuardHingeSlip ||
+           g == kGuardBalloon || g == kGuardBalloonCorner);
 }
 
 Model::Model(const Scenario& scenario)
@@ -54,9 +55,11 @@ Model::Model(const Scenario& scenario)
       grounded_right_(std::asin(h_floor_ / scenario.machine.seesaw_right_arm)) {
   const Machine& m = scenario.machine;
   e_ = {m.restitution.sandbag, m.restitution.rope, m.restitution.lid,        m.restitution.stop,
-        m.floor_restitution,   m.floor_restitution, m.floor_restitution, 0.0};
+        m.floor_restitution,   m.floor_restitution, m.floor_restitution, 0.0, 0.0, 0.0};
   built_ = m.built_contacts();
   mu_ = m.friction.sandbag;
+  t_p_ = m.friction.pivot;
+  t_h_ = m.friction.lid_hinge;
   friction_ = m.has_friction();
   for (double e : e_) restitution_ = restitution_ || e > 0.0;
 }

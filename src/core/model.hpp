@@ -33,6 +33,8 @@ enum Guard : int {
   // Coulomb friction on the arm: minus the slip's speed while it slips (it fires when the slip
   // stops), or the friction force's excess over mu times the arm's push while it sticks.
   kGuardBagSlip,
+  kGuardPivotSlip,  // the same for the seesaw's pivot (a Coulomb torque) ...
+  kGuardHingeSlip,  // ... and the lid's hinge
   kGuardArmEnd,   // sandbag on a finite arm reaches its end
   kGuardBalloon,  // free balloon reaches the lid, or the lid pulls away faster than it can follow
   // A balloon smaller than the box (docs/extensions.md): sliding along the lid it reaches the far
@@ -57,7 +59,8 @@ bool fires_at_once(Guard g);
 // The contacts of the contact problem, and its coordinates (x, h of the sandbag, phiS, phiL).
 // The built machine adds the end stop, the floor under either end of the seesaw and under the
 // sandbag (contacts 3-6, present only when the machine has them); Coulomb friction the sandbag's
-// slip along the arm (contact 7, the tangent of contact 0, closed while it sticks).
+// slip along the arm (contact 7, the tangent of contact 0, closed while it sticks) and the
+// seesaw's and the lid's turning on their pivot and hinge (8 and 9, bounded by Coulomb torques).
 enum ContactIndex : int {
   kBag = 0,
   kRope = 1,
@@ -67,8 +70,11 @@ enum ContactIndex : int {
   kFloorRight = 5,
   kBagFloor = 6,
   kBagSlip = 7,
-  kContactCount = 8
+  kPivotSlip = 8,
+  kHingeSlip = 9,
+  kContactCount = 10
 };
+constexpr bool is_friction(int contact) { return contact >= kBagSlip; }
 static_assert(kContactCount <= contact::kMaxContacts, "the contact problem holds every contact");
 
 // Full kinematics at one instant, whatever the layout of the continuous state.
@@ -169,15 +175,20 @@ class Model {
     double ddr, ddphi_s;
     RopeGeometry::Linkage lk;  // the seesaw's cos and sin always; the rest while taut
   };
-  Swing swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const;
+  // q_s, q_l: the slipping pivot's and hinge's Coulomb torques (0 without friction).
+  Swing swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s, double q_s = 0.0,
+              double q_l = 0.0) const;
   // The same motion on the rope's closure in the lid chart: phiL integrated, phiS = S(phiL).
   struct LidSwing {
     double ddr, ddphi_l;
     RopeGeometry::Linkage lk;
   };
-  LidSwing swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side) const;
-  Swing compute_swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const;
-  LidSwing compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side) const;
+  LidSwing swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side, double q_s = 0.0,
+                        double q_l = 0.0) const;
+  Swing compute_swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s, double q_s = 0.0,
+                      double q_l = 0.0) const;
+  LidSwing compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side,
+                                double q_s = 0.0, double q_l = 0.0) const;
   // The flow's last stage (FSAL) and the guards at the step's end ask for the swing of the same
   // state: the last one computed is kept and handed out again for identical arguments. A Model
   // belongs to one simulate() call, hence to one thread (kinematics(memo = false) leaves them be).
@@ -185,7 +196,7 @@ class Model {
   struct Memo {
     bool valid = false;
     int flags = 0;
-    double args[4] = {0, 0, 0, 0};
+    double args[6] = {0, 0, 0, 0, 0, 0};
     Result value{};
   };
   mutable Memo<Swing> swing_memo_;
@@ -194,9 +205,9 @@ class Model {
   struct KinematicsPass;  // kinematics.cpp: one evaluation, stage by stage
   // The lid swings on the straight rope, driven through it by something with inertia.
   static bool on_closure(const Discrete& d) {
-    return d.taut && !d.lid_resting && !d.latched && (d.on_seesaw || d.heavy) && d.grounded == 0;
+    return d.taut && !d.lid_held() && !d.latched && (d.on_seesaw || d.heavy) && !d.seesaw_held();
   }
-  double lid_free_acceleration(double phi_l, double dphi_l) const;
+  double lid_free_acceleration(double phi_l, double dphi_l, double q_l = 0.0) const;
   // r'' of the sandbag on the arm (eq. 5): gravity along the arm and the centrifugal term.
   double along_arm_acceleration(double r, double sin_s, double dphi_s) const {
     return g_ * sin_s + r * dphi_s * dphi_s;
@@ -267,7 +278,7 @@ class Model {
     Kinematics k2;                    // the state the motion goes on from
     bool impulsive(int i) const {  // friction's impulse may have either sign
       return contact::has(imp.impulsive, i) &&
-             (i == kBagSlip ? std::fabs(imp.impulse[i]) : imp.impulse[i]) > ch.impulse_tol;
+             (is_friction(i) ? std::fabs(imp.impulse[i]) : imp.impulse[i]) > ch.impulse_tol;
     }
   };
   Decision decide_touching(const Discrete& d, const Kinematics& k_event, int trigger, Trend trend) const;
@@ -293,6 +304,8 @@ class Model {
   bool law_velocity(const Kinematics& k, bool bag, contact::Coords& u,
                     std::string_view* note = nullptr) const;
   void set_contacts(Discrete& d, contact::Set s, const Kinematics& k) const;
+  // The slips' signs the contact problem decided, where friction acts on something that moves.
+  void take_slips(Discrete& d, const std::array<int, contact::kMaxContacts>& slip) const;
   static contact::Set active_set(const Discrete& d);
   // Writes the continuous state for hs.d's layout from full kinematics.
   void place(HybridState& hs, const Kinematics& k) const;
@@ -333,7 +346,11 @@ class Model {
   std::array<double, kContactCount> e_{};  // Newton's restitution per contact (0: inelastic)
   bool built_;                             // stop or floor (contacts 3-6)
   double mu_;                              // Coulomb friction on the arm (contact 7); 0: none
+  double t_p_, t_h_;                       // Coulomb torques at the pivot and the hinge (8, 9)
   bool friction_;
+  // The Coulomb torques of a slipping pivot and hinge, against their slip (docs/extensions.md).
+  double pivot_coulomb(const Discrete& d) const { return -t_p_ * d.seesaw_slip; }
+  double hinge_coulomb(const Discrete& d) const { return -t_h_ * d.lid_slip; }
   bool restitution_ = false;               // some contact has one
   double grounded_angle(int side) const { return side > 0 ? grounded_left_ : grounded_right_; }
   void ground(Kinematics& k, int side, bool carries) const;

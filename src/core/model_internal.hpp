@@ -27,6 +27,8 @@ inline Guard guard_of(int contact) {
     case kStop: return kGuardStop;
     case kBagFloor: return kGuardBagFloor;
     case kBagSlip: return kGuardBagSlip;
+    case kPivotSlip: return kGuardPivotSlip;
+    case kHingeSlip: return kGuardHingeSlip;
     default: return kGuardFloor;  // either end of the seesaw
   }
 }
@@ -39,6 +41,8 @@ inline EventType change_event(int contact, bool closes) {
     case kStop: return closes ? EventType::sandbag_at_stop : EventType::sandbag_leaves_stop;
     case kBagFloor: return closes ? EventType::sandbag_on_floor : EventType::sandbag_bounces;
     case kBagSlip: return closes ? EventType::sandbag_sticks : EventType::sandbag_slips;
+    case kPivotSlip: return closes ? EventType::seesaw_sticks : EventType::seesaw_slips;
+    case kHingeSlip: return closes ? EventType::lid_sticks : EventType::lid_slips;
     default: return closes ? EventType::seesaw_on_floor : EventType::seesaw_lifts;
   }
 }

@@ -44,7 +44,7 @@ constexpr std::array<std::pair<BalloonModel, std::string_view>, 3> kBalloonModel
     {BalloonModel::lagrangian, "lagrangian"},
     {BalloonModel::added_mass, "added-mass"},
 }};
-constexpr std::array<std::pair<EventType, std::string_view>, 26> kEvents{{
+constexpr std::array<std::pair<EventType, std::string_view>, 30> kEvents{{
     {EventType::sandbag_lands, "sandbag_lands"},
     {EventType::rope_taut, "rope_taut"},
     {EventType::rope_slack, "rope_slack"},
@@ -59,6 +59,10 @@ constexpr std::array<std::pair<EventType, std::string_view>, 26> kEvents{{
     {EventType::sandbag_leaves_stop, "sandbag_leaves_stop"},
     {EventType::sandbag_sticks, "sandbag_sticks"},
     {EventType::sandbag_slips, "sandbag_slips"},
+    {EventType::seesaw_sticks, "seesaw_sticks"},
+    {EventType::seesaw_slips, "seesaw_slips"},
+    {EventType::lid_sticks, "lid_sticks"},
+    {EventType::lid_slips, "lid_slips"},
     {EventType::seesaw_on_floor, "seesaw_on_floor"},
     {EventType::seesaw_lifts, "seesaw_lifts"},
     {EventType::sandbag_on_floor, "sandbag_on_floor"},

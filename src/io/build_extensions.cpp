@@ -49,6 +49,8 @@ void build_built_machine(const Reader& in, Machine& m) {
   m.restitution.stop = in.in_range("restitution.stop", 0.0, true, 1.0, true);
   // Coulomb's mu: beyond 10 no real pair of surfaces (rubber on rubber is about 1).
   m.friction.sandbag = in.in_range("friction.sandbag", 0.0, true, 10.0, true);
+  m.friction.pivot = in.in_range("friction.pivot", 0.0, true, kMaxCoulombTorque, true);
+  m.friction.lid_hinge = in.in_range("friction.lid_hinge", 0.0, true, kMaxCoulombTorque, true);
   if (m.restitution.stop > 0.0 && !m.end_stop) {
     in.fail("restitution.stop", "needs seesaw.end_stop (there is no stop to bounce off)");
   }
@@ -146,6 +148,17 @@ void build_extensions(const Reader& in, Machine& m) {
     // A massless seesaw can only take the damper's torque from the sandbag pushing the arm, which
     // would have to pull whenever the seesaw turns back: no consistent motion (docs/extensions.md).
     in.fail("damping.pivot", "needs a seesaw with inertia: give seesaw.mass (and seesaw.left_arm) too");
+  }
+  if (m.friction.pivot > 0.0 && !m.heavy_seesaw()) {
+    // Likewise a Coulomb torque: a massless seesaw has nothing to hold it back with.
+    in.fail("friction.pivot", "needs a seesaw with inertia: give seesaw.mass (and seesaw.left_arm) too");
+  }
+  if (m.friction.pivot > 0.0 && m.friction.lid_hinge > 0.0) {
+    // While the rope couples them, the torque the two would share holding the seesaw and the lid
+    // still is not determined by rigid-body statics (docs/extensions.md "Friction").
+    in.fail("friction.lid_hinge",
+            "cannot go with friction.pivot: the taut rope couples the pivot and the hinge, and how two Coulomb "
+            "torques share one load is not determined; give one of them");
   }
 }
 

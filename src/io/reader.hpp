@@ -31,6 +31,7 @@ constexpr double kMinTolerance = 1e-15, kMaxTolerance = 1e-3;
 constexpr double kMaxBalloonG = 1e3;  // free balloon's acceleration [g]
 constexpr double kMaxDrag = 10.0;     // drag coefficient
 constexpr double kMaxDamping = 1e3;   // [N m s/rad]
+constexpr double kMaxCoulombTorque = 1e3;  // [N m]: a pivot that holds a tonne at a metre
 constexpr double kMaxInertia = 1e4;   // seesaw [kg m^2]
 constexpr double kMaxForce = 1e4;     // the radio's switch [N]
 

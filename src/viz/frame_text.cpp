@@ -30,6 +30,10 @@ std::string_view short_words(EventType type) {
     case EventType::sandbag_leaves_stop: return "off stop";
     case EventType::sandbag_sticks: return "sticks";
     case EventType::sandbag_slips: return "slips";
+    case EventType::seesaw_sticks: return "seesaw sticks";
+    case EventType::seesaw_slips: return "seesaw turns";
+    case EventType::lid_sticks: return "lid sticks";
+    case EventType::lid_slips: return "lid turns";
     case EventType::seesaw_on_floor: return "on floor";
     case EventType::seesaw_lifts: return "lifts";
     case EventType::sandbag_on_floor: return "bag on floor";

@@ -29,7 +29,7 @@
     'run.step': [1e-5, 1e-2, 'log'], 'run.tolerance': [1e-14, 1e-4, 'log'], 'run.vertical_margin': [0, 10],
     'run.gravity': [1, 25], 'radio.switch_force': [0, 1], 'floor.restitution': [0, 1],
     'restitution.sandbag': [0, 1], 'restitution.rope': [0, 1], 'restitution.lid': [0, 1], 'restitution.stop': [0, 1],
-    'friction.sandbag': [0, 1.5],
+    'friction.sandbag': [0, 1.5], 'friction.pivot': [0, 2], 'friction.lid_hinge': [0, 1],
   };
   // What a blank field means for the extension keys that a machine without them does not write
   // (docs/inputs.md).
@@ -38,7 +38,7 @@
     'radio.string_length': '1', 'damping.pivot': '0', 'damping.lid_hinge': '0', 'seesaw.left_arm': 'endless',
     'seesaw.mass': '0', 'seesaw.inertia': 'bar', 'seesaw.com_offset': 'bar', 'radio.switch_force': '0',
     'floor.restitution': '0', 'restitution.sandbag': '0', 'restitution.rope': '0', 'restitution.lid': '0',
-    'restitution.stop': '0', 'friction.sandbag': '0',
+    'restitution.stop': '0', 'friction.sandbag': '0', 'friction.pivot': '0', 'friction.lid_hinge': '0',
   };
   const kSections = { balloon: 'Balloon', radio: 'Radio', damping: 'Damping', seesaw: 'The seesaw: its arm, mass and end stop',
                       floor: 'The floor', restitution: 'Restitution: impacts that bounce',

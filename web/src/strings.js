@@ -254,6 +254,8 @@
     'restitution.rope': ['Stoßzahl Seil', 'Newtons Stoßzahl für den Ruck des Seils: 0 (das Seilgesetz) bis 1 (das Seil federt ebenso schnell zurück)'],
     'restitution.lid': ['Stoßzahl Deckel', 'Newtons Stoßzahl für das Landen des Deckels auf der Kiste: 0 bis 1'],
     'restitution.stop': ['Stoßzahl Anschlag', 'Newtons Stoßzahl für den Sandsack am Anschlag: 0 bis 1 (braucht seesaw.end_stop)'],
+    'friction.pivot': ['Reibung Achse', 'Coulombsches Reibmoment an der Achse der Wippe: sie dreht sich nur, solange die übrigen Momente es übersteigen, gegen es (braucht eine Wippe mit Masse)'],
+    'friction.lid_hinge': ['Reibung Scharnier', 'Coulombsches Reibmoment am Scharnier des Deckels: er dreht sich nur, solange die übrigen Momente es übersteigen, gegen es'],
     'friction.sandbag': ['Reibung Sandsack', 'Coulombs Reibungszahl μ zwischen Sandsack und Arm: er haftet, solange der Zug längs des Arms höchstens μ mal den Druck des Arms erreicht, sonst gleitet er gegen μ mal ihn; 0: er gleitet frei (wie im Aufsatz)'],
     'start.sandbag_x': ['Sandsack x', 'Anfangslage des Sandsacks, waagrecht ab der Achse (< 0)'],
     'start.sandbag_height': ['Sandsack Höhe', 'Anfangshöhe des Sandsacks über der Achse'],
@@ -465,6 +467,7 @@
     'seesaw on floor': 'Wippe auf dem Boden', 'seesaw lifts': 'Wippe hebt ab', 'sandbag on floor': 'Sandsack auf dem Boden',
     'sandbag bounces': 'Sandsack prallt ab', 'switch stays off': 'Schalter bleibt aus',
     'balloon escapes': 'Ballon entweicht', 'sandbag sticks': 'Sandsack haftet', 'sandbag slips': 'Sandsack rutscht',
+    'seesaw sticks': 'Wippe haftet', 'seesaw slips': 'Wippe dreht sich wieder', 'lid sticks': 'Deckel haftet', 'lid slips': 'Deckel dreht sich wieder',
   };
 
   const kLanguages = {
