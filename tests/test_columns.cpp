@@ -60,6 +60,26 @@ TEST(Columns, AnglesAreReportedInDegrees) {
   }
 }
 
+// The events JSON names a column's SI quantity by its bare name and keeps the unit of the others
+// (docs/inputs.md lists the keys); no two columns share a key.
+TEST(Columns, JsonKeysDropOnlyAnSiUnit) {
+  auto key = [](std::string_view name) {
+    const StateColumn* c = find_state_column(name);
+    EXPECT_NE(c, nullptr) << name;
+    return c ? std::string(json_key(*c)) : std::string();
+  };
+  EXPECT_EQ(key("x_m"), "x");
+  EXPECT_EQ(key("dr_m_per_s"), "dr");
+  EXPECT_EQ(key("balloon_h_m"), "balloon_h");
+  EXPECT_EQ(key("tension_N"), "tension");
+  EXPECT_EQ(key("energy_J"), "energy");
+  EXPECT_EQ(key("phi_s_deg"), "phi_s_deg");
+  EXPECT_EQ(key("dphi_l_deg_per_s"), "dphi_l_deg_per_s");
+  EXPECT_EQ(find_state_column("phi_s"), nullptr);
+  std::set<std::string> keys;
+  for (const StateColumn& c : state_columns()) EXPECT_TRUE(keys.insert(std::string(json_key(c))).second) << c.name;
+}
+
 TEST(Units, DegreesAndRadiansAreInverse) {
   EXPECT_DOUBLE_EQ(units::degrees(units::kPi), 180.0);
   EXPECT_DOUBLE_EQ(units::radians(180.0), units::kPi);

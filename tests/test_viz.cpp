@@ -22,6 +22,7 @@
 #include "whatnext/geometry.hpp"
 #include "whatnext/viz/animation.hpp"
 #include "whatnext/viz/plots.hpp"
+#include "viz/scene.hpp"  // internal: the scene the animation and the page draw
 
 namespace fs = std::filesystem;
 using namespace whatnext;
@@ -842,6 +843,51 @@ TEST(VizAnimation, BeforeTheLatchTheRopeIsAsLongAsItself) {
 }
 
 // Every event tick on the time bar has its name under it (drawn in the events' red).
+// The scene is one table that the animation and the page draw from: its parts must meet where the
+// machine joins them, in every recorded state of machines with and without the radio, the built
+// machine and a heavy seesaw that pulls its end off the let-go rope. The lid is 2 r_L long from the
+// hinge; the rope runs from the seesaw's end to the knot (or hangs from the knot once let go); the
+// string ends at the radio's switch, on the radio's post, and is never longer than itself; the
+// walls start at the hinge and the stand at the pivot.
+TEST(VizScene, PartsMeetWhereTheMachineJoinsThem) {
+  std::vector<Recording> runs{
+      record(example(1)), record(example(4)),
+      record(build_scenario(load_config_file(WHATNEXT_SOURCE_DIR "/examples/example1-radio.toml"))),
+      record(build_scenario(example_config("konstanz"))), heavy_radio()};
+  for (const Recording& rec : runs) {
+    const Machine& m = rec.scenario.machine;
+    const RopeGeometry geo(m);
+    const scene::StillParts still = scene::still_parts(m);
+    EXPECT_LT(norm(still.walls[0] - m.hinge), 1e-15);
+    EXPECT_LT(norm(still.stand[0]), 1e-15);
+    EXPECT_LT(norm(still.radio_post[1] - m.radio_switch), 1e-15);
+    const scene::Release release = scene::release_of(rec);
+    int hanging = 0;  // states after the rope came off the seesaw's end
+    for (const Snapshot& s : rec.states) {
+      const scene::MovingParts p = scene::moving_parts(m, s, release, 1.0, 0.08);
+      ASSERT_NEAR(norm(p.lid_end - m.hinge), 2.0 * m.lid_half_length, 1e-12);
+      const Vec2 knot = geo.lid_edge(s.phi_l), end = geo.seesaw_end(s.phi_s);
+      ASSERT_GE(p.rope.size(), 2u);
+      const bool from_seesaw = norm(p.rope.front() - end) < 1e-9 && norm(p.rope.back() - knot) < 1e-9;
+      const bool from_knot = norm(p.rope.front() - knot) < 1e-9;
+      EXPECT_TRUE(from_seesaw || from_knot || s.t >= release.latch) << "t = " << s.t;
+      hanging += s.t >= release.off;
+      ASSERT_LT(norm(p.string.back() - m.radio_switch), 1e-9);
+      double drawn = 0.0;
+      for (std::size_t i = 1; i < p.string.size(); ++i) drawn += norm(p.string[i] - p.string[i - 1]);
+      EXPECT_LE(drawn, m.string_length - m.balloon_radius + 1e-6) << "t = " << s.t;
+    }
+    // Without the radio nothing lets the rope go.
+    if (!m.radio) {
+      EXPECT_TRUE(std::isinf(release.latch) && std::isinf(release.off) && hanging == 0);
+    }
+  }
+  // The heavy seesaw pulls its end off the let-go rope after the latch, for the rest of the run.
+  const scene::Release heavy = scene::release_of(runs.back());
+  EXPECT_GT(heavy.off, heavy.latch);
+  EXPECT_LT(heavy.off, runs.back().t_end());
+}
+
 TEST(VizAnimation, TimeBarNamesItsEvents) {
   const Recording rec = record(example(4));
   const View view = make_view(rec, 480, 0);

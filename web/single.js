@@ -1,6 +1,6 @@
 // Writes the single-file page, whatnext.html, from the assembled page in DIR (node single.js DIR):
-// index.html with its style sheets, scripts and icon inlined, and the worker (whatnext.js, the
-// library with its WebAssembly, plus worker.js) as a text block the page starts as a blob worker.
+// index.html with its style sheets, scripts and icon inlined (the library, whatnext.js with its
+// WebAssembly, among them), and worker.js as a text block the page starts as a blob worker.
 // One file, nothing fetched: it works from a USB stick, file:// or any static host.
 'use strict';
 const fs = require('fs');
@@ -17,8 +17,12 @@ let html = read('index.html');
 html = html.replace(/<link rel="stylesheet" href="([^"]+)">/g, (m, name) => `<style>\n${safe(read(name), 'style')}\n</style>`);
 html = html.replace(/<link rel="icon" href="([^"]+)" type="image\/svg\+xml">/,
                     (m, name) => `<link rel="icon" href="data:image/svg+xml;base64,${Buffer.from(read(name)).toString('base64')}">`);
+// The library runs in the page (the drawing's geometry) and in the worker: one copy, which the page
+// hands to the worker (app.js's makeWorker).
+html = html.replace('<script src="whatnext.js"></script>',
+                    () => `<script id="whatnext-module">\n${safe(read('whatnext.js'), 'script')}\n</script>`);
 html = html.replace(/<script src="([^"]+)"><\/script>/g, (m, name) => `<script>\n${safe(read(name), 'script')}\n</script>`);
-const worker = `${read('whatnext.js')}\n${read('worker.js')}`;
+const worker = read('worker.js');
 // Before the page's scripts, which look for it as they start.
 html = html.replace('<body>', () => `<body>\n<script type="text/plain" id="worker-source">\n${safe(worker, 'script')}\n</script>`);
 if (/<(script|link)[^>]+(src|href)="(?!data:)/.test(html)) {

@@ -70,6 +70,21 @@ inline constexpr StateColumn kStateColumns[] = {
      [](const Snapshot& s) { return s.ledger_residual(); }},
 };
 
+// A column's key in the events JSON (an event's state and ledger): SI quantities by their bare
+// name (x, balloon_h, energy, lost_impacts), the others with their unit (phi_s_deg), as docs/inputs.md
+// lists them.
+inline constexpr std::string_view kSiSuffixes[][2] = {
+    {"m", "_m"}, {"m/s", "_m_per_s"}, {"J", "_J"}, {"N", "_N"}};
+constexpr std::string_view json_key(const StateColumn& c) {
+  for (const auto& [unit, suffix] : kSiSuffixes) {
+    if (c.unit == unit && c.name.size() > suffix.size() &&
+        c.name.substr(c.name.size() - suffix.size()) == suffix) {
+      return c.name.substr(0, c.name.size() - suffix.size());
+    }
+  }
+  return c.name;
+}
+
 struct StateColumns {
   const StateColumn* data;
   std::size_t count;
@@ -79,6 +94,13 @@ struct StateColumns {
   const StateColumn& operator[](std::size_t i) const { return data[i]; }
 };
 StateColumns state_columns();
+// The column named `name` (the CSV's name); nullptr if there is none.
+constexpr const StateColumn* find_state_column(std::string_view name) {
+  for (const StateColumn& c : kStateColumns) {
+    if (c.name == name) return &c;
+  }
+  return nullptr;
+}
 
 constexpr std::string_view kLeadingColumns[] = {"t_s", "event", "mode", "rope_taut"};
 

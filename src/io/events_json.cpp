@@ -12,43 +12,56 @@ namespace whatnext {
 using namespace io;
 
 namespace {
-// Where the energy is and where it went (docs/extensions.md "Energy ledger").
+// The columns (columns.hpp, by their CSV names) an event's state shows, and its ledger: where the
+// energy is and where it went (docs/extensions.md "Energy ledger"). Each under its json_key.
+constexpr std::string_view kStateKeys[] = {"x_m",         "h_m",
+                                           "r_m",         "dr_m_per_s",
+                                           "phi_s_deg",   "dphi_s_deg_per_s",
+                                           "phi_l_deg",   "dphi_l_deg_per_s",
+                                           "balloon_h_m", "energy_J"};
+constexpr std::string_view kLedgerKeys[] = {
+    "sandbag_kinetic_J", "sandbag_potential_J",   "seesaw_kinetic_J",     "seesaw_potential_J",
+    "lid_kinetic_J",     "lid_potential_J",       "balloon_kinetic_J",    "balloon_potential_J",
+    "lost_impacts_J",    "lost_balloon_catch_J",  "dissipated_pivot_J",   "dissipated_lid_hinge_J",
+    "dissipated_drag_J", "dissipated_friction_J", "lid_push_on_balloon_J"};
+
+template <std::size_t N>
+nlohmann::json columns_object(const Snapshot& s, const std::string_view (&names)[N]) {
+  nlohmann::json j = nlohmann::json::object();
+  for (std::string_view name : names) {
+    const StateColumn& c = *find_state_column(name);
+    j[std::string(json_key(c))] = clean(c.value(s));
+  }
+  return j;
+}
+static_assert(
+    [] {
+      for (std::string_view name : kStateKeys)
+        if (!find_state_column(name)) return false;
+      for (std::string_view name : kLedgerKeys)
+        if (!find_state_column(name)) return false;
+      return true;
+    }(),
+    "a key of the events JSON names no column of columns.hpp");
+
 nlohmann::json ledger(const Snapshot& s) {
-  return nlohmann::json{
-      {"sandbag_kinetic", clean(s.sandbag_kinetic)},   {"sandbag_potential", clean(s.sandbag_potential)},
-      {"seesaw_kinetic", clean(s.seesaw_kinetic)},     {"seesaw_potential", clean(s.seesaw_potential)},
-      {"lid_kinetic", clean(s.lid_kinetic)},           {"lid_potential", clean(s.lid_potential)},
-      {"balloon_kinetic", clean(s.balloon_kinetic)},   {"balloon_potential", clean(s.balloon_potential)},
-      {"lost_impacts", clean(s.lost_impacts)},         {"lost_balloon_catch", clean(s.lost_balloon_catch)},
-      {"dissipated_pivot", clean(s.dissipated_pivot)}, {"dissipated_lid_hinge", clean(s.dissipated_hinge)},
-      {"dissipated_drag", clean(s.dissipated_drag)},
-      {"dissipated_friction", clean(s.dissipated_friction)},   {"lid_push_on_balloon", clean(s.lid_push_work)},
-      {"initial_total", clean(s.initial_total)},       {"residual", s.ledger_residual()}};
+  nlohmann::json j = columns_object(s, kLedgerKeys);
+  j["initial_total"] = clean(s.initial_total);  // not a column: the CSV has the residual instead
+  j["residual"] = s.ledger_residual();
+  return j;
 }
 }  // namespace
 
 std::string events_json(const Result& result, const Scenario& sc, const std::string& source) {
   require_finite(result);
   using nlohmann::json;
-  auto state = [](const Snapshot& s) {
-    return json{{"x", clean(s.x)},
-                {"h", clean(s.h)},
-                {"r", clean(s.r)},
-                {"dr", clean(s.dr)},
-                {"phi_s_deg", clean(s.phi_s * units::kDegreesPerRadian)},
-                {"dphi_s_deg_per_s", clean(s.dphi_s * units::kDegreesPerRadian)},
-                {"phi_l_deg", clean(s.phi_l * units::kDegreesPerRadian)},
-                {"dphi_l_deg_per_s", clean(s.dphi_l * units::kDegreesPerRadian)},
-                {"balloon_h", clean(s.balloon_h)},
-                {"energy", clean(s.energy())}};
-  };
   json events = json::array();
   for (const Event& e : result.events) {
     json j{{"type", std::string(to_string(e.type))},
            {"t", e.t},
            {"mode_before", std::string(to_string(e.mode_before))},
            {"mode_after", std::string(to_string(e.mode_after))},
-           {"state", state(e.after)}};
+           {"state", columns_object(e.after, kStateKeys)}};
     if (e.impact) {
       j["energy_before"] = clean(e.energy_before);
       j["energy_after"] = clean(e.energy_after);

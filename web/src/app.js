@@ -21,9 +21,12 @@
   const progress = { since: 0, t: null, tMax: null, timer: null };
 
   function makeWorker() {
-    const inlined = document.getElementById('worker-source');  // the single-file page
-    return inlined ? new Worker(URL.createObjectURL(new Blob([inlined.textContent], { type: 'text/javascript' })))
-                   : new Worker('worker.js');
+    // The single-file page holds the library (whatnext-module, which this thread runs too) and the
+    // worker's own script as text: the worker is both, as a blob.
+    const inlined = document.getElementById('worker-source');
+    if (!inlined) return new Worker('worker.js');
+    const source = [document.getElementById('whatnext-module').textContent, inlined.textContent].join('\n');
+    return new Worker(URL.createObjectURL(new Blob([source], { type: 'text/javascript' })));
   }
 
   function startWorker() {
@@ -110,6 +113,8 @@
     return;
   }
   const { presets, keys, names } = hello;
+  // The library on this thread too: the drawing's geometry is its scene (machine.js).
+  Machine.useLibrary(await createWhatnext());
   // Longest first, so that a message naming balloon.drag_coefficient is not read as balloon.drag.
   const keyNames = keys.map((k) => k.key).sort((a, b) => b.length - a.length);
   const kHoldMs = 1000;
@@ -217,11 +222,13 @@
   // question box); one that takes long shows its progress and can be stopped.
   async function runAsked(input, what) {
     const tMax = st.run ? st.run.machine.run.t_max : null;
-    let r = await ask('run', input, tMax);
+    // A run keeps its input: the drawing asks the library for the scene of this machine.
+    const kept = (r) => (r.ok ? Object.assign(r, { input }) : r);
+    const r = kept(await ask('run', input, tMax));
     if (r.ok || r.kind !== 'budget') return r;
     const go = await askBudget(r, what);
     if (!go) return { ok: false, kind: 'declined', message: T('not started ({steps} steps)', { steps: r.steps.toExponential(1) }) };
-    return ask('run', { ...input, force: true }, r.t_max);
+    return kept(await ask('run', { ...input, force: true }, r.t_max));
   }
 
   // The question before a long fixed-step run: resolves true to run it, false not to.

@@ -39,7 +39,7 @@
 
   // What the machine (sandbag, seesaw, lid) has lost so far: impacts and its damped joints.
   function losses(s, i) {
-    return s.lost_impacts[i] + s.dissipated_pivot[i] + s.dissipated_hinge[i];
+    return s.lost_impacts[i] + s.dissipated_pivot[i] + s.dissipated_lid_hinge[i];
   }
 
   // Columns [t, curve...] of one run for one plot. For the energy plot each impact gets a row just

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <exception>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
 #include "whatnext/viz/recording.hpp"
+#include "viz/scene.hpp"
 
 namespace whatnext::web {
 
@@ -85,64 +87,54 @@ val xy(Vec2 p) {
   return v;
 }
 
-// Every quantity of a Snapshot, by name: the columns of the samples and the fields of an event's
-// state. Angles stay in radians (the page converts at its edge, like the CLI's writers).
+// The columns of the samples and the fields of an event's state, by name: the state's columns of
+// columns.hpp in SI units under their json_key (x, balloon_h, energy, lost_impacts, ...), then
+// what the page needs beyond them: the angles and their rates in radians (the table reports them
+// in degrees; the page converts at its edge, like the CLI's writers), the velocities, the
+// balloon's sideways position, the contacts and the mode.
 struct Column {
-  const char* name;
+  std::string name;
   double (*get)(const Snapshot&);
 };
 #define WHATNEXT_COLUMN(f)                                         \
   Column {                                                         \
 #f, [](const Snapshot& s) { return static_cast<double>(s.f); } \
   }
-const Column kColumns[] = {
-    WHATNEXT_COLUMN(t),
-    WHATNEXT_COLUMN(x),
-    WHATNEXT_COLUMN(h),
-    WHATNEXT_COLUMN(vx),
-    WHATNEXT_COLUMN(vh),
-    WHATNEXT_COLUMN(r),
-    WHATNEXT_COLUMN(dr),
-    WHATNEXT_COLUMN(phi_s),
-    WHATNEXT_COLUMN(dphi_s),
-    WHATNEXT_COLUMN(phi_l),
-    WHATNEXT_COLUMN(dphi_l),
-    WHATNEXT_COLUMN(balloon_h),
-    WHATNEXT_COLUMN(balloon_x),  // from the hinge sideways: a balloon smaller than the box moves
-    WHATNEXT_COLUMN(balloon_v),
-    WHATNEXT_COLUMN(balloon_limit),
-    WHATNEXT_COLUMN(tension),
-    WHATNEXT_COLUMN(normal_force),
-    WHATNEXT_COLUMN(sandbag_kinetic),
-    WHATNEXT_COLUMN(sandbag_potential),
-    WHATNEXT_COLUMN(lid_kinetic),
-    WHATNEXT_COLUMN(lid_potential),
-    WHATNEXT_COLUMN(seesaw_kinetic),
-    WHATNEXT_COLUMN(seesaw_potential),
-    WHATNEXT_COLUMN(balloon_kinetic),
-    WHATNEXT_COLUMN(balloon_potential),
-    WHATNEXT_COLUMN(lost_impacts),
-    WHATNEXT_COLUMN(lost_balloon_catch),
-    WHATNEXT_COLUMN(dissipated_pivot),
-    WHATNEXT_COLUMN(dissipated_hinge),
-    WHATNEXT_COLUMN(dissipated_drag),
-    WHATNEXT_COLUMN(dissipated_friction),
-    WHATNEXT_COLUMN(lid_push_work),
-    WHATNEXT_COLUMN(initial_total),
-    WHATNEXT_COLUMN(on_seesaw),
-    WHATNEXT_COLUMN(rope_taut),
-    WHATNEXT_COLUMN(lid_resting),
-    WHATNEXT_COLUMN(balloon_stuck),
-    Column{"mode", [](const Snapshot& s) { return static_cast<double>(static_cast<int>(s.mode)); }},
-    Column{"energy", [](const Snapshot& s) { return s.energy(); }},
-    Column{"total_energy", [](const Snapshot& s) { return s.total_energy(); }},
-    Column{"dissipated", [](const Snapshot& s) { return s.dissipated(); }},
-};
+const std::vector<Column>& columns() {
+  static const std::vector<Column> all = [] {
+    std::vector<Column> out{WHATNEXT_COLUMN(t)};
+    for (const StateColumn& c : state_columns()) {
+      if (json_key(c) != c.name) out.push_back({std::string(json_key(c)), c.value});  // an SI column
+    }
+    for (Column c : {
+             WHATNEXT_COLUMN(vx),
+             WHATNEXT_COLUMN(vh),
+             WHATNEXT_COLUMN(phi_s),
+             WHATNEXT_COLUMN(dphi_s),
+             WHATNEXT_COLUMN(phi_l),
+             WHATNEXT_COLUMN(dphi_l),
+             WHATNEXT_COLUMN(balloon_x),  // from the hinge sideways: a balloon smaller than the box moves
+             WHATNEXT_COLUMN(normal_force),
+             WHATNEXT_COLUMN(initial_total),
+             WHATNEXT_COLUMN(on_seesaw),
+             WHATNEXT_COLUMN(rope_taut),
+             WHATNEXT_COLUMN(lid_resting),
+             WHATNEXT_COLUMN(balloon_stuck),
+             Column{"mode", [](const Snapshot& s) { return static_cast<double>(static_cast<int>(s.mode)); }},
+             Column{"total_energy", [](const Snapshot& s) { return s.total_energy(); }},
+             Column{"dissipated", [](const Snapshot& s) { return s.dissipated(); }},
+         }) {
+      out.push_back(c);
+    }
+    return out;
+  }();
+  return all;
+}
 #undef WHATNEXT_COLUMN
 
 val snapshot_object(const Snapshot& s) {
   val v = val::object();
-  for (const Column& c : kColumns) v.set(c.name, c.get(s));
+  for (const Column& c : columns()) v.set(c.name, c.get(s));
   return v;
 }
 
@@ -150,9 +142,10 @@ val snapshot_object(const Snapshot& s) {
 // event's state at its time, in time order: what the drawing and the plots need.
 class Columns : public Observer {
  public:
-  explicit Columns(long stride) : stride_(stride) {}
+  Columns(long stride, const Machine& m) : stride_(stride), machine_(m), geo_(m) {}
   void on_sample(const Snapshot& s) override {
     if (samples_++ % stride_ == 0) add(s, -1.0);
+    watch_release(s);
     // The worker (web/src/worker.js) tells the page how far the run is, at most every few tenths
     // of a second; asking the clock costs next to nothing beside a sample.
     if (emscripten_get_now() - reported_ > 150.0) {
@@ -161,11 +154,19 @@ class Columns : public Observer {
       if (progress.typeOf().as<std::string>() == "function") progress(s.t);
     }
   }
-  void on_event(const Event& e) override { add(e.after, static_cast<double>(events_++)); }
+  void on_event(const Event& e) override {
+    add(e.after, static_cast<double>(events_++));
+    if (machine_.radio && e.type == EventType::lid_open && !std::isfinite(release_.latch))
+      release_.latch = e.t;
+    watch_release(e.after);
+  }
+  // When the radio's latch let the rope go and when it came off the seesaw's end (scene.hpp's
+  // Release), from every state of the run, not only the samples kept.
+  const viz::scene::Release& release() const { return release_; }
 
   val to_js() const {
     val out = val::object();
-    for (std::size_t c = 0; c < std::size(kColumns); ++c) out.set(kColumns[c].name, array(data_[c]));
+    for (std::size_t c = 0; c < columns().size(); ++c) out.set(columns()[c].name, array(data_[c]));
     out.set("event", array(event_));
     out.set("stride", static_cast<double>(stride_));
     return out;
@@ -173,16 +174,24 @@ class Columns : public Observer {
 
  private:
   void add(const Snapshot& s, double event) {
-    for (std::size_t c = 0; c < std::size(kColumns); ++c) data_[c].push_back(kColumns[c].get(s));
+    for (std::size_t c = 0; c < columns().size(); ++c) data_[c].push_back(columns()[c].get(s));
     event_.push_back(event);
+  }
+  void watch_release(const Snapshot& s) {
+    if (s.t >= release_.latch && !std::isfinite(release_.off) && viz::scene::beyond_rope(geo_, s)) {
+      release_.off = s.t;
+    }
   }
   static val array(const std::vector<double>& v) {  // a copy, independent of the wasm memory
     return val::global("Float64Array").new_(emscripten::typed_memory_view(v.size(), v.data()));
   }
   long stride_;
+  Machine machine_;
+  RopeGeometry geo_;
+  viz::scene::Release release_;
   long samples_ = 0, events_ = 0;
   double reported_ = emscripten_get_now();
-  std::vector<double> data_[std::size(kColumns)];
+  std::vector<std::vector<double>> data_ = std::vector<std::vector<double>>(columns().size());
   std::vector<double> event_;
 };
 
@@ -283,7 +292,8 @@ val run(val input) {
     const Input in = load(input);
     const double max_rows = input["maxRows"].isNumber() ? input["maxRows"].as<double>() : 5e4;
     const double rows = in.scenario.run.t_max / in.scenario.run.output_step;
-    Columns columns(std::max(1L, static_cast<long>(std::ceil(rows / std::max(1.0, max_rows)))));
+    Columns columns(std::max(1L, static_cast<long>(std::ceil(rows / std::max(1.0, max_rows)))),
+                    in.scenario.machine);
     const Result result = simulate(in.scenario, &columns);
 
     val r = val::object();
@@ -312,6 +322,10 @@ val run(val input) {
     r.set("outcome", outcome);
     r.set("timeline", timeline_text(result, in.scenario, in.label));
     r.set("samples", columns.to_js());
+    val release = val::object();
+    release.set("latch", columns.release().latch);
+    release.set("off", columns.release().off);
+    r.set("release", release);
     val stats = val::object();
     stats.set("steps", static_cast<double>(result.stats.steps));
     stats.set("root_evaluations", static_cast<double>(result.stats.root_evaluations));
@@ -334,6 +348,128 @@ val plan(val input) {
     r.set("output_step", in.scenario.run.output_step);
     return r;
   });
+}
+
+val points(const std::vector<Vec2>& pts) {
+  val a = val::array();
+  for (Vec2 p : pts) a.call<void>("push", xy(p));
+  return a;
+}
+
+// The machines the page draws, built once each from their input (a page draws a few at a time:
+// the run and the ones it is compared with).
+const Scenario& drawn_scenario(const val& input) {
+  static std::map<std::string, Scenario> built;
+  std::string key = input["toml"].as<std::string>() + '\n' + input["source"].as<std::string>() + '\n' +
+                    (input["format"].isString() ? input["format"].as<std::string>() : "");
+  for (const std::string& s : emscripten::vecFromJSArray<std::string>(input["sets"])) key += '\n' + s;
+  auto it = built.find(key);
+  if (it != built.end()) return it->second;
+  if (built.size() >= 16) built.clear();
+  return built.emplace(key, load(input).scenario).first->second;
+}
+
+// The scene as `whatnext animate` draws it (src/viz/scene.hpp): where each part of the machine is
+// in state `state` of a run of `input` whose rope was let go as `release` says ({latch, off} of
+// the run's result), with the left arm `arm` long and the end stop `stopHeight` high [m]. The
+// page draws from this, so that its picture and the animation's have the same points:
+// {landingDistance, ground, floor, floorPieces, stand, walls, radio {x0, x1, h0, h1}, dial, dialRadius,
+// dialSquash,
+//  radioPost, notes, hinge, lidEnd, armLeft, armRight, endStop, stopTop, rope, sandbag, balloon,
+//  balloonRadius, string}, points as {x, h} in metres.
+val scene(val input, val state, double arm, double stop_height, val release) {
+  return guarded([&] {
+    const Scenario& sc = drawn_scenario(input);
+    const Machine& m = sc.machine;
+    Snapshot s;  // what the scene reads of a state
+    s.t = state["t"].as<double>();
+    s.x = state["x"].as<double>();
+    s.h = state["h"].as<double>();
+    s.phi_s = state["phi_s"].as<double>();
+    s.phi_l = state["phi_l"].as<double>();
+    s.balloon_h = state["balloon_h"].as<double>();
+    s.balloon_x = state["balloon_x"].as<double>();
+    s.rope_taut = state["rope_taut"].as<double>() != 0.0;
+    viz::scene::Release r;
+    r.latch = release["latch"].as<double>();
+    r.off = release["off"].as<double>();
+    const viz::scene::StillParts still = viz::scene::still_parts(m);
+    const viz::scene::MovingParts moving = viz::scene::moving_parts(m, s, r, arm, stop_height);
+    val v = val::object();
+    v.set("ok", true);
+    v.set("landingDistance", viz::scene::landing_distance(sc));
+    v.set("ground", still.ground);
+    v.set("floor", still.floor);
+    val pieces = val::array();
+    for (auto [a, b] : still.floor_pieces)
+      pieces.call<void>("push", points({{a, still.ground}, {b, still.ground}}));
+    v.set("floorPieces", pieces);
+    v.set("stand", points({still.stand.begin(), still.stand.end()}));
+    v.set("walls", points({still.walls.begin(), still.walls.end()}));
+    val radio = val::object();
+    radio.set("x0", still.radio.x0);
+    radio.set("x1", still.radio.x1);
+    radio.set("h0", still.radio.h0);
+    radio.set("h1", still.radio.h1);
+    v.set("radio", radio);
+    v.set("dial", xy(still.dial));
+    v.set("dialRadius", still.dial_radius);
+    v.set("dialSquash", still.dial_squash);
+    v.set("radioPost", points({still.radio_post.begin(), still.radio_post.end()}));
+    v.set("notes", xy(still.notes));
+    v.set("hinge", xy(moving.hinge));
+    v.set("lidEnd", xy(moving.lid_end));
+    v.set("armLeft", xy(moving.arm_left));
+    v.set("armRight", xy(moving.arm_right));
+    v.set("endStop", moving.end_stop);
+    v.set("stopTop", xy(moving.stop_top));
+    v.set("rope", points(moving.rope));
+    v.set("sandbag", xy(moving.sandbag));
+    v.set("balloon", xy(moving.balloon));
+    v.set("balloonRadius", moving.balloon_radius);
+    v.set("string", points(moving.string));
+    return v;
+  });
+}
+
+// The points of the scene that frame the picture, for many states at once (a call per state would
+// cost the page more than the points): the seesaw's right end, the lid's free edge and the
+// balloon's centre at each (phi_s, phi_l, balloon_x, balloon_h) given, as columns
+// {seesawX, seesawH, lidX, lidH, balloonX, balloonH}.
+val scene_trace(val input, val phi_s, val phi_l, val balloon_x, val balloon_h) {
+  return guarded([&] {
+    const Machine& m = drawn_scenario(input).machine;
+    const auto ps = emscripten::vecFromJSArray<double>(phi_s), pl = emscripten::vecFromJSArray<double>(phi_l);
+    const auto bx = emscripten::vecFromJSArray<double>(balloon_x),
+               bh = emscripten::vecFromJSArray<double>(balloon_h);
+    std::vector<double> cols[6];
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      Snapshot s;
+      s.balloon_x = bx[i], s.balloon_h = bh[i];
+      const Vec2 e = viz::scene::seesaw_end(m, ps[i]), l = viz::scene::lid_end(m, pl[i]);
+      const Vec2 c = viz::scene::balloon_centre(m, s);
+      const double row[6] = {e.x, e.h, l.x, l.h, c.x, c.h};
+      for (int k = 0; k < 6; ++k) cols[k].push_back(row[k]);
+    }
+    val v = val::object();
+    v.set("ok", true);
+    const char* names[] = {"seesawX", "seesawH", "lidX", "lidH", "balloonX", "balloonH"};
+    for (int k = 0; k < 6; ++k) {
+      v.set(names[k],
+            val::global("Float64Array").new_(emscripten::typed_memory_view(cols[k].size(), cols[k].data())));
+    }
+    return v;
+  });
+}
+
+// The parts' colours as `whatnext animate` paints them (scene.hpp): {sandbag: "rgb(204,127,0)", ...}.
+val colours() {
+  val v = val::object();
+  for (const viz::scene::NamedColour& c : viz::scene::kColourNames) {
+    v.set(std::string(c.name), "rgb(" + std::to_string(c.rgb.r) + "," + std::to_string(c.rgb.g) + "," +
+                                   std::to_string(c.rgb.b) + ")");
+  }
+  return v;
 }
 
 // The downloads, as `whatnext run` writes them: TOML (to_toml), --events JSON, --csv.
@@ -432,6 +568,9 @@ EMSCRIPTEN_BINDINGS(whatnext) {
   emscripten::function("keys", &keys);
   emscripten::function("presets", &presets);
   emscripten::function("names", &names);
+  emscripten::function("scene", &scene);
+  emscripten::function("sceneTrace", &scene_trace);
+  emscripten::function("colours", &colours);
 }
 
 }  // namespace whatnext::web
