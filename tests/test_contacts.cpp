@@ -802,3 +802,20 @@ TEST(Impulses, TheLinearMomentumLawNeedsARopeThatPushes) {
   EXPECT_LT(jerk->impulse[wn::kRope], 0.0);
   EXPECT_GT(jerk->energy_after, jerk->energy_before);
 }
+
+TEST(Impulses, APerfectlyElasticRopeDoublesTheJerkAndKeepsTheEnergy) {
+  // Newton's restitution e on the rope's jerk: the impulse is (1 + e) times the inelastic one;
+  // e = 1 keeps the kinetic energy (to rounding, which must not make it fall back to e = 0).
+  auto jerk = [](const char* e) {
+    wn::Config cfg = wn::example_config(1);
+    wn::apply_set(cfg, std::string("restitution.rope=") + e);
+    const wn::Result r = wn::simulate(wn::build_scenario(cfg));
+    for (const wn::Event& ev : r.events)
+      if (ev.type == wn::EventType::rope_taut && ev.impact) return ev;
+    return wn::Event{};
+  };
+  const wn::Event inelastic = jerk("0"), elastic = jerk("1");
+  ASSERT_TRUE(inelastic.impact && elastic.impact);
+  EXPECT_NEAR(elastic.impulse[1], 2.0 * inelastic.impulse[1], 1e-12);
+  EXPECT_NEAR(elastic.energy_after, elastic.energy_before, 1e-12 * std::fabs(elastic.energy_before));
+}

@@ -262,7 +262,9 @@ void Model::rebound(Decision& x) const {
     for (int j = 0; j < x.sys.coords; ++j) e += 0.5 * x.sys.mass[j] * v[j] * v[j];
     return e;
   };
-  if (kinetic(bounce.velocity) > kinetic(x.sys.velocity)) return;
+  // (Beyond rounding: a perfectly elastic rebound, e = 1, keeps the energy to the last bits.)
+  const double before = kinetic(x.sys.velocity);
+  if (kinetic(bounce.velocity) > before + 1e-12 * before) return;
   // A contact that bounced took an impulse but is not held (unless its rebound is rounding).
   for (int i = 0; i < contacts_; ++i) {
     const double speed = i == kLid ? 2.0 * r_l_ * after[i] : after[i];
