@@ -239,7 +239,7 @@ TEST(StretchyRope, BadInputIsOneClearError) {
       {{"rope.damping=3"}, "rope.damping"},
       {{"rope.stiffness=1e5", "rope.damping=-1"}, "rope.damping"},
       {{"rope.stiffness=1e5", "run.integrator=rk4"}, "run.integrator"},
-      {{"rope.stiffness=1e5", "seesaw.mass=1", "seesaw.left_arm=2"}, "rope.stiffness"},
+      {{"rope.stiffness=1e5", "seesaw.end_stop=true", "seesaw.left_arm=2"}, "rope.stiffness"},
       {{"rope.stiffness=1e5", "restitution.rope=0.5"}, "rope.stiffness"},
       {{"rope.stiffness=1e5", "friction.sandbag=0.3"}, "rope.stiffness"},
   };
@@ -262,4 +262,36 @@ TEST(StretchyRope, WrittenBackAsTomlItIsTheSameMachine) {
   EXPECT_EQ(back.machine.rope_damping, 31.25);
   // Without the keys nothing about the rope is written.
   EXPECT_EQ(wn::to_toml(example(2)).find("[rope]"), std::string::npos);
+}
+
+TEST(StretchyRope, OnASeesawWithMassTheUndampedRopeConvergesToTheElasticJerk) {
+  // A seesaw with inertia carries the rope's pull itself (J phiS'' = Q_S + Q_rope). Undamped, the
+  // stiff rope's jerk converges to the rigid rope's with Newton's e = 1 (restitution.rope = 1): the
+  // same lid rate after it, the error shrinking with the stiffness (its duration ~ k^(-1/2)).
+  const std::vector<std::string> heavy = {"seesaw.mass=0.3", "seesaw.left_arm=1.2"};
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> sets = heavy;
+    sets.insert(sets.end(), more.begin(), more.end());
+    return example(1, sets);
+  };
+  const wn::Result rigid = wn::simulate(with({"restitution.rope=1"}));
+  const wn::Event* jerk = first(rigid.events, wn::EventType::rope_taut);
+  ASSERT_NE(jerk, nullptr);
+  ASSERT_TRUE(jerk->impact);
+  const double limit = jerk->after.dphi_l;
+  ASSERT_GT(limit, 0.0);
+  double previous = INFINITY;
+  for (const char* k : {"1e5", "1e7", "1e9"}) {
+    const wn::Result r = wn::simulate(with({std::string("rope.stiffness=") + k}));
+    const double err = std::fabs(lid_rate_after_jerk(r) - limit) / limit;
+    EXPECT_LT(err, previous) << k;
+    previous = err;
+    // The rope never pushes, the arm never pulls, and the books close on every sample's state.
+    for (const wn::Event& e : r.events) {
+      EXPECT_GE(e.after.tension, -1e-9) << k;
+      if (e.after.on_seesaw) EXPECT_GE(e.after.normal_force, -1e-9) << k << " " << wn::to_string(e.type);
+      EXPECT_NEAR(e.after.ledger_residual(), 0.0, 1e-8) << k;
+    }
+  }
+  EXPECT_LT(previous, 2e-3);
 }

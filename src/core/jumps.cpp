@@ -44,7 +44,7 @@ HybridState Model::initial(std::vector<Event>& out) const {
   }
   if (rope_.span(st.seesaw_angle, phi_l0_) >= rope_.rope_length() - kContact) touch |= bit(kRope);
   // A rope that stretches is no contact while the sandbag rides the seesaw (docs/impact.md).
-  if (stretchy_ && contact::has(touch, kBag)) touch &= ~bit(kRope);
+  if (stretchy_ && (heavy_ || contact::has(touch, kBag))) touch &= ~bit(kRope);
   k = with_velocity(k, contact::Coords{});
   if (contacts_ > 3) {  // a seesaw that starts standing on the floor (a sandbag on it at the stop)
     Discrete dt = d;
@@ -249,7 +249,7 @@ bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out)
   if (hs.d.on_seesaw && k0.r <= kContact && !fires_at_once(fired)) return stop(EventType::sandbag_at_pivot);
   switch (fired) {
     case kGuardBag:
-      if (spring_rope(hs.d) && hs.d.stretched) return stretchy_jump(fired, hs, k0, before, out);
+      if (!heavy_ && spring_rope(hs.d) && hs.d.stretched) return stretchy_jump(fired, hs, k0, before, out);
       if (hs.d.on_seesaw) {
         resolve(hs, k0, kBag, Trend::releasing, out);
         break;

@@ -364,7 +364,9 @@ class Model {
     double stretch = 0, rate = 0, tension = 0;  // span - l_R [m], its rate [m/s], the pull [N]
     double q_s = 0, q_l = 0;                    // the pull's torques on the seesaw and the lid [N m]
   };
-  bool spring_rope(const Discrete& d) const { return stretchy_ && d.on_seesaw && !d.latched; }
+  // A seesaw with inertia stretches the rope whatever it carries; the massless one only with the
+  // sandbag on it (docs/impact.md).
+  bool spring_rope(const Discrete& d) const { return stretchy_ && !d.latched && (d.on_seesaw || heavy_); }
   RopePull rope_pull(const Discrete& d, const Kinematics& k) const;
   double rope_energy(const Kinematics& k) const;
   void stretchy_flow(const Discrete& d, const State& y, State& dy) const;

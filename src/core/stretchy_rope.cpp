@@ -15,6 +15,7 @@
 // damper pulling that is c s'^2; slack while still longer than l_R (the damper would have had to
 // push), the spring's energy given up without work, -k s s' > 0: the law never gains energy.
 //
+// A seesaw with mass carries the pull itself, loaded or not: the pull's torque joins its equation.
 // The unloaded massless seesaw cannot stretch the rope (nothing on it has inertia): there the rope
 // stays the inextensible contact, which carries no force on it (it follows the lid, M2, as before).
 #include <cmath>
@@ -60,9 +61,16 @@ void Model::stretchy_flow(const Discrete& d, const State& y, State& dy) const {
   // energy goes as the span shrinks: booked as lost (-k s s').
   dy[slot::lost_rope] = (p.tension - k_rope_ * std::fmax(p.stretch, 0.0)) * p.rate;
   if (!d.stretched) return;
-  // The sandbag in Cartesian free fall (M3), pushed by the arm with N = -Q_S / r along the arm's
-  // normal (-sin phiS, cos phiS).
-  if (k.r > 0.0) {
+  if (heavy_) {
+    if (d.seesaw_held()) return;
+    // A seesaw with inertia: the pull's torque over what turns with it, J = I_S (+ m_S r^2 with the
+    // sandbag on the arm), docs/extensions.md's seesaw equation with Q_S + Q_rope.
+    const bool on = d.polar();
+    const double inertia = i_s_ + (on ? m_s_ * k.r * k.r : 0.0);
+    dy[on ? slot::dphi_s : slot::seesaw_dphi] += p.q_s / inertia;
+  } else if (k.r > 0.0) {
+    // The sandbag in Cartesian free fall (M3) on the massless seesaw, pushed by the arm with
+    // N = -Q_S / r along the arm's normal (-sin phiS, cos phiS).
     const double push = -p.q_s / (k.r * m_s_);
     dy[slot::vx] += -push * k.sin_s;
     dy[slot::vh] += push * k.cos_s;
@@ -73,13 +81,17 @@ void Model::stretchy_flow(const Discrete& d, const State& y, State& dy) const {
 void Model::stretchy_kinematics(const Discrete& d, Kinematics& k) const {
   if (!spring_rope(d)) return;
   const RopePull p = rope_pull(d, k);
-  // phiS = atan2(-h, -x): the arm's push adds -N / (m r) = Q_S / (m r^2) to the free fall's phiS''.
-  if (k.r > 0.0) k.ddphi_s += p.q_s / (m_s_ * k.r * k.r);
+  if (heavy_) {
+    if (!d.seesaw_held()) k.ddphi_s += p.q_s / (i_s_ + (d.polar() ? m_s_ * k.r * k.r : 0.0));
+  } else if (k.r > 0.0) {
+    // phiS = atan2(-h, -x): the arm's push adds -N / (m r) = Q_S / (m r^2) to the free fall's phiS''.
+    k.ddphi_s += p.q_s / (m_s_ * k.r * k.r);
+  }
   if (!d.lid_resting) k.ddphi_l += p.q_l / i_l_;
 }
 
 void Model::stretchy_accelerations(const Discrete& d, const Kinematics& k, contact::Coords& a) const {
-  if (!spring_rope(d) || !(k.r > 0.0)) return;
+  if (heavy_ || !spring_rope(d) || !(k.r > 0.0)) return;  // the heavy seesaw's are in k already
   const double push = -rope_pull(d, k).q_s / (k.r * m_s_);
   a[0] += -push * k.sin_s;
   a[1] += push * k.cos_s;
@@ -118,7 +130,8 @@ void Model::stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues&
   const double rh = sc_.machine.seesaw_right_arm, knot = sc_.machine.rope_knot();
   const Vec2 r{rh * k.cos_s, rh * k.sin_s};
   const Vec2 dv = r - (rope_.hinge() + Vec2{knot * k.cos_l, knot * k.sin_l});
-  if (p.tension > 0.0) g[kGuardBag] = -dot(dv, Vec2{-r.h, r.x});
+  // (A seesaw with inertia carries the pull itself: its arm's push is the contact problem's.)
+  if (p.tension > 0.0 && !heavy_) g[kGuardBag] = -dot(dv, Vec2{-r.h, r.x});
 }
 
 double Model::lid_lift(const Kinematics& k, const RopePull& p) const {

@@ -94,7 +94,6 @@ void build_stretchy_rope(const Reader& in, Machine& m) {
   const auto no = [&](const char* key, const char* why) {
     if (in.find(key)) in.fail("rope.stiffness", fmt::format("does not go with {} ({})", key, why));
   };
-  no("seesaw.mass", "a rope that stretches is modelled on the paper's massless seesaw only");
   no("floor.enabled", "the built machine's floor is not modelled with a rope that stretches");
   no("floor.restitution", "the built machine's floor is not modelled with a rope that stretches");
   no("seesaw.end_stop", "the end stop is not modelled with a rope that stretches");
