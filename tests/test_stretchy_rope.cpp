@@ -295,3 +295,29 @@ TEST(StretchyRope, OnASeesawWithMassTheUndampedRopeConvergesToTheElasticJerk) {
   }
   EXPECT_LT(previous, 2e-3);
 }
+
+TEST(StretchyRope, TheBuiltMachineAndTheRadioKeepTheirBooks) {
+  // The students' machine (a seesaw with mass on the floor, the end stop, the radio's latch) with a
+  // rope that stretches: the books close at every event, also after the latch has let the rope go
+  // (it then stores nothing), the rope never pushes, nothing goes below the floor.
+  for (const char* k : {"1e4", "1e7"}) {
+    wn::Config cfg = wn::parse_toml(std::string(wn::example_toml("konstanz")), "konstanz.toml");
+    wn::apply_set(cfg, std::string("rope.stiffness=") + k);
+    wn::apply_set(cfg, "rope.damping=1");
+    const wn::Scenario sc = wn::build_scenario(cfg);
+    const wn::Result r = wn::simulate(sc);
+    EXPECT_EQ(r.outcome().type, wn::EventType::radio_on) << k;
+    const double floor = sc.machine.floor_height();
+    for (const wn::Event& e : r.events) {
+      EXPECT_NEAR(e.after.ledger_residual(), 0.0, 1e-8) << k << " " << wn::to_string(e.type);
+      EXPECT_GE(e.after.tension, -1e-9) << k;
+      EXPECT_GE(e.after.h, floor - 1e-9) << k;
+    }
+  }
+  wn::Config radio = wn::example_config(1);
+  wn::apply_set(radio, "radio.enabled=true");
+  wn::apply_set(radio, "rope.stiffness=1e6");
+  const wn::Result r = wn::simulate(wn::build_scenario(radio));
+  EXPECT_EQ(r.outcome().type, wn::EventType::radio_on);
+  for (const wn::Event& e : r.events) EXPECT_NEAR(e.after.ledger_residual(), 0.0, 1e-8) << wn::to_string(e.type);
+}

@@ -276,6 +276,7 @@ struct Model::KinematicsPass {
 
 Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool memo) const {
   Kinematics k;
+  k.rope_let_go = d.latched;
   KinematicsPass pass{*this, d, y, rates, memo, k};
   const Layout layout = Model::layout(d);
   if (d.polar()) {

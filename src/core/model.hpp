@@ -87,6 +87,7 @@ struct Kinematics {
   // while it touches it (geometry.hpp SmallBalloon).
   double balloon_x = 0, balloon_vx = 0, balloon_q = 0, balloon_dq = 0;
   Transfer transfer;                                  // valid while the rope is taut
+  bool rope_let_go = false;  // the radio's latch let the rope go for good: it stores no energy
   double cos_s = 1, sin_s = 0, cos_l = 1, sin_l = 0;  // of phi_s and phi_l, computed once
 };
 

@@ -49,6 +49,7 @@ Model::RopePull Model::rope_pull(const Discrete& d, const Kinematics& k) const {
 }
 
 double Model::rope_energy(const Kinematics& k) const {
+  if (k.rope_let_go) return 0.0;  // what it held was booked at the latch (an impact's loss)
   const double s = rope_.span(Vec2{k.cos_s, k.sin_s}, Vec2{k.cos_l, k.sin_l}) - rope_.rope_length();
   return s > 0.0 ? 0.5 * k_rope_ * s * s : 0.0;
 }

@@ -94,9 +94,13 @@ void build_stretchy_rope(const Reader& in, Machine& m) {
   const auto no = [&](const char* key, const char* why) {
     if (in.find(key)) in.fail("rope.stiffness", fmt::format("does not go with {} ({})", key, why));
   };
-  no("floor.enabled", "the built machine's floor is not modelled with a rope that stretches");
-  no("floor.restitution", "the built machine's floor is not modelled with a rope that stretches");
-  no("seesaw.end_stop", "the end stop is not modelled with a rope that stretches");
+  // The built machine's floor and stop hold a seesaw with mass, which carries the pull itself; on
+  // the massless seesaw the rope's pull is carried by the sandbag in free fall only.
+  if (!m.heavy_seesaw()) {
+    no("floor.enabled", "on the massless seesaw; give the seesaw a mass (seesaw.mass)");
+    no("floor.restitution", "on the massless seesaw; give the seesaw a mass (seesaw.mass)");
+    no("seesaw.end_stop", "on the massless seesaw; give the seesaw a mass (seesaw.mass)");
+  }
   no("restitution.rope", "the rope that stretches has no impact: it bounces by itself");
   // Coulomb friction given above zero (zero is leaving it out).
   const std::pair<const char*, double> frictions[] = {{"friction.sandbag", m.friction.sandbag},
