@@ -32,10 +32,15 @@ struct Model::KinematicsPass {
   bool rates, memo;
   Kinematics& k;  // the caller's, returned without a copy
   bool trig_s = false, trig_l = false;  // cos and sin of phiS / phiL already known
+  double rope_s = 0.0, rope_l = 0.0;    // a stretched rope's torques on a seesaw with inertia
 
+  void pulled(double phi_s, double dphi_s) {
+    const RopePull p = m.heavy_pull(d, phi_s, dphi_s, y[slot::phi_l], y[slot::dphi_l]);
+    rope_s = p.q_s, rope_l = p.q_l;
+  }
   // The memos serve one thread's integration; samples made on other threads compute afresh.
   Swing swing_of(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const {
-    const double q_s = m.pivot_coulomb(d), q_l = m.hinge_coulomb(d);
+    const double q_s = m.pivot_coulomb(d) + rope_s, q_l = m.hinge_coulomb(d) + rope_l;
     return memo ? m.swing(on, taut, r, phi_s, dr, dphi_s, q_s, q_l)
                 : m.compute_swing(on, taut, r, phi_s, dr, dphi_s, q_s, q_l);
   }
@@ -53,7 +58,7 @@ struct Model::KinematicsPass {
     } else {
       k.phi_l = y[slot::phi_l];
       k.dphi_l = y[slot::dphi_l];
-      k.ddphi_l = m.lid_free_acceleration(k.phi_l, k.dphi_l, m.hinge_coulomb(d));
+      k.ddphi_l = m.lid_free_acceleration(k.phi_l, k.dphi_l, m.hinge_coulomb(d) + rope_l);
     }
   }
   // The lid on the rope's closure, from the seesaw's swing (the seesaw's chart).
@@ -92,6 +97,7 @@ struct Model::KinematicsPass {
     k.r = y[slot::r];
     k.phi_s = y[slot::phi_s];
     if (rates) k.dr = y[slot::dr], k.dphi_s = y[slot::dphi_s];
+    if (rates) pulled(y[slot::phi_s], y[slot::dphi_s]);
     switch (layout) {
       case Layout::carried_slack: carried_slack(); break;
       case Layout::grounded_carrying: on_the_floor(); break;
@@ -161,6 +167,7 @@ struct Model::KinematicsPass {
 
   // --- the sandbag in free fall in Cartesian form (x, h) ---
   void cartesian(Layout layout) {
+    if (rates && d.heavy) pulled(y[slot::seesaw_phi], y[slot::seesaw_dphi]);
     k.x = y[slot::x];
     k.h = y[slot::h];
     if (rates) k.vx = y[slot::vx], k.vh = y[slot::vh];

@@ -369,6 +369,9 @@ class Model {
   // sandbag on it (docs/impact.md).
   bool spring_rope(const Discrete& d) const { return stretchy_ && !d.latched && (d.on_seesaw || heavy_); }
   RopePull rope_pull(const Discrete& d, const Kinematics& k) const;
+  // The stretched rope's pull on a seesaw with inertia that it turns (zero otherwise), from the
+  // angles and rates alone: its torques join the swings' like the Coulomb torques.
+  RopePull heavy_pull(const Discrete& d, double phi_s, double dphi_s, double phi_l, double dphi_l) const;
   double rope_energy(const Kinematics& k) const;
   void stretchy_flow(const Discrete& d, const State& y, State& dy) const;
   void stretchy_kinematics(const Discrete& d, Kinematics& k) const;

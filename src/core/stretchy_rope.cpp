@@ -48,6 +48,18 @@ Model::RopePull Model::rope_pull(const Discrete& d, const Kinematics& k) const {
   return p;
 }
 
+Model::RopePull Model::heavy_pull(const Discrete& d, double phi_s, double dphi_s, double phi_l,
+                                  double dphi_l) const {
+  if (!stretchy_ || !heavy_ || !d.stretched || !spring_rope(d) || d.seesaw_held()) return {};
+  Kinematics k;
+  k.cos_s = std::cos(phi_s), k.sin_s = std::sin(phi_s), k.cos_l = std::cos(phi_l), k.sin_l = std::sin(phi_l);
+  k.dphi_s = dphi_s;
+  k.dphi_l = d.lid_resting ? 0.0 : dphi_l;
+  RopePull p = rope_pull(d, k);
+  if (d.lid_resting) p.q_l = 0.0;  // the box holds the lid (its lifting is a guard)
+  return p;
+}
+
 double Model::rope_energy(const Kinematics& k) const {
   if (k.rope_let_go) return 0.0;  // what it held was booked at the latch (an impact's loss)
   const double s = rope_.span(Vec2{k.cos_s, k.sin_s}, Vec2{k.cos_l, k.sin_l}) - rope_.rope_length();
@@ -62,14 +74,9 @@ void Model::stretchy_flow(const Discrete& d, const State& y, State& dy) const {
   // energy goes as the span shrinks: booked as lost (-k s s').
   dy[slot::lost_rope] = (p.tension - k_rope_ * std::fmax(p.stretch, 0.0)) * p.rate;
   if (!d.stretched) return;
-  if (heavy_) {
-    if (d.seesaw_held()) return;
-    // A seesaw with inertia: the pull's torque over what turns with it, J = I_S (+ m_S r^2 with the
-    // sandbag on the arm), docs/extensions.md's seesaw equation with Q_S + Q_rope.
-    const bool on = d.polar();
-    const double inertia = i_s_ + (on ? m_s_ * k.r * k.r : 0.0);
-    dy[on ? slot::dphi_s : slot::seesaw_dphi] += p.q_s / inertia;
-  } else if (k.r > 0.0) {
+  // A seesaw with inertia: the pull's torques are in its and the lid's swings already (heavy_pull).
+  if (heavy_) return;
+  if (k.r > 0.0) {
     // The sandbag in Cartesian free fall (M3) on the massless seesaw, pushed by the arm with
     // N = -Q_S / r along the arm's normal (-sin phiS, cos phiS).
     const double push = -p.q_s / (k.r * m_s_);
@@ -82,9 +89,8 @@ void Model::stretchy_flow(const Discrete& d, const State& y, State& dy) const {
 void Model::stretchy_kinematics(const Discrete& d, Kinematics& k) const {
   if (!spring_rope(d)) return;
   const RopePull p = rope_pull(d, k);
-  if (heavy_) {
-    if (!d.seesaw_held()) k.ddphi_s += p.q_s / (i_s_ + (d.polar() ? m_s_ * k.r * k.r : 0.0));
-  } else if (k.r > 0.0) {
+  if (heavy_) return;  // in the swings already (heavy_pull)
+  if (k.r > 0.0) {
     // phiS = atan2(-h, -x): the arm's push adds -N / (m r) = Q_S / (m r^2) to the free fall's phiS''.
     k.ddphi_s += p.q_s / (m_s_ * k.r * k.r);
   }
