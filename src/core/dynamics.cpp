@@ -106,7 +106,8 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     dy[slot::r] = y[slot::dr];
     dy[slot::phi_s] = y[slot::dphi_s];
     const double r = y[slot::r], dr = y[slot::dr];
-    const RopePull rope = heavy_pull(d, y[slot::phi_s], y[slot::dphi_s], y[slot::phi_l], y[slot::dphi_l]);
+    const RopePull rope = pulls_heavy_ ? heavy_pull(d, y[slot::phi_s], y[slot::dphi_s], y[slot::phi_l], y[slot::dphi_l])
+                                       : RopePull{};
     const double q_s = pivot_coulomb(d) + rope.q_s, q_l = hinge_coulomb(d) + rope.q_l;
     if ((d.taut && d.lid_held()) || d.seesaw_held()) {
       // M5 (the seesaw held by the rope) or on the floor: the sandbag slides on the fixed arm.
@@ -142,7 +143,8 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     // The lid follows a heavy seesaw on the rope, or hangs from one standing on the floor.
     const bool lid_on_rope = (d.heavy || d.seesaw_held()) && d.taut;
     const RopePull rope =
-        heavy_pull(d, y[slot::seesaw_phi], y[slot::seesaw_dphi], y[slot::phi_l], y[slot::dphi_l]);
+        pulls_heavy_ ? heavy_pull(d, y[slot::seesaw_phi], y[slot::seesaw_dphi], y[slot::phi_l], y[slot::dphi_l])
+                     : RopePull{};
     const double q_s = pivot_coulomb(d) + rope.q_s, q_l = hinge_coulomb(d) + rope.q_l;
     if (!d.lid_held() && !d.latched && !lid_on_rope) {
       dy[slot::phi_l] = y[slot::dphi_l];

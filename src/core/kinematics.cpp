@@ -35,6 +35,7 @@ struct Model::KinematicsPass {
   double rope_s = 0.0, rope_l = 0.0;    // a stretched rope's torques on a seesaw with inertia
 
   void pulled(double phi_s, double dphi_s) {
+    if (!m.pulls_heavy_) return;
     const RopePull p = m.heavy_pull(d, phi_s, dphi_s, y[slot::phi_l], y[slot::dphi_l]);
     rope_s = p.q_s, rope_l = p.q_l;
   }

@@ -63,6 +63,7 @@ Model::Model(const Scenario& scenario)
   friction_ = m.has_friction();
   for (double e : e_) restitution_ = restitution_ || e > 0.0;
   stretchy_ = m.stretchy_rope();
+  pulls_heavy_ = stretchy_ && heavy_;
   k_rope_ = m.rope_stiffness;
   c_rope_ = m.rope_damping;
 }

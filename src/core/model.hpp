@@ -372,6 +372,7 @@ class Model {
   // The stretched rope's pull on a seesaw with inertia that it turns (zero otherwise), from the
   // angles and rates alone: its torques join the swings' like the Coulomb torques.
   RopePull heavy_pull(const Discrete& d, double phi_s, double dphi_s, double phi_l, double dphi_l) const;
+  bool pulls_heavy_ = false;  // a stretchy rope on a seesaw with inertia (heavy_pull is not zero)
   double rope_energy(const Kinematics& k) const;
   void stretchy_flow(const Discrete& d, const State& y, State& dy) const;
   void stretchy_kinematics(const Discrete& d, Kinematics& k) const;
