@@ -41,11 +41,13 @@ struct System {
   // Friction: friction[i] = n + 1 makes contact i the tangent of normal contact n, bounded by
   // bound[i] = mu times n's multiplier; friction[i] = kFixedBound bounds it by the force bound[i]
   // itself (a Coulomb torque, transmitting no impulse); 0: an ordinary unilateral contact.
+  // Only `friction` is zeroed: bound and slip are read for friction contacts alone, which set them
+  // (zeroing all three for every contact problem of the flow cost the paper's machine 2-3 %).
   std::array<int, kMaxContacts> friction{};
-  PerContact bound{};
+  PerContact bound;
   // The sign each open friction contact slips with in the motion being described (multipliers_for);
   // the solvers decide it themselves.
-  std::array<int, kMaxContacts> slip{};
+  std::array<int, kMaxContacts> slip;
   double rate(int i, const Coords& v) const;  // gap_i' = W_i . v
 };
 constexpr int kFixedBound = -1;
