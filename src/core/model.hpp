@@ -214,6 +214,17 @@ class Model {
     return g_ * sin_s + r * dphi_s * dphi_s;
   }
   double radio_gap(const Kinematics& k) const;
+  // guards() in stages (guards.cpp), called in this order.
+  void balloon_guards(const Discrete& d, const State& y, const Kinematics& k, GuardValues& g,
+                      GuardValues* rates) const;
+  void open_contact_gaps(const Discrete& d, const Kinematics& k, GuardValues& g) const;
+  bool closed_forces_wanted(const Discrete& d, int only) const;  // only: as in guards()
+  void open_contact_rates(const Discrete& d, const Kinematics& k, const contact::System& sys,
+                          GuardValues& rates) const;
+  void closed_contact_forces(const Discrete& d, const Kinematics& k, const contact::System& sys,
+                             GuardValues& g) const;
+  void slip_guards(const Discrete& d, const Kinematics& k, GuardValues& g) const;
+  void linkage_guards(const Discrete& d, const Kinematics& k, GuardValues& g, int only) const;
   // A balloon smaller than the box (balloon.cpp, docs/extensions.md).
   struct BalloonForces {
     double lid = 0.0, wall = 0.0;  // the lid's and the wall's (or its corner's) push per unit mass
