@@ -323,6 +323,16 @@ class Model {
   void place(HybridState& hs, const Kinematics& k) const;
   static Kinematics with_velocity(Kinematics k, const contact::Coords& u);
   Event make_event(EventType type, HybridState& hs, Mode before, Mode after) const;
+  // initial() in stages (jumps.cpp): what touches at rest at t = 0 (k: the start's positions), how
+  // the guards of what touches but lets go open, and those let-gos as events at t = 0.
+  contact::Set start_touching(const Discrete& d, Kinematics& k) const;
+  void arm_start_releases(Discrete& d, contact::Set touch, const contact::Motion& mot,
+                          double accel_tol) const;
+  void report_start_releases(HybridState& hs, contact::Set touch, contact::Set active,
+                             std::vector<Event>& out) const;
+  // jump_contacts() for the guards that change no contact: the balloon's, the chart's, the ends'.
+  bool jump_without_contacts(Guard fired, HybridState& hs, const Kinematics& k0, double limit_rate0,
+                             Mode before, std::vector<Event>& out) const;
   void release_balloon_if_lid_jumped(HybridState& hs, const Kinematics& k0, double limit_rate_before,
                                      const Books& opened,
                                      std::vector<Event>& out) const;
