@@ -15,6 +15,26 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   g.fill(kInactive);
   if (rates) rates->fill(std::numeric_limits<double>::quiet_NaN());
   const Kinematics k = kinematics(d, y);
+  balloon_guards(d, y, k, g, rates);
+  // The radio's wait: only the balloon matters now; the built machine's seesaw and sandbag still
+  // move on its stop and floor.
+  if (d.latched && !built_) return;
+
+  open_contact_gaps(d, k, g);
+  const bool forces = closed_forces_wanted(d, only);
+  const bool open = !(d.on_seesaw && d.taut && d.lid_resting);
+  contact::System sys;
+  if (forces || (rates && open)) sys = contact_system(d, k);
+  if (rates && open) open_contact_rates(d, k, sys, *rates);
+  if (forces) closed_contact_forces(d, k, sys, g);
+  slip_guards(d, k, g);
+  if (contacts_ > 3) built_guards(d, k, sys, g, rates);
+  linkage_guards(d, k, g, only);
+  if (stretchy_) stretchy_guards(d, k, g, rates);
+}
+
+void Model::balloon_guards(const Discrete& d, const State& y, const Kinematics& k, GuardValues& g,
+                           GuardValues* rates) const {
   if (radio_) g[kGuardRadioOn] = radio_gap(k);
   if (small_) {
     small_balloon_guards(d, k, g, rates);
@@ -27,65 +47,71 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   if (rates && !small_ && !d.balloon_stuck && !d.latched) {
     (*rates)[kGuardBalloon] = y[slot::balloon_v] - limit_.rate_at(k.sin_l, k.dphi_l);
   }
-  // The radio's wait: only the balloon matters now; the built machine's seesaw and sandbag still
-  // move on its stop and floor.
-  if (d.latched && !built_) return;
+}
 
+void Model::open_contact_gaps(const Discrete& d, const Kinematics& k, GuardValues& g) const {
   // Open contacts: their gaps, negative while open.
   if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) g[kGuardBag] = -height_above_arm(k);
   const Vec2 u_s{k.cos_s, k.sin_s}, u_l{k.cos_l, k.sin_l};
   if (!d.taut && !d.latched) g[kGuardRope] = rope_.span(u_s, u_l) - rope_.rope_length();
   if (!d.lid_resting && !d.latched) g[kGuardLid] = phi_l0_ - k.phi_l;
-  // Closed contacts: minus their forces. A massless seesaw held by one contact alone carries no
-  // force through it at all (identically zero: no guard); held by sandbag and rope together, the
-  // arm's push is the tension times the coupling k (torque balance), so the sandbag's guard is
-  // the sign of k and the rope's the tension.
+}
+
+bool Model::closed_forces_wanted(const Discrete& d, int only) const {
+  // Closed contacts' guards are minus their forces. A massless seesaw held by one contact alone
+  // carries no force through it at all (identically zero: no guard).
   // The stop and the floor carry forces on a massless seesaw as well (a pendulum's rod, a seesaw
   // standing on its end).
   // So do the pivot's and the hinge's friction holding the seesaw or the lid.
   const bool held = d.at_stop || d.grounded != 0 || d.seesaw_stuck || d.lid_stuck;
   const bool loaded = heavy_ || (d.on_seesaw && d.taut) || held;
-  const bool forces = loaded && (d.on_seesaw || d.taut || held) &&
-                      (only < 0 || only == kGuardBag || only == kGuardRope || only == kGuardLid ||
-                       only == kGuardStop || only == kGuardFloor || only == kGuardBagSlip ||
-                       only == kGuardPivotSlip || only == kGuardHingeSlip);
-  const bool open = !(d.on_seesaw && d.taut && d.lid_resting);
-  contact::System sys;
-  if (forces || (rates && open)) sys = contact_system(d, k);
-  if (rates && open) {
-    // An open contact's guard is minus its gap, so its rate is minus the gap's rate W_i . v.
-    if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) (*rates)[kGuardBag] = -sys.rate(kBag, sys.velocity);
-    if (!d.taut && !d.latched) (*rates)[kGuardRope] = -sys.rate(kRope, sys.velocity);
-    if (!d.lid_resting && !d.latched) (*rates)[kGuardLid] = -k.dphi_l;
-  }
-  if (forces) {
-    // The forces that make the flow's own accelerations (k has them).
-    contact::PerContact f;
-    if (contact::multipliers_for(sys, active_set(d), accelerations(d, k), f)) {
-      // The sign of k is that of -W_RS (the rope's gap gradient along phiS), which stays finite
-      // where k passes through infinity at the lid's dead centre.
-      if (d.on_seesaw && (heavy_ || d.taut)) g[kGuardBag] = heavy_ ? -f[kBag] : sys.normal[kRope][2];
-      if (d.taut) g[kGuardRope] = -f[kRope];
-      if (d.lid_resting && d.taut) g[kGuardLid] = -f[kLid];
-      if (d.at_stop) g[kGuardStop] = -f[kStop];
-      if (d.grounded != 0) g[kGuardFloor] = -f[d.grounded > 0 ? kFloorLeft : kFloorRight];
-      // Sticking: how far the friction force it takes exceeds mu times the arm's push.
-      if (d.bag_stuck) g[kGuardBagSlip] = std::fabs(f[kBagSlip]) - mu_ * f[kBag];
-      if (d.seesaw_stuck) g[kGuardPivotSlip] = std::fabs(f[kPivotSlip]) - t_p_;
-      if (d.lid_stuck) g[kGuardHingeSlip] = std::fabs(f[kHingeSlip]) - t_h_;
-    }
-  }
+  return loaded && (d.on_seesaw || d.taut || held) &&
+         (only < 0 || only == kGuardBag || only == kGuardRope || only == kGuardLid || only == kGuardStop ||
+          only == kGuardFloor || only == kGuardBagSlip || only == kGuardPivotSlip || only == kGuardHingeSlip);
+}
+
+void Model::open_contact_rates(const Discrete& d, const Kinematics& k, const contact::System& sys,
+                               GuardValues& rates) const {
+  // An open contact's guard is minus its gap, so its rate is minus the gap's rate W_i . v.
+  if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) rates[kGuardBag] = -sys.rate(kBag, sys.velocity);
+  if (!d.taut && !d.latched) rates[kGuardRope] = -sys.rate(kRope, sys.velocity);
+  if (!d.lid_resting && !d.latched) rates[kGuardLid] = -k.dphi_l;
+}
+
+void Model::closed_contact_forces(const Discrete& d, const Kinematics& k, const contact::System& sys,
+                                  GuardValues& g) const {
+  // The forces that make the flow's own accelerations (k has them).
+  contact::PerContact f;
+  if (!contact::multipliers_for(sys, active_set(d), accelerations(d, k), f)) return;
+  // Held by sandbag and rope together, a massless seesaw's arm pushes with the tension times the
+  // coupling k (torque balance), so the sandbag's guard is the sign of k and the rope's the tension.
+  // The sign of k is that of -W_RS (the rope's gap gradient along phiS), which stays finite where k
+  // passes through infinity at the lid's dead centre.
+  if (d.on_seesaw && (heavy_ || d.taut)) g[kGuardBag] = heavy_ ? -f[kBag] : sys.normal[kRope][2];
+  if (d.taut) g[kGuardRope] = -f[kRope];
+  if (d.lid_resting && d.taut) g[kGuardLid] = -f[kLid];
+  if (d.at_stop) g[kGuardStop] = -f[kStop];
+  if (d.grounded != 0) g[kGuardFloor] = -f[d.grounded > 0 ? kFloorLeft : kFloorRight];
+  // Sticking: how far the friction force it takes exceeds mu times the arm's push.
+  if (d.bag_stuck) g[kGuardBagSlip] = std::fabs(f[kBagSlip]) - mu_ * f[kBag];
+  if (d.seesaw_stuck) g[kGuardPivotSlip] = std::fabs(f[kPivotSlip]) - t_p_;
+  if (d.lid_stuck) g[kGuardHingeSlip] = std::fabs(f[kHingeSlip]) - t_h_;
+}
+
+void Model::slip_guards(const Discrete& d, const Kinematics& k, GuardValues& g) const {
+  // Slipping: minus the slip's speed, zero where it stops.
   if (d.seesaw_slip != 0) g[kGuardPivotSlip] = -d.seesaw_slip * k.dphi_s;
   if (d.lid_slip != 0) g[kGuardHingeSlip] = -d.lid_slip * k.dphi_l;
-  // Slipping (only the polar layouts have an arm that pushes): minus the slip's speed, zero where
-  // it stops.
+  // Only the polar layouts have an arm that pushes.
   if (friction_ && d.polar() && !d.bag_stuck && !d.at_stop && d.bag_slip != 0) g[kGuardBagSlip] = -d.bag_slip * k.dr;
-  if (contacts_ > 3) built_guards(d, k, sys, g, rates);
+}
 
+void Model::linkage_guards(const Discrete& d, const Kinematics& k, GuardValues& g, int only) const {
   if (!d.latched) g[kGuardLidOpen] = k.phi_l - vertical_;  // a lid resting at or past it is open from the start
   if (on_closure(d)) {
     // The lid's dead centre: it reaches the rope's line (the rope would touch the hinge and then
     // run through the box). Crossed at a finite rate in the lid chart, so found exactly.
+    const Vec2 u_s{k.cos_s, k.sin_s}, u_l{k.cos_l, k.sin_l};
     if (only < 0 || only == kGuardRopeLocked) g[kGuardRopeLocked] = rope_.lid_side_of_rope(u_s, u_l);
     // Integrate the angle that moves slower: switch charts at |k| = 2 (seesaw) or 1/2 (lid).
     g[kGuardChart] = d.lid_chart ? std::fabs(1.0 / k.transfer.k) - 2.0 : std::fabs(k.transfer.k) - 2.0;
@@ -106,7 +132,6 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   const bool seesaw_moves = d.on_seesaw || d.heavy || d.taut;
   if (seesaw_moves) g[kGuardSeesawVertical] = std::fabs(k.phi_s) - vertical_;
   if (d.on_seesaw && arm_ < kNoEnd && !stop_) g[kGuardArmEnd] = k.r - arm_;
-  if (stretchy_) stretchy_guards(d, k, g, rates);
 }
 
 void Model::built_guards(const Discrete& d, const Kinematics& k, const contact::System& sys, GuardValues& g,

@@ -26,6 +26,40 @@ HybridState Model::initial(std::vector<Event>& out) const {
   d.taut = false;
   d.lid_resting = true;
   Kinematics k;
+  const Set touch = start_touching(d, k);
+  // Everything starts at rest, so only forces decide; what touches is kept where they allow it.
+  const Discrete dt = with_contacts(d, touch);
+  const contact::System sys = contact_system(dt, k);
+  contact::Choice ch = choice(dt, sys, k, -1, Trend::closing);
+  const contact::Motion mot = contact::solve_motion(sys, touch, ch);
+  if (!mot.ok) throw SimulationError("no consistent set of contacts at the start (degenerate contact)");
+  set_contacts(d, mot.active, k);
+  take_slips(d, mot.slip);
+  hs.y.fill(0.0);
+  place(hs, k);
+  hs.y[slot::balloon_h] = limit_.height(phi_l0_);
+  SmallBalloon::Limit corner{0.0, 0.0, 0.0};
+  if (small_ && !sb_.limit(k.cos_l, k.sin_l, corner)) {
+    // A lid resting so steep that the wall's top lets a smaller balloon by: it starts under the
+    // lid above the far wall's face (docs/extensions.md), free to slide along the lid; at most at
+    // the line where it is out (beyond it the face's point may lie past the lid's free edge).
+    d.balloon_held = false;
+    hs.y[slot::balloon_h] = std::fmin((sb_.wall() - sb_.radius * k.sin_l) / k.cos_l, sb_.lid * k.cos_l);
+    hs.y[slot::balloon_v] = 0.0;
+  }
+  arm_start_releases(d, touch, mot, ch.accel_tol);
+
+  const Kinematics k1 = kinematics(d, hs.y);
+  Books& b = d.books;
+  b.initial_total = energy(k1) + balloon_energy(k1);
+  b.balloon_e_mark = balloon_energy(k1);  // nothing pushed yet
+  open_books(hs, k1);
+  report_start_releases(hs, touch, mot.active, out);
+  return hs;
+}
+
+Set Model::start_touching(const Discrete& d, Kinematics& k) const {
+  const Start& st = sc_.start;
   k.x = st.sandbag_x;
   k.h = st.sandbag_h;
   k.phi_s = st.seesaw_angle;
@@ -54,55 +88,37 @@ HybridState Model::initial(std::vector<Event>& out) const {
   }
   if (mu_ > 0.0 && contact::has(touch, kBag)) touch |= bit(kBagSlip);  // it sticks, or slips
   if (t_p_ > 0.0) touch |= bit(kPivotSlip);  // a seesaw at rest on its pivot, unless its torque wins
-  // Everything starts at rest, so only forces decide; what touches is kept where they allow it.
-  const Discrete dt = with_contacts(d, touch);
-  const contact::System sys = contact_system(dt, k);
-  contact::Choice ch = choice(dt, sys, k, -1, Trend::closing);
-  const contact::Motion mot = contact::solve_motion(sys, touch, ch);
-  if (!mot.ok) throw SimulationError("no consistent set of contacts at the start (degenerate contact)");
-  set_contacts(d, mot.active, k);
-  take_slips(d, mot.slip);
-  hs.y.fill(0.0);
-  place(hs, k);
-  hs.y[slot::balloon_h] = limit_.height(phi_l0_);
-  SmallBalloon::Limit corner{0.0, 0.0, 0.0};
-  if (small_ && !sb_.limit(k.cos_l, k.sin_l, corner)) {
-    // A lid resting so steep that the wall's top lets a smaller balloon by: it starts under the
-    // lid above the far wall's face (docs/extensions.md), free to slide along the lid; at most at
-    // the line where it is out (beyond it the face's point may lie past the lid's free edge).
-    d.balloon_held = false;
-    hs.y[slot::balloon_h] = std::fmin((sb_.wall() - sb_.radius * k.sin_l) / k.cos_l, sb_.lid * k.cos_l);
-    hs.y[slot::balloon_v] = 0.0;
-  }
+  return touch;
+}
+
+void Model::arm_start_releases(Discrete& d, Set touch, const contact::Motion& mot, double accel_tol) const {
+  // A contact that touches but is not kept opens from rest: its guard starts at zero and turns
+  // negative as its acceleration, or a higher derivative, makes it (GuardStart).
   for (int i = 0; i < contacts_; ++i) {
     if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
     const Guard gi = guard_of(i);
     if (is_friction(i)) {  // slipping from rest: minus the slip's speed falls as it picks up
       if (i == kBagSlip && !d.on_seesaw) continue;
       const double a = std::fabs(mot.gap_acceleration[i]);
-      d.armed[gi] = a > ch.accel_tol ? GuardStart{1, -a} : GuardStart{2, kUnknownLead};
+      d.armed[gi] = a > accel_tol ? GuardStart{1, -a} : GuardStart{2, kUnknownLead};
     } else {
-      d.armed[gi] = mot.gap_acceleration[i] > ch.accel_tol ? GuardStart{2, -0.5 * mot.gap_acceleration[i]}
-                                                           : GuardStart{3, kUnknownLead};
+      d.armed[gi] = mot.gap_acceleration[i] > accel_tol ? GuardStart{2, -0.5 * mot.gap_acceleration[i]}
+                                                        : GuardStart{3, kUnknownLead};
     }
     d.armed[gi].floor = guard_floor(gi, d);
   }
+}
 
-  const Kinematics k1 = kinematics(d, hs.y);
-  Books& b = d.books;
-  b.initial_total = energy(k1) + balloon_energy(k1);
-  b.balloon_e_mark = balloon_energy(k1);  // nothing pushed yet
-  open_books(hs, k1);
+void Model::report_start_releases(HybridState& hs, Set touch, Set active, std::vector<Event>& out) const {
   // A rope or a sandbag that touches at the start but lets go at once is an event at t = 0 (a lid
   // that lifts at once just starts in M4).
   Set cur = touch;
   for (int i : {kBag, kRope, kFloorLeft, kFloorRight}) {
-    if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
+    if (!contact::has(touch, i) || contact::has(active, i)) continue;
     const Mode from = mode_of(cur);
     cur &= ~bit(i);
     out.push_back(make_event(change_event(i, false), hs, from, mode_of(cur)));
   }
-  return hs;
 }
 
 void Model::place(HybridState& hs, const Kinematics& k) const {
@@ -294,6 +310,29 @@ bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out)
       resolve(hs, k0, kBag, Trend::forced_off, out);
       break;
     case kGuardBalloon:
+    case kGuardBalloonCorner:
+    case kGuardBalloonEscape:
+    case kGuardLidOpen:
+    case kGuardSeesawVertical:
+    case kGuardAtPivot:
+    case kGuardRopeLocked:
+    case kGuardRadioOn:
+    case kGuardChart: return jump_without_contacts(fired, hs, k0, limit_rate0, before, out);
+    case kGuardCount: break;
+  }
+  release_balloon_if_lid_jumped(hs, k0, limit_rate0, opened, out);
+  book(hs);  // a jump may end with a change that no event reports
+  return false;
+}
+
+bool Model::jump_without_contacts(Guard fired, HybridState& hs, const Kinematics& k0, double limit_rate0,
+                                  Mode before, std::vector<Event>& out) const {
+  auto stop = [&](EventType type) {
+    out.push_back(make_event(type, hs, before, before));
+    return true;
+  };
+  switch (fired) {
+    case kGuardBalloon:
       if (small_) {
         small_balloon_jump(fired, hs, k0, before, out);
         return false;
@@ -318,10 +357,8 @@ bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out)
       hs.d.side = RopeGeometry::side_of(rope_.lid_edge(k0.phi_l), rope_.seesaw_end(k0.phi_s));
       place(hs, k0);
       return false;
-    case kGuardCount: break;
+    default: break;  // the contacts' guards: jump_contacts
   }
-  release_balloon_if_lid_jumped(hs, k0, limit_rate0, opened, out);
-  book(hs);  // a jump may end with a change that no event reports
   return false;
 }
 

@@ -215,6 +215,17 @@ class Model {
     return g_ * sin_s + r * dphi_s * dphi_s;
   }
   double radio_gap(const Kinematics& k) const;
+  // guards() in stages (guards.cpp), called in this order.
+  void balloon_guards(const Discrete& d, const State& y, const Kinematics& k, GuardValues& g,
+                      GuardValues* rates) const;
+  void open_contact_gaps(const Discrete& d, const Kinematics& k, GuardValues& g) const;
+  bool closed_forces_wanted(const Discrete& d, int only) const;  // only: as in guards()
+  void open_contact_rates(const Discrete& d, const Kinematics& k, const contact::System& sys,
+                          GuardValues& rates) const;
+  void closed_contact_forces(const Discrete& d, const Kinematics& k, const contact::System& sys,
+                             GuardValues& g) const;
+  void slip_guards(const Discrete& d, const Kinematics& k, GuardValues& g) const;
+  void linkage_guards(const Discrete& d, const Kinematics& k, GuardValues& g, int only) const;
   // A balloon smaller than the box (balloon.cpp, docs/extensions.md).
   struct BalloonForces {
     double lid = 0.0, wall = 0.0;  // the lid's and the wall's (or its corner's) push per unit mass
@@ -313,6 +324,16 @@ class Model {
   void place(HybridState& hs, const Kinematics& k) const;
   static Kinematics with_velocity(Kinematics k, const contact::Coords& u);
   Event make_event(EventType type, HybridState& hs, Mode before, Mode after) const;
+  // initial() in stages (jumps.cpp): what touches at rest at t = 0 (k: the start's positions), how
+  // the guards of what touches but lets go open, and those let-gos as events at t = 0.
+  contact::Set start_touching(const Discrete& d, Kinematics& k) const;
+  void arm_start_releases(Discrete& d, contact::Set touch, const contact::Motion& mot,
+                          double accel_tol) const;
+  void report_start_releases(HybridState& hs, contact::Set touch, contact::Set active,
+                             std::vector<Event>& out) const;
+  // jump_contacts() for the guards that change no contact: the balloon's, the chart's, the ends'.
+  bool jump_without_contacts(Guard fired, HybridState& hs, const Kinematics& k0, double limit_rate0,
+                             Mode before, std::vector<Event>& out) const;
   void release_balloon_if_lid_jumped(HybridState& hs, const Kinematics& k0, double limit_rate_before,
                                      const Books& opened,
                                      std::vector<Event>& out) const;

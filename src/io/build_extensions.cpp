@@ -70,14 +70,9 @@ void build_built_machine(const Reader& in, Machine& m) {
   }
 }
 
-}  // namespace
-
-// The switches beyond the paper (docs/extensions.md); with none of their keys given the machine
-// is docs/model.md's.
 // A rope that stretches (docs/impact.md): a spring-damper on the paper's massless seesaw. Its
 // stretch needs the sandbag's inertia on the arm: the heavy seesaw, the built machine's floor and
 // stop, and a bouncing rope are not combined with it (yet); fixed steps cannot resolve a stiff one.
-namespace {
 void build_stretchy_rope(const Reader& in, Machine& m) {
   if (in.find("rope.stiffness")) {
     m.rope_stiffness = in.positive("rope.stiffness");
@@ -108,11 +103,10 @@ void build_stretchy_rope(const Reader& in, Machine& m) {
     no("friction.sandbag", "on the massless seesaw; give the seesaw a mass (seesaw.mass)");
   }
 }
-}  // namespace
 
-void build_extensions(const Reader& in, Machine& m) {
-  // Kermit's radio stands 0.5 m right of the box, its switch level with the box's top. The radio is
-  // opt-in: radio.enabled, or any other radio key, turns it on.
+// Kermit's radio stands 0.5 m right of the box, its switch level with the box's top. The radio is
+// opt-in: radio.enabled, or any other radio key, turns it on.
+void build_radio(const Reader& in, Machine& m) {
   Vec2 offset{0.5, 0.0};
   if (in.find("radio.switch_offset")) offset = in.pair("radio.switch_offset");
   m.radio_switch = m.hinge + Vec2{2.0 * m.lid_half_length, 0.0} + offset;
@@ -124,7 +118,10 @@ void build_extensions(const Reader& in, Machine& m) {
   if (!m.radio && any_radio && in.find("radio.enabled")) {
     in.fail("radio.enabled", "is false but other radio keys are given: remove them or enable the radio");
   }
+}
 
+// The balloon's rubber and air drag.
+void build_balloon_extensions(const Reader& in, Machine& m) {
   m.balloon_rubber_mass = in.number("balloon.rubber_mass");
   if (!(m.balloon_rubber_mass >= 0.0)) {
     in.fail("balloon.rubber_mass", fmt::format("must be >= 0 kg (given {})", fmt_num(m.balloon_rubber_mass)));
@@ -144,10 +141,10 @@ void build_extensions(const Reader& in, Machine& m) {
   }
   m.balloon_drag_coefficient = drag ? in.positive("balloon.drag_coefficient") : 0.0;
   in.plausible("balloon.drag_coefficient", m.balloon_drag_coefficient, 0.0, kMaxDrag);
+}
 
-  m.pivot_damping = in.in_range("damping.pivot", 0.0, true, kMaxDamping, true);
-  m.lid_hinge_damping = in.in_range("damping.lid_hinge", 0.0, true, kMaxDamping, true);
-
+// A seesaw with an arm's end and mass: its centre of mass and inertia, a uniform bar's unless given.
+void build_heavy_seesaw(const Reader& in, Machine& m) {
   if (in.find("seesaw.left_arm")) m.seesaw_left_arm = in.length("seesaw.left_arm", 1.0);
   m.seesaw_mass = in.number("seesaw.mass");
   if (!(m.seesaw_mass >= 0.0)) {
@@ -163,25 +160,27 @@ void build_extensions(const Reader& in, Machine& m) {
     in.fail(in.find("seesaw.inertia") ? "seesaw.inertia" : "seesaw.com_offset",
             "needs seesaw.mass (the seesaw's weight acts at its centre of mass)");
   }
-  if (m.seesaw_mass > 0.0) {
-    // Uniform bar from -L to r_H: centre (r_H - L) / 2, I = m (L^3 + r_H^3) / (3 (L + r_H)).
-    const double l = m.seesaw_left_arm, rh = m.seesaw_right_arm;
-    const double bar_com = std::isfinite(l) ? 0.5 * (rh - l) : 0.0;
-    const double bar_inertia =
-        std::isfinite(l) ? m.seesaw_mass * (l * l * l + rh * rh * rh) / (3.0 * (l + rh)) : 0.0;
-    m.seesaw_com_offset = in.offset("seesaw.com_offset", bar_com);
-    m.seesaw_inertia = in.number("seesaw.inertia", bar_inertia);
-    if (!in.find("seesaw.inertia")) check_bar_inertia(in, m);
-    in.plausible("seesaw.inertia", m.seesaw_inertia, -kMaxInertia, kMaxInertia);
-    const double least = m.seesaw_mass * m.seesaw_com_offset * m.seesaw_com_offset;
-    if (!(m.seesaw_inertia > 0.0) || m.seesaw_inertia < least * (1.0 - 1e-12)) {
-      in.fail("seesaw.inertia",
-              fmt::format("must be > 0 and at least mass * com_offset^2 = {:.4g} kg m^2 (given {})", least,
-                          fmt_num(m.seesaw_inertia)));
-    }
+  if (!(m.seesaw_mass > 0.0)) return;
+  // Uniform bar from -L to r_H: centre (r_H - L) / 2, I = m (L^3 + r_H^3) / (3 (L + r_H)).
+  const double l = m.seesaw_left_arm, rh = m.seesaw_right_arm;
+  const double bar_com = std::isfinite(l) ? 0.5 * (rh - l) : 0.0;
+  const double bar_inertia =
+      std::isfinite(l) ? m.seesaw_mass * (l * l * l + rh * rh * rh) / (3.0 * (l + rh)) : 0.0;
+  m.seesaw_com_offset = in.offset("seesaw.com_offset", bar_com);
+  m.seesaw_inertia = in.number("seesaw.inertia", bar_inertia);
+  if (!in.find("seesaw.inertia")) check_bar_inertia(in, m);
+  in.plausible("seesaw.inertia", m.seesaw_inertia, -kMaxInertia, kMaxInertia);
+  const double least = m.seesaw_mass * m.seesaw_com_offset * m.seesaw_com_offset;
+  if (!(m.seesaw_inertia > 0.0) || m.seesaw_inertia < least * (1.0 - 1e-12)) {
+    in.fail("seesaw.inertia",
+            fmt::format("must be > 0 and at least mass * com_offset^2 = {:.4g} kg m^2 (given {})", least,
+                        fmt_num(m.seesaw_inertia)));
   }
-  build_built_machine(in, m);
-  build_stretchy_rope(in, m);
+}
+
+// The pivot's damper and Coulomb torque, each only with a seesaw that has inertia, and not both
+// frictions at once.
+void check_pivot_torques(const Reader& in, const Machine& m) {
   if (m.pivot_damping > 0.0 && !m.heavy_seesaw()) {
     // A massless seesaw can only take the damper's torque from the sandbag pushing the arm, which
     // would have to pull whenever the seesaw turns back: no consistent motion (docs/extensions.md).
@@ -198,6 +197,20 @@ void build_extensions(const Reader& in, Machine& m) {
             "cannot go with friction.pivot: the taut rope couples the pivot and the hinge, and how two Coulomb "
             "torques share one load is not determined; give one of them");
   }
+}
+}  // namespace
+
+// The switches beyond the paper (docs/extensions.md); with none of their keys given the machine
+// is docs/model.md's. In this order, so that the first broken rule told is the same as before.
+void build_extensions(const Reader& in, Machine& m) {
+  build_radio(in, m);
+  build_balloon_extensions(in, m);
+  m.pivot_damping = in.in_range("damping.pivot", 0.0, true, kMaxDamping, true);
+  m.lid_hinge_damping = in.in_range("damping.lid_hinge", 0.0, true, kMaxDamping, true);
+  build_heavy_seesaw(in, m);
+  build_built_machine(in, m);
+  build_stretchy_rope(in, m);
+  check_pivot_torques(in, m);
 }
 
 // Start conditions that only the extensions can violate.
