@@ -100,70 +100,79 @@ Model::LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, dou
   return p;
 }
 
+void Model::polar_flow(const Discrete& d, const State& y, State& dy) const {
+  // The sandbag on the arm (r, phiS): the seesaw's swing with it, or the arm held still.
+  dy[slot::r] = y[slot::dr];
+  dy[slot::phi_s] = y[slot::dphi_s];
+  const double r = y[slot::r], dr = y[slot::dr];
+  // The Coulomb torques and a stretched rope's pull on a seesaw with inertia (none on the paper's).
+  double q_s = 0.0, q_l = 0.0;
+  if (friction_ || pulls_heavy_) {
+    const RopePull rope =
+        pulls_heavy_ ? heavy_pull(d, y[slot::phi_s], y[slot::dphi_s], y[slot::phi_l], y[slot::dphi_l]) : RopePull{};
+    q_s = pivot_coulomb(d) + rope.q_s, q_l = hinge_coulomb(d) + rope.q_l;
+  }
+  if ((d.taut && d.lid_held()) || d.seesaw_held()) {
+    // M5 (the seesaw held by the rope) or on the floor: the sandbag slides on the fixed arm.
+    dy[slot::dr] = along_arm_acceleration(r, std::sin(y[slot::phi_s]), 0.0);
+    if (d.bag_slip != 0) dy[slot::dr] += bag_friction(d.bag_slip, r, dr, std::cos(y[slot::phi_s]), 0.0, 0.0);
+  } else if (d.lid_chart && d.taut) {  // M4 near the lid's dead centre: the lid's angle integrated
+    const double dphi_l = y[slot::dphi_s];
+    const LidSwing p = swing_by_lid(true, r, y[slot::phi_s], dr, dphi_l, d.side, q_s, q_l);
+    dy[slot::dr] = p.ddr;
+    dy[slot::dphi_s] = p.ddphi_l;
+    if (d.bag_slip != 0) {  // phiS' = S' phiL', phiS'' = S' phiL'' + S'' phiL'^2
+      dy[slot::dr] += bag_friction(d.bag_slip, r, dr, p.lk.cos_s, p.lk.ds * dphi_l,
+                                   p.lk.ds * p.ddphi_l + p.lk.dds * dphi_l * dphi_l);
+    }
+  } else {  // M4, or a heavy seesaw carrying the sandbag
+    const Swing p = swing(true, d.taut, r, y[slot::phi_s], dr, y[slot::dphi_s], q_s, q_l);
+    dy[slot::dr] = p.ddr;
+    dy[slot::dphi_s] = p.ddphi_s;
+    if (d.bag_slip != 0) dy[slot::dr] += bag_friction(d.bag_slip, r, dr, p.lk.cos_s, y[slot::dphi_s], p.ddphi_s);
+  }
+  if (d.at_stop || d.bag_stuck) dy[slot::dr] = 0.0;  // held at the arm's end, or by friction
+  if (!d.taut && !d.lid_held() && !d.latched) {
+    dy[slot::phi_l] = y[slot::dphi_l];
+    dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l], q_l);
+  }
+}
+
+void Model::cartesian_flow(const Discrete& d, const State& y, State& dy) const {
+  // Sandbag in free fall. On the seesaw with the rope slack (M3) this is the paper's polar free
+  // fall written in Cartesian form: the same motion, regular at r = 0, and exact for any RK method.
+  dy[slot::x] = y[slot::vx];
+  dy[slot::h] = y[slot::vh];
+  dy[slot::vh] = d.bag_on_floor ? 0.0 : -g_;
+  // The lid follows a heavy seesaw on the rope, or hangs from one standing on the floor.
+  const bool lid_on_rope = (d.heavy || d.seesaw_held()) && d.taut;
+  double q_s = 0.0, q_l = 0.0;
+  if (friction_ || pulls_heavy_) {
+    const RopePull rope =
+        pulls_heavy_ ? heavy_pull(d, y[slot::seesaw_phi], y[slot::seesaw_dphi], y[slot::phi_l], y[slot::dphi_l])
+                     : RopePull{};
+    q_s = pivot_coulomb(d) + rope.q_s, q_l = hinge_coulomb(d) + rope.q_l;
+  }
+  if (!d.lid_held() && !d.latched && !lid_on_rope) {
+    dy[slot::phi_l] = y[slot::dphi_l];
+    dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l], q_l);
+  }
+  if (d.heavy && !(d.taut && d.lid_held()) && !d.seesaw_held()) {  // the unloaded heavy seesaw swings
+    dy[slot::seesaw_phi] = y[slot::seesaw_dphi];
+    dy[slot::seesaw_dphi] =
+        d.lid_chart && d.taut
+            ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side, q_s, q_l).ddphi_l
+            : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], q_s, q_l).ddphi_s;
+  }
+}
+
 void Model::flow(const Discrete& d, const State& y, State& dy) const {
+  // Each layout's motion, then the balloon's, then the losses the ledger integrates.
   dy.fill(0.0);
   if (d.polar()) {
-    dy[slot::r] = y[slot::dr];
-    dy[slot::phi_s] = y[slot::dphi_s];
-    const double r = y[slot::r], dr = y[slot::dr];
-    // The Coulomb torques and a stretched rope's pull on a seesaw with inertia (none on the paper's).
-    double q_s = 0.0, q_l = 0.0;
-    if (friction_ || pulls_heavy_) {
-      const RopePull rope =
-          pulls_heavy_ ? heavy_pull(d, y[slot::phi_s], y[slot::dphi_s], y[slot::phi_l], y[slot::dphi_l]) : RopePull{};
-      q_s = pivot_coulomb(d) + rope.q_s, q_l = hinge_coulomb(d) + rope.q_l;
-    }
-    if ((d.taut && d.lid_held()) || d.seesaw_held()) {
-      // M5 (the seesaw held by the rope) or on the floor: the sandbag slides on the fixed arm.
-      const double cs = std::cos(y[slot::phi_s]), sn = std::sin(y[slot::phi_s]);
-      dy[slot::dr] = along_arm_acceleration(r, sn, 0.0);
-      if (d.bag_slip != 0) dy[slot::dr] += bag_friction(d.bag_slip, r, dr, cs, 0.0, 0.0);
-    } else if (d.lid_chart && d.taut) {  // M4 near the lid's dead centre: the lid's angle integrated
-      const double dphi_l = y[slot::dphi_s];
-      const LidSwing p = swing_by_lid(true, r, y[slot::phi_s], dr, dphi_l, d.side, q_s, q_l);
-      dy[slot::dr] = p.ddr;
-      dy[slot::dphi_s] = p.ddphi_l;
-      if (d.bag_slip != 0) {  // phiS' = S' phiL', phiS'' = S' phiL'' + S'' phiL'^2
-        dy[slot::dr] += bag_friction(d.bag_slip, r, dr, p.lk.cos_s, p.lk.ds * dphi_l,
-                                     p.lk.ds * p.ddphi_l + p.lk.dds * dphi_l * dphi_l);
-      }
-    } else {  // M4, or a heavy seesaw carrying the sandbag
-      const Swing p = swing(true, d.taut, r, y[slot::phi_s], dr, y[slot::dphi_s], q_s, q_l);
-      dy[slot::dr] = p.ddr;
-      dy[slot::dphi_s] = p.ddphi_s;
-      if (d.bag_slip != 0) dy[slot::dr] += bag_friction(d.bag_slip, r, dr, p.lk.cos_s, y[slot::dphi_s], p.ddphi_s);
-    }
-    if (d.at_stop || d.bag_stuck) dy[slot::dr] = 0.0;  // held at the arm's end, or by friction
-    if (!d.taut && !d.lid_held() && !d.latched) {
-      dy[slot::phi_l] = y[slot::dphi_l];
-      dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l], q_l);
-    }
+    polar_flow(d, y, dy);
   } else {
-    // Sandbag in free fall. On the seesaw with the rope slack (M3) this is the paper's polar free
-    // fall written in Cartesian form: the same motion, regular at r = 0, and exact for any RK method.
-    dy[slot::x] = y[slot::vx];
-    dy[slot::h] = y[slot::vh];
-    dy[slot::vh] = d.bag_on_floor ? 0.0 : -g_;
-    // The lid follows a heavy seesaw on the rope, or hangs from one standing on the floor.
-    const bool lid_on_rope = (d.heavy || d.seesaw_held()) && d.taut;
-    double q_s = 0.0, q_l = 0.0;
-    if (friction_ || pulls_heavy_) {
-      const RopePull rope =
-          pulls_heavy_ ? heavy_pull(d, y[slot::seesaw_phi], y[slot::seesaw_dphi], y[slot::phi_l], y[slot::dphi_l])
-                       : RopePull{};
-      q_s = pivot_coulomb(d) + rope.q_s, q_l = hinge_coulomb(d) + rope.q_l;
-    }
-    if (!d.lid_held() && !d.latched && !lid_on_rope) {
-      dy[slot::phi_l] = y[slot::dphi_l];
-      dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l], q_l);
-    }
-    if (d.heavy && !(d.taut && d.lid_held()) && !d.seesaw_held()) {  // the unloaded heavy seesaw swings
-      dy[slot::seesaw_phi] = y[slot::seesaw_dphi];
-      dy[slot::seesaw_dphi] =
-          d.lid_chart && d.taut
-              ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side, q_s, q_l).ddphi_l
-              : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], q_s, q_l).ddphi_s;
-    }
+    cartesian_flow(d, y, dy);
   }
   if (small_) {
     if (!d.balloon_stuck) {  // free in the plane: lift and drag

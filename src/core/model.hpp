@@ -248,6 +248,9 @@ class Model {
   void small_balloon_free(HybridState& hs, const Kinematics& k) const;
   void small_balloon_settle(HybridState& hs, Mode before, std::vector<Event>& out) const;
   void small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0, std::vector<Event>& out) const;
+  // The flow's stages: the sandbag on the arm in polar form, or flying in Cartesian form.
+  void polar_flow(const Discrete& d, const State& y, State& dy) const;
+  void cartesian_flow(const Discrete& d, const State& y, State& dy) const;
   void dissipation(const Discrete& d, const Kinematics& k, State& dy) const;
   // Coulomb friction (contact_problem.cpp): the slip's tangent in the contact problem, and the
   // sandbag's acceleration along the arm from friction while it slips (the arm's push per unit
