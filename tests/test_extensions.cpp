@@ -15,6 +15,7 @@
 #include "whatnext/geometry.hpp"
 #include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
+#include "test_machines.hpp"
 
 namespace wn = whatnext;
 namespace fs = std::filesystem;
@@ -23,17 +24,9 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-wn::Scenario example(int n, const std::vector<std::string>& sets = {}) {
-  wn::Config cfg = wn::example_config(n);
-  for (const std::string& s : sets) wn::apply_set(cfg, s);
-  return wn::build_scenario(cfg);
-}
-
-wn::Scenario from_toml(const std::string& text, const std::vector<std::string>& sets = {}) {
-  wn::Config cfg = wn::parse_toml(text, "t.toml");
-  for (const std::string& s : sets) wn::apply_set(cfg, s);
-  return wn::build_scenario(cfg);
-}
+using wn::testing::example;
+using wn::testing::from_toml;
+using wn::testing::standing_seesaw;
 
 const wn::Event* find(const std::vector<wn::Event>& ev, wn::EventType type, double after = -1.0) {
   for (const wn::Event& e : ev) {
@@ -345,33 +338,6 @@ TEST(NoSomersaults, NoSeesawWithMassEverTurnsPastTheVertical) {
 
 // --- the built machine (issue 19: docs/extensions.md "The machine students build") ------------
 
-namespace {
-// A seesaw standing on the floor with its left end: the box's bottom 0.4 m below the pivot, the
-// left arm 0.8 m long, so sin(phiS) = 0.4 / 0.8 and phiS = 30 deg; a uniform board (its centre at
-// the pivot), so only the sandbag's weight presses the end onto the floor.
-std::string standing_seesaw(const std::string& more) {
-  return R"(
-[geometry]
-seesaw_right_arm = 0.8
-lid_half_length = 0.12
-rope_length = 1.0
-hinge_offset = [0.75, 0.16]
-[masses]
-sandbag = 0.7
-lid = 0.1
-[seesaw]
-left_arm = 0.8
-mass = 0.3
-[floor]
-enabled = true
-[start]
-seesaw_angle = 30.0
-lid_angle = 0.0
-[run]
-t_max = 1.5
-)" + more;
-}
-}  // namespace
 
 TEST(BuiltMachine, TheSandbagSlidesFromRestToTheStopOnTheArmStandingOnTheFloor) {
   // Placed on the arm at r0 = 0.3 m, at rest: r'' = g sin(30 deg) on the fixed arm, so it reaches

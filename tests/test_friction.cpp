@@ -163,39 +163,17 @@ TEST(FrictionSolver, InverseDynamicsGivesBackTheForcesOfASlidingBlock) {
 
 #include "whatnext/config.hpp"
 #include "whatnext/simulate.hpp"
+#include "test_machines.hpp"
 
 namespace wn = whatnext;
 
 namespace {
 
-// A seesaw standing on the floor with its left end, its arm at 30 degrees: a fixed incline
-// (docs/extensions.md). The rope long enough never to tighten.
-wn::Scenario standing(double mu, const std::vector<std::string>& sets) {
-  wn::Config cfg = wn::parse_toml(R"(
-[geometry]
-seesaw_right_arm = 0.8
-lid_half_length = 0.12
-rope_length = 1.0
-hinge_offset = [0.75, 0.16]
-[masses]
-sandbag = 0.7
-lid = 0.1
-[seesaw]
-left_arm = 0.8
-mass = 0.3
-end_stop = true
-[floor]
-enabled = true
-[start]
-seesaw_angle = 30.0
-lid_angle = 0.0
-[run]
-t_max = 1.5
-)",
-                                  "incline.toml");
-  wn::apply_set(cfg, "friction.sandbag=" + std::to_string(mu));
-  for (const std::string& s : sets) wn::apply_set(cfg, s);
-  return wn::build_scenario(cfg);
+// The seesaw standing on the floor with its left end, its arm at 30 degrees: a fixed incline
+// (docs/extensions.md), with the end stop, the rope long enough never to tighten.
+wn::Scenario standing(double mu, std::vector<std::string> sets) {
+  sets.insert(sets.begin(), {"seesaw.end_stop=true", "friction.sandbag=" + std::to_string(mu)});
+  return wn::testing::from_toml(wn::testing::standing_seesaw(), sets);
 }
 
 std::string num(double v) {

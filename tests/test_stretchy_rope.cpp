@@ -11,6 +11,7 @@
 
 #include "whatnext/config.hpp"
 #include "whatnext/simulate.hpp"
+#include "test_machines.hpp"
 
 namespace wn = whatnext;
 
@@ -18,11 +19,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-wn::Scenario example(int n, const std::vector<std::string>& sets = {}) {
-  wn::Config cfg = wn::example_config(n);
-  for (const std::string& s : sets) wn::apply_set(cfg, s);
-  return wn::build_scenario(cfg);
-}
+using wn::testing::example;
 
 const wn::Event* first(const std::vector<wn::Event>& ev, wn::EventType type, double after = -1.0) {
   for (const wn::Event& e : ev)
