@@ -32,16 +32,6 @@
     'friction.sandbag': [0, 1.5], 'friction.pivot': [0, 2], 'friction.lid_hinge': [0, 1],
     'rope.stiffness': [10, 1e8, 'log'], 'rope.damping': [0, 100],
   };
-  // What a blank field means for the extension keys that a machine without them does not write
-  // (docs/inputs.md).
-  const kDefaults = {
-    'balloon.rubber_mass': '0', 'balloon.drag_coefficient': '0.47', 'radio.switch_offset': ['0.5', '0'],
-    'radio.string_length': '1', 'damping.pivot': '0', 'damping.lid_hinge': '0', 'seesaw.left_arm': 'endless',
-    'seesaw.mass': '0', 'seesaw.inertia': 'bar', 'seesaw.com_offset': 'bar', 'radio.switch_force': '0',
-    'floor.restitution': '0', 'restitution.sandbag': '0', 'restitution.rope': '0', 'restitution.lid': '0',
-    'restitution.stop': '0', 'friction.sandbag': '0', 'friction.pivot': '0', 'friction.lid_hinge': '0',
-    'rope.stiffness': 'inextensible', 'rope.damping': '0',
-  };
   const kSections = { balloon: 'Balloon', radio: 'Radio', damping: 'Damping', seesaw: 'The seesaw: its arm, mass and end stop',
                       floor: 'The floor', restitution: 'Restitution: impacts that bounce',
                       friction: 'Friction', rope: 'A rope that stretches' };
@@ -69,6 +59,10 @@
 
   function create(form, keys, names, onChange) {
     const fields = new Map();  // key -> {spec, root, inputs, slider, error, reset}
+    // What a blank field means for the keys a machine without them does not write: the key
+    // table's own default (docs/inputs.md), a pair as its two numbers.
+    const defaults = Object.fromEntries(keys.map((k) => [k.key, /^\[.*\]$/.test(k.default)
+      ? k.default.slice(1, -1).split(',').map((x) => x.trim()) : k.default]));
 
     const groups = kGroups.map((g) => {
       const details = element('details', { class: 'group' });
@@ -171,7 +165,7 @@
       // The knot's default is the lid's free edge, 2 r_L from the hinge (to_toml writes it only
       // where it is given).
       if (!v && key === 'geometry.rope_on_lid') return rounded(2 * eff['geometry.lid_half_length'].number);
-      if (!v) return kDefaults[key] || '';
+      if (!v) return defaults[key] || '';
       if (v.pair) return v.pair.map(rounded);
       if (v.text !== undefined) return v.text;
       return rounded(v.number);

@@ -505,6 +505,7 @@ val keys() {
     v.set("kind", std::string(kKinds[static_cast<int>(k.kind)]));
     v.set("unit", std::string(k.unit));
     v.set("help", std::string(k.help));
+    v.set("default", std::string(k.default_text));  // what a blank field means (the panel)
     out.call<void>("push", v);
   }
   return out;
