@@ -144,6 +144,41 @@ TEST(FrictionSolver, AWheelWithACoulombTorqueTurnsOnlyWhenTheTorqueExceedsIt) {
   }
 }
 
+TEST(FrictionSolver, TwoCoulombTorquesCoupledByARopeHoldTogetherUpToTheirSum) {
+  // Two wheels a and b (unit inertia) tied so that b = k a while the rope is taut (gap b - k a >= 0,
+  // its pull >= 0), with Coulomb torques T1 on a and T2 on b and torques t_a, t_b driving them.
+  // Together they stick while |t_a + k t_b| <= T1 + |k| T2, and otherwise turn the closure with
+  // (t_a + k t_b - s (T1 + |k| T2)) / (1 + k^2): the two share the load, whichever is named stuck.
+  const double k = 0.6, t1 = 0.3, t2 = 0.5;
+  for (double ta : {-0.2, 0.3, 0.55, 0.8, 1.2}) {
+    const double tb = -0.4;  // the rope pulls (b hangs from it)
+    ct::System s;
+    s.coords = 2;
+    s.contacts = 3;
+    s.mass = {1.0, 1.0};
+    s.force = {ta, tb};
+    s.velocity = {0.0, 0.0};
+    s.normal[0] = {-k, 1.0};
+    s.curvature[0] = 0.0;
+    s.normal[1] = {1.0, 0.0};
+    s.normal[2] = {0.0, 1.0};
+    s.curvature[1] = s.curvature[2] = 0.0;
+    s.friction[1] = s.friction[2] = ct::kFixedBound;
+    s.bound[1] = t1, s.bound[2] = t2;
+    ct::Choice ch;
+    for (int i = 0; i < 3; ++i) ch.want[i] = 1, ch.weight[i] = 1;
+    const ct::Motion m = ct::solve_motion(s, 0b111u, ch);
+    ASSERT_TRUE(m.ok) << ta;
+    ASSERT_TRUE(ct::has(m.active, 0)) << ta;  // the rope holds
+    const double load = ta + k * tb, hold = t1 + std::fabs(k) * t2;
+    const bool sticks = std::fabs(load) <= hold;
+    EXPECT_EQ(ct::has(m.active, 1) || ct::has(m.active, 2), sticks) << ta;
+    const double expect = sticks ? 0.0 : (load - std::copysign(hold, load)) / (1.0 + k * k);
+    EXPECT_NEAR(m.acceleration[0], expect, 1e-12) << ta;
+    EXPECT_NEAR(m.acceleration[1], k * expect, 1e-12) << ta;
+  }
+}
+
 TEST(FrictionSolver, InverseDynamicsGivesBackTheForcesOfASlidingBlock) {
   const double theta = 40.0 * M_PI / 180.0, mu = 0.35;
   ct::System s = incline(theta, mu, -1.0);

@@ -272,15 +272,48 @@ Motion solve_motion(const System& sys, Set candidates, const Choice& choice) {
         slip[f] = v > 0.0 ? 1 : (v < 0.0 ? -1 : 0);
       }
     }
+    const Set free_before = open_free;
     open_free = without_idle(sys, s, open_free, false, slip);
+    // Idle Coulomb torques held by a sticking one (the taut rope couples pivot and hinge): they can
+    // take up to their bound of its load, so it sticks as long as the two together hold.
+    Set idle_fixed = 0;
+    for (int f = 0; f < sys.contacts; ++f)
+      if (has(free_before & ~open_free, f) && sys.friction[f] == kFixedBound) idle_fixed |= 1u << f;
+    // Two such torques holding one degree of freedom stick as one: as the first of them (the same
+    // choice at every tolerance, not the one rounding happens to favour). The first is idle here
+    // only because the second sticks if it could stick in its place.
+    for (int i = 0; i < sys.contacts; ++i) {
+      if (!has(s, i) || sys.friction[i] != kFixedBound) continue;
+      for (int f = 0; f < i; ++f) {
+        if (!has(idle_fixed, f)) continue;
+        PerContact m;
+        Coords a;
+        if (solve_set(sys, (s & ~(1u << i)) | (1u << f), false, slip, m, a)) return false;
+      }
+    }
     return over_slip_signs(sys, open_free, slip, [&](const std::array<int, kMaxContacts>& signs) {
       Motion cand;
       if (!solve_set(sys, s, false, signs, cand.force, cand.acceleration)) return false;
+      auto idle_share = [&](int i) {  // what the idle torques can take off stuck contact i's load
+        double share = 0.0;
+        for (int f = 0; f < sys.contacts; ++f) {
+          if (!has(idle_fixed, f)) continue;
+          std::array<int, kMaxContacts> pushed = signs;
+          pushed[f] = -1;  // its full bound along its coordinate
+          PerContact m;
+          Coords a;
+          if (solve_set(sys, s, false, pushed, m, a)) share += std::fabs(m[i] - cand.force[i]);
+        }
+        return share;
+      };
       for (int i = 0; i < sys.contacts; ++i) {
         if (!has(candidates, i) || !choice.present(s, i)) continue;
         if (sys.friction[i] != 0) {
           if (has(s, i)) {
-            if (std::fabs(cand.force[i]) > friction_bound(sys, i, cand.force) + choice.friction_tol) return false;
+            double bound = friction_bound(sys, i, cand.force);
+            if (std::fabs(cand.force[i]) > bound + choice.friction_tol && sys.friction[i] == kFixedBound)
+              bound += idle_share(i);
+            if (std::fabs(cand.force[i]) > bound + choice.friction_tol) return false;
             continue;
           }
           cand.gap_acceleration[i] = sys.rate(i, cand.acceleration) + sys.curvature[i];

@@ -384,7 +384,7 @@ void Model::enter_contacts(HybridState& hs, const Decision& x) const {
       d.armed[gi] = x.released[i];
     } else if (is_friction(i)) {
       // Sticking with the friction force at its bound already: it can only slip.
-      const double bound = i == kBagSlip ? mu_ * x.mot.force[kBag] : (i == kPivotSlip ? t_p_ : t_h_);
+      const double bound = i == kBagSlip ? mu_ * x.mot.force[kBag] : coulomb_hold(d, x.k2, i);
       if (!has(x.s2, i) || has(x.s0, i) || std::fabs(x.mot.force[i]) < bound - x.ch.force_tol) continue;
       d.armed[gi] = {1, kUnknownLead};
     } else if (has(x.s2, i) && !has(x.s0, i) && x.mot.force[i] <= x.ch.force_tol) {

@@ -94,6 +94,15 @@ void Model::built_contacts(contact::System& s, const Kinematics& k) const {
   s.curvature[kBagFloor] = 0.0;
 }
 
+double Model::coulomb_hold(const Discrete& d, const Kinematics& k, int i) const {
+  const bool pivot = i == kPivotSlip;
+  const double own = pivot ? t_p_ : t_h_, other = pivot ? t_h_ : t_p_;
+  const bool coupled = d.taut && !d.latched && (pivot ? !d.lid_resting : d.grounded == 0);
+  if (!(other > 0.0) || !coupled) return own;
+  const double ratio = std::fabs(rope_.transfer(k.phi_s, k.phi_l).k);
+  return own + (pivot ? ratio * other : other / ratio);
+}
+
 contact::Set Model::active_set(const Discrete& d) {
   return (d.on_seesaw ? bit(kBag) : 0u) | (d.taut ? bit(kRope) : 0u) | (d.lid_resting ? bit(kLid) : 0u) |
          (d.at_stop ? bit(kStop) : 0u) | (d.grounded > 0 ? bit(kFloorLeft) : 0u) |

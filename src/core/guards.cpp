@@ -94,8 +94,8 @@ void Model::closed_contact_forces(const Discrete& d, const Kinematics& k, const 
   if (d.grounded != 0) g[kGuardFloor] = -f[d.grounded > 0 ? kFloorLeft : kFloorRight];
   // Sticking: how far the friction force it takes exceeds mu times the arm's push.
   if (d.bag_stuck) g[kGuardBagSlip] = std::fabs(f[kBagSlip]) - mu_ * f[kBag];
-  if (d.seesaw_stuck) g[kGuardPivotSlip] = std::fabs(f[kPivotSlip]) - t_p_;
-  if (d.lid_stuck) g[kGuardHingeSlip] = std::fabs(f[kHingeSlip]) - t_h_;
+  if (d.seesaw_stuck) g[kGuardPivotSlip] = std::fabs(f[kPivotSlip]) - coulomb_hold(d, k, kPivotSlip);
+  if (d.lid_stuck) g[kGuardHingeSlip] = std::fabs(f[kHingeSlip]) - coulomb_hold(d, k, kHingeSlip);
 }
 
 void Model::slip_guards(const Discrete& d, const Kinematics& k, GuardValues& g) const {

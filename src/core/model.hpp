@@ -376,6 +376,10 @@ class Model {
   bool friction_;
   // The Coulomb torques of a slipping pivot and hinge, against their slip (docs/extensions.md).
   double pivot_coulomb(const Discrete& d) const { return -t_p_ * d.seesaw_slip; }
+  // The most a sticking pivot (i = kPivotSlip) or hinge (kHingeSlip) holds: its Coulomb torque and,
+  // while the taut rope couples the two and the other is free to turn, the other's through the
+  // linkage's k (phiL' = k phiS'): T_p + |k| T_h, or T_h + T_p / |k| (docs/extensions.md).
+  double coulomb_hold(const Discrete& d, const Kinematics& k, int i) const;
   double hinge_coulomb(const Discrete& d) const { return -t_h_ * d.lid_slip; }
   bool restitution_ = false;               // some contact has one
   double grounded_angle(int side) const { return side > 0 ? grounded_left_ : grounded_right_; }

@@ -190,13 +190,6 @@ void check_pivot_torques(const Reader& in, const Machine& m) {
     // Likewise a Coulomb torque: a massless seesaw has nothing to hold it back with.
     in.fail("friction.pivot", "needs a seesaw with inertia: give seesaw.mass (and seesaw.left_arm) too");
   }
-  if (m.friction.pivot > 0.0 && m.friction.lid_hinge > 0.0) {
-    // While the rope couples them, the torque the two would share holding the seesaw and the lid
-    // still is not determined by rigid-body statics (docs/extensions.md "Friction").
-    in.fail("friction.lid_hinge",
-            "cannot go with friction.pivot: the taut rope couples the pivot and the hinge, and how two Coulomb "
-            "torques share one load is not determined; give one of them");
-  }
 }
 }  // namespace
 
