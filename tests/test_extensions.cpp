@@ -456,3 +456,19 @@ TEST(BuiltMachine, TheFloorChangesNothingItDoesNotTouch) {
     EXPECT_NEAR(a.events[i].after.phi_l, rest[i].after.phi_l, 1e-9);
   }
 }
+
+TEST(Radio, ASeesawWithMassMustNotSwingRoundWhileTheRadioWaits) {
+  // Found by fuzz_simulate: with the radio the lid latches open and the paper's machine lets the
+  // sandbag go; a seesaw with mass swings on, and used to swing round (108 deg) before the radio
+  // came on. No somersaults, whatever happens meanwhile (docs/model.md §6): the run ends when it
+  // turns vertical, and says that the lid had opened.
+  const wn::Scenario sc = example(1, {"geometry.seesaw_right_arm=0.8", "seesaw.left_arm=0.75", "seesaw.mass=0.3",
+                                      "balloon.radius=0.1", "radio.enabled=true", "radio.switch_offset=[0.3, 0]",
+                                      "radio.string_length=0.6", "radio.switch_force=0.03"});
+  wn::Recorder rec;
+  const wn::Result r = wn::simulate(sc, &rec);
+  for (const wn::Snapshot& s : rec.samples) ASSERT_LE(std::fabs(s.phi_s), kPi / 2.0 + 1e-9) << s.t;
+  EXPECT_EQ(r.outcome().type, wn::EventType::seesaw_vertical);
+  EXPECT_NE(find(r.events, wn::EventType::lid_open), nullptr);
+  EXPECT_NEAR(std::fabs(r.outcome().after.phi_s), kPi / 2.0 - sc.run.vertical_margin, 1e-9);
+}

@@ -722,12 +722,13 @@ double polyline_length(const std::vector<Vec2>& pts) {
   return len;
 }
 
-// The stretched rope's machine: example 2 with a heavy seesaw (0.4 kg), a 1.2 m left arm and the
-// radio. The lid latches at 0.568 s with the rope taut; the seesaw swings on under its own weight to
-// 125 deg, carrying its end up to 1.10 m from the lid's edge, with 0.62 m of rope.
+// The stretched rope's machine: example 2 with a heavy seesaw (0.4 kg, a damped pivot), a 1.2 m left
+// arm and the radio. The lid latches at 0.731 s with the rope taut; the seesaw swings on under its
+// own weight until it turns vertical (no somersaults) at 1.092 s, carrying its end up to 0.91 m
+// from the lid's edge, with 0.62 m of rope.
 Recording heavy_radio() {
   Config c = example_config(2);
-  for (const char* set : {"seesaw.mass=0.4", "radio.enabled=true", "seesaw.left_arm=1.2"}) apply_set(c, set);
+  for (const char* set : {"seesaw.mass=0.4", "radio.enabled=true", "seesaw.left_arm=1.2", "damping.pivot=0.5"}) apply_set(c, set);
   return record(build_scenario(c));
 }
 
@@ -775,7 +776,7 @@ TEST(VizAnimation, RopeIsNeverDrawnLongerThanItself) {
       EXPECT_NEAR(polyline_length(path), m.rope_length, 1e-9);
     }
   }
-  EXPECT_GT(widest, m.rope_length + 0.4);  // the defect's case: the seesaw carried its end far off
+  EXPECT_GT(widest, m.rope_length + 0.25);  // the defect's case: the seesaw carried its end far off
   EXPECT_GT(hanging, 100);
   // Let go for good: a later state with the seesaw swung back a little beyond its angle at the
   // latch, its end nearer the lid's edge than the rope is long, still has the rope hanging.

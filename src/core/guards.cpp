@@ -17,8 +17,12 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   const Kinematics k = kinematics(d, y);
   balloon_guards(d, y, k, g, rates);
   // The radio's wait: only the balloon matters now; the built machine's seesaw and sandbag still
-  // move on its stop and floor.
-  if (d.latched && !built_) return;
+  // move on its stop and floor. A seesaw with inertia swings on, and must not swing round
+  // (docs/model.md §6: no somersaults, whatever happens meanwhile).
+  if (d.latched && !built_) {
+    if (d.heavy) g[kGuardSeesawVertical] = std::fabs(k.phi_s) - vertical_;
+    return;
+  }
 
   open_contact_gaps(d, k, g);
   const bool forces = closed_forces_wanted(d, only);

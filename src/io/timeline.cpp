@@ -24,6 +24,13 @@ std::string outcome_sentence(const Result& result) {
   switch (e.type) {
     case EventType::lid_open: return fmt::format("lid open at {:.3f} s", e.t);
     case EventType::seesaw_vertical:
+      // With the radio the lid may have opened (and latched) before: say so.
+      for (const Event& open : result.events) {
+        if (open.type == EventType::lid_open) {
+          return fmt::format("seesaw vertical at {:.3f} s, after the lid opened at {:.3f} s; the radio is not on",
+                             e.t, open.t);
+        }
+      }
       if (!s.on_seesaw) {  // a seesaw with mass that lost its sandbag (no somersaults, docs/model.md §6)
         return fmt::format(
             "seesaw vertical at {:.3f} s without the sandbag (it is {:.4g} m from the pivot); the "

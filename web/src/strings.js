@@ -282,6 +282,8 @@
   const dePatterns = [
     [/^lid open at ([\d.]+) s; the radio is not on by t_max = ([\d.]+) s$/, 'Deckel offen bei $1 s; das Radio ist bis t_max = $2 s nicht an'],
     [/^lid open at ([\d.]+) s$/, 'Deckel offen bei $1 s'],
+    [/^seesaw vertical at ([\d.]+) s, after the lid opened at ([\d.]+) s; the radio is not on$/,
+      'Wippe senkrecht bei $1 s, nachdem der Deckel sich bei $2 s geöffnet hat; das Radio ist nicht an'],
     [/^seesaw vertical at ([\d.]+) s with the sandbag (\S+) m out; the lid never opens \(it is at ([-\d.]+) deg\)$/,
       'Wippe senkrecht bei $1 s, der Sandsack $2 m weit draußen; der Deckel öffnet nie (er steht bei $3°)'],
     [/^sandbag reaches the pivot at ([\d.]+) s; the lid has not opened \(it is at ([-\d.]+) deg\)$/,

@@ -760,7 +760,7 @@ const checks = {
   // the lid's edge is not drawn. Once off the seesaw it stays off. Before the latch, and in example
   // 1 throughout, the rope is drawn as long as it is at every sample.
   async rope_let_go() {
-    const changes = ['seesaw.mass=0.4', 'radio.enabled=true', 'seesaw.left_arm=1.2'];
+    const changes = ['seesaw.mass=0.4', 'radio.enabled=true', 'seesaw.left_arm=1.2', 'damping.pivot=0.5'];
     await withPage(async (page) => {
       assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(['--example', '2', ...sets(changes)])}.`);
       const latch = await page.evaluate(() => window.whatnext.run.events.find((e) => e.type === 'lid_open').t);
@@ -800,7 +800,7 @@ const checks = {
       }, latch);
       assert.ok(lengths.longest <= 1e-9, `after the latch the rope drawn ${lengths.longest} m longer than it is`);
       assert.ok(lengths.before <= 1e-9, `before the latch the rope drawn ${lengths.before} m off its length`);
-      assert.ok(lengths.widest > 0.9, `the seesaw's end ${lengths.widest} m from the lid's edge at most`);
+      assert.ok(lengths.widest > 0.87, `the seesaw's end ${lengths.widest} m from the lid's edge at most`);
       assert.ok(lengths.hanging > 100, `${lengths.hanging} states with the rope let go`);
       assert.deepEqual(lengths.badHanging, [], 'let go, the rope hangs from the lid, all of it, clear of the seesaw');
       assert.ok(lengths.backSpan < 0.61, `swung back, the seesaw's end is ${lengths.backSpan} m from the lid's edge`);
