@@ -105,13 +105,8 @@ void Model::polar_flow(const Discrete& d, const State& y, State& dy) const {
   dy[slot::r] = y[slot::dr];
   dy[slot::phi_s] = y[slot::dphi_s];
   const double r = y[slot::r], dr = y[slot::dr];
-  // The Coulomb torques and a stretched rope's pull on a seesaw with inertia (none on the paper's).
-  double q_s = 0.0, q_l = 0.0;
-  if (friction_ || pulls_heavy_) {
-    const RopePull rope =
-        pulls_heavy_ ? heavy_pull(d, y[slot::phi_s], y[slot::dphi_s], y[slot::phi_l], y[slot::dphi_l]) : RopePull{};
-    q_s = pivot_coulomb(d) + rope.q_s, q_l = hinge_coulomb(d) + rope.q_l;
-  }
+  const Torques q = extra_torques(d, y[slot::phi_s], y[slot::dphi_s], y[slot::phi_l], y[slot::dphi_l]);
+  const double q_s = q.seesaw, q_l = q.lid;
   if ((d.taut && d.lid_held()) || d.seesaw_held()) {
     // M5 (the seesaw held by the rope) or on the floor: the sandbag slides on the fixed arm.
     dy[slot::dr] = along_arm_acceleration(r, std::sin(y[slot::phi_s]), 0.0);
@@ -146,13 +141,8 @@ void Model::cartesian_flow(const Discrete& d, const State& y, State& dy) const {
   dy[slot::vh] = d.bag_on_floor ? 0.0 : -g_;
   // The lid follows a heavy seesaw on the rope, or hangs from one standing on the floor.
   const bool lid_on_rope = (d.heavy || d.seesaw_held()) && d.taut;
-  double q_s = 0.0, q_l = 0.0;
-  if (friction_ || pulls_heavy_) {
-    const RopePull rope =
-        pulls_heavy_ ? heavy_pull(d, y[slot::seesaw_phi], y[slot::seesaw_dphi], y[slot::phi_l], y[slot::dphi_l])
-                     : RopePull{};
-    q_s = pivot_coulomb(d) + rope.q_s, q_l = hinge_coulomb(d) + rope.q_l;
-  }
+  const Torques q = extra_torques(d, y[slot::seesaw_phi], y[slot::seesaw_dphi], y[slot::phi_l], y[slot::dphi_l]);
+  const double q_s = q.seesaw, q_l = q.lid;
   if (!d.lid_held() && !d.latched && !lid_on_rope) {
     dy[slot::phi_l] = y[slot::dphi_l];
     dy[slot::dphi_l] = lid_free_acceleration(y[slot::phi_l], y[slot::dphi_l], q_l);

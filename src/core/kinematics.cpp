@@ -32,23 +32,17 @@ struct Model::KinematicsPass {
   bool rates, memo;
   Kinematics& k;  // the caller's, returned without a copy
   bool trig_s = false, trig_l = false;  // cos and sin of phiS / phiL already known
-  double rope_s = 0.0, rope_l = 0.0;    // a stretched rope's torques on a seesaw with inertia
+  Torques q = {};  // what the swings add to the weights' torques (Model::extra_torques), with rates
 
-  void pulled(double phi_s, double dphi_s) {
-    if (!m.pulls_heavy_) return;
-    const RopePull p = m.heavy_pull(d, phi_s, dphi_s, y[slot::phi_l], y[slot::dphi_l]);
-    rope_s = p.q_s, rope_l = p.q_l;
-  }
+  void torqued(double phi_s, double dphi_s) { q = m.extra_torques(d, phi_s, dphi_s, y[slot::phi_l], y[slot::dphi_l]); }
   // The memos serve one thread's integration; samples made on other threads compute afresh.
   Swing swing_of(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const {
-    const double q_s = m.pivot_coulomb(d) + rope_s, q_l = m.hinge_coulomb(d) + rope_l;
-    return memo ? m.swing(on, taut, r, phi_s, dr, dphi_s, q_s, q_l)
-                : m.compute_swing(on, taut, r, phi_s, dr, dphi_s, q_s, q_l);
+    return memo ? m.swing(on, taut, r, phi_s, dr, dphi_s, q.seesaw, q.lid)
+                : m.compute_swing(on, taut, r, phi_s, dr, dphi_s, q.seesaw, q.lid);
   }
   LidSwing lid_swing_of(bool on, double r, double phi_l, double dr, double dphi_l, int side) const {
-    const double q_s = m.pivot_coulomb(d), q_l = m.hinge_coulomb(d);
-    return memo ? m.swing_by_lid(on, r, phi_l, dr, dphi_l, side, q_s, q_l)
-                : m.compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side, q_s, q_l);
+    return memo ? m.swing_by_lid(on, r, phi_l, dr, dphi_l, side, q.seesaw, q.lid)
+                : m.compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side, q.seesaw, q.lid);
   }
   // The lid on its own: resting, latched open, held by its hinge's friction, or swinging freely.
   void free_lid() {
@@ -59,7 +53,7 @@ struct Model::KinematicsPass {
     } else {
       k.phi_l = y[slot::phi_l];
       k.dphi_l = y[slot::dphi_l];
-      k.ddphi_l = m.lid_free_acceleration(k.phi_l, k.dphi_l, m.hinge_coulomb(d) + rope_l);
+      k.ddphi_l = m.lid_free_acceleration(k.phi_l, k.dphi_l, q.lid);
     }
   }
   // The lid on the rope's closure, from the seesaw's swing (the seesaw's chart).
@@ -98,7 +92,7 @@ struct Model::KinematicsPass {
     k.r = y[slot::r];
     k.phi_s = y[slot::phi_s];
     if (rates) k.dr = y[slot::dr], k.dphi_s = y[slot::dphi_s];
-    if (rates) pulled(y[slot::phi_s], y[slot::dphi_s]);
+    if (rates) torqued(y[slot::phi_s], y[slot::dphi_s]);
     switch (layout) {
       case Layout::carried_slack: carried_slack(); break;
       case Layout::grounded_carrying: on_the_floor(); break;
@@ -168,7 +162,7 @@ struct Model::KinematicsPass {
 
   // --- the sandbag in free fall in Cartesian form (x, h) ---
   void cartesian(Layout layout) {
-    if (rates && d.heavy) pulled(y[slot::seesaw_phi], y[slot::seesaw_dphi]);
+    if (rates) torqued(y[slot::seesaw_phi], y[slot::seesaw_dphi]);  // a massless seesaw is pulled by none
     k.x = y[slot::x];
     k.h = y[slot::h];
     if (rates) k.vx = y[slot::vx], k.vh = y[slot::vh];

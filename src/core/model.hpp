@@ -400,6 +400,19 @@ class Model {
   // The stretched rope's pull on a seesaw with inertia that it turns (zero otherwise), from the
   // angles and rates alone: its torques join the swings' like the Coulomb torques.
   RopePull heavy_pull(const Discrete& d, double phi_s, double dphi_s, double phi_l, double dphi_l) const;
+  // What the swings add to the weights' and dampers' torques on the seesaw and the lid: the
+  // slipping pivot's and hinge's Coulomb torques and a stretched rope's pull on a seesaw with
+  // inertia (both zero on the paper's machine). One place for the flows and the kinematics.
+  struct Torques {
+    double seesaw = 0.0, lid = 0.0;
+  };
+  Torques extra_torques(const Discrete& d, double phi_s, double dphi_s, double phi_l, double dphi_l) const {
+    Torques t;
+    if (!friction_ && !pulls_heavy_) return t;
+    const RopePull rope = pulls_heavy_ ? heavy_pull(d, phi_s, dphi_s, phi_l, dphi_l) : RopePull{};
+    t.seesaw = pivot_coulomb(d) + rope.q_s, t.lid = hinge_coulomb(d) + rope.q_l;
+    return t;
+  }
   bool pulls_heavy_ = false;  // a stretchy rope on a seesaw with inertia (heavy_pull is not zero)
   double rope_energy(const Kinematics& k) const;
   void stretchy_flow(const Discrete& d, const State& y, State& dy) const;
