@@ -45,6 +45,27 @@ bool solve_dense(int n, std::array<std::array<double, kMaxUnknowns>, kMaxUnknown
   return true;
 }
 
+// The directions the closed contacts idx[0..m) of `set` push along (their gradients W, less
+// mu s W_f where their friction contact f slips with sign s), and, with `forces`, the slipping
+// fixed-bound frictions' forces -s bound W_f added to `given`: what solve_set and multipliers_for
+// both build from the slips.
+void slip_pushes(const System& sys, Set set, const std::array<int, kMaxContacts>& slip, bool forces,
+                 const int* idx, int m, Coords* push, Coords& given) {
+  for (int a = 0; a < m; ++a) push[a] = sys.normal[idx[a]];
+  for (int f = 0; f < sys.contacts; ++f) {
+    if (sys.friction[f] == 0 || has(set, f) || slip[f] == 0) continue;
+    if (sys.friction[f] == kFixedBound) {
+      if (!forces) continue;
+      for (int j = 0; j < sys.coords; ++j) given[j] -= slip[f] * sys.bound[f] * sys.normal[f][j];
+      continue;
+    }
+    for (int a = 0; a < m; ++a) {
+      if (idx[a] != sys.friction[f] - 1) continue;
+      for (int j = 0; j < sys.coords; ++j) push[a][j] -= slip[f] * sys.bound[f] * sys.normal[f][j];
+    }
+  }
+}
+
 // The linear problem shared by impacts and motion. With the set's contacts closed, the unknowns are
 // their multipliers and the accelerations (velocities, for an impact) of the massless coordinates
 // they act on; massive coordinates follow from M a = f + sum_b F_b lambda_b. A massless coordinate
@@ -65,19 +86,7 @@ bool solve_set(const System& sys, Set set, bool impact, const std::array<int, kM
   // Each closed contact's push direction, and the forces with the fixed-bound slips.
   Coords push[kMaxContacts];
   Coords given = impact ? Coords{} : sys.force;
-  for (int a = 0; a < m; ++a) push[a] = sys.normal[idx[a]];
-  for (int f = 0; f < sys.contacts; ++f) {
-    if (sys.friction[f] == 0 || has(set, f) || slip[f] == 0) continue;
-    if (sys.friction[f] == kFixedBound) {
-      if (impact) continue;
-      for (int j = 0; j < sys.coords; ++j) given[j] -= slip[f] * sys.bound[f] * sys.normal[f][j];
-      continue;
-    }
-    for (int a = 0; a < m; ++a) {
-      if (idx[a] != sys.friction[f] - 1) continue;
-      for (int j = 0; j < sys.coords; ++j) push[a][j] -= slip[f] * sys.bound[f] * sys.normal[f][j];
-    }
-  }
+  slip_pushes(sys, set, slip, !impact, idx, m, push, given);
   // Massless coordinates that a closed contact acts on.
   int free_coord[kMaxCoords];
   int p = 0;
@@ -357,19 +366,11 @@ bool multipliers_for(const System& sys, Set active, const Coords& acceleration, 
   int m = 0;
   for (int i = 0; i < sys.contacts; ++i)
     if (has(active, i)) idx[m++] = i;
-  Coords residual{};
-  for (int j = 0; j < sys.coords; ++j) residual[j] = sys.mass[j] * acceleration[j] - sys.force[j];
   Coords push[kMaxContacts];
-  for (int a = 0; a < m; ++a) push[a] = sys.normal[idx[a]];
-  for (int f = 0; f < sys.contacts; ++f) {
-    if (sys.friction[f] == 0 || has(active, f) || sys.slip[f] == 0) continue;
-    for (int a = 0; a < m; ++a) {
-      if (sys.friction[f] == kFixedBound || idx[a] != sys.friction[f] - 1) continue;
-      for (int j = 0; j < sys.coords; ++j) push[a][j] -= sys.slip[f] * sys.bound[f] * sys.normal[f][j];
-    }
-    if (sys.friction[f] == kFixedBound)
-      for (int j = 0; j < sys.coords; ++j) residual[j] += sys.slip[f] * sys.bound[f] * sys.normal[f][j];
-  }
+  Coords given = sys.force;
+  slip_pushes(sys, active, sys.slip, true, idx, m, push, given);
+  Coords residual{};
+  for (int j = 0; j < sys.coords; ++j) residual[j] = sys.mass[j] * acceleration[j] - given[j];
   double l[kMaxContacts][kMaxContacts];  // Cholesky: every entry is written before it is read
   double y[kMaxContacts];
   force.fill(0.0);
