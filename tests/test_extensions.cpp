@@ -28,12 +28,7 @@ using wn::testing::example;
 using wn::testing::from_toml;
 using wn::testing::standing_seesaw;
 
-const wn::Event* find(const std::vector<wn::Event>& ev, wn::EventType type, double after = -1.0) {
-  for (const wn::Event& e : ev) {
-    if (e.type == type && e.t > after) return &e;
-  }
-  return nullptr;
-}
+using wn::testing::find;
 
 // Balloon acceleration by hand: net lift over the accelerated mass, per unit volume.
 double lift_per_volume(double rho_air, double rho_he, double g) { return g * (rho_air - rho_he); }

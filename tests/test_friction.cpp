@@ -217,11 +217,7 @@ std::string num(double v) {
   return b;
 }
 
-const wn::Event* find(const std::vector<wn::Event>& ev, wn::EventType type) {
-  for (const wn::Event& e : ev)
-    if (e.type == type) return &e;
-  return nullptr;
-}
+using wn::testing::find;
 
 constexpr double kS30 = 0.5, kArm = 0.8, kBag = 0.7;
 const double kC30 = std::sqrt(3.0) / 2.0;

@@ -1,14 +1,22 @@
 // Machines the tests share: an example with changes, a TOML text with changes, and the seesaw
-// that stands on the floor (a fixed incline for the sandbag).
+// that stands on the floor (a fixed incline for the sandbag); and finding an event in a run.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "whatnext/config.hpp"
+#include "whatnext/events.hpp"
 #include "whatnext/params.hpp"
 
 namespace whatnext::testing {
+
+// The first event of this type after t = after, or nullptr.
+inline const Event* find(const std::vector<Event>& ev, EventType type, double after = -1.0) {
+  for (const Event& e : ev)
+    if (e.type == type && e.t > after) return &e;
+  return nullptr;
+}
 
 inline Scenario example(int n, const std::vector<std::string>& sets = {}) {
   Config cfg = example_config(n);

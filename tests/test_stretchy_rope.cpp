@@ -21,17 +21,13 @@ constexpr double kPi = 3.14159265358979323846;
 
 using wn::testing::example;
 
-const wn::Event* first(const std::vector<wn::Event>& ev, wn::EventType type, double after = -1.0) {
-  for (const wn::Event& e : ev)
-    if (e.type == type && e.t > after) return &e;
-  return nullptr;
-}
+using wn::testing::find;
 
 // The lid's rate when the first jerk is over: the first rope_slack after the first rope_taut.
 double lid_rate_after_jerk(const wn::Result& r) {
-  const wn::Event* taut = first(r.events, wn::EventType::rope_taut);
+  const wn::Event* taut = find(r.events, wn::EventType::rope_taut);
   if (!taut) return NAN;
-  const wn::Event* slack = first(r.events, wn::EventType::rope_slack, taut->t - 1e-12);
+  const wn::Event* slack = find(r.events, wn::EventType::rope_slack, taut->t - 1e-12);
   return slack ? slack->after.dphi_l : NAN;
 }
 
@@ -76,7 +72,7 @@ struct Rigid {
 Rigid rigid(int n) {
   const wn::Scenario sc = example(n);
   const wn::Result r = wn::simulate(sc);
-  const wn::Event* taut = first(r.events, wn::EventType::rope_taut);
+  const wn::Event* taut = find(r.events, wn::EventType::rope_taut);
   EXPECT_NE(taut, nullptr);
   EXPECT_TRUE(taut->impact);
   return {taut->after.dphi_l, effective_mass(sc, taut->after)};
@@ -121,7 +117,7 @@ TEST(StretchyRope, UndampedConvergesToTheElasticBounceNotToAnyOfTheFourLaws) {
     EXPECT_LT(previous, 1e-3) << "example " << n;
     // ... which is none of the four laws: the kinetic-energy law, the nearest, is 30 % below.
     const wn::Result ke = wn::simulate(example(n, {"run.impact_law=kinetic-energy"}));
-    EXPECT_GT(limit, 1.2 * first(ke.events, wn::EventType::rope_taut)->after.dphi_l);
+    EXPECT_GT(limit, 1.2 * find(ke.events, wn::EventType::rope_taut)->after.dphi_l);
   }
 }
 
@@ -215,12 +211,12 @@ TEST(StretchyRope, EventsDoNotDependOnTheTolerance) {
 
 TEST(StretchyRope, ReportsTautAndSlackWithoutAnImpact) {
   const wn::Result r = wn::simulate(example(1, {"rope.stiffness=1e5"}));
-  const wn::Event* taut = first(r.events, wn::EventType::rope_taut);
+  const wn::Event* taut = find(r.events, wn::EventType::rope_taut);
   ASSERT_NE(taut, nullptr);
   EXPECT_FALSE(taut->impact);
   EXPECT_EQ(taut->mode_after, wn::Mode::M5);  // pulling on the resting lid
-  EXPECT_TRUE(first(r.events, wn::EventType::lid_lifts) != nullptr);
-  const wn::Event* slack = first(r.events, wn::EventType::rope_slack);
+  EXPECT_TRUE(find(r.events, wn::EventType::lid_lifts) != nullptr);
+  const wn::Event* slack = find(r.events, wn::EventType::rope_slack);
   ASSERT_NE(slack, nullptr);
   EXPECT_GT(slack->t, taut->t + 1e-3);  // the stretch takes time: 1e5 N/m is soft
   EXPECT_EQ(slack->mode_after, wn::Mode::M3);
@@ -272,7 +268,7 @@ TEST(StretchyRope, OnASeesawWithMassTheUndampedRopeConvergesToTheElasticJerk) {
     return example(1, sets);
   };
   const wn::Result rigid = wn::simulate(with({"restitution.rope=1"}));
-  const wn::Event* jerk = first(rigid.events, wn::EventType::rope_taut);
+  const wn::Event* jerk = find(rigid.events, wn::EventType::rope_taut);
   ASSERT_NE(jerk, nullptr);
   ASSERT_TRUE(jerk->impact);
   const double limit = jerk->after.dphi_l;
