@@ -100,7 +100,7 @@ Model::LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, dou
   return p;
 }
 
-void Model::polar_flow(const Discrete& d, const State& y, State& dy) const {
+WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& dy) const {
   // The sandbag on the arm (r, phiS): the seesaw's swing with it, or the arm held still.
   dy[slot::r] = y[slot::dr];
   dy[slot::phi_s] = y[slot::dphi_s];
@@ -133,7 +133,7 @@ void Model::polar_flow(const Discrete& d, const State& y, State& dy) const {
   }
 }
 
-void Model::cartesian_flow(const Discrete& d, const State& y, State& dy) const {
+WHATNEXT_STAGE void Model::cartesian_flow(const Discrete& d, const State& y, State& dy) const {
   // Sandbag in free fall. On the seesaw with the rope slack (M3) this is the paper's polar free
   // fall written in Cartesian form: the same motion, regular at r = 0, and exact for any RK method.
   dy[slot::x] = y[slot::vx];

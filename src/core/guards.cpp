@@ -37,7 +37,7 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   if (stretchy_) stretchy_guards(d, k, g, rates);
 }
 
-void Model::balloon_guards(const Discrete& d, const State& y, const Kinematics& k, GuardValues& g,
+WHATNEXT_STAGE void Model::balloon_guards(const Discrete& d, const State& y, const Kinematics& k, GuardValues& g,
                            GuardValues* rates) const {
   if (radio_) g[kGuardRadioOn] = radio_gap(k);
   if (small_) {
@@ -53,7 +53,7 @@ void Model::balloon_guards(const Discrete& d, const State& y, const Kinematics& 
   }
 }
 
-void Model::open_contact_gaps(const Discrete& d, const Kinematics& k, GuardValues& g) const {
+WHATNEXT_STAGE void Model::open_contact_gaps(const Discrete& d, const Kinematics& k, GuardValues& g) const {
   // Open contacts: their gaps, negative while open.
   if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) g[kGuardBag] = -height_above_arm(k);
   const Vec2 u_s{k.cos_s, k.sin_s}, u_l{k.cos_l, k.sin_l};
@@ -61,7 +61,7 @@ void Model::open_contact_gaps(const Discrete& d, const Kinematics& k, GuardValue
   if (!d.lid_resting && !d.latched) g[kGuardLid] = phi_l0_ - k.phi_l;
 }
 
-bool Model::closed_forces_wanted(const Discrete& d, int only) const {
+WHATNEXT_STAGE bool Model::closed_forces_wanted(const Discrete& d, int only) const {
   // Closed contacts' guards are minus their forces. A massless seesaw held by one contact alone
   // carries no force through it at all (identically zero: no guard).
   // The stop and the floor carry forces on a massless seesaw as well (a pendulum's rod, a seesaw
@@ -74,7 +74,7 @@ bool Model::closed_forces_wanted(const Discrete& d, int only) const {
           only == kGuardFloor || only == kGuardBagSlip || only == kGuardPivotSlip || only == kGuardHingeSlip);
 }
 
-void Model::open_contact_rates(const Discrete& d, const Kinematics& k, const contact::System& sys,
+WHATNEXT_STAGE void Model::open_contact_rates(const Discrete& d, const Kinematics& k, const contact::System& sys,
                                GuardValues& rates) const {
   // An open contact's guard is minus its gap, so its rate is minus the gap's rate W_i . v.
   if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) rates[kGuardBag] = -sys.rate(kBag, sys.velocity);
@@ -82,7 +82,7 @@ void Model::open_contact_rates(const Discrete& d, const Kinematics& k, const con
   if (!d.lid_resting && !d.latched) rates[kGuardLid] = -k.dphi_l;
 }
 
-void Model::closed_contact_forces(const Discrete& d, const Kinematics& k, const contact::System& sys,
+WHATNEXT_STAGE void Model::closed_contact_forces(const Discrete& d, const Kinematics& k, const contact::System& sys,
                                   GuardValues& g) const {
   // The forces that make the flow's own accelerations (k has them).
   contact::PerContact f;
@@ -102,7 +102,7 @@ void Model::closed_contact_forces(const Discrete& d, const Kinematics& k, const 
   if (d.lid_stuck) g[kGuardHingeSlip] = std::fabs(f[kHingeSlip]) - coulomb_hold(d, k, kHingeSlip);
 }
 
-void Model::slip_guards(const Discrete& d, const Kinematics& k, GuardValues& g) const {
+WHATNEXT_STAGE void Model::slip_guards(const Discrete& d, const Kinematics& k, GuardValues& g) const {
   // Slipping: minus the slip's speed, zero where it stops.
   if (d.seesaw_slip != 0) g[kGuardPivotSlip] = -d.seesaw_slip * k.dphi_s;
   if (d.lid_slip != 0) g[kGuardHingeSlip] = -d.lid_slip * k.dphi_l;
@@ -110,7 +110,7 @@ void Model::slip_guards(const Discrete& d, const Kinematics& k, GuardValues& g) 
   if (friction_ && d.polar() && !d.bag_stuck && !d.at_stop && d.bag_slip != 0) g[kGuardBagSlip] = -d.bag_slip * k.dr;
 }
 
-void Model::linkage_guards(const Discrete& d, const Kinematics& k, GuardValues& g, int only) const {
+WHATNEXT_STAGE void Model::linkage_guards(const Discrete& d, const Kinematics& k, GuardValues& g, int only) const {
   if (!d.latched) g[kGuardLidOpen] = k.phi_l - vertical_;  // a lid resting at or past it is open from the start
   if (on_closure(d)) {
     // The lid's dead centre: it reaches the rope's line (the rope would touch the hinge and then
@@ -138,7 +138,7 @@ void Model::linkage_guards(const Discrete& d, const Kinematics& k, GuardValues& 
   if (d.on_seesaw && arm_ < kNoEnd && !stop_) g[kGuardArmEnd] = k.r - arm_;
 }
 
-void Model::built_guards(const Discrete& d, const Kinematics& k, const contact::System& sys, GuardValues& g,
+WHATNEXT_STAGE void Model::built_guards(const Discrete& d, const Kinematics& k, const contact::System& sys, GuardValues& g,
                          GuardValues* rates) const {
   // The open gaps of the stop and the floor; their forces while closed are set with the others'.
   if (stop_ && d.on_seesaw && !d.at_stop) {

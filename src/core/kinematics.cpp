@@ -12,7 +12,7 @@ using namespace model_detail;
 // The layout of the continuous state follows from the contacts alone: it is decided once here,
 // and each layout has its own stage below that fills in positions, then (if asked) rates and
 // accelerations. What every layout shares (the trig of both angles, the balloon) comes last.
-Model::Layout Model::layout(const Discrete& d) {
+WHATNEXT_STAGE Model::Layout Model::layout(const Discrete& d) {
   if (d.polar()) {
     if (d.seesaw_held()) return Layout::grounded_carrying;
     if (!d.taut) return Layout::carried_slack;
