@@ -13,11 +13,8 @@ cat > "$work/main.cpp" <<'CPP'
 #include <cstdio>
 #include <string>
 #include "whatnext/simulate.hpp"
-int main() {  // example 1, built by hand: the TOML layer stays outside the core
-  const double deg = 3.14159265358979323846 / 180.0;
+int main() {  // example 1 is the keys' defaults, which a Scenario{} holds: no TOML layer in the core
   whatnext::Scenario sc;
-  sc.machine.hinge = {0.8 * std::cos(27 * deg), -0.8 * std::sin(27 * deg)};
-  sc.start = {-0.3, 1.0, -25 * deg, 5 * deg};
   sc.run.t_max = 2.0;
   const whatnext::Result r = whatnext::simulate(sc);
   std::printf("%s at %.6f s\n", std::string(whatnext::to_string(r.outcome().type)).c_str(), r.outcome().t);

@@ -592,8 +592,7 @@ TEST_F(SweepCli, AnOptimumOnAKnifeEdgeIsSaidToBeOne) {
 
 // The fast paths behind sweep throughput (docs/performance.md) must agree with the plain formulas.
 TEST(FastPaths, ClosureMatchesLidAngleAndTransfer) {
-  Machine m;
-  m.hinge = {0.8 * std::cos(27.0 * M_PI / 180.0), -0.8 * std::sin(27.0 * M_PI / 180.0)};
+  Machine m;  // the keys' defaults: the hinge 0.8 m from the pivot, 27 degrees below it
   for (double rope : {0.62, 0.9, 1.0}) {
     m.rope_length = rope;
     const RopeGeometry g(m);

@@ -35,6 +35,8 @@ const KeySpec* find_key(std::string_view key);
 // default is written (validation falls back on it, sweeps spread around it); NaN where the default
 // is not a number ("r_L", "bar", "endless") or the key is unknown.
 double key_default(std::string_view key);
+// A pair key's default ("[0.5, 0]"), NaN where it has none.
+Vec2 key_default_pair(std::string_view key);
 
 // A value as written (before unit conversion) and where it came from, for error messages.
 struct ConfigValue {

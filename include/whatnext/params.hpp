@@ -2,10 +2,12 @@
 // SI units and radians throughout; degrees exist only in the input layer (config.hpp).
 #pragma once
 
+#include <cmath>
 #include <limits>
 #include <string>
 #include <string_view>
 
+#include "whatnext/units.hpp"
 #include "whatnext/vec2.hpp"
 
 namespace whatnext {
@@ -23,13 +25,19 @@ bool parse_impact_law(std::string_view text, ImpactLaw& out);
 bool parse_integrator(std::string_view text, IntegratorKind& out);
 bool parse_balloon_model(std::string_view text, BalloonModel& out);
 
-// The fixed parts of the machine. Built only by config.cpp's validation (or by hand in tests that
-// know what they do); every field is checked there, so the physics code never re-checks.
+// The lid's hinge from the pivot, given as distance f and angle gamma below the horizontal.
+inline Vec2 hinge_from(double distance, double angle) { return {distance * std::cos(angle), -distance * std::sin(angle)}; }
+
+// The fixed parts of the machine. Built only by validation (src/io/build_scenario.cpp; or by hand in
+// tests that know what they do); every field is checked there, so the physics code never re-checks.
+// A field an input key sets starts at that key's default (the key table, src/io/keys.cpp, and
+// docs/inputs.md), so that a Scenario{} is the machine of an input that gives no key at all (test
+// Keys.NoKeysGivenIsScenarioDefault holds them equal).
 struct Machine {
   double seesaw_right_arm = 0.6;  // r_H, pivot to rope end [m]
   double lid_half_length = 0.2;   // r_L; the lid is 2 r_L long [m]
   double rope_length = 1.0;       // l_R [m]
-  Vec2 hinge{0.0, 0.0};           // lid hinge H relative to the pivot [m] (h < 0: below)
+  Vec2 hinge = hinge_from(0.8, 27.0 * units::kRadiansPerDegree);  // lid hinge H from the pivot [m] (h < 0: below)
   double sandbag_mass = 0.6;      // m_S [kg]
   double lid_mass = 0.5;          // m_L [kg]
   double air_density = 1.29;      // [kg/m^3]
@@ -39,7 +47,7 @@ struct Machine {
   double gravity = 9.81;  // [m/s^2]
   // The radio: its switch (relative to the pivot) and the balloon's string, tied to the switch.
   // The balloon rises from the box's centre, (hinge.x + r_L, hinge.h + balloon height).
-  Vec2 radio_switch{1.8, -0.36};
+  Vec2 radio_switch = switch_at(hinge, lid_half_length, {0.5, 0.0});
   double string_length = 1.0;  // [m]
 
   // Extensions beyond the paper (docs/extensions.md). Every default is the paper's machine.
@@ -76,6 +84,11 @@ struct Machine {
     double lid_hinge = 0.0;  // Coulomb torque at the lid's hinge [N m]
   } friction;
 
+  // The radio's switch, given offset from the box's top right corner.
+  static Vec2 switch_at(Vec2 hinge, double lid_half_length, Vec2 offset) {
+    return hinge + Vec2{2.0 * lid_half_length, 0.0} + offset;
+  }
+
   // Where the rope is tied to the lid, from the hinge: a = 2 r_L at the free edge (the paper's).
   double rope_knot() const { return rope_on_lid > 0.0 ? rope_on_lid : 2.0 * lid_half_length; }
 
@@ -99,12 +112,12 @@ struct Machine {
   bool heavy_seesaw() const { return seesaw_inertia > 0.0; }
 };
 
-// Where everything starts. The lid starts at rest, the sandbag at rest.
+// Where everything starts (the keys' defaults, as the machine's). The lid starts at rest, the sandbag at rest.
 struct Start {
   double sandbag_x = -0.3;    // [m], left of the pivot
   double sandbag_h = 1.0;     // [m], above the left arm
-  double seesaw_angle = 0.0;  // phiS0 [rad], positive = left arm down
-  double lid_angle = 0.0;     // phiL0 [rad]; also the lid's lowest angle
+  double seesaw_angle = -25.0 * units::kRadiansPerDegree;  // phiS0 [rad], positive = left arm down
+  double lid_angle = 5.0 * units::kRadiansPerDegree;       // phiL0 [rad]; also the lid's lowest angle
 };
 
 struct RunSettings {
@@ -115,7 +128,7 @@ struct RunSettings {
   double t_max = 5.0;                   // [s]
   double output_step = 1e-3;            // sampling of CSV/.dat rows [s]
   ImpactLaw impact_law = ImpactLaw::rope;
-  double vertical_margin = 0.9 * 3.14159265358979323846 / 180.0;  // [rad], pi/200 like the paper
+  double vertical_margin = 0.9 * units::kRadiansPerDegree;  // [rad], pi/200 like the paper
 };
 
 struct Scenario {

@@ -104,12 +104,11 @@ void build_stretchy_rope(const Reader& in, Machine& m) {
   }
 }
 
-// Kermit's radio stands 0.5 m right of the box, its switch level with the box's top. The radio is
+// Kermit's radio stands 0.5 m right of the box, its switch level with the box's top (the key's default). The radio is
 // opt-in: radio.enabled, or any other radio key, turns it on.
 void build_radio(const Reader& in, Machine& m) {
-  Vec2 offset{0.5, 0.0};
-  if (in.find("radio.switch_offset")) offset = in.pair("radio.switch_offset");
-  m.radio_switch = m.hinge + Vec2{2.0 * m.lid_half_length, 0.0} + offset;
+  const Vec2 offset = in.find("radio.switch_offset") ? in.pair("radio.switch_offset") : key_default_pair("radio.switch_offset");
+  m.radio_switch = Machine::switch_at(m.hinge, m.lid_half_length, offset);
   m.string_length = in.length("radio.string_length");
   const bool any_radio = in.find("radio.switch_offset") || in.find("radio.string_length") ||
                          in.find("radio.switch_force");

@@ -44,7 +44,7 @@ void read_geometry(const Reader& in, const Config& cfg, Machine& m) {
     const double f = in.length("geometry.hinge_distance");
     const double gamma =
         in.in_range("geometry.hinge_angle", -180.0, true, 180.0, true) * units::kRadiansPerDegree;
-    m.hinge = {f * std::cos(gamma), -f * std::sin(gamma)};
+    m.hinge = hinge_from(f, gamma);
   }
 }
 

@@ -152,6 +152,22 @@ double key_default(std::string_view key) {
   return it == table.end() ? std::numeric_limits<double>::quiet_NaN() : it->second;
 }
 
+Vec2 key_default_pair(std::string_view key) {
+  const KeySpec* k = find_key(key);
+  double a = std::numeric_limits<double>::quiet_NaN(), b = a;
+  if (!k || k->kind != KeyKind::pair) return {a, b};
+  const std::string text(k->default_text);  // "[a, b]"
+  const char* p = text.c_str();
+  if (*p != '[') return {a, b};
+  char* end = nullptr;
+  const double x = std::strtod(p + 1, &end);
+  if (end == p + 1 || *end != ',') return {a, b};
+  p = end + 1;
+  const double y = std::strtod(p, &end);
+  if (end == p || *end != ']') return {a, b};
+  return {x, y};
+}
+
 const KeySpec* find_key(std::string_view key) {
   for (const KeySpec& k : kKeys) {
     if (k.key == key) return &k;
