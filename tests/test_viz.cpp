@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 
 #include "whatnext/config.hpp"
@@ -32,11 +34,21 @@ namespace {
 
 Scenario example(int n) { return build_scenario(example_config(n)); }
 
-// An empty folder of the given name under the temporary directory.
+// An empty folder of the given name under the temporary directory; the pid keeps runs of the
+// same test in other build trees (or worktrees) apart (a fixed name let parallel runs collide).
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("whatnext_test_viz_" + name);
+  // Removed when the test program ends (named by pid, they would pile up run after run).
+  static struct Made {
+    std::vector<fs::path> dirs;
+    ~Made() {
+      std::error_code ec;
+      for (const fs::path& d : dirs) fs::remove_all(d, ec);
+    }
+  } made;
+  const fs::path dir = fs::temp_directory_path() / ("whatnext_test_viz_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
+  made.dirs.push_back(dir);
   return dir;
 }
 
