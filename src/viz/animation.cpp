@@ -97,9 +97,8 @@ Image render_frame(const Recording& rec, const View& v, const Frame& frame,
   const std::vector<EventGroup> groups = group_events(rec.result);
   const scene::StillParts still = scene::still_parts(rec.scenario.machine);
   const double arm = scene::drawn_arm(rec, v.left_arm, frame.t);
-  // The end stop stands above the sandbag drawn at the arm's end, at least 10 px.
-  const scene::MovingParts moving = scene::moving_parts(rec.scenario.machine, s, scene::release_of(rec), arm,
-                                                        std::max(0.08, 10.0 / v.scale));
+  const scene::MovingParts moving =
+      scene::moving_parts(rec.scenario.machine, s, scene::release_of(rec), arm, scene::stop_height(v.scale));
 
   cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, v.width, v.height);
   cairo_t* cr = cairo_create(surface);

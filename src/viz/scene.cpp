@@ -146,18 +146,21 @@ RadioBox radio_box(const Machine& m) {
   return {m.radio_switch.x - 0.5 * w, m.radio_switch.x + 0.5 * w, bottom, top};
 }
 
-// Drawn length of the left arm at time t: a finite arm as it is; the model's endless arm long
-// enough to catch the sandbag, and once it is on the arm as long as the farthest it has been out
-// (and a little more). It does not shrink when the sandbag leaves it (the radio's latch sets it free).
-double drawn_arm(const Recording& rec, double endless_default, double t) {
-  const Machine& m = rec.scenario.machine;
-  if (std::isfinite(m.seesaw_left_arm)) return m.seesaw_left_arm;
+double endless_arm(const Scenario& sc) { return std::max(sc.machine.seesaw_right_arm, 1.2 * landing_distance(sc)); }
+
+double drawn_arm(double left_arm, double endless, double farthest) {
+  return std::isfinite(left_arm) ? left_arm : std::max(endless, farthest + 0.1);
+}
+
+double drawn_arm(const Recording& rec, double endless, double t) {
   double far = 0.0;
   for (std::size_t i = 0; i < rec.states.size() && rec.states[i].t <= t; ++i) {
     if (rec.states[i].on_seesaw) far = std::max(far, rec.states[i].r);
   }
-  return std::max(endless_default, far + 0.1);
+  return drawn_arm(rec.scenario.machine.seesaw_left_arm, endless, far);
 }
+
+double stop_height(double scale) { return std::max(0.08, 10.0 / scale); }
 
 Release release_of(const Recording& rec) {
   Release r;

@@ -76,8 +76,18 @@ std::vector<Vec2> hanging_rope(const Machine& m, Vec2 e, double length);
 // the balloon is in the box).
 std::vector<Vec2> string_path(const Machine& m, Vec2 balloon);
 
-// Drawn length of the left arm at time t (the model's arm is endless; see scene.cpp).
-double drawn_arm(const Recording& rec, double endless_default, double t);
+// The endless arm's drawn length before the sandbag lands: long enough to catch it.
+double endless_arm(const Scenario& sc);
+// Drawn length of the left arm: a finite arm (`left_arm`, Machine::seesaw_left_arm) as it is; the
+// model's endless arm `endless` long, or 0.1 m beyond the farthest the sandbag has been out on it
+// (`farthest`, 0 before it lands). It does not shrink when the sandbag leaves it (the radio's
+// latch sets it free). The animation and the page both draw with this.
+double drawn_arm(double left_arm, double endless, double farthest);
+// The same at time t of a recorded run.
+double drawn_arm(const Recording& rec, double endless, double t);
+// How high the end stop is drawn above the arm [m] at `scale` pixels per metre: above the sandbag
+// drawn at the arm's end (kSandbagRadius), so that both show, and at least 10 px.
+double stop_height(double scale);
 // Is the seesaw's end farther from the lid's edge than the rope reaches?
 bool beyond_rope(const RopeGeometry& geo, const Snapshot& s);
 

@@ -12,7 +12,6 @@ namespace {
 
 using scene::balloon_centre;
 using scene::ground_level;
-using scene::landing_distance;
 using scene::radio_box;
 using scene::RadioBox;
 using scene::string_path;
@@ -100,10 +99,9 @@ void fit(View& v, const Bounds& box, int width, int height) {
 Pixel to_pixel(const View& v, Vec2 p) { return {v.origin_x + p.x * v.scale, v.origin_y - p.h * v.scale}; }
 
 View make_view(const Recording& rec, int width, int height) {
-  const Machine& m = rec.scenario.machine;
   View v;
   v.width = width;
-  v.left_arm = std::max(m.seesaw_right_arm, 1.2 * landing_distance(rec.scenario));
+  v.left_arm = scene::endless_arm(rec.scenario);
   Bounds box;
   add_still(box, rec);
   add_run(box, rec, v.left_arm, follow_radius(rec, v.left_arm));

@@ -1,8 +1,8 @@
 // The machine drawn to scale on a canvas, with the parts, colours and conventions of the
 // animation that `whatnext animate` writes (both from src/viz/scene.cpp): x to the right, h up,
 // metres, origin at the seesaw's pivot. A second run can be drawn as a ghost over the first. What
-// is the page's own: how it frames the machine (extent), how long it draws the endless arm, the
-// arrows to parts beyond the picture and the caption.
+// is the page's own: how it frames the machine (extent), the arrows to parts beyond the picture
+// and the caption.
 (function () {
   'use strict';
 
@@ -50,17 +50,38 @@
     return t;
   }
 
-  // How high the end stop stands above the arm [m]: above the sandbag drawn at the arm's end (its
-  // radius is 0.05 m), so that both show, and at least 10 px (src/viz/animation.cpp so too).
-  const kStopHeight = 0.08;
-  const stopHeight = (v) => Math.max(kStopHeight, 10 / v.scale);
+  // How high the end stop stands above the arm [m] at the view's scale, as the animation draws it
+  // (the library's stopHeight); `extent` asks for the parts that stand still, where it is not drawn.
+  const stopHeight = (v) => library.stopHeight(v.scale);
 
-  // Left arm as drawn: a finite arm as it is; the paper's endless arm long enough to hold the
-  // sandbag, and before the landing long enough to catch it.
-  function drawnArm(m, endless, s) {
-    if (Number.isFinite(m.seesaw_left_arm)) return m.seesaw_left_arm;
-    return s.on_seesaw ? Math.max(endless, s.r + 0.1) : endless;
+  // How far out the sandbag has been on the arm at or before each sample (0 before it lands),
+  // once per run; and so up to time t.
+  const farthests = new WeakMap();
+  function farthestUpTo(run, t) {
+    const s = run.samples, n = s.t.length;
+    let f = farthests.get(run);
+    if (!f) {
+      f = new Float64Array(n);
+      let far = 0;
+      for (let i = 0; i < n; ++i) {
+        if (s.on_seesaw[i]) far = Math.max(far, s.r[i]);
+        f[i] = far;
+      }
+      farthests.set(run, f);
+    }
+    if (!(n > 0) || t < s.t[0]) return 0;
+    let lo = 0, hi = n - 1;  // the last sample at or before t
+    while (lo < hi) {
+      const mid = (lo + hi + 1) >> 1;
+      if (s.t[mid] <= t) lo = mid; else hi = mid - 1;
+    }
+    return f[lo];
   }
+
+  // The left arm as drawn at time t, as the animation draws it (the library's drawnArm): a finite
+  // arm as it is; the endless arm `endless` long, or a little beyond the farthest the sandbag has
+  // been out on it.
+  const drawnArm = (run, endless, t) => library.drawnArm(run.machine.seesaw_left_arm, endless, farthestUpTo(run, t));
 
   // The state at time t: continuous quantities interpolated between the recorded states around
   // t, the contacts and the mode from the last recorded state at or before t (after an event at t).
@@ -100,9 +121,10 @@
   // the edge points to the sandbag or the balloon, and the caption says how far (draw).
   function extent(run) {
     const m = run.machine, s = run.samples, n = s.t.length;
-    const first = scene(run, sampleAt(s, 0), 0, kStopHeight), last = scene(run, sampleAt(s, n - 1), 0, kStopHeight);
+    const still = library.stopHeight(Infinity);
+    const first = scene(run, sampleAt(s, 0), 0, still), last = scene(run, sampleAt(s, n - 1), 0, still);
     // The left arm before the sandbag lands: long enough to catch it, as the animation draws it.
-    const leftArm = Math.max(m.seesaw_right_arm, 1.2 * first.landingDistance);
+    const leftArm = first.endlessArm;
     const reach = reachOf(m);
     const box = { x0: Infinity, x1: -Infinity, h0: Infinity, h1: -Infinity, leftArm };
     const put = (p) => {
@@ -122,7 +144,7 @@
       put({ x: tr.lidX[i], h: tr.lidH[i] });
       // Below the floor the left arm and the sandbag have left the machine (the model has no floor
       // for them): they leave the picture there.
-      const shown = Math.min(drawnArm(m, leftArm, { on_seesaw: s.on_seesaw[i], r: s.r[i] }), reach);
+      const shown = Math.min(drawnArm(run, leftArm, s.t[i]), reach);
       const armEnd = polar(-shown, s.phi_s[i]);
       put({ x: armEnd.x, h: Math.max(armEnd.h, g) });
       if (Math.hypot(s.x[i], s.h[i]) <= reach) put({ x: s.x[i], h: Math.max(s.h[i], g) });
@@ -371,7 +393,7 @@
     };
     const m = run.machine;
     // Each run's scene at its state, its left arm as long as the picture draws it.
-    const sceneOf = (r, state) => scene(r, state, drawnArm(r.machine, v.leftArm, state), stopHeight(v));
+    const sceneOf = (r, state) => scene(r, state, drawnArm(r, v.leftArm, state.t), stopHeight(v));
     const sc = sceneOf(run, s);
     const ghostScenes = ghosts.map((g) => sceneOf(g.run, g.state));
     ctx.save();
@@ -449,7 +471,7 @@
   }
 
   // The rope as drawn in state s of a run (scene.cpp's rope_at), for the page's tests.
-  const ropePath = (run, s) => scene(run, s, 0, kStopHeight).rope;
+  const ropePath = (run, s) => scene(run, s, 0, library.stopHeight(Infinity)).rope;
 
   window.whatnextMachine = { draw, extent, makeView, toPixel, stateAt, ropePath, colour, useLibrary };
 })();

@@ -373,7 +373,7 @@ const Scenario& drawn_scenario(const val& input) {
 // in state `state` of a run of `input` whose rope was let go as `release` says ({latch, off} of
 // the run's result), with the left arm `arm` long and the end stop `stopHeight` high [m]. The
 // page draws from this, so that its picture and the animation's have the same points:
-// {landingDistance, ground, floor, floorPieces, stand, walls, radio {x0, x1, h0, h1}, dial, dialRadius,
+// {landingDistance, endlessArm, ground, floor, floorPieces, stand, walls, radio {x0, x1, h0, h1}, dial, dialRadius,
 // dialSquash,
 //  radioPost, notes, hinge, lidEnd, armLeft, armRight, endStop, stopTop, rope, sandbag, balloon,
 //  balloonRadius, string}, points as {x, h} in metres.
@@ -398,6 +398,7 @@ val scene(val input, val state, double arm, double stop_height, val release) {
     val v = val::object();
     v.set("ok", true);
     v.set("landingDistance", viz::scene::landing_distance(sc));
+    v.set("endlessArm", viz::scene::endless_arm(sc));
     v.set("ground", still.ground);
     v.set("floor", still.floor);
     val pieces = val::array();
@@ -431,6 +432,14 @@ val scene(val input, val state, double arm, double stop_height, val release) {
     return v;
   });
 }
+
+// The left arm's drawn length and the end stop's height, as the animation draws them
+// (src/viz/scene.hpp drawn_arm, stop_height): leftArm is the machine's seesaw_left_arm (Infinity:
+// endless), farthest how far out the sandbag has been on the arm so far.
+double drawn_arm(double left_arm, double endless, double farthest) {
+  return viz::scene::drawn_arm(left_arm, endless, farthest);
+}
+double stop_height(double scale) { return viz::scene::stop_height(scale); }
 
 // The points of the scene that frame the picture, for many states at once (a call per state would
 // cost the page more than the points): the seesaw's right end, the lid's free edge and the
@@ -571,6 +580,8 @@ EMSCRIPTEN_BINDINGS(whatnext) {
   emscripten::function("names", &names);
   emscripten::function("scene", &scene);
   emscripten::function("sceneTrace", &scene_trace);
+  emscripten::function("drawnArm", &drawn_arm);
+  emscripten::function("stopHeight", &stop_height);
   emscripten::function("colours", &colours);
 }
 
