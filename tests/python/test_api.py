@@ -298,7 +298,9 @@ print("finished", flush=True)
 @pytest.mark.parametrize("samples", ["samples", "events-only"])
 def test_ctrl_c_stops_simulate(samples):
     # SIGINT to a process in a long simulate(): it must end with KeyboardInterrupt at once, not when
-    # the run is done. The time is from the signal to the process's exit (interpreter shutdown too).
+    # the run is done (half a minute later). The time is from the signal to the process's exit,
+    # interpreter shutdown too: about 0.1 s, but 0.56 s once with the machine's two cores busy, so
+    # the bound is 2 s, still a fifteenth of the run.
     import subprocess
     import sys
     import time
@@ -314,7 +316,7 @@ def test_ctrl_c_stops_simulate(samples):
     finally:
         proc.kill()
     assert out.strip() == "KeyboardInterrupt" and proc.returncode == 3
-    assert elapsed < 0.5, f"simulate() took {elapsed:.2f} s to stop after Ctrl-C"
+    assert elapsed < 2.0, f"simulate() took {elapsed:.2f} s to stop after Ctrl-C"
 
 
 def test_runs_without_samples_have_the_same_events():
