@@ -153,19 +153,22 @@ double key_default(std::string_view key) {
 }
 
 Vec2 key_default_pair(std::string_view key) {
-  const KeySpec* k = find_key(key);
-  double a = std::numeric_limits<double>::quiet_NaN(), b = a;
-  if (!k || k->kind != KeyKind::pair) return {a, b};
-  const std::string text(k->default_text);  // "[a, b]"
-  const char* p = text.c_str();
-  if (*p != '[') return {a, b};
-  char* end = nullptr;
-  const double x = std::strtod(p + 1, &end);
-  if (end == p + 1 || *end != ',') return {a, b};
-  p = end + 1;
-  const double y = std::strtod(p, &end);
-  if (end == p || *end != ']') return {a, b};
-  return {x, y};
+  // Read once, as --set reads a pair ("[0.5, 0]"; a word such as "none" is the key left out):
+  // validation asks for it per machine of a sweep.
+  static const std::unordered_map<std::string_view, Vec2> table = [] {
+    std::unordered_map<std::string_view, Vec2> t;
+    for (const KeySpec& k : kKeys) {
+      if (k.kind != KeyKind::pair) continue;
+      Config c;
+      apply_set(c, std::string(k.key) + "=" + std::string(k.default_text));
+      const auto it = c.values.find(k.key);
+      if (it != c.values.end()) t.emplace(k.key, Vec2{it->second.pair[0], it->second.pair[1]});
+    }
+    return t;
+  }();
+  const auto it = table.find(key);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return it == table.end() ? Vec2{nan, nan} : it->second;
 }
 
 const KeySpec* find_key(std::string_view key) {
