@@ -54,13 +54,23 @@
   // (the library's stopHeight); `extent` asks for the parts that stand still, where it is not drawn.
   const stopHeight = (v) => library.stopHeight(v.scale);
 
+  // The first sample after time t (samples.t is sorted; n if none).
+  function firstAfter(ts, t) {
+    let lo = 0, hi = ts.length;
+    while (lo < hi) {
+      const mid = (lo + hi) >> 1;
+      if (ts[mid] <= t) lo = mid + 1; else hi = mid;
+    }
+    return lo;
+  }
+
   // How far out the sandbag has been on the arm at or before each sample (0 before it lands),
-  // once per run; and so up to time t.
+  // once per run.
   const farthests = new WeakMap();
-  function farthestUpTo(run, t) {
-    const s = run.samples, n = s.t.length;
+  function farthestOf(run) {
     let f = farthests.get(run);
     if (!f) {
+      const s = run.samples, n = s.t.length;
       f = new Float64Array(n);
       let far = 0;
       for (let i = 0; i < n; ++i) {
@@ -69,19 +79,18 @@
       }
       farthests.set(run, f);
     }
-    if (!(n > 0) || t < s.t[0]) return 0;
-    let lo = 0, hi = n - 1;  // the last sample at or before t
-    while (lo < hi) {
-      const mid = (lo + hi + 1) >> 1;
-      if (s.t[mid] <= t) lo = mid; else hi = mid - 1;
-    }
-    return f[lo];
+    return f;
+  }
+  // ... up to time t: at the last sample at or before it.
+  function farthestAt(run, t) {
+    const k = firstAfter(run.samples.t, t) - 1;
+    return k < 0 ? 0 : farthestOf(run)[k];
   }
 
-  // The left arm as drawn at time t, as the animation draws it (the library's drawnArm): a finite
-  // arm as it is; the endless arm `endless` long, or a little beyond the farthest the sandbag has
-  // been out on it.
-  const drawnArm = (run, endless, t) => library.drawnArm(run.machine.seesaw_left_arm, endless, farthestUpTo(run, t));
+  // The left arm as drawn, as the animation draws it (the library's drawnArm): a finite arm as it
+  // is; the endless arm `endless` long, or a little beyond the farthest the sandbag has been out on
+  // it so far.
+  const drawnArm = (run, endless, farthest) => library.drawnArm(run.machine.seesaw_left_arm, endless, farthest);
 
   // The state at time t: continuous quantities interpolated between the recorded states around
   // t, the contacts and the mode from the last recorded state at or before t (after an event at t).
@@ -89,12 +98,7 @@
   const kDiscrete = ['on_seesaw', 'rope_taut', 'mode', 'lid_resting', 'balloon_stuck'];
   function stateAt(samples, t) {
     const ts = samples.t;
-    let lo = 0, hi = ts.length;  // first index with ts[i] > t
-    while (lo < hi) {
-      const mid = (lo + hi) >> 1;
-      if (ts[mid] <= t) lo = mid + 1; else hi = mid;
-    }
-    const i = Math.max(0, lo - 1), j = lo;
+    const j = firstAfter(ts, t), i = Math.max(0, j - 1);
     const s = { t };
     const w = j < ts.length && ts[j] > ts[i] && t > ts[i] ? (t - ts[i]) / (ts[j] - ts[i]) : 0;
     for (const k of kContinuous) s[k] = w > 0 ? samples[k][i] + (samples[k][j] - samples[k][i]) * w : samples[k][i];
@@ -138,13 +142,13 @@
     put(add(m.hinge, { x: 0, h: 2 * rl }));  // the lid upright
     put({ x: radio.x0 - 0.05, h: radio.h0 }); put({ x: radio.x1 + 0.05, h: radio.h1 + 0.05 });
     if (run.events.some((e) => e.type === 'radio_on')) put({ x: radio.x1, h: radio.h1 + 0.25 });  // the notes
-    const tr = trace(run), every = Math.max(1, Math.floor(n / 4000));
+    const tr = trace(run), far = farthestOf(run), every = Math.max(1, Math.floor(n / 4000));
     for (let i = 0; i < n; i += (s.event[i] >= 0 ? 1 : every)) {
       put({ x: tr.seesawX[i], h: tr.seesawH[i] });
       put({ x: tr.lidX[i], h: tr.lidH[i] });
       // Below the floor the left arm and the sandbag have left the machine (the model has no floor
       // for them): they leave the picture there.
-      const shown = Math.min(drawnArm(run, leftArm, s.t[i]), reach);
+      const shown = Math.min(drawnArm(run, leftArm, far[i]), reach);
       const armEnd = polar(-shown, s.phi_s[i]);
       put({ x: armEnd.x, h: Math.max(armEnd.h, g) });
       if (Math.hypot(s.x[i], s.h[i]) <= reach) put({ x: s.x[i], h: Math.max(s.h[i], g) });
@@ -393,7 +397,7 @@
     };
     const m = run.machine;
     // Each run's scene at its state, its left arm as long as the picture draws it.
-    const sceneOf = (r, state) => scene(r, state, drawnArm(r, v.leftArm, state.t), stopHeight(v));
+    const sceneOf = (r, state) => scene(r, state, drawnArm(r, v.leftArm, farthestAt(r, state.t)), stopHeight(v));
     const sc = sceneOf(run, s);
     const ghostScenes = ghosts.map((g) => sceneOf(g.run, g.state));
     ctx.save();
