@@ -332,7 +332,6 @@ TEST(NoSomersaults, NoSeesawWithMassEverTurnsPastTheVertical) {
 
 // --- the built machine (issue 19: docs/extensions.md "The machine students build") ------------
 
-
 TEST(BuiltMachine, TheSandbagSlidesFromRestToTheStopOnTheArmStandingOnTheFloor) {
   // Placed on the arm at r0 = 0.3 m, at rest: r'' = g sin(30 deg) on the fixed arm, so it reaches
   // the stop at L = 0.8 m after sqrt(2 (L - r0) / (g sin 30)), at v = g sin(30) t, and the stop
@@ -344,8 +343,9 @@ TEST(BuiltMachine, TheSandbagSlidesFromRestToTheStopOnTheArmStandingOnTheFloor) 
     std::snprintf(b, sizeof b, "%.17g", v);
     return std::string(b);
   };
-  const wn::Scenario sc = from_toml(standing_seesaw(""), {"seesaw.end_stop=true", "start.sandbag_x=" + num(-r0 * c30),
-                                                          "start.sandbag_height=" + num(-r0 * s30)});
+  const wn::Scenario sc =
+      from_toml(standing_seesaw(""), {"seesaw.end_stop=true", "start.sandbag_x=" + num(-r0 * c30),
+                                      "start.sandbag_height=" + num(-r0 * s30)});
   const wn::Result r = wn::simulate(sc);
   EXPECT_EQ(find(r.events, wn::EventType::sandbag_lands), nullptr);  // placed on the arm
   const wn::Event* stop = find(r.events, wn::EventType::sandbag_at_stop);
@@ -367,8 +367,8 @@ TEST(BuiltMachine, ASandbagThatMissesTheArmLandsOnTheFloorAndBouncesByItsRestitu
   // Dropped from rest at h0 = 0 beyond the arm's end: free fall to the floor 0.4 m below, then
   // it leaves with e times its speed and lands again after 2 e v / g.
   const double g = 9.81, e = 0.5, m = 0.7, drop = 0.4;
-  const wn::Scenario sc = from_toml(standing_seesaw(""), {"floor.restitution=0.5", "start.sandbag_x=-1.0",
-                                                          "start.sandbag_height=0.0"});
+  const wn::Scenario sc = from_toml(
+      standing_seesaw(""), {"floor.restitution=0.5", "start.sandbag_x=-1.0", "start.sandbag_height=0.0"});
   const wn::Result r = wn::simulate(sc);
   const wn::Event* first = find(r.events, wn::EventType::sandbag_on_floor);
   ASSERT_NE(first, nullptr);
@@ -456,9 +456,10 @@ TEST(Radio, ASeesawWithMassMustNotSwingRoundWhileTheRadioWaits) {
   // sandbag go; a seesaw with mass swings on, and used to swing round (108 deg) before the radio
   // came on. No somersaults, whatever happens meanwhile (docs/model.md §6): the run ends when it
   // turns vertical, and says that the lid had opened.
-  const wn::Scenario sc = example(1, {"geometry.seesaw_right_arm=0.8", "seesaw.left_arm=0.75", "seesaw.mass=0.3",
-                                      "balloon.radius=0.1", "radio.enabled=true", "radio.switch_offset=[0.3, 0]",
-                                      "radio.string_length=0.6", "radio.switch_force=0.03"});
+  const wn::Scenario sc =
+      example(1, {"geometry.seesaw_right_arm=0.8", "seesaw.left_arm=0.75", "seesaw.mass=0.3",
+                  "balloon.radius=0.1", "radio.enabled=true", "radio.switch_offset=[0.3, 0]",
+                  "radio.string_length=0.6", "radio.switch_force=0.03"});
   wn::Recorder rec;
   const wn::Result r = wn::simulate(sc, &rec);
   for (const wn::Snapshot& s : rec.samples) ASSERT_LE(std::fabs(s.phi_s), kPi / 2.0 + 1e-9) << s.t;

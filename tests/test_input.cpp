@@ -430,8 +430,8 @@ TEST(Keys, EveryKeyHasAUnitKindAndADefaultToShow) {
 // documents; the same machine as with that number given. Keys whose presence is itself a switch
 // (giving them turns the radio, the drag or the floor on, or needs another key) are left out here.
 TEST(Keys, AKeyLeftOutIsTheTablesDefault) {
-  const std::set<std::string> switches = {"balloon.drag_coefficient", "radio.string_length", "radio.switch_force",
-                                          "floor.restitution", "restitution.stop"};
+  const std::set<std::string> switches = {"balloon.drag_coefficient", "radio.string_length",
+                                          "radio.switch_force", "floor.restitution", "restitution.stop"};
   int checked = 0;
   for (const wn::KeySpec& k : wn::known_keys()) {
     const double d = wn::key_default(k.key);
@@ -559,18 +559,32 @@ TEST(Keys, NoKeysGivenIsScenarioDefault) {
   const wn::Scenario def{};
   EXPECT_EQ(wn::to_toml(none), wn::to_toml(def));
   const wn::Machine &a = none.machine, &b = def.machine;
-  for (const auto& [x, y] : std::vector<std::pair<double, double>>{
-           {a.seesaw_right_arm, b.seesaw_right_arm}, {a.lid_half_length, b.lid_half_length},
-           {a.rope_length, b.rope_length}, {a.hinge.x, b.hinge.x}, {a.hinge.h, b.hinge.h},
-           {a.sandbag_mass, b.sandbag_mass}, {a.lid_mass, b.lid_mass}, {a.air_density, b.air_density},
-           {a.helium_density, b.helium_density}, {a.balloon_radius, b.balloon_radius}, {a.gravity, b.gravity},
-           {a.radio_switch.x, b.radio_switch.x}, {a.radio_switch.h, b.radio_switch.h},
-           {a.string_length, b.string_length}, {a.seesaw_left_arm, b.seesaw_left_arm},
-           {a.rope_on_lid, b.rope_on_lid}, {none.start.sandbag_x, def.start.sandbag_x},
-           {none.start.sandbag_h, def.start.sandbag_h}, {none.start.seesaw_angle, def.start.seesaw_angle},
-           {none.start.lid_angle, def.start.lid_angle}, {none.run.t_max, def.run.t_max},
-           {none.run.output_step, def.run.output_step}, {none.run.step, def.run.step},
-           {none.run.tolerance, def.run.tolerance}, {none.run.vertical_margin, def.run.vertical_margin}}) {
+  for (const auto& [x, y] :
+       std::vector<std::pair<double, double>>{{a.seesaw_right_arm, b.seesaw_right_arm},
+                                              {a.lid_half_length, b.lid_half_length},
+                                              {a.rope_length, b.rope_length},
+                                              {a.hinge.x, b.hinge.x},
+                                              {a.hinge.h, b.hinge.h},
+                                              {a.sandbag_mass, b.sandbag_mass},
+                                              {a.lid_mass, b.lid_mass},
+                                              {a.air_density, b.air_density},
+                                              {a.helium_density, b.helium_density},
+                                              {a.balloon_radius, b.balloon_radius},
+                                              {a.gravity, b.gravity},
+                                              {a.radio_switch.x, b.radio_switch.x},
+                                              {a.radio_switch.h, b.radio_switch.h},
+                                              {a.string_length, b.string_length},
+                                              {a.seesaw_left_arm, b.seesaw_left_arm},
+                                              {a.rope_on_lid, b.rope_on_lid},
+                                              {none.start.sandbag_x, def.start.sandbag_x},
+                                              {none.start.sandbag_h, def.start.sandbag_h},
+                                              {none.start.seesaw_angle, def.start.seesaw_angle},
+                                              {none.start.lid_angle, def.start.lid_angle},
+                                              {none.run.t_max, def.run.t_max},
+                                              {none.run.output_step, def.run.output_step},
+                                              {none.run.step, def.run.step},
+                                              {none.run.tolerance, def.run.tolerance},
+                                              {none.run.vertical_margin, def.run.vertical_margin}}) {
     EXPECT_EQ(x, y);
   }
   EXPECT_EQ(a.balloon_model, b.balloon_model);
@@ -578,7 +592,8 @@ TEST(Keys, NoKeysGivenIsScenarioDefault) {
   EXPECT_EQ(none.run.impact_law, def.run.impact_law);
   // The key table's values, read independently: the hinge 0.8 m from the pivot, 27 degrees below.
   EXPECT_NEAR(std::hypot(b.hinge.x, b.hinge.h), wn::key_default("geometry.hinge_distance"), 1e-15);
-  EXPECT_NEAR(std::atan2(-b.hinge.h, b.hinge.x) * 180.0 / M_PI, wn::key_default("geometry.hinge_angle"), 1e-12);
+  EXPECT_NEAR(std::atan2(-b.hinge.h, b.hinge.x) * 180.0 / M_PI, wn::key_default("geometry.hinge_angle"),
+              1e-12);
   EXPECT_NEAR(def.start.seesaw_angle * 180.0 / M_PI, wn::key_default("start.seesaw_angle"), 1e-13);
   EXPECT_EQ(wn::key_default_pair("radio.switch_offset").x, 0.5);
   EXPECT_TRUE(std::isnan(wn::key_default_pair("geometry.hinge_offset").x));  // "none"

@@ -313,5 +313,6 @@ TEST(StretchyRope, TheBuiltMachineAndTheRadioKeepTheirBooks) {
   wn::apply_set(radio, "rope.stiffness=1e6");
   const wn::Result r = wn::simulate(wn::build_scenario(radio));
   EXPECT_EQ(r.outcome().type, wn::EventType::radio_on);
-  for (const wn::Event& e : r.events) EXPECT_NEAR(e.after.ledger_residual(), 0.0, 1e-8) << wn::to_string(e.type);
+  for (const wn::Event& e : r.events)
+    EXPECT_NEAR(e.after.ledger_residual(), 0.0, 1e-8) << wn::to_string(e.type);
 }

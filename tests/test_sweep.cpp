@@ -321,8 +321,15 @@ TEST_F(SweepCli, ResumeRefusesAnotherSweepsFile) {
 // Two sweeps never write one file at once: while one runs, a second (resumed or not) is refused
 // and leaves its rows alone.
 TEST_F(SweepCli, ASecondSweepOfOneFileIsRefusedWhileTheFirstRuns) {
-  const std::vector<std::string> args{"sweep", "--example", "3", "--vary", "geometry.rope_length=0.9:1.1:200",
-                                      "--vary", "masses.lid=0.3:0.7:200", "--threads", "1"};
+  const std::vector<std::string> args{"sweep",
+                                      "--example",
+                                      "3",
+                                      "--vary",
+                                      "geometry.rope_length=0.9:1.1:200",
+                                      "--vary",
+                                      "masses.lid=0.3:0.7:200",
+                                      "--threads",
+                                      "1"};
   const fs::path csv = dir_ / "s.csv", part = dir_ / "s.csv.part";
   std::vector<std::string> a = args;
   a.insert(a.end(), {"--out", csv.string()});
@@ -352,7 +359,8 @@ TEST_F(SweepCli, AUsersOwnPartFileIsNeverCut) {
   const fs::path csv = dir_ / "u.csv", part = dir_ / "u.csv.part";
   std::ofstream(part, std::ios::binary) << "my notes\n";
   for (const char* resume : {"", " --resume"}) {
-    const CliResult r = whatnext("sweep --example 2 --vary masses.lid=0.3:0.5:3 --out " + csv.string() + resume);
+    const CliResult r =
+        whatnext("sweep --example 2 --vary masses.lid=0.3:0.5:3 --out " + csv.string() + resume);
     EXPECT_EQ(r.code, 2) << resume << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_EQ(slurp(part), "my notes\n") << resume;
@@ -581,8 +589,10 @@ TEST_F(SweepCli, OptimizeWritesATomlThatRunAccepts) {
 // that at the file's own tolerance it is not, in one line, instead of blaming the TOML writer.
 TEST_F(SweepCli, AnOptimumOnAKnifeEdgeIsSaidToBeOne) {
   const fs::path best = dir_ / "edge.toml";
-  const CliResult r = whatnext("optimize --example 2 --vary geometry.rope_length=0.62:1.0 --vary "
-                               "masses.sandbag=0.2:2.0 --maximize final_r --grid 5 --starts 2 --out " + best.string());
+  const CliResult r = whatnext(
+      "optimize --example 2 --vary geometry.rope_length=0.62:1.0 --vary "
+      "masses.sandbag=0.2:2.0 --maximize final_r --grid 5 --starts 2 --out " +
+      best.string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err.find("to_toml"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("knife edge"), std::string::npos) << r.err;

@@ -45,7 +45,8 @@ fs::path fresh_dir(const std::string& name) {
       for (const fs::path& d : dirs) fs::remove_all(d, ec);
     }
   } made;
-  const fs::path dir = fs::temp_directory_path() / ("whatnext_test_viz_" + name + "_" + std::to_string(::getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("whatnext_test_viz_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   made.dirs.push_back(dir);
@@ -740,7 +741,9 @@ double polyline_length(const std::vector<Vec2>& pts) {
 // from the lid's edge, with 0.62 m of rope.
 Recording heavy_radio() {
   Config c = example_config(2);
-  for (const char* set : {"seesaw.mass=0.4", "radio.enabled=true", "seesaw.left_arm=1.2", "damping.pivot=0.5"}) apply_set(c, set);
+  for (const char* set :
+       {"seesaw.mass=0.4", "radio.enabled=true", "seesaw.left_arm=1.2", "damping.pivot=0.5"})
+    apply_set(c, set);
   return record(build_scenario(c));
 }
 

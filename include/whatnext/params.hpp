@@ -26,7 +26,9 @@ bool parse_integrator(std::string_view text, IntegratorKind& out);
 bool parse_balloon_model(std::string_view text, BalloonModel& out);
 
 // The lid's hinge from the pivot, given as distance f and angle gamma below the horizontal.
-inline Vec2 hinge_from(double distance, double angle) { return {distance * std::cos(angle), -distance * std::sin(angle)}; }
+inline Vec2 hinge_from(double distance, double angle) {
+  return {distance * std::cos(angle), -distance * std::sin(angle)};
+}
 
 // The fixed parts of the machine. Built only by validation (src/io/build_scenario.cpp; or by hand in
 // tests that know what they do); every field is checked there, so the physics code never re-checks.
@@ -37,12 +39,13 @@ struct Machine {
   double seesaw_right_arm = 0.6;  // r_H, pivot to rope end [m]
   double lid_half_length = 0.2;   // r_L; the lid is 2 r_L long [m]
   double rope_length = 1.0;       // l_R [m]
-  Vec2 hinge = hinge_from(0.8, 27.0 * units::kRadiansPerDegree);  // lid hinge H from the pivot [m] (h < 0: below)
-  double sandbag_mass = 0.6;      // m_S [kg]
-  double lid_mass = 0.5;          // m_L [kg]
-  double air_density = 1.29;      // [kg/m^3]
-  double helium_density = 0.18;   // [kg/m^3]
-  double balloon_radius = 0.2;    // r_B [m]
+  // The lid's hinge H from the pivot [m] (h < 0: below it).
+  Vec2 hinge = hinge_from(0.8, 27.0 * units::kRadiansPerDegree);
+  double sandbag_mass = 0.6;     // m_S [kg]
+  double lid_mass = 0.5;         // m_L [kg]
+  double air_density = 1.29;     // [kg/m^3]
+  double helium_density = 0.18;  // [kg/m^3]
+  double balloon_radius = 0.2;   // r_B [m]
   BalloonModel balloon_model = BalloonModel::program;
   double gravity = 9.81;  // [m/s^2]
   // The radio: its switch (relative to the pivot) and the balloon's string, tied to the switch.
@@ -98,7 +101,9 @@ struct Machine {
   double balloon_pull() const { return balloon_inertia() * balloon_acceleration(); }
   bool built_contacts() const { return end_stop || floor; }
   bool stretchy_rope() const { return rope_stiffness > 0.0; }
-  bool has_friction() const { return friction.sandbag > 0.0 || friction.pivot > 0.0 || friction.lid_hinge > 0.0; }
+  bool has_friction() const {
+    return friction.sandbag > 0.0 || friction.pivot > 0.0 || friction.lid_hinge > 0.0;
+  }
 
   // Uniform plate hinged at one edge: I = m (2 r_L)^2 / 3.
   double lid_inertia() const { return lid_mass * 4.0 * lid_half_length * lid_half_length / 3.0; }
@@ -112,12 +117,13 @@ struct Machine {
   bool heavy_seesaw() const { return seesaw_inertia > 0.0; }
 };
 
-// Where everything starts (the keys' defaults, as the machine's). The lid starts at rest, the sandbag at rest.
+// Where everything starts, at the keys' defaults too. The lid and the sandbag start at rest.
 struct Start {
-  double sandbag_x = -0.3;    // [m], left of the pivot
-  double sandbag_h = 1.0;     // [m], above the left arm
-  double seesaw_angle = -25.0 * units::kRadiansPerDegree;  // phiS0 [rad], positive = left arm down
-  double lid_angle = 5.0 * units::kRadiansPerDegree;       // phiL0 [rad]; also the lid's lowest angle
+  double sandbag_x = -0.3;  // [m], left of the pivot
+  double sandbag_h = 1.0;   // [m], above the left arm
+  // phiS0 [rad], positive = left arm down; phiL0 [rad], also the lid's lowest angle.
+  double seesaw_angle = -25.0 * units::kRadiansPerDegree;
+  double lid_angle = 5.0 * units::kRadiansPerDegree;
 };
 
 struct RunSettings {

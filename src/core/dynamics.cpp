@@ -18,8 +18,8 @@ double Model::lid_free_acceleration(double phi_l, double dphi_l, double q_l) con
 namespace {
 template <class Memo>
 bool recall(const Memo& m, int flags, double a, double b, double c, double d, double e, double f) {
-  return m.valid && m.flags == flags && m.args[0] == a && m.args[1] == b && m.args[2] == c && m.args[3] == d &&
-         m.args[4] == e && m.args[5] == f;
+  return m.valid && m.flags == flags && m.args[0] == a && m.args[1] == b && m.args[2] == c &&
+         m.args[3] == d && m.args[4] == e && m.args[5] == f;
 }
 template <class Memo, class Value>
 const Value& remember(Memo& m, int flags, double a, double b, double c, double d, double e, double f,
@@ -124,7 +124,8 @@ WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& 
     const Swing p = swing(true, d.taut, r, y[slot::phi_s], dr, y[slot::dphi_s], q_s, q_l);
     dy[slot::dr] = p.ddr;
     dy[slot::dphi_s] = p.ddphi_s;
-    if (d.bag_slip != 0) dy[slot::dr] += bag_friction(d.bag_slip, r, dr, p.lk.cos_s, y[slot::dphi_s], p.ddphi_s);
+    if (d.bag_slip != 0)
+      dy[slot::dr] += bag_friction(d.bag_slip, r, dr, p.lk.cos_s, y[slot::dphi_s], p.ddphi_s);
   }
   if (d.at_stop || d.bag_stuck) dy[slot::dr] = 0.0;  // held at the arm's end, or by friction
   if (!d.taut && !d.lid_held() && !d.latched) {
@@ -141,7 +142,8 @@ WHATNEXT_STAGE void Model::cartesian_flow(const Discrete& d, const State& y, Sta
   dy[slot::vh] = d.bag_on_floor ? 0.0 : -g_;
   // The lid follows a heavy seesaw on the rope, or hangs from one standing on the floor.
   const bool lid_on_rope = (d.heavy || d.seesaw_held()) && d.taut;
-  const Torques q = extra_torques(d, y[slot::seesaw_phi], y[slot::seesaw_dphi], y[slot::phi_l], y[slot::dphi_l]);
+  const Torques q =
+      extra_torques(d, y[slot::seesaw_phi], y[slot::seesaw_dphi], y[slot::phi_l], y[slot::dphi_l]);
   const double q_s = q.seesaw, q_l = q.lid;
   if (!d.lid_held() && !d.latched && !lid_on_rope) {
     dy[slot::phi_l] = y[slot::dphi_l];
@@ -151,7 +153,8 @@ WHATNEXT_STAGE void Model::cartesian_flow(const Discrete& d, const State& y, Sta
     dy[slot::seesaw_phi] = y[slot::seesaw_dphi];
     dy[slot::seesaw_dphi] =
         d.lid_chart && d.taut
-            ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side, q_s, q_l).ddphi_l
+            ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side, q_s, q_l)
+                  .ddphi_l
             : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], q_s, q_l).ddphi_s;
   }
 }
@@ -175,7 +178,8 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     } else if (!d.balloon_held) {  // sliding along the lid, or rolling round its free edge
       const Kinematics k = kinematics(d, y);
       dy[slot::balloon_h] = y[slot::balloon_v];
-      dy[slot::balloon_v] = d.balloon_edge ? small_balloon_roll(k, y[slot::balloon_h]) : small_balloon_slide(k);
+      dy[slot::balloon_v] =
+          d.balloon_edge ? small_balloon_roll(k, y[slot::balloon_h]) : small_balloon_slide(k);
     }
   } else if (!d.balloon_stuck) {
     dy[slot::balloon_h] = y[slot::balloon_v];
@@ -194,7 +198,8 @@ void Model::dissipation(const Discrete& d, const Kinematics& k, State& dy) const
   // Coulomb friction against the slips: mu times the arm's push times the sandbag's slip, the
   // pivot's and the hinge's torques times their rates.
   double heat = 0.0;
-  if (d.polar() && d.bag_slip != 0) heat += m_s_ * bag_friction(d.bag_slip, k.r, k.dr, k.cos_s, k.dphi_s, k.ddphi_s) * -k.dr;
+  if (d.polar() && d.bag_slip != 0)
+    heat += m_s_ * bag_friction(d.bag_slip, k.r, k.dr, k.cos_s, k.dphi_s, k.ddphi_s) * -k.dr;
   if (d.seesaw_slip != 0) heat += -pivot_coulomb(d) * k.dphi_s;
   if (d.lid_slip != 0) heat += -hinge_coulomb(d) * k.dphi_l;
   dy[slot::lost_friction] = heat;

@@ -37,8 +37,8 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   if (stretchy_) stretchy_guards(d, k, g, rates);
 }
 
-WHATNEXT_STAGE void Model::balloon_guards(const Discrete& d, const State& y, const Kinematics& k, GuardValues& g,
-                           GuardValues* rates) const {
+WHATNEXT_STAGE void Model::balloon_guards(const Discrete& d, const State& y, const Kinematics& k,
+                                          GuardValues& g, GuardValues* rates) const {
   if (radio_) g[kGuardRadioOn] = radio_gap(k);
   if (small_) {
     small_balloon_guards(d, k, g, rates);
@@ -74,16 +74,16 @@ WHATNEXT_STAGE bool Model::closed_forces_wanted(const Discrete& d, int only) con
           only == kGuardFloor || only == kGuardBagSlip || only == kGuardPivotSlip || only == kGuardHingeSlip);
 }
 
-WHATNEXT_STAGE void Model::open_contact_rates(const Discrete& d, const Kinematics& k, const contact::System& sys,
-                               GuardValues& rates) const {
+WHATNEXT_STAGE void Model::open_contact_rates(const Discrete& d, const Kinematics& k,
+                                              const contact::System& sys, GuardValues& rates) const {
   // An open contact's guard is minus its gap, so its rate is minus the gap's rate W_i . v.
   if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) rates[kGuardBag] = -sys.rate(kBag, sys.velocity);
   if (!d.taut && !d.latched) rates[kGuardRope] = -sys.rate(kRope, sys.velocity);
   if (!d.lid_resting && !d.latched) rates[kGuardLid] = -k.dphi_l;
 }
 
-WHATNEXT_STAGE void Model::closed_contact_forces(const Discrete& d, const Kinematics& k, const contact::System& sys,
-                                  GuardValues& g) const {
+WHATNEXT_STAGE void Model::closed_contact_forces(const Discrete& d, const Kinematics& k,
+                                                 const contact::System& sys, GuardValues& g) const {
   // The forces that make the flow's own accelerations (k has them).
   contact::PerContact f;
   if (!contact::multipliers_for(sys, active_set(d), accelerations(d, k), f)) return;
@@ -107,11 +107,14 @@ WHATNEXT_STAGE void Model::slip_guards(const Discrete& d, const Kinematics& k, G
   if (d.seesaw_slip != 0) g[kGuardPivotSlip] = -d.seesaw_slip * k.dphi_s;
   if (d.lid_slip != 0) g[kGuardHingeSlip] = -d.lid_slip * k.dphi_l;
   // Only the polar layouts have an arm that pushes.
-  if (friction_ && d.polar() && !d.bag_stuck && !d.at_stop && d.bag_slip != 0) g[kGuardBagSlip] = -d.bag_slip * k.dr;
+  if (friction_ && d.polar() && !d.bag_stuck && !d.at_stop && d.bag_slip != 0)
+    g[kGuardBagSlip] = -d.bag_slip * k.dr;
 }
 
-WHATNEXT_STAGE void Model::linkage_guards(const Discrete& d, const Kinematics& k, GuardValues& g, int only) const {
-  if (!d.latched) g[kGuardLidOpen] = k.phi_l - vertical_;  // a lid resting at or past it is open from the start
+WHATNEXT_STAGE void Model::linkage_guards(const Discrete& d, const Kinematics& k, GuardValues& g,
+                                          int only) const {
+  if (!d.latched)
+    g[kGuardLidOpen] = k.phi_l - vertical_;  // a lid resting at or past it is open from the start
   if (on_closure(d)) {
     // The lid's dead centre: it reaches the rope's line (the rope would touch the hinge and then
     // run through the box). Crossed at a finite rate in the lid chart, so found exactly.
@@ -138,8 +141,8 @@ WHATNEXT_STAGE void Model::linkage_guards(const Discrete& d, const Kinematics& k
   if (d.on_seesaw && arm_ < kNoEnd && !stop_) g[kGuardArmEnd] = k.r - arm_;
 }
 
-WHATNEXT_STAGE void Model::built_guards(const Discrete& d, const Kinematics& k, const contact::System& sys, GuardValues& g,
-                         GuardValues* rates) const {
+WHATNEXT_STAGE void Model::built_guards(const Discrete& d, const Kinematics& k, const contact::System& sys,
+                                        GuardValues& g, GuardValues* rates) const {
   // The open gaps of the stop and the floor; their forces while closed are set with the others'.
   if (stop_ && d.on_seesaw && !d.at_stop) {
     g[kGuardStop] = k.r - arm_;

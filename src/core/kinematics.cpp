@@ -30,11 +30,13 @@ struct Model::KinematicsPass {
   const Discrete& d;
   const State& y;
   bool rates, memo;
-  Kinematics& k;  // the caller's, returned without a copy
+  Kinematics& k;                        // the caller's, returned without a copy
   bool trig_s = false, trig_l = false;  // cos and sin of phiS / phiL already known
   Torques q = {};  // what the swings add to the weights' torques (Model::extra_torques), with rates
 
-  void torqued(double phi_s, double dphi_s) { q = m.extra_torques(d, phi_s, dphi_s, y[slot::phi_l], y[slot::dphi_l]); }
+  void torqued(double phi_s, double dphi_s) {
+    q = m.extra_torques(d, phi_s, dphi_s, y[slot::phi_l], y[slot::dphi_l]);
+  }
   // The memos serve one thread's integration; samples made on other threads compute afresh.
   Swing swing_of(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const {
     return memo ? m.swing(on, taut, r, phi_s, dr, dphi_s, q.seesaw, q.lid)

@@ -34,7 +34,6 @@ void check_bar_inertia(const Reader& in, const Machine& m) {
   }
 }
 
-
 // The built machine's stop and floor (docs/extensions.md "The machine students build").
 void build_built_machine(const Reader& in, Machine& m) {
   m.end_stop = flag(in, "seesaw.end_stop", false);
@@ -63,10 +62,11 @@ void build_built_machine(const Reader& in, Machine& m) {
     in.fail("floor.enabled", "needs seesaw.left_arm (an endless arm would reach the floor at any angle)");
   }
   if (m.floor && !(m.floor_height() < 0.0)) {
-    in.fail("floor.enabled",
-            fmt::format("needs the floor below the pivot: the box's bottom is {:.4g} m above it (hinge height "
-                        "minus the box's edge 2 r_L)",
-                        m.floor_height()));
+    in.fail(
+        "floor.enabled",
+        fmt::format("needs the floor below the pivot: the box's bottom is {:.4g} m above it (hinge height "
+                    "minus the box's edge 2 r_L)",
+                    m.floor_height()));
   }
 }
 
@@ -104,14 +104,15 @@ void build_stretchy_rope(const Reader& in, Machine& m) {
   }
 }
 
-// Kermit's radio stands 0.5 m right of the box, its switch level with the box's top (the key's default). The radio is
-// opt-in: radio.enabled, or any other radio key, turns it on.
+// Kermit's radio stands 0.5 m right of the box, its switch level with the box's top (the key's default). The
+// radio is opt-in: radio.enabled, or any other radio key, turns it on.
 void build_radio(const Reader& in, Machine& m) {
-  const Vec2 offset = in.find("radio.switch_offset") ? in.pair("radio.switch_offset") : key_default_pair("radio.switch_offset");
+  const Vec2 offset = in.find("radio.switch_offset") ? in.pair("radio.switch_offset")
+                                                     : key_default_pair("radio.switch_offset");
   m.radio_switch = Machine::switch_at(m.hinge, m.lid_half_length, offset);
   m.string_length = in.length("radio.string_length");
-  const bool any_radio = in.find("radio.switch_offset") || in.find("radio.string_length") ||
-                         in.find("radio.switch_force");
+  const bool any_radio =
+      in.find("radio.switch_offset") || in.find("radio.string_length") || in.find("radio.switch_force");
   m.radio = flag(in, "radio.enabled", any_radio);
   m.switch_force = in.in_range("radio.switch_force", 0.0, true, kMaxForce, true);
   if (!m.radio && any_radio && in.find("radio.enabled")) {
@@ -229,13 +230,14 @@ void check_extension_start(const Reader& in, const Scenario& sc) {
     const double left = -m.seesaw_left_arm * s - floor, right = m.seesaw_right_arm * s - floor;
     if (std::fmin(left, right) < -1e-9) {
       in.fail("start.seesaw_angle",
-              fmt::format("puts the seesaw's {} end {:.4g} m below the floor (floor.enabled; the floor is {:.4g} m "
-                          "below the pivot)",
-                          left < right ? "left" : "right", -std::fmin(left, right), -floor));
+              fmt::format(
+                  "puts the seesaw's {} end {:.4g} m below the floor (floor.enabled; the floor is {:.4g} m "
+                  "below the pivot)",
+                  left < right ? "left" : "right", -std::fmin(left, right), -floor));
     }
     if (st.sandbag_h < floor) {
-      in.fail("start.sandbag_height", fmt::format("is below the floor ({:.4g} m < {:.4g} m; floor.enabled)",
-                                                  st.sandbag_h, floor));
+      in.fail("start.sandbag_height",
+              fmt::format("is below the floor ({:.4g} m < {:.4g} m; floor.enabled)", st.sandbag_h, floor));
     }
   }
   if (m.radio) {

@@ -82,8 +82,7 @@ void read_bodies(const Reader& in, Machine& m) {
 void read_start(const Reader& in, Start& st) {
   st.sandbag_x = in.number("start.sandbag_x");
   st.sandbag_h = in.offset("start.sandbag_height");
-  st.seesaw_angle =
-      in.in_range("start.seesaw_angle", -90.0, false, 90.0, false) * units::kRadiansPerDegree;
+  st.seesaw_angle = in.in_range("start.seesaw_angle", -90.0, false, 90.0, false) * units::kRadiansPerDegree;
   st.lid_angle = in.in_range("start.lid_angle", 0.0, true, 90.0, false) * units::kRadiansPerDegree;
 }
 
@@ -96,8 +95,7 @@ void read_run(const Reader& in, const Machine& m, RunSettings& run) {
   // Tighter than 1e-15 the error estimate is rounding noise and the steps shrink without end;
   // looser than 1e-3 events are located on a state that is wrong in the third digit.
   run.tolerance = in.in_range("run.tolerance", kMinTolerance, true, kMaxTolerance, true);
-  run.vertical_margin =
-      in.in_range("run.vertical_margin", 0.0, true, 90.0, false) * units::kRadiansPerDegree;
+  run.vertical_margin = in.in_range("run.vertical_margin", 0.0, true, 90.0, false) * units::kRadiansPerDegree;
   const std::string integ = in.text("run.integrator", "adaptive");
   if (!parse_integrator(integ, run.integrator)) {
     in.fail("run.integrator", fmt::format("must be adaptive, euler or rk4 (given '{}')", printable(integ)));
@@ -115,7 +113,8 @@ void read_run(const Reader& in, const Machine& m, RunSettings& run) {
   }
   if (run.integrator != IntegratorKind::adaptive && m.stretchy_rope()) {
     // A stiff spring's period is far below any fixed step that would finish (docs/impact.md).
-    in.fail("run.integrator", fmt::format("must be adaptive with rope.stiffness (given '{}')", printable(integ)));
+    in.fail("run.integrator",
+            fmt::format("must be adaptive with rope.stiffness (given '{}')", printable(integ)));
   }
   if (run.integrator != IntegratorKind::adaptive) {
     // An explicit fixed step is unstable when a damper takes the motion's speed away within one

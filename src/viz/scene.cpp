@@ -146,7 +146,9 @@ RadioBox radio_box(const Machine& m) {
   return {m.radio_switch.x - 0.5 * w, m.radio_switch.x + 0.5 * w, bottom, top};
 }
 
-double endless_arm(const Scenario& sc) { return std::max(sc.machine.seesaw_right_arm, 1.2 * landing_distance(sc)); }
+double endless_arm(const Scenario& sc) {
+  return std::max(sc.machine.seesaw_right_arm, 1.2 * landing_distance(sc));
+}
 
 double drawn_arm(double left_arm, double endless, double farthest) {
   return std::isfinite(left_arm) ? left_arm : std::max(endless, farthest + 0.1);

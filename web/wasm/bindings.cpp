@@ -373,8 +373,8 @@ const Scenario& drawn_scenario(const val& input) {
 // in state `state` of a run of `input` whose rope was let go as `release` says ({latch, off} of
 // the run's result), with the left arm `arm` long and the end stop `stopHeight` high [m]. The
 // page draws from this, so that its picture and the animation's have the same points:
-// {landingDistance, endlessArm, ground, floor, floorPieces, stand, walls, radio {x0, x1, h0, h1}, dial, dialRadius,
-// dialSquash,
+// {landingDistance, endlessArm, ground, floor, floorPieces, stand, walls, radio {x0, x1, h0, h1}, dial,
+// dialRadius, dialSquash,
 //  radioPost, notes, hinge, lidEnd, armLeft, armRight, endStop, stopTop, rope, sandbag, balloon,
 //  balloonRadius, string}, points as {x, h} in metres.
 val scene(val input, val state, double arm, double stop_height, val release) {
