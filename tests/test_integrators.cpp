@@ -37,6 +37,37 @@ TEST_P(AdaptiveAccuracy, EveryEventWithinOneNanosecondOfATightReference) {
 
 INSTANTIATE_TEST_SUITE_P(PaperExamples, AdaptiveAccuracy, ::testing::Values(1, 2, 3, 4));
 
+// A guard that falls at both ends of a step can still rise through zero in between: a rope let go
+// with hardly any pull drifts slack and comes back, tightening for 0.6 ms about 5 ms later. At
+// the tolerances a sweep uses (1e-8 s / 15) one 10-ms step spanned it, and the missed tightening
+// moved the lid's opening by 8.4e-6 s. The Hermite cubic of the guard's values and rates shows the
+// rise; the same events must come out at every tolerance.
+TEST(AdaptiveAccuracy, ARopeTighteningBrieflyWithinOneStepIsFoundAtLooseTolerances) {
+  const std::vector<std::string> machine = {"balloon.drag=true", "geometry.hinge_distance=1.0818011871494368",
+                                            "start.sandbag_height=1.1913364939012916",
+                                            "geometry.seesaw_right_arm=0.5014192574312551"};
+  auto with = [&](const char* tolerance) {
+    std::vector<std::string> sets = machine;
+    sets.push_back(std::string("run.tolerance=") + tolerance);
+    return run(1, sets);
+  };
+  const wn::Result tight = with("1e-14");
+  const auto taut = std::count_if(tight.events.begin(), tight.events.end(),
+                                  [](const wn::Event& e) { return e.type == wn::EventType::rope_taut; });
+  ASSERT_EQ(taut, 2);  // the machine is still the one described
+  for (const char* tolerance : {"1e-9", "6.6666666666666667e-10", "1e-10", "1e-12"}) {
+    const wn::Result r = with(tolerance);
+    ASSERT_EQ(r.events.size(), tight.events.size()) << tolerance;
+    for (std::size_t i = 0; i < r.events.size(); ++i) {
+      EXPECT_EQ(r.events[i].type, tight.events[i].type) << tolerance << " " << i;
+      // The tightening grazes (its time is uncertain by about 1e-7 s and says so); what follows
+      // it is not: the lid opens within 1e-8 s of the reference.
+      const double allowed = std::fmax(1e-8, 3.0 * r.events[i].time_uncertainty);
+      EXPECT_NEAR(r.events[i].t, tight.events[i].t, allowed) << tolerance << " " << i;
+    }
+  }
+}
+
 double lid_open_time(const wn::Result& r) {  // for the fixed-step check below
   EXPECT_EQ(r.outcome().type, wn::EventType::lid_open);
   return r.outcome().t;

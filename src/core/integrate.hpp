@@ -20,8 +20,10 @@
 //
 // A guard that is negative at both ends of a step may still have touched zero in between (a lid
 // that dips onto the box and rises again). Where the System knows a guard's rate, the cubic
-// Hermite interpolant of its values and rates shows such an excursion, and the guard is then
-// looked at on the dense output where the interpolant peaks.
+// Hermite interpolant of its values and rates shows such an excursion, whichever way the guard
+// slopes at the ends (a rope let go with hardly any pull drifts slack, comes back and tightens
+// for a moment, all within one step: falling at both ends), and the guard is then looked at on
+// the dense output where the interpolant peaks.
 #pragma once
 
 #include <array>
@@ -272,8 +274,8 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       }
       // Negative at both ends: a touch in between? Peak of the Hermite cubic on [ta, tb] (not in
       // the first step of a guard that started at zero: its g0 is the scaled lead, not a value).
-      if (!(g0[i] < 0.0 && g1[i] < 0.0) || std::isnan(d0[i]) || std::isnan(d1[i]) || !(d0[i] > 0.0) ||
-          !(tb > ta) || (in_first && order[i] > 0)) {
+      if (!(g0[i] < 0.0 && g1[i] < 0.0) || std::isnan(d0[i]) || std::isnan(d1[i]) || !(tb > ta) ||
+          (in_first && order[i] > 0)) {
         continue;
       }
       const double h = tb - ta;
