@@ -45,6 +45,16 @@ FAMILIES = {
     "ex4": ["--example", "4", "--vary", "masses.sandbag=0.3:1.0", "--vary", "start.sandbag_x=-0.5:-0.1"],
     "ex4-heavy": ["--example", "4", "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.6",
                   "--vary", "seesaw.mass=0.05:1.0", "--vary", "start.sandbag_x=-0.5:-0.1"],
+    # The machine students build (issue 19) and what came with it (issue 20).
+    "konstanz": ["--example", "konstanz", "--vary", "start.sandbag_height=0.6:1.4",
+                 "--vary", "geometry.rope_length=0.36:0.46", "--vary", "seesaw.mass=0.1:0.6"],
+    "konstanz-bounce": ["--example", "konstanz", "--set", "floor.restitution=0.4", "--set", "restitution.stop=0.3",
+                        "--vary", "start.sandbag_height=0.6:1.4", "--vary", "start.sandbag_x=-0.7:-0.3"],
+    "ex2-friction": ["--example", "2", "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.5",
+                     "--vary", "friction.sandbag=0.0:0.8", "--vary", "friction.pivot=0.0:0.3",
+                     "--vary", "start.sandbag_height=0.3:1.2"],
+    "ex1-stretchy": ["--example", "1", "--vary", "rope.stiffness=2000:50000", "--vary", "rope.damping=0:20",
+                     "--vary", "start.sandbag_height=0.3:1.5"],
 }
 NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
 

@@ -37,35 +37,61 @@ TEST_P(AdaptiveAccuracy, EveryEventWithinOneNanosecondOfATightReference) {
 
 INSTANTIATE_TEST_SUITE_P(PaperExamples, AdaptiveAccuracy, ::testing::Values(1, 2, 3, 4));
 
-// A guard that falls at both ends of a step can still rise through zero in between: a rope let go
-// with hardly any pull drifts slack and comes back, tightening for 0.6 ms about 5 ms later. At
-// the tolerances a sweep uses (1e-8 s / 15) one 10-ms step spanned it, and the missed tightening
-// moved the lid's opening by 8.4e-6 s. The Hermite cubic of the guard's values and rates shows the
-// rise; the same events must come out at every tolerance.
-TEST(AdaptiveAccuracy, ARopeTighteningBrieflyWithinOneStepIsFoundAtLooseTolerances) {
-  const std::vector<std::string> machine = {"balloon.drag=true", "geometry.hinge_distance=1.0818011871494368",
-                                            "start.sandbag_height=1.1913364939012916",
-                                            "geometry.seesaw_right_arm=0.5014192574312551"};
+// Events that happen within one step of the loose tolerances a sweep uses (1e-8 s / 15) must come
+// out as at 1e-14. A guard negative at both ends of a step can still rise through zero in between:
+// its Hermite cubic (values and rates) or, where the rate is not known, the parabola through its
+// last three values shows the rise. Times within 1e-8 s; an event that grazes (its own time
+// uncertain beyond 1e-9 s, the leaving sandbag's or the lid's barely reaching the vertical) is
+// ill-conditioned, and only has to be the same event (within 0.1 ms).
+void expect_the_same_events_at_every_tolerance(int example, const std::vector<std::string>& machine,
+                                               wn::EventType seen, int times) {
   auto with = [&](const char* tolerance) {
     std::vector<std::string> sets = machine;
     sets.push_back(std::string("run.tolerance=") + tolerance);
-    return run(1, sets);
+    return run(example, sets);
   };
   const wn::Result tight = with("1e-14");
-  const auto taut = std::count_if(tight.events.begin(), tight.events.end(),
-                                  [](const wn::Event& e) { return e.type == wn::EventType::rope_taut; });
-  ASSERT_EQ(taut, 2);  // the machine is still the one described
+  const auto count = std::count_if(tight.events.begin(), tight.events.end(),
+                                   [&](const wn::Event& e) { return e.type == seen; });
+  ASSERT_EQ(count, times) << "the machine is still the one described";
   for (const char* tolerance : {"1e-9", "6.6666666666666667e-10", "1e-10", "1e-12"}) {
     const wn::Result r = with(tolerance);
     ASSERT_EQ(r.events.size(), tight.events.size()) << tolerance;
     for (std::size_t i = 0; i < r.events.size(); ++i) {
       EXPECT_EQ(r.events[i].type, tight.events[i].type) << tolerance << " " << i;
-      // The tightening grazes (its time is uncertain by about 1e-7 s and says so); what follows
-      // it is not: the lid opens within 1e-8 s of the reference.
-      const double allowed = std::fmax(1e-8, 3.0 * r.events[i].time_uncertainty);
+      const double allowed = r.events[i].time_uncertainty > 1e-9 ? 1e-4 : 1e-8;
       EXPECT_NEAR(r.events[i].t, tight.events[i].t, allowed) << tolerance << " " << i;
     }
   }
+}
+
+// A rope let go with hardly any pull drifts slack and comes back, tightening for 0.6 ms about 5 ms
+// later, all inside one 10-ms step: its gap falls at both ends of the step. Missed, the lid's
+// opening moved by 8.4e-6 s.
+TEST(AdaptiveAccuracy, ARopeTighteningBrieflyWithinOneStepIsFound) {
+  expect_the_same_events_at_every_tolerance(
+      1,
+      {"balloon.drag=true", "geometry.hinge_distance=1.0818011871494368", "start.sandbag_height=1.1913364939012916",
+       "geometry.seesaw_right_arm=0.5014192574312551"},
+      wn::EventType::rope_taut, 2);
+}
+
+// A heavy seesaw's arm whose push on the sandbag dips below zero for 2.3 ms (the sandbag hops):
+// a force, whose rate the guards do not know. Missed at the sweep's tolerance before.
+TEST(AdaptiveAccuracy, ASandbagHoppingOffTheArmWithinOneStepIsFound) {
+  expect_the_same_events_at_every_tolerance(
+      2,
+      {"seesaw.mass=0.3", "seesaw.left_arm=0.5", "friction.sandbag=0.5560496641735986",
+       "friction.pivot=0.057924293332629974", "start.sandbag_height=0.7541874376644115"},
+      wn::EventType::sandbag_leaves, 1);
+}
+
+// A lid that swings up to just past the vertical and falls back: the open threshold's guard has no
+// rate either. Missed at 6.7e-10, the machine ran on to t_max with the sandbag 17.9 m out instead
+// of stopping at lid_open at 1.268 s (and an optimiser took that for the farthest slide).
+TEST(AdaptiveAccuracy, ALidJustReachingTheVerticalIsFound) {
+  expect_the_same_events_at_every_tolerance(2, {"geometry.rope_length=1", "masses.sandbag=0.9379141041553268"},
+                                            wn::EventType::lid_open, 1);
 }
 
 double lid_open_time(const wn::Result& r) {  // for the fixed-step check below

@@ -23,7 +23,10 @@
 // Hermite interpolant of its values and rates shows such an excursion, whichever way the guard
 // slopes at the ends (a rope let go with hardly any pull drifts slack, comes back and tightens
 // for a moment, all within one step: falling at both ends), and the guard is then looked at on
-// the dense output where the interpolant peaks.
+// the dense output where the interpolant peaks. Where the rate is not known (a closed contact's
+// force), the parabola through the guard's values at the last three step ends stands in for it:
+// an arm whose push dips below zero for 2 ms in the middle of a step (the sandbag hopping) shows
+// there as a peak near zero.
 #pragma once
 
 #include <array>
@@ -194,10 +197,16 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
 
   guard_type g0, g1, d0, d1;
   sys.guards(y, g0, &d0);
+  // The guards at the end of the step before the last, for those whose rates are not known.
+  guard_type g_prev{};
+  double t_prev = t;
   constexpr std::size_t kGuards = std::tuple_size<guard_type>::value;
   std::array<int, kGuards> order{};
   std::array<double, kGuards> floor{}, noise_time{}, lead{};
   std::array<bool, kGuards> armed{};
+  // Steps since the guard's values are its own (not an armed guard's lead, nor its rounding
+  // written as zero): the parabola below needs three.
+  std::array<int, kGuards> own{};
   for (std::size_t i = 0; i < g0.size(); ++i) {
     const auto s = sys.guard_start(static_cast<int>(i));
     order[i] = s.order;
@@ -251,6 +260,7 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       return sys.guard(yy, static_cast<int>(i));
     };
     for (std::size_t i = 0; i < g0.size(); ++i) {
+      own[i] = armed[i] ? 0 : own[i] + 1;
       if (armed[i]) {
         // Within rounding of the start only the guard's rate can tell (its value is as expanded).
         const bool noise = in_first && order[i] > 0 && tb - t0 < noise_time[i];
@@ -274,14 +284,28 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       }
       // Negative at both ends: a touch in between? Peak of the Hermite cubic on [ta, tb] (not in
       // the first step of a guard that started at zero: its g0 is the scaled lead, not a value).
-      if (!(g0[i] < 0.0 && g1[i] < 0.0) || std::isnan(d0[i]) || std::isnan(d1[i]) || !(tb > ta) ||
-          (in_first && order[i] > 0)) {
-        continue;
-      }
+      if (!(g0[i] < 0.0 && g1[i] < 0.0) || !(tb > ta) || (in_first && order[i] > 0)) continue;
       const double h = tb - ta;
-      const double a = 6.0 * (g0[i] - g1[i]) + 3.0 * h * (d0[i] + d1[i]);  // p'(s) = a s^2 + b s + c
-      const double b = 6.0 * (g1[i] - g0[i]) - 2.0 * h * (2.0 * d0[i] + d1[i]);
-      const double c = h * d0[i];
+      double r0 = d0[i], r1 = d1[i];
+      if (std::isnan(r0) || std::isnan(r1)) {
+        // No rate: the slopes of the parabola through the last three values, p(t) = g_prev +
+        // s1 (t - t_prev) + k (t - t_prev)(t - ta).
+        const double h1 = ta - t_prev;
+        if (own[i] < 3 || g1[i] == g0[i] || !(h1 > 0.0)) continue;  // (equal: not in use, or still)
+        // Over [ta, tb] the parabola exceeds the chord by at most |k| h^2 / 4, and |k| (h1 + h) is
+        // at most |g1 - g0| / h + |g0 - g_prev| / h1: where even that stays below half the guard's
+        // way to zero (the test below), no peak can come near it. (NaN: a guard not in use, -inf.)
+        const double hi = g0[i] > g1[i] ? g0[i] : g1[i], lo = g0[i] > g1[i] ? g1[i] : g0[i];
+        const double room =
+            4.0 * h1 * (hi - 0.5 * lo) + h1 * std::fabs(g1[i] - g0[i]) + h * std::fabs(g0[i] - g_prev[i]);
+        if (!(room >= 0.0)) continue;
+        const double s1 = (g0[i] - g_prev[i]) / h1, k = ((g1[i] - g0[i]) / h - s1) / (h1 + h);
+        r0 = s1 + k * h1;
+        r1 = s1 + k * (h1 + 2.0 * h);
+      }
+      const double a = 6.0 * (g0[i] - g1[i]) + 3.0 * h * (r0 + r1);  // p'(s) = a s^2 + b s + c
+      const double b = 6.0 * (g1[i] - g0[i]) - 2.0 * h * (2.0 * r0 + r1);
+      const double c = h * r0;
       double s_peak = -1.0;
       if (std::fabs(a) < 1e-300) {
         if (b < 0.0) s_peak = -c / b;
@@ -296,8 +320,8 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       }
       if (!(s_peak > 0.0 && s_peak < 1.0)) continue;
       const double s2 = s_peak * s_peak, s3 = s2 * s_peak;
-      const double peak = (2 * s3 - 3 * s2 + 1) * g0[i] + (s3 - 2 * s2 + s_peak) * h * d0[i] +
-                          (-2 * s3 + 3 * s2) * g1[i] + (s3 - s2) * h * d1[i];
+      const double peak = (2 * s3 - 3 * s2 + 1) * g0[i] + (s3 - 2 * s2 + s_peak) * h * r0 +
+                          (-2 * s3 + 3 * s2) * g1[i] + (s3 - s2) * h * r1;
       if (peak < 0.5 * g0[i] && peak < 0.5 * g1[i]) continue;  // not even close to zero
       // Look at the real guard around the predicted peak; if it is >= 0 there, the touch is
       // located between ta and that point like any crossing.
@@ -347,6 +371,8 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
               detail::time_uncertainty(sys, y, hit, tolerance, rate_hit)};
     }
     detail::sample_until<System>(grid, tb, eval, sample);
+    g_prev = g0;
+    t_prev = ta;
     g0 = g1;
     d0 = d1;
     if (tb >= t_end) {
