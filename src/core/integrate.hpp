@@ -204,9 +204,9 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
   std::array<int, kGuards> order{};
   std::array<double, kGuards> floor{}, noise_time{}, lead{};
   std::array<bool, kGuards> armed{};
-  // Steps since the guard's values are its own (not an armed guard's lead, nor its rounding
-  // written as zero): the parabola below needs three.
-  std::array<int, kGuards> own{};
+  // The step from whose end on the guard's values are its own (not an armed guard's lead, nor its
+  // rounding written as zero): the parabola below needs three of them.
+  std::array<std::int64_t, kGuards> own_from{};
   for (std::size_t i = 0; i < g0.size(); ++i) {
     const auto s = sys.guard_start(static_cast<int>(i));
     order[i] = s.order;
@@ -260,8 +260,8 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       return sys.guard(yy, static_cast<int>(i));
     };
     for (std::size_t i = 0; i < g0.size(); ++i) {
-      own[i] = armed[i] ? 0 : own[i] + 1;
       if (armed[i]) {
+        own_from[i] = steps;
         // Within rounding of the start only the guard's rate can tell (its value is as expanded).
         const bool noise = in_first && order[i] > 0 && tb - t0 < noise_time[i];
         if (!noise && g1[i] < -floor[i]) {
@@ -291,7 +291,7 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
         // No rate: the slopes of the parabola through the last three values, p(t) = g_prev +
         // s1 (t - t_prev) + k (t - t_prev)(t - ta).
         const double h1 = ta - t_prev;
-        if (own[i] < 3 || g1[i] == g0[i] || !(h1 > 0.0)) continue;  // (equal: not in use, or still)
+        if (steps - own_from[i] < 3 || g1[i] == g0[i] || !(h1 > 0.0)) continue;  // (equal: not in use, or still)
         // Over [ta, tb] the parabola exceeds the chord by at most |k| h^2 / 4, and |k| (h1 + h) is
         // at most |g1 - g0| / h + |g0 - g_prev| / h1: where even that stays below half the guard's
         // way to zero (the test below), no peak can come near it. (NaN: a guard not in use, -inf.)
