@@ -71,8 +71,8 @@ void expect_the_same_events_at_every_tolerance(int example, const std::vector<st
 TEST(AdaptiveAccuracy, ARopeTighteningBrieflyWithinOneStepIsFound) {
   expect_the_same_events_at_every_tolerance(
       1,
-      {"balloon.drag=true", "geometry.hinge_distance=1.0818011871494368", "start.sandbag_height=1.1913364939012916",
-       "geometry.seesaw_right_arm=0.5014192574312551"},
+      {"balloon.drag=true", "geometry.hinge_distance=1.0818011871494368",
+       "start.sandbag_height=1.1913364939012916", "geometry.seesaw_right_arm=0.5014192574312551"},
       wn::EventType::rope_taut, 2);
 }
 
@@ -90,8 +90,8 @@ TEST(AdaptiveAccuracy, ASandbagHoppingOffTheArmWithinOneStepIsFound) {
 // rate either. Missed at 6.7e-10, the machine ran on to t_max with the sandbag 17.9 m out instead
 // of stopping at lid_open at 1.268 s (and an optimiser took that for the farthest slide).
 TEST(AdaptiveAccuracy, ALidJustReachingTheVerticalIsFound) {
-  expect_the_same_events_at_every_tolerance(2, {"geometry.rope_length=1", "masses.sandbag=0.9379141041553268"},
-                                            wn::EventType::lid_open, 1);
+  expect_the_same_events_at_every_tolerance(
+      2, {"geometry.rope_length=1", "masses.sandbag=0.9379141041553268"}, wn::EventType::lid_open, 1);
 }
 
 double lid_open_time(const wn::Result& r) {  // for the fixed-step check below
@@ -187,8 +187,8 @@ PieceEnd integrate_piece(Stepper& stepper, const wn::Scenario& sc, const PieceSy
     e.sample_times.push_back(t);
     e.samples.push_back(s);
   };
-  e.c = wn::integrate_dense(stepper, sys, y, e.t, sc.run.t_max, sc.run.tolerance, 0.1, sc.run.event_time_tolerance,
-                            1'000'000, grid, sample, stats);
+  e.c = wn::integrate_dense(stepper, sys, y, e.t, sc.run.t_max, sc.run.tolerance, 0.1,
+                            sc.run.event_time_tolerance, 1'000'000, grid, sample, stats);
   e.y = y;
   return e;
 }
@@ -232,12 +232,13 @@ TEST(BallisticPieces, AgreeWithDormandPrinceOnTheWholeState) {
         for (int k : {wn::slot::phi_l, wn::slot::dphi_l, wn::slot::balloon_h, wn::slot::balloon_v})
           EXPECT_EQ(exact.samples[i][k], whole.samples[i][k]) << ex << " sample " << i << " slot " << k;
         for (int k : {wn::slot::x, wn::slot::h, wn::slot::vx, wn::slot::vh})
-          EXPECT_NEAR(exact.samples[i][k], whole.samples[i][k], 1e-13) << ex << " sample " << i << " slot " << k;
+          EXPECT_NEAR(exact.samples[i][k], whole.samples[i][k], 1e-13)
+              << ex << " sample " << i << " slot " << k;
       }
       // The closed form is the free fall itself: h = h0 + vh0 t - g t^2 / 2 at the event.
       const double t = exact.c.t;
-      EXPECT_NEAR(exact.y[wn::slot::h], hs.y[wn::slot::h] + hs.y[wn::slot::vh] * t - 0.5 * sc.machine.gravity * t * t,
-                  1e-14);
+      EXPECT_NEAR(exact.y[wn::slot::h],
+                  hs.y[wn::slot::h] + hs.y[wn::slot::vh] * t - 0.5 * sc.machine.gravity * t * t, 1e-14);
       EXPECT_EQ(exact.y[wn::slot::vx], hs.y[wn::slot::vx]);
     }
   }

@@ -708,7 +708,10 @@ TEST(SweepAccuracy, HardMachinesAreWithinTheAccuracyOfATightRun) {
        {"radio.enabled=true", "balloon.drag=true"}},
       // A later rope_taut alone at its instant, grazing (its time uncertain by 2.6e-7 s): it does
       // not count, the machine is not run again, and its times are still within the accuracy.
-      {2, {{"geometry.rope_length", 0.6416161616161616}, {"start.sandbag_height", 1.190909090909091}}, {}, true},
+      {2,
+       {{"geometry.rope_length", 0.6416161616161616}, {"start.sandbag_height", 1.190909090909091}},
+       {},
+       true},
   };
   const double accuracy = whatnext::explore::kDefaultAccuracy;
   for (const Case& c : cases) {

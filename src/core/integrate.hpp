@@ -163,12 +163,13 @@ inline double closes_again(int order, double lead, double tau, double g, double 
 // The adaptive integrator's stepper: embedded Dormand-Prince 5(4) with error control (tolerance
 // absolute and relative, per component) and dense output (Boost.Odeint).
 template <class State>
-using Dopri5Dense = boost::numeric::odeint::dense_output_runge_kutta<boost::numeric::odeint::controlled_runge_kutta<
-    boost::numeric::odeint::runge_kutta_dopri5<State>,
-    boost::numeric::odeint::default_error_checker<double, boost::numeric::odeint::array_algebra,
-                                                  boost::numeric::odeint::default_operations>,
-    detail::StepGrowth, boost::numeric::odeint::initially_resizer,
-    boost::numeric::odeint::explicit_error_stepper_fsal_tag>>;
+using Dopri5Dense =
+    boost::numeric::odeint::dense_output_runge_kutta<boost::numeric::odeint::controlled_runge_kutta<
+        boost::numeric::odeint::runge_kutta_dopri5<State>,
+        boost::numeric::odeint::default_error_checker<double, boost::numeric::odeint::array_algebra,
+                                                      boost::numeric::odeint::default_operations>,
+        detail::StepGrowth, boost::numeric::odeint::initially_resizer,
+        boost::numeric::odeint::explicit_error_stepper_fsal_tag>>;
 template <class State>
 Dopri5Dense<State> make_dopri5(double tolerance, double max_dt) {
   using controlled = typename Dopri5Dense<State>::controlled_stepper_type;
@@ -291,7 +292,8 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
         // No rate: the slopes of the parabola through the last three values, p(t) = g_prev +
         // s1 (t - t_prev) + k (t - t_prev)(t - ta).
         const double h1 = ta - t_prev;
-        if (steps - own_from[i] < 3 || g1[i] == g0[i] || !(h1 > 0.0)) continue;  // (equal: not in use, or still)
+        if (steps - own_from[i] < 3 || g1[i] == g0[i] || !(h1 > 0.0))
+          continue;  // (equal: not in use, or still)
         // Over [ta, tb] the parabola exceeds the chord by at most |k| h^2 / 4, and |k| (h1 + h) is
         // at most |g1 - g0| / h + |g0 - g_prev| / h1: where even that stays below half the guard's
         // way to zero (the test below), no peak can come near it. (NaN: a guard not in use, -inf.)

@@ -114,8 +114,8 @@ double reported_uncertainty(const Result& res, double accuracy) {
     if (e.type == EventType::event_limit) continue;
     const bool first = idx < seen.size() && !seen[idx];
     if (idx < seen.size()) seen[idx] = 1;
-    const bool alone = (k == 0 || res.events[k - 1].t != e.t) &&
-                       (k + 1 == res.events.size() || res.events[k + 1].t != e.t);
+    const bool alone =
+        (k == 0 || res.events[k - 1].t != e.t) && (k + 1 == res.events.size() || res.events[k + 1].t != e.t);
     if (first || k + 1 == res.events.size() || (e.time_uncertainty > accuracy && !alone))
       u = std::fmax(u, e.time_uncertainty);
   }
@@ -412,7 +412,8 @@ Machines Machines::of_keys(std::vector<std::string> keys) {
   Machines m;
   for (std::string& k : keys) {
     for (const Range& r : m.plan_.ranges) {
-      if (r.key == k) throw InputError(fmt::format("sweep: each key may be varied once ({} is given twice)", k));
+      if (r.key == k)
+        throw InputError(fmt::format("sweep: each key may be varied once ({} is given twice)", k));
     }
     Range r;
     r.key = std::move(k);
@@ -430,7 +431,8 @@ Machines Machines::grid_of(std::vector<std::string> keys, std::vector<std::vecto
     const auto n = static_cast<std::int64_t>(axes[d].size());
     if (n < 1) throw InputError(fmt::format("sweep: {} needs at least one value", r.key));
     if (m.size_ > kMaxMachines / n) {
-      throw InputError(fmt::format("sweep: the grid has more than {} machines; use fewer values", kMaxMachines));
+      throw InputError(
+          fmt::format("sweep: the grid has more than {} machines; use fewer values", kMaxMachines));
     }
     m.size_ *= n;
     r.n = static_cast<int>(n);
@@ -447,7 +449,8 @@ Machines Machines::points_of(std::vector<std::string> keys, std::vector<double> 
   if (points.empty() || points.size() % dims != 0)
     throw InputError("sweep: the machines need one value per key each, and at least one machine");
   const auto n = static_cast<std::int64_t>(points.size() / dims);
-  if (n > kMaxMachines) throw InputError(fmt::format("sweep: at most {} machines (given {})", kMaxMachines, n));
+  if (n > kMaxMachines)
+    throw InputError(fmt::format("sweep: at most {} machines (given {})", kMaxMachines, n));
   m.size_ = n;
   m.plan_.samples = n;  // point() reads machine i's values from lhs_
   m.lhs_ = std::move(points);
