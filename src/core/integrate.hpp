@@ -296,7 +296,7 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
           continue;  // (equal: not in use, or still)
         // Over [ta, tb] the parabola exceeds the chord by at most |k| h^2 / 4, and |k| (h1 + h) is
         // at most |g1 - g0| / h + |g0 - g_prev| / h1: where even that stays below half the guard's
-        // way to zero (the test below), no peak can come near it. (NaN: a guard not in use, -inf.)
+        // way to zero (the test below), no peak can come near it (NaN: a value that is not finite).
         const double hi = g0[i] > g1[i] ? g0[i] : g1[i], lo = g0[i] > g1[i] ? g1[i] : g0[i];
         const double room =
             4.0 * h1 * (hi - 0.5 * lo) + h1 * std::fabs(g1[i] - g0[i]) + h * std::fabs(g0[i] - g_prev[i]);

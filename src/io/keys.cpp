@@ -76,9 +76,8 @@ const std::vector<KeySpec> kKeys = {
      "times the arm's push, else slides against mu times it; 0: it slides freely (the paper's)",
      "0"},
     {"friction.pivot", KeyKind::positive, "N m",
-     "Coulomb torque at the seesaw's pivot: it turns only while the other torques on it exceed this, against "
-     "it "
-     "(needs a seesaw with mass)",
+     "Coulomb torque at the seesaw's pivot: it turns only while the other torques on it exceed this, "
+     "against it (needs a seesaw with mass)",
      "0"},
     {"friction.lid_hinge", KeyKind::positive, "N m",
      "Coulomb torque at the lid's hinge: the lid turns only while the other torques on it exceed this, "
