@@ -1,4 +1,5 @@
 // The paper's whatnext.dat layout (--dat): Fortran 9F8.3 rows of positions.
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -54,14 +55,16 @@ void DatWriter::on_sample(const Snapshot& s) {
 void DatWriter::on_samples(const SampleBatch& batch) {
   const bool slack = slack_since_last_row_;
   rows_->write_runs(batch.size(), [&](std::size_t from, std::size_t to, char* out) {
-    // The next row's positions before this row's text: its chain of square roots, divisions and
-    // libm calls then overlaps the text's independent work in the processor (13 % less time a row,
-    // which on one core is the .dat's time: docs/performance.md).
-    Positions here = batch.positions(from);
-    for (std::size_t i = from; i < to; ++i) {
-      const Positions next = i + 1 < to ? batch.positions(i + 1) : here;
-      out = format_dat(here, i == 0 && slack, out);
-      here = next;
+    // The positions of a block of rows first, then their text. A row's positions are a chain of
+    // square roots, divisions and libm calls (the lid's sincos, the closure, the seesaw's atan2);
+    // the chains of neighbouring rows are independent, and back to back the processor runs them
+    // side by side: 7 % less time for the .dat than one row ahead (docs/performance.md).
+    constexpr std::size_t kBlock = 16;
+    Positions block[kBlock];
+    for (std::size_t i = from; i < to; i += kBlock) {
+      const std::size_t n = std::min(kBlock, to - i);
+      for (std::size_t j = 0; j < n; ++j) block[j] = batch.positions(i + j);
+      for (std::size_t j = 0; j < n; ++j) out = format_dat(block[j], i + j == 0 && slack, out);
     }
     return out;
   });
