@@ -393,6 +393,30 @@ TEST(Writers, ANonFiniteStateIsAFailedRunNotAFile) {
 
 // Beyond the file-size limit (ulimit -f) a write fails like on a full disk: one line naming the file
 // and why, exit code 1, and no file or temporary left (SIGXFSZ killed whatnext and left r.csv.part).
+TEST_F(Abuse, ALargeFileReplacesTheOldOneOnlyWhenComplete) {
+  // Megabytes of a new file go to the disk while it is written (write-behind), but the name holds
+  // the old file, with its permissions, until commit(), and then the whole new one.
+  const std::string target = path("big.dat");
+  std::ofstream(target) << "the old file\n";
+  fs::permissions(target, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  std::string text;
+  for (int i = 0; text.size() < (5u << 20); ++i) text += std::to_string(i) + " a row of the new file\n";
+  {
+    whatnext::AtomicFile f(target, "--dat");
+    f.stream() << text.substr(0, text.size() / 2);
+    f.flush();
+    EXPECT_EQ(slurp(target), "the old file\n");
+    f.stream() << text.substr(text.size() / 2);
+    f.finish();
+    EXPECT_EQ(slurp(target), "the old file\n");
+    f.commit();
+  }
+  EXPECT_EQ(slurp(target), text);
+  EXPECT_EQ(fs::status(target).permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
+  EXPECT_TRUE(whatnext::test_support::temps_in(dir_).empty());
+}
+
 TEST_F(Abuse, FileSizeLimitFailsTheWriteCleanly) {
   const std::string cli = WHATNEXT_CLI;
   for (const std::string& job :

@@ -30,6 +30,11 @@ class FdStreamBuf : public std::streambuf {
   explicit FdStreamBuf(int descriptor = -1);
   int fd = -1;
   int error = 0;  // errno of the first failed write
+  // A new regular file of this process (AtomicFile's temporary): its pages are sent to the disk
+  // every few megabytes as it grows (write-behind), not all at once by the rename that replaces an
+  // old file with it. It is complete and in place no sooner: the rename still comes after the last
+  // write and the close.
+  bool write_behind = false;
 
  protected:
   int_type overflow(int_type ch) override;
@@ -38,7 +43,9 @@ class FdStreamBuf : public std::streambuf {
 
  private:
   bool drain();
+  void send_behind();
   char buffer_[1 << 16];
+  long long written_ = 0, sent_ = 0;  // bytes written, and of those sent on their way
 };
 
 // An output file, checked when constructed (before any work; InputError naming `option` and the

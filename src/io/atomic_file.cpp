@@ -46,9 +46,25 @@ bool FdStreamBuf::drain() {
     }
     p += n;
     left -= static_cast<std::size_t>(n);
+    written_ += n;
   }
   setp(buffer_, buffer_ + sizeof buffer_);
+  if (write_behind && error == 0) send_behind();
   return error == 0;
+}
+
+// When a rename replaces a file, ext4 first starts writing the new file's pages that were not yet
+// written (auto_da_alloc: so that a power cut cannot leave the name holding an empty file), and
+// the rename waits for that: 3.5 ms of the 17 ms of example 3's .dat on one core. Started as the
+// file grows, the writes go on while the rows are made, and the rename finds little left to do.
+// Only a hint to the kernel: what it refuses changes nothing but the time (docs/performance.md).
+void FdStreamBuf::send_behind() {
+  constexpr long long kWriteBehind = 1 << 20;
+  if (written_ - sent_ < kWriteBehind) return;
+#if defined(__linux__) && !defined(__EMSCRIPTEN__)
+  (void)::sync_file_range(fd, sent_, written_ - sent_, SYNC_FILE_RANGE_WRITE);
+#endif
+  sent_ = written_;
 }
 
 FdStreamBuf::int_type FdStreamBuf::overflow(int_type ch) {
@@ -251,6 +267,7 @@ AtomicFile::AtomicFile(std::string path, std::string option)
   if (t.exists) (void)::fchmod(fd, st.st_mode & 07777);
   owns_fd_ = true;
   buf_.fd = fd;
+  buf_.write_behind = true;
 }
 
 std::unique_ptr<AtomicFile> AtomicFile::during_work(std::string path, std::string option) {
