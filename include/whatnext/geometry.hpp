@@ -19,7 +19,12 @@ struct Transfer {
 class RopeGeometry {
  public:
   explicit RopeGeometry(const Machine& m)
-      : r_h_(m.seesaw_right_arm), r_l_(0.5 * m.rope_knot()), l_r_(m.rope_length), hinge_(m.hinge) {}
+      : r_h_(m.seesaw_right_arm),
+        r_l_(0.5 * m.rope_knot()),
+        l_r_(m.rope_length),
+        inv_rh_(1.0 / r_h_),
+        inv_lid_(0.5 / r_l_),
+        hinge_(m.hinge) {}
 
   Vec2 hinge() const { return hinge_; }
   double rope_length() const { return l_r_; }
@@ -102,6 +107,10 @@ class RopeGeometry {
   // r_l_ is half the knot's distance from the hinge: the lid's half length r_L for a rope tied at
   // its free edge, as in the paper's formulas (where the knot's distance a is 2 r_L).
   double r_h_, r_l_, l_r_;
+  // 1 / r_H and 1 / (2 r_L), divided once: every flow evaluation and every row of positions on
+  // the closure turns lengths back into directions with them, and a division costs as much as
+  // the closure's square roots.
+  double inv_rh_, inv_lid_;
   Vec2 hinge_;
 };
 

@@ -87,11 +87,10 @@ RopeGeometry::Linkage RopeGeometry::from_lid(double cos_l, double sin_l, int sid
 
 RopeGeometry::Linkage RopeGeometry::linkage_at(Vec2 r, Vec2 el, bool derivatives) const {
   Linkage g;
-  const double inv_rh = 1.0 / r_h_, inv_lid = 0.5 / r_l_;
-  g.cos_s = r.x * inv_rh;
-  g.sin_s = r.h * inv_rh;
-  g.cos_l = el.x * inv_lid;
-  g.sin_l = el.h * inv_lid;
+  g.cos_s = r.x * inv_rh_;
+  g.sin_s = r.h * inv_rh_;
+  g.cos_l = el.x * inv_lid_;
+  g.sin_l = el.h * inv_lid_;
   if (!derivatives) return g;
   const Partials c = partials_at(r, el);
   const double inv_cl = 1.0 / c.c_l, inv_cs = 1.0 / c.c_s;
