@@ -58,7 +58,7 @@ void DatWriter::on_samples(const SampleBatch& batch) {
     // The positions of a block of rows first, then their text. A row's positions are a chain of
     // square roots, divisions and libm calls (the lid's sincos, the closure, the seesaw's atan2);
     // the chains of neighbouring rows are independent, and back to back the processor runs them
-    // side by side: 7 % less time for the .dat than one row ahead (docs/performance.md).
+    // side by side: about 6 % less time for the .dat than one row ahead (docs/performance.md).
     constexpr std::size_t kBlock = 16;
     Positions block[kBlock];
     for (std::size_t i = from; i < to; i += kBlock) {
