@@ -12,7 +12,11 @@ using namespace model_detail;
 // --- flows -------------------------------------------------------------------------------------
 
 double Model::lid_free_acceleration(double phi_l, double dphi_l, double q_l) const {
-  return (-m_l_ * g_ * r_l_ * std::cos(phi_l) - c_l_ * dphi_l + q_l) / i_l_;
+  return lid_free_acceleration_at(std::cos(phi_l), dphi_l, q_l);
+}
+
+double Model::lid_free_acceleration_at(double cos_l, double dphi_l, double q_l) const {
+  return (-m_l_ * g_ * r_l_ * cos_l - c_l_ * dphi_l + q_l) / i_l_;
 }
 
 namespace {

@@ -55,7 +55,10 @@ struct Model::KinematicsPass {
     } else {
       k.phi_l = y[slot::phi_l];
       k.dphi_l = y[slot::dphi_l];
-      k.ddphi_l = m.lid_free_acceleration(k.phi_l, k.dphi_l, q.lid);
+      // The directions now rather than in finish(): the lid's weight needs the cosine too.
+      k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
+      trig_l = true;
+      k.ddphi_l = m.lid_free_acceleration_at(k.cos_l, k.dphi_l, q.lid);
     }
   }
   // The lid on the rope's closure, from the seesaw's swing (the seesaw's chart).

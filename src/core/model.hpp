@@ -210,6 +210,7 @@ class Model {
     return d.taut && !d.lid_held() && !d.latched && (d.on_seesaw || d.heavy) && !d.seesaw_held();
   }
   double lid_free_acceleration(double phi_l, double dphi_l, double q_l = 0.0) const;
+  double lid_free_acceleration_at(double cos_l, double dphi_l, double q_l) const;  // cos phiL known
   // r'' of the sandbag on the arm (eq. 5): gravity along the arm and the centrifugal term.
   double along_arm_acceleration(double r, double sin_s, double dphi_s) const {
     return g_ * sin_s + r * dphi_s * dphi_s;
