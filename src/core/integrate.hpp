@@ -95,11 +95,12 @@ void sample_until(OutputGrid& grid, double t_hi, Eval&& eval, Sample&& sample) {
 }
 // See Crossing::uncertainty. Two directions of the allowed error (all components one way; every
 // other one the other way) so that no guard's dependence cancels in both.
+// g: the guard's value at y where the root finder has it already (NaN: evaluated here).
 template <class System>
 double time_uncertainty(const System& sys, const typename System::state_type& y, int guard, double tolerance,
-                        double rate) {
+                        double rate, double g) {
   if (!(std::fabs(rate) < std::numeric_limits<double>::infinity()) || rate == 0.0) return 0.0;
-  const double g = sys.guard(y, guard);
+  if (std::isnan(g)) g = sys.guard(y, guard);
   double change = 0.0;
   for (int pattern = 0; pattern < 2; ++pattern) {
     typename System::state_type yp = y;
@@ -111,6 +112,28 @@ double time_uncertainty(const System& sys, const typename System::state_type& y,
   }
   return change / std::fabs(rate);
 }
+
+// The last values a root finder was given, so that picking the end of its bracket where the
+// guard has fired does not evaluate the guard there again (TOMS 748 has, but returns only the ends).
+struct RecentValues {
+  static constexpr int kSize = 16;
+  std::array<double, kSize> t{}, value{};
+  int count = 0, next = 0;
+  void add(double tt, double v) {
+    t[next] = tt, value[next] = v;
+    next = (next + 1) % kSize;
+    if (count < kSize) ++count;
+  }
+  bool find(double tt, double& v) const {
+    for (int k = 0; k < count; ++k) {
+      if (t[k] == tt) {
+        v = value[k];
+        return true;
+      }
+    }
+    return false;
+  }
+};
 
 // Boost.Odeint's step control, but a step may grow tenfold after an easy one (Hairer and
 // Wanner's DOPRI5 default) instead of fivefold: after every event the motion restarts with a
@@ -254,6 +277,7 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
     sys.guards(y1, g1, &d1);
     int hit = -1;
     double t_hit = tb, rate_hit = std::numeric_limits<double>::infinity();
+    double g_hit = std::numeric_limits<double>::quiet_NaN();  // the guard's value at t_hit, if known
     auto guard_at = [&](std::size_t i, double tt) {
       state_type yy;
       stepper.calc_state(tt, yy);
@@ -276,6 +300,7 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
           const double t_close = std::fmax(ta, t0 + closes);
           if (hit < 0 || t_close < t_hit) {
             hit = static_cast<int>(i), t_hit = t_close, rate_hit = std::numeric_limits<double>::infinity();
+            g_hit = std::numeric_limits<double>::quiet_NaN();
           }
           g1[i] = -std::numeric_limits<double>::min();  // found: not an ordinary crossing
         } else if (noise || g1[i] <= floor[i]) {
@@ -333,11 +358,20 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
         if (gv >= 0.0) {
           std::uintmax_t iterations = 200;
           auto stop = [&](double x, double y) { return std::fabs(y - x) <= time_tolerance; };
-          auto f = [&](double t2) { return guard_at(i, t2); };
+          detail::RecentValues seen;
+          auto f = [&](double t2) {
+            const double v = guard_at(i, t2);
+            seen.add(t2, v);
+            return v;
+          };
           const auto bracket = boost::math::tools::toms748_solve(f, ta, tt, g0[i], gv, stop, iterations);
-          const double root = f(bracket.first) >= 0.0 ? bracket.first : bracket.second;
-          if (hit < 0 || root < t_hit)
+          double first = 0.0;
+          if (!seen.find(bracket.first, first)) first = f(bracket.first);
+          const double root = first >= 0.0 ? bracket.first : bracket.second;
+          if (hit < 0 || root < t_hit) {
             hit = static_cast<int>(i), t_hit = root, rate_hit = (gv - g0[i]) / (tt - ta);
+            if (!seen.find(root, g_hit)) g_hit = std::numeric_limits<double>::quiet_NaN();
+          }
           break;
         }
       }
@@ -346,23 +380,30 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       if (!(g0[i] < 0.0 && g1[i] >= 0.0)) continue;
       const int p = in_first ? order[i] : 0;
       const double scale_b = p > 0 ? detail::power(tb - t0, p) : 1.0;
+      detail::RecentValues seen;
       auto f = [&](double tt) {
         if (p > 0 && tt - t0 < noise_time[i]) return g0[i];
         state_type yy;
         stepper.calc_state(tt, yy);
         ++stats.root_evaluations;
         const double gi = sys.guard(yy, static_cast<int>(i));
-        return p > 0 ? gi / detail::power(tt - t0, p) : gi;
+        const double v = p > 0 ? gi / detail::power(tt - t0, p) : gi;
+        seen.add(tt, v);
+        return v;
       };
       std::uintmax_t iterations = 200;
       auto stop = [&](double a, double b) { return std::fabs(b - a) <= time_tolerance; };
       const auto bracket =
           boost::math::tools::toms748_solve(f, ta, tb, g0[i], g1[i] / scale_b, stop, iterations);
       // The end of the bracket where the guard has fired (f >= 0).
-      const double root = f(bracket.first) >= 0.0 ? bracket.first : bracket.second;
+      double first = 0.0;
+      if (!seen.find(bracket.first, first)) first = f(bracket.first);
+      const double root = first >= 0.0 ? bracket.first : bracket.second;
       if (hit < 0 || root < t_hit) {
         hit = static_cast<int>(i), t_hit = root;
         rate_hit = p > 0 ? std::numeric_limits<double>::infinity() : (g1[i] - g0[i]) / (tb - ta);
+        // (Scaled where p > 0; the uncertainty is not asked for there: its rate is not known.)
+        if (!seen.find(root, g_hit)) g_hit = std::numeric_limits<double>::quiet_NaN();
       }
     }
     if (hit >= 0) {
@@ -370,7 +411,7 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       stepper.calc_state(t_hit, y);
       t = t_hit;
       return {Crossing::event, hit, t_hit, rate_hit,
-              detail::time_uncertainty(sys, y, hit, tolerance, rate_hit)};
+              detail::time_uncertainty(sys, y, hit, tolerance, rate_hit, g_hit)};
     }
     detail::sample_until<System>(grid, tb, eval, sample);
     g_prev = g0;
