@@ -330,6 +330,14 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
         r0 = s1 + k * h1;
         r1 = s1 + k * (h1 + 2.0 * h);
       }
+      // The cubic is at most the larger end value plus (4/27) h (|r0| + |r1|) (the largest the
+      // slopes' basis functions get): where that stays below half of both ends, so does any peak,
+      // and the test below would pass it by without its square root and divisions (0.16 for 4/27
+      // and the factor on the right leave room for rounding).
+      {
+        const double hi = g0[i] > g1[i] ? g0[i] : g1[i], lo = g0[i] > g1[i] ? g1[i] : g0[i];
+        if (hi + 0.16 * h * (std::fabs(r0) + std::fabs(r1)) < 0.5 * (1.0 + 1e-9) * lo) continue;
+      }
       const double a = 6.0 * (g0[i] - g1[i]) + 3.0 * h * (r0 + r1);  // p'(s) = a s^2 + b s + c
       const double b = 6.0 * (g1[i] - g0[i]) - 2.0 * h * (2.0 * r0 + r1);
       const double c = h * r0;
