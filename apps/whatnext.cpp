@@ -113,13 +113,8 @@ void register_keys(CLI::App& app) {
   });
 }
 
-std::vector<std::string> command_names(const CLI::App& app) {
-  std::vector<std::string> names;
-  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
-    names.push_back(sub->get_name());
-  }
-  return names;
-}
+// The commands' names, in the order `whatnext help` lists them (kCommands, below).
+std::vector<std::string> command_names();
 
 std::string joined(const std::vector<std::string>& words) {
   std::string out;
@@ -149,10 +144,10 @@ void register_help(CLI::App& app) {
         return;
       }
     }
-    const std::string near = nearest_word(*topic, command_names(app));
+    const std::string near = nearest_word(*topic, command_names());
     throw InputError(fmt::format("help: unknown command '{}'{}; the commands are {}", printable(*topic),
                                  near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
-                                 joined(command_names(app))));
+                                 joined(command_names())));
   });
 }
 
@@ -172,6 +167,12 @@ constexpr Command kCommands[] = {
     {"help", [](CLI::App& app, int&) { register_help(app); }},
 };
 
+std::vector<std::string> command_names() {
+  std::vector<std::string> names;
+  for (const Command& c : kCommands) names.emplace_back(c.name);
+  return names;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -189,8 +190,7 @@ int main(int argc, char** argv) {
   for (const Command& c : kCommands) {
     if (!named || &c == named) c.add(app, exit_code);
   }
-  std::vector<std::string> commands;
-  for (const Command& c : kCommands) commands.emplace_back(c.name);
+  const std::vector<std::string> commands = command_names();
   if (argc == 1) {
     print_error(fmt::format("say what to do: {} (see whatnext help)", joined(commands)));
     return 2;
