@@ -113,11 +113,10 @@ double time_uncertainty(const System& sys, const typename System::state_type& y,
   return change / std::fabs(rate);
 }
 
-// The last values a root finder was given, so that picking the end of its bracket where the
-// guard has fired does not evaluate the guard there again (TOMS 748 has, but returns only the ends).
+// The last values a root finder was given (see fired_end).
 struct RecentValues {
   static constexpr int kSize = 16;
-  std::array<double, kSize> t{}, value{};
+  std::array<double, kSize> t, value;  // the first count are set
   int count = 0, next = 0;
   void add(double tt, double v) {
     t[next] = tt, value[next] = v;
@@ -134,6 +133,29 @@ struct RecentValues {
     return false;
   }
 };
+
+// Where a guard f fires on [a, b] (f(a) = fa < 0 <= fb = f(b)): TOMS 748's bracket, to
+// time_tolerance, and its end where f >= 0, with f's value there (NaN where f was not evaluated
+// there). The values TOMS 748 was given are kept: it returns only the bracket's ends, and picking
+// the end, or the event's time uncertainty, would otherwise evaluate the guard there again.
+template <class F>
+std::pair<double, double> fired_end(const F& f, double a, double b, double fa, double fb,
+                                    double time_tolerance) {
+  RecentValues seen;
+  auto kept = [&seen, &f](double t) {
+    const double v = f(t);
+    seen.add(t, v);
+    return v;
+  };
+  std::uintmax_t iterations = 200;
+  auto stop = [&](double x, double y) { return std::fabs(y - x) <= time_tolerance; };
+  const auto bracket = boost::math::tools::toms748_solve(kept, a, b, fa, fb, stop, iterations);
+  double value = 0.0;
+  if (!seen.find(bracket.first, value)) value = kept(bracket.first);
+  if (value >= 0.0) return {bracket.first, value};
+  if (!seen.find(bracket.second, value)) value = std::numeric_limits<double>::quiet_NaN();
+  return {bracket.second, value};
+}
 
 // Boost.Odeint's step control, but a step may grow tenfold after an easy one (Hairer and
 // Wanner's DOPRI5 default) instead of fivefold: after every event the motion restarts with a
@@ -313,16 +335,17 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       if (!(g0[i] < 0.0 && g1[i] < 0.0) || !(tb > ta) || (in_first && order[i] > 0)) continue;
       const double h = tb - ta;
       double r0 = d0[i], r1 = d1[i];
-      if (std::isnan(r0) || std::isnan(r1)) {
+      const bool rated = !(std::isnan(r0) || std::isnan(r1));
+      const double h1 = ta - t_prev;  // (without a rate: the step before)
+      if (!rated && (steps - own_from[i] < 3 || g1[i] == g0[i] || !(h1 > 0.0)))
+        continue;  // (equal: not in use, or still)
+      const double hi = g0[i] > g1[i] ? g0[i] : g1[i], lo = g0[i] > g1[i] ? g1[i] : g0[i];
+      if (!rated) {
         // No rate: the slopes of the parabola through the last three values, p(t) = g_prev +
-        // s1 (t - t_prev) + k (t - t_prev)(t - ta).
-        const double h1 = ta - t_prev;
-        if (steps - own_from[i] < 3 || g1[i] == g0[i] || !(h1 > 0.0))
-          continue;  // (equal: not in use, or still)
-        // Over [ta, tb] the parabola exceeds the chord by at most |k| h^2 / 4, and |k| (h1 + h) is
-        // at most |g1 - g0| / h + |g0 - g_prev| / h1: where even that stays below half the guard's
-        // way to zero (the test below), no peak can come near it (NaN: a value that is not finite).
-        const double hi = g0[i] > g1[i] ? g0[i] : g1[i], lo = g0[i] > g1[i] ? g1[i] : g0[i];
+        // s1 (t - t_prev) + k (t - t_prev)(t - ta). Over [ta, tb] the parabola exceeds the chord
+        // by at most |k| h^2 / 4, and |k| (h1 + h) is at most |g1 - g0| / h + |g0 - g_prev| / h1:
+        // where even that stays below half the guard's way to zero (the test below), no peak can
+        // come near it (NaN: a value that is not finite).
         const double room =
             4.0 * h1 * (hi - 0.5 * lo) + h1 * std::fabs(g1[i] - g0[i]) + h * std::fabs(g0[i] - g_prev[i]);
         if (!(room >= 0.0)) continue;
@@ -334,10 +357,7 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       // slopes' basis functions get): where that stays below half of both ends, so does any peak,
       // and the test below would pass it by without its square root and divisions (0.16 for 4/27
       // and the factor on the right leave room for rounding).
-      {
-        const double hi = g0[i] > g1[i] ? g0[i] : g1[i], lo = g0[i] > g1[i] ? g1[i] : g0[i];
-        if (hi + 0.16 * h * (std::fabs(r0) + std::fabs(r1)) < 0.5 * (1.0 + 1e-9) * lo) continue;
-      }
+      if (hi + 0.16 * h * (std::fabs(r0) + std::fabs(r1)) < 0.5 * (1.0 + 1e-9) * lo) continue;
       const double a = 6.0 * (g0[i] - g1[i]) + 3.0 * h * (r0 + r1);  // p'(s) = a s^2 + b s + c
       const double b = 6.0 * (g1[i] - g0[i]) - 2.0 * h * (2.0 * r0 + r1);
       const double c = h * r0;
@@ -364,21 +384,11 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
         const double tt = ta + frac * h;
         const double gv = guard_at(i, tt);
         if (gv >= 0.0) {
-          std::uintmax_t iterations = 200;
-          auto stop = [&](double x, double y) { return std::fabs(y - x) <= time_tolerance; };
-          detail::RecentValues seen;
-          auto f = [&](double t2) {
-            const double v = guard_at(i, t2);
-            seen.add(t2, v);
-            return v;
-          };
-          const auto bracket = boost::math::tools::toms748_solve(f, ta, tt, g0[i], gv, stop, iterations);
-          double first = 0.0;
-          if (!seen.find(bracket.first, first)) first = f(bracket.first);
-          const double root = first >= 0.0 ? bracket.first : bracket.second;
-          if (hit < 0 || root < t_hit) {
-            hit = static_cast<int>(i), t_hit = root, rate_hit = (gv - g0[i]) / (tt - ta);
-            if (!seen.find(root, g_hit)) g_hit = std::numeric_limits<double>::quiet_NaN();
+          const auto end = detail::fired_end([&](double t2) { return guard_at(i, t2); }, ta, tt, g0[i], gv,
+                                             time_tolerance);
+          if (hit < 0 || end.first < t_hit) {
+            hit = static_cast<int>(i), t_hit = end.first, rate_hit = (gv - g0[i]) / (tt - ta);
+            g_hit = end.second;
           }
           break;
         }
@@ -388,30 +398,19 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       if (!(g0[i] < 0.0 && g1[i] >= 0.0)) continue;
       const int p = in_first ? order[i] : 0;
       const double scale_b = p > 0 ? detail::power(tb - t0, p) : 1.0;
-      detail::RecentValues seen;
       auto f = [&](double tt) {
         if (p > 0 && tt - t0 < noise_time[i]) return g0[i];
         state_type yy;
         stepper.calc_state(tt, yy);
         ++stats.root_evaluations;
         const double gi = sys.guard(yy, static_cast<int>(i));
-        const double v = p > 0 ? gi / detail::power(tt - t0, p) : gi;
-        seen.add(tt, v);
-        return v;
+        return p > 0 ? gi / detail::power(tt - t0, p) : gi;
       };
-      std::uintmax_t iterations = 200;
-      auto stop = [&](double a, double b) { return std::fabs(b - a) <= time_tolerance; };
-      const auto bracket =
-          boost::math::tools::toms748_solve(f, ta, tb, g0[i], g1[i] / scale_b, stop, iterations);
-      // The end of the bracket where the guard has fired (f >= 0).
-      double first = 0.0;
-      if (!seen.find(bracket.first, first)) first = f(bracket.first);
-      const double root = first >= 0.0 ? bracket.first : bracket.second;
-      if (hit < 0 || root < t_hit) {
-        hit = static_cast<int>(i), t_hit = root;
+      const auto end = detail::fired_end(f, ta, tb, g0[i], g1[i] / scale_b, time_tolerance);
+      if (hit < 0 || end.first < t_hit) {
+        hit = static_cast<int>(i), t_hit = end.first;
         rate_hit = p > 0 ? std::numeric_limits<double>::infinity() : (g1[i] - g0[i]) / (tb - ta);
-        // (Scaled where p > 0; the uncertainty is not asked for there: its rate is not known.)
-        if (!seen.find(root, g_hit)) g_hit = std::numeric_limits<double>::quiet_NaN();
+        g_hit = end.second;  // (scaled where p > 0, where the rate and so the uncertainty are not known)
       }
     }
     if (hit >= 0) {
