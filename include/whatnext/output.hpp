@@ -122,6 +122,11 @@ void install_interrupt_cleanup();
 // Files (or empty directories) other writers make, removed on an interrupt until forgotten.
 void remove_on_interrupt(const std::string& path);
 void forget_on_interrupt(const std::string& path);
+// Runs open, in which a writer opens a temporary by its name (PLplot, a rewrite of the file), and
+// so may make the name again: an interrupt's cleanup comes wholly before it or after it, never
+// between its removal of the temporary and the end of the process (a plot interrupted 0.3 s in
+// left its SVG's temporary so).
+void opening_by_name(const std::function<void()>& open);
 // While set, an interrupt only calls stop(signal) on a watcher thread (the sweep stops and writes
 // what it has), once; temporaries are then cleaned up by their owners. An empty function:
 // interrupts end the process again.

@@ -208,6 +208,9 @@ int can_create_in(const std::string& dir) {
   const std::string probe = (fs::path(dir.empty() ? "." : dir) / "probe").string();
   const int dir_fd = open_folder_of(probe);
   if (dir_fd < 0) return errno;
+  // Made and removed under the interrupts' lock: an interrupt meanwhile waits for it to be gone
+  // (a SIGHUP 9 ms into an animation left it behind).
+  std::lock_guard<std::mutex> hold(interrupts().lock);
   const int fd = create_temp(dir_fd, probe, tmp, name);
   const int err = errno;
   if (fd >= 0) {

@@ -88,6 +88,12 @@ void install_interrupt_cleanup() {
   });
 }
 
+void opening_by_name(const std::function<void()>& open) {
+  // The watcher holds this lock from its first removal until the signal ends the process.
+  std::lock_guard<std::mutex> hold(interrupts().lock);
+  open();
+}
+
 void remove_on_interrupt(const std::string& path) { add_path(path); }
 void forget_on_interrupt(const std::string& path) { drop_path(path); }
 

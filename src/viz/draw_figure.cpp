@@ -243,14 +243,14 @@ std::vector<std::string> write_page(const std::string& dir, const Page& page, co
     set_palette();
     plsfam(0, 0, 0);
     plssub(1, 1);
-    plinit();
+    opening_by_name([] { plinit(); });
     pladv(0);
     for (std::size_t i = 0; i < page.panels.size(); ++i) draw_panel(page.panels[i], pg.panels[i], pg);
     mm_space(pg);
     for (const Text& t : pg.texts) draw_text(t);
     plend1();
     utc.reset();
-    if (f == Format::pdf) pin_pdf_date(file->temp_path(), path);
+    if (f == Format::pdf) opening_by_name([&] { pin_pdf_date(file->temp_path(), path); });
     file->commit();
     written.push_back(path);
   }

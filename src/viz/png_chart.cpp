@@ -6,11 +6,14 @@
 
 #include <fmt/format.h>
 
+#include "whatnext/output.hpp"
+
 namespace whatnext::viz::png_chart {
 
 void check_writable(const std::string& path) {
-  std::ofstream probe(path, std::ios::binary | std::ios::trunc);
-  if (!probe) throw std::runtime_error(fmt::format("{}: cannot write this file", path));
+  bool ok = false;
+  opening_by_name([&] { ok = static_cast<bool>(std::ofstream(path, std::ios::binary | std::ios::trunc)); });
+  if (!ok) throw std::runtime_error(fmt::format("{}: cannot write this file", path));
 }
 
 void begin(const std::string& path, const Page& page) {
@@ -32,7 +35,7 @@ void begin(const std::string& path, const Page& page) {
     plscmap1l(1, static_cast<PLINT>(page.ramp.size()), pos.data(), red.data(), green.data(), blue.data(),
               nullptr);
   }
-  plinit();
+  opening_by_name([] { plinit(); });
   pladv(0);
   plschr(0.0, 0.9);
 }
