@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -146,6 +147,61 @@ TEST(FixedStep, Rk4AndEulerAgreeWithTheAdaptiveSolutionWithinAFewSteps) {
 }
 
 }  // namespace
+
+// --- the step a piece starts with (detail::starting_step) -----------------------------------------
+
+namespace {
+
+// A pendulum in the small: x'' = -w^2 x, with the energy in x or in x'.
+struct Oscillator {
+  double w2;
+  void operator()(const std::array<double, 2>& y, std::array<double, 2>& dy, double) const {
+    dy = {y[1], -w2 * y[0]};
+  }
+};
+
+}  // namespace
+
+// The estimate aims at an error of a hundredth of the tolerance: Dormand-Prince's first step of
+// that size is accepted, and its own control would make the next one longer, but not by the
+// tenfold it allows after a step far too short. Whatever the tolerance and the frequency.
+TEST(StartingStep, IsAcceptedAndNearTheStepTheErrorControlWants) {
+  namespace odeint = boost::numeric::odeint;
+  using S = std::array<double, 2>;
+  for (double tol : {1e-6, 1e-10, 1e-13}) {
+    for (double w : {0.5, 3.0, 40.0}) {
+      for (const S& y0 : {S{0.3, 0.0}, S{0.0, 2.0}}) {
+        const Oscillator f{w * w};
+        const double h = wn::detail::starting_step(f, y0, 0.0, tol, 0.1);
+        ASSERT_TRUE(h > 0.0 && h <= 0.1) << tol << " " << w;
+        auto stepper = odeint::make_controlled(tol, tol, odeint::runge_kutta_dopri5<S>());
+        S y = y0;
+        double t = 0.0, dt = h;
+        EXPECT_EQ(stepper.try_step(f, y, t, dt), odeint::success) << tol << " " << w << " h " << h;
+        EXPECT_GT(dt, h) << tol << " " << w;         // the control would go on longer ...
+        EXPECT_LT(dt, 10.0 * h) << tol << " " << w;  // ... but h was not far too short
+      }
+    }
+  }
+}
+
+// A motion that does not change (the flow zero and staying so): any step is exact.
+TEST(StartingStep, AMotionAtRestTakesTheLongestStep) {
+  const Oscillator f{4.0};
+  EXPECT_EQ(wn::detail::starting_step(f, std::array<double, 2>{0.0, 0.0}, 0.0, 1e-10, 0.1), 0.1);
+}
+
+// An Euler step that leaves where the flow is defined (a chart's edge) is tried shorter: the
+// start is a number, never a NaN.
+TEST(StartingStep, AFlowWithoutANumberAheadGivesAFiniteStep) {
+  auto edge = [](const std::array<double, 2>& y, std::array<double, 2>& dy, double) {
+    dy = {1.0, -std::sqrt(1.001 - y[0])};  // defined for y[0] <= 1.001 only
+  };
+  const double h = wn::detail::starting_step(edge, std::array<double, 2>{1.0, 0.0}, 0.0, 1e-10, 0.1);
+  EXPECT_TRUE(std::isfinite(h));
+  EXPECT_GT(h, 0.0);
+  EXPECT_LE(h, 0.1);
+}
 
 // --- the sandbag's free fall in closed form (src/core/ballistic.hpp) -------------------------------
 

@@ -72,6 +72,12 @@ class BallisticStepper {
     }
     inner_.initialize(r, t, dt);
   }
+  // The whole state's starting step, so that the steps stay Dormand-Prince's; while still, the
+  // longest: every step is exact.
+  template <class System>
+  double starting_step(const System& sys, const State& y, double t, double tolerance, double max_dt) const {
+    return still_ ? max_dt : detail::starting_step(sys, y, t, tolerance, max_dt);
+  }
   template <class System>
   std::pair<double, double> do_step(System /*whole state's: the flow below is its restriction*/) {
     if (still_) {

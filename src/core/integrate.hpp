@@ -157,9 +157,45 @@ std::pair<double, double> fired_end(const F& f, double a, double b, double fa, d
   return {bracket.second, value};
 }
 
+// The step a piece starts with: Hairer, Norsett and Wanner's estimate (Solving Ordinary
+// Differential Equations I, II.4), in the step control's norm (|v_i| / (tolerance (1 + |x_i|)),
+// the largest). From the flow at the start and after a small Euler step it guesses the step whose
+// fifth-order error is a hundredth of the tolerance, so that a piece starts near its own step
+// size instead of climbing to it tenfold per step (a third of a sweep's steps were such climbs
+// after the events). Never longer than that Euler step (they allow 100 times it: that saved
+// 0.8 % more of a sweep's instructions, and a fast oscillator's first step at a tight tolerance
+// was then rejected). Two evaluations of the flow.
+template <class State, class Flow>
+double starting_step(const Flow& flow, const State& x, double t, double tolerance, double max_dt) {
+  auto norm = [&](const State& v) {
+    double n = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      n = std::fmax(n, std::fabs(v[i]) / (tolerance * (1.0 + std::fabs(x[i]))));
+    return n;
+  };
+  State f0, x1, f1;
+  flow(x, f0, t);
+  const double d0 = norm(x), d1 = norm(f0);
+  double h0 = std::fmin(max_dt, d0 < 1e-5 || d1 < 1e-5 ? 1e-6 : 0.01 * d0 / d1);
+  double d2 = std::numeric_limits<double>::quiet_NaN();
+  // (An Euler step too long for the motion's charts gives no number: a shorter one is tried.)
+  for (int tries = 0; tries < 4; ++tries) {
+    for (std::size_t i = 0; i < x.size(); ++i) x1[i] = x[i] + h0 * f0[i];
+    flow(x1, f1, t + h0);
+    for (std::size_t i = 0; i < x.size(); ++i) f1[i] -= f0[i];
+    d2 = norm(f1) / h0;
+    if (std::isfinite(d2)) break;
+    h0 *= 0.01;
+  }
+  if (!std::isfinite(d2)) return h0;
+  const double d = std::fmax(d1, d2);
+  if (d == 0.0) return max_dt;  // a motion that does not change: any step is exact
+  return std::fmin(max_dt, std::fmin(h0, std::pow(0.01 / d, 0.2)));
+}
+
 // Boost.Odeint's step control, but a step may grow tenfold after an easy one (Hairer and
-// Wanner's DOPRI5 default) instead of fivefold: after every event the motion restarts with a
-// short step, and climbing back to the motion's own step size is a large share of a short run.
+// Wanner's DOPRI5 default) instead of fivefold: where a contact was just released the motion
+// restarts with a 1 us step, and climbing back from it is a large share of a short run.
 class StepGrowth : public boost::numeric::odeint::default_step_adjuster<double, double> {
  public:
   explicit StepGrowth(double max_dt = 0.0)
@@ -237,7 +273,6 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
                          std::int64_t max_steps, OutputGrid& grid, Sample&& sample, StepStats& stats) {
   using state_type = typename System::state_type;
   using guard_type = typename System::guard_type;
-  double dt0 = std::fmin(max_dt, std::fmax(1e-6, 0.05 * std::pow(tolerance, 0.2)));
   const double t0 = t;
   auto eval = [&](double tt, state_type& out) { stepper.calc_state(tt, out); };
 
@@ -264,12 +299,22 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       noise_time[i] = std::pow(1e-3 * s.floor / std::fabs(s.lead), 1.0 / s.order);
     }
   }
-  // Where a contact was just released, start with a short step: its gap may close again within
-  // what would be the first step, by less than the dense output's error over so long a step.
-  for (std::size_t i = 0; i < g0.size(); ++i) {
-    if (armed[i]) dt0 = std::fmin(dt0, 1e-6);
+  // The whole state's, unless the stepper has its own (ballistic.hpp).
+  double natural;
+  if constexpr (requires { stepper.starting_step(sys, y, t, tolerance, max_dt); }) {
+    natural = stepper.starting_step(sys, y, t, tolerance, max_dt);
+  } else {
+    natural = detail::starting_step(sys, y, t, tolerance, max_dt);
   }
-  stepper.initialize(y, t, dt0);
+  // Where a contact was just released, the first step is short: its gap may close again within
+  // what would be the first step, by less than the dense output's error over so long a step.
+  // The steps grow from there while it is still within rounding of zero (what tells a gap that
+  // closes again holds for such short times only), and once every released contact is clearly
+  // open the stepper starts again there with the motion's own step.
+  bool released = false;
+  for (std::size_t i = 0; i < g0.size(); ++i) released = released || armed[i];
+  constexpr double kReleasedStep = 1e-6;
+  stepper.initialize(y, t, released ? std::fmin(natural, kReleasedStep) : natural);
   state_type y1;
   std::int64_t steps = 0;
   bool first = true;
@@ -429,6 +474,11 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       y = y1;
       t = t_end;
       return {Crossing::end, -1, t_end};
+    }
+    if (released) {
+      released = false;
+      for (std::size_t i = 0; i < g0.size(); ++i) released = released || armed[i];
+      if (!released && natural > 10.0 * (tb - ta)) stepper.initialize(y1, tb, natural);
     }
   }
 }
