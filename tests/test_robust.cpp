@@ -391,8 +391,6 @@ TEST(Writers, ANonFiniteStateIsAFailedRunNotAFile) {
   EXPECT_THROW(whatnext::events_json(r, whatnext::Scenario{}, "x"), whatnext::SimulationError);
 }
 
-// Beyond the file-size limit (ulimit -f) a write fails like on a full disk: one line naming the file
-// and why, exit code 1, and no file or temporary left (SIGXFSZ killed whatnext and left r.csv.part).
 TEST_F(Abuse, ALargeFileReplacesTheOldOneOnlyWhenComplete) {
   // Megabytes of a new file go to the disk while it is written (write-behind), but the name holds
   // the old file, with its permissions, until commit(), and then the whole new one.
@@ -417,6 +415,8 @@ TEST_F(Abuse, ALargeFileReplacesTheOldOneOnlyWhenComplete) {
   EXPECT_TRUE(whatnext::test_support::temps_in(dir_).empty());
 }
 
+// Beyond the file-size limit (ulimit -f) a write fails like on a full disk: one line naming the file
+// and why, exit code 1, and no file or temporary left (SIGXFSZ killed whatnext and left r.csv.part).
 TEST_F(Abuse, FileSizeLimitFailsTheWriteCleanly) {
   const std::string cli = WHATNEXT_CLI;
   for (const std::string& job :

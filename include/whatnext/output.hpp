@@ -31,7 +31,7 @@ class FdStreamBuf : public std::streambuf {
   int fd = -1;
   int error = 0;  // errno of the first failed write
   // A new regular file of this process (AtomicFile's temporary): its pages are sent to the disk
-  // every few megabytes as it grows (write-behind), not all at once by the rename that replaces an
+  // every megabyte as it grows (write-behind), not all at once by the rename that replaces an
   // old file with it. It is complete and in place no sooner: the rename still comes after the last
   // write and the close.
   bool write_behind = false;

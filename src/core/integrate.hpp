@@ -311,8 +311,12 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
   // The steps grow from there while it is still within rounding of zero (what tells a gap that
   // closes again holds for such short times only), and once every released contact is clearly
   // open the stepper starts again there with the motion's own step.
-  bool released = false;
-  for (std::size_t i = 0; i < g0.size(); ++i) released = released || armed[i];
+  auto any_armed = [&armed] {
+    for (bool a : armed)
+      if (a) return true;
+    return false;
+  };
+  bool released = any_armed();
   constexpr double kReleasedStep = 1e-6;
   stepper.initialize(y, t, released ? std::fmin(natural, kReleasedStep) : natural);
   state_type y1;
@@ -476,8 +480,7 @@ Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::s
       return {Crossing::end, -1, t_end};
     }
     if (released) {
-      released = false;
-      for (std::size_t i = 0; i < g0.size(); ++i) released = released || armed[i];
+      released = any_armed();
       if (!released && natural > 10.0 * (tb - ta)) stepper.initialize(y1, tb, natural);
     }
   }

@@ -177,13 +177,17 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
       const bool carries_errors = m.seesaw_inertia > 0.0 || m.pivot_damping > 0.0 || m.lid_hinge_damping > 0.0 ||
                                   m.balloon_drag_rate() > 0.0;
       double u = reported_uncertainty(res, accuracy);
+      // A run again locates its events for its tighter tolerance: an earlier event placed less
+      // exactly than that would move the later ones as much (and see kRerunLocating).
+      const auto locate_for_tolerance = [&sc, accuracy] {
+        sc.run.event_time_tolerance =
+            std::fmin(std::fmin(sc.run.event_time_tolerance, sc.run.tolerance / 10.0), kRerunLocating * accuracy);
+      };
       if (carries_errors) {
         Reported before = reported(res);
         for (int again = 0; again < kMaxReruns && sc.run.tolerance > kTightestTolerance; ++again) {
           sc.run.tolerance = std::fmax(kTightestTolerance, sc.run.tolerance * kTighter);
-          // An earlier event placed less exactly than that would move the later ones as much.
-          sc.run.event_time_tolerance =
-              std::fmin(std::fmin(sc.run.event_time_tolerance, sc.run.tolerance / 10.0), kRerunLocating * accuracy);
+          locate_for_tolerance();
           res = simulate(sc);
           require_finite(res);
           Reported now = reported(res);
@@ -197,8 +201,7 @@ Outcome evaluate_in(Config& work, const std::vector<std::string>& keys, const do
              ++again) {
           sc.run.tolerance =
               std::fmax(kTightestTolerance, sc.run.tolerance * kUncertaintyTarget * accuracy / u);
-          sc.run.event_time_tolerance =
-              std::fmin(std::fmin(sc.run.event_time_tolerance, sc.run.tolerance / 10.0), kRerunLocating * accuracy);
+          locate_for_tolerance();
           res = simulate(sc);
           require_finite(res);
           u = reported_uncertainty(res, accuracy);
