@@ -24,6 +24,7 @@ using whatnext::test_support::CliResult;
 using whatnext::test_support::slurp;
 using whatnext::test_support::spawn_whatnext;
 using whatnext::test_support::temps_in;
+using whatnext::test_support::wait_for_file;
 
 namespace {
 
@@ -266,6 +267,36 @@ TEST_F(Faults, RandomSignalsLeaveOldOrNewFilesAndNoTemporary) {
       fs::remove_all(d);
     }
   }
+}
+
+// ffmpeg, a process of its own, writes the MP4's temporary by its name. An interrupt that comes
+// before it has made that name must not leave the name to it: the interrupt ends ffmpeg before it
+// removes the temporaries. A stand-in ffmpeg on PATH says it has started, waits, and then writes
+// its output, as a slow ffmpeg would.
+TEST_F(Faults, AnInterruptedMp4LeavesNoTemporaryToFfmpeg) {
+  const fs::path bin = dir_ / "bin", out = dir_ / "mp4", started = dir_ / "ffmpeg-started";
+  fs::create_directories(bin);
+  fs::create_directories(out);
+  {
+    std::ofstream script(bin / "ffmpeg");
+    script << "#!/bin/sh\n: > '" << started.string() << "'\nsleep 1\nfor a; do last=$a; done\n"
+           << "echo late > \"$last\"\n";
+  }
+  fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
+  const char* path = std::getenv("PATH");
+  const std::string before = path ? path : "/usr/bin:/bin";
+  setenv("PATH", (bin.string() + ":" + before).c_str(), 1);
+  const pid_t pid = spawn_whatnext(
+      {"animate", "-q", "--example", "1", "--width", "160", "--out", (out / "a.mp4").string()});
+  setenv("PATH", before.c_str(), 1);
+  ASSERT_TRUE(wait_for_file(started)) << "the stand-in ffmpeg never started";
+  kill(pid, SIGTERM);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));  // the stand-in has written by now
+  for (const fs::path& t : temps_in(out)) ADD_FAILURE() << "left " << t << ": " << slurp(t);
+  EXPECT_FALSE(fs::exists(out / "a.mp4"));
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 #include "whatnext/config.hpp"
 #include "whatnext/events.hpp"
 #include "whatnext/geometry.hpp"
+#include "whatnext/output.hpp"
 #include "whatnext/viz/animation.hpp"
 #include "whatnext/viz/plots.hpp"
 #include "viz/scene.hpp"  // internal: the scene the animation and the page draw
@@ -987,6 +988,97 @@ TEST(VizAnimation, GifIsDeterministicAndBadOutputsFailCleanly) {
   for (const char* f : {"c.avi", "missing", "e.mp4", "e.mp4.part", "f.gif", "f.gif.part"}) {
     EXPECT_FALSE(fs::exists(dir / f)) << f;
   }
+}
+
+// --- MP4 through ffmpeg, with stand-ins for it on PATH (ffmpeg itself is not a dependency) ----------
+
+namespace {
+
+// Runs f with dir first on PATH, where an executable "ffmpeg" with the given script waits.
+template <class F>
+void with_ffmpeg(const fs::path& dir, const std::string& script, F&& f) {
+  {
+    std::ofstream out(dir / "ffmpeg");
+    out << "#!/bin/sh\n" << script;
+  }
+  fs::permissions(dir / "ffmpeg", fs::perms::owner_all);
+  struct Path {
+    std::string before;
+    ~Path() { setenv("PATH", before.c_str(), 1); }  // also when f throws
+  } path{std::getenv("PATH") ? std::getenv("PATH") : "/usr/bin:/bin"};
+  setenv("PATH", (dir.string() + ":" + path.before).c_str(), 1);
+  f();
+}
+
+// The names of whatnext's temporaries (".NAME.XXXXXX.part") left in dir.
+std::vector<std::string> temporaries_in(const fs::path& dir) {
+  std::vector<std::string> found;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string n = e.path().filename().string();
+    if (n.size() > 5 && n[0] == '.' && n.compare(n.size() - 5, 5, ".part") == 0) found.push_back(n);
+  }
+  return found;
+}
+
+}  // namespace
+
+// ffmpeg gets its arguments as they are (no shell: the padding filter's parentheses once made the
+// shell give up, and no MP4 was ever written), and the whole film: as many raw frames of the
+// view's size as the GIF of the same animation lasts at that frame rate, each animation frame at
+// least once. The stand-in writes what it got into its output, which becomes the MP4.
+TEST(VizAnimation, Mp4GivesFfmpegItsArgumentsAndTheWholeFilm) {
+  const Recording rec = record(example(2));
+  const AnimationOptions o = small_animation();
+  const fs::path dir = fresh_dir("mp4");
+  write_animation(rec, (dir / "a.gif").string(), o);
+  with_ffmpeg(dir,
+              "for a; do last=$a; done\n"
+              "{ for a; do printf '%s\\n' \"$a\"; done; printf 'bytes %s\\n' \"$(wc -c)\"; } > \"$last\"\n",
+              [&] { EXPECT_GT(write_animation(rec, (dir / "a.mp4").string(), o), 0); });
+  std::vector<std::string> got;
+  {
+    std::ifstream in(dir / "a.mp4");
+    for (std::string line; std::getline(in, line);) got.push_back(line);
+  }
+  ASSERT_GE(got.size(), 4u);
+  auto after = [&](const std::string& flag) {
+    for (std::size_t i = 0; i + 1 < got.size(); ++i)
+      if (got[i] == flag) return got[i + 1];
+    return std::string("(none)");
+  };
+  EXPECT_EQ(after("-vf"), "pad=ceil(iw/2)*2:ceil(ih/2)*2");
+  EXPECT_EQ(after("-i"), "-");
+  EXPECT_EQ(after("-r"), "10");
+  const Gif gif = read_gif(dir / "a.gif");
+  EXPECT_EQ(after("-s"), fmt::format("{}x{}", gif.width, gif.height));
+  ASSERT_EQ(got.back().rfind("bytes ", 0), 0u) << got.back();
+  const long long bytes = std::stoll(got.back().substr(6));
+  const long long frame = 4LL * gif.width * gif.height;
+  ASSERT_GT(frame, 0);
+  EXPECT_EQ(bytes % frame, 0) << bytes;
+  double seconds = 0.0;
+  for (int cs : gif.delays_cs) seconds += cs / 100.0;
+  // The GIF's delays are whole hundredths; the film's frames whole tenths here.
+  EXPECT_NEAR(static_cast<double>(bytes / frame), seconds * o.fps, 0.05 * gif.delays_cs.size() + 1.0);
+  EXPECT_GE(bytes / frame, static_cast<long long>(gif.delays_cs.size()));
+  EXPECT_TRUE(temporaries_in(dir).empty());
+}
+
+// An ffmpeg that fails (here without reading a frame) is an OutputError, and nothing is left: no
+// MP4, no temporary, the old file as it was.
+TEST(VizAnimation, AFailingFfmpegLeavesTheOldFileAndNoTemporary) {
+  const Recording rec = record(example(2));
+  const AnimationOptions o = small_animation();
+  const fs::path dir = fresh_dir("mp4_fails");
+  {
+    std::ofstream old(dir / "a.mp4");
+    old << "old";
+  }
+  with_ffmpeg(dir, "exit 1\n", [&] {
+    EXPECT_THROW(write_animation(rec, (dir / "a.mp4").string(), o), whatnext::OutputError);
+  });
+  EXPECT_EQ(slurp(dir / "a.mp4"), "old");
+  EXPECT_TRUE(temporaries_in(dir).empty());
 }
 
 TEST(VizAnimation, RopeIsStraightWhenTautAndSagsWhenSlack) {

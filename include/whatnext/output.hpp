@@ -127,6 +127,12 @@ void forget_on_interrupt(const std::string& path);
 // between its removal of the temporary and the end of the process (a plot interrupted 0.3 s in
 // left its SVG's temporary so).
 void opening_by_name(const std::function<void()>& open);
+// A child process that writes a temporary by its name (ffmpeg), started by start (which returns
+// its process id, or -1) under the interrupts' lock: from then on an interrupt kills it, and
+// waits for it, before it removes the temporaries, so that the child cannot make the name again
+// after them. Forget it before waiting for it oneself. Returns start's result.
+int start_writing_process(const std::function<int()>& start);
+void forget_writing_process(int pid);
 // While set, an interrupt only calls stop(signal) on a watcher thread (the sweep stops and writes
 // what it has), once; temporaries are then cleaned up by their owners. An empty function:
 // interrupts end the process again.

@@ -1,6 +1,7 @@
 // Interrupts (SIGINT, SIGTERM, SIGHUP) of a command that writes files: its temporaries are removed
 // before the process ends by the signal.
 #include <fcntl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -48,6 +49,11 @@ void watch(int pipe_read) {
       in.stopped = true;
       continue;  // the owner stops and cleans up; a second interrupt changes nothing
     }
+    for (const int pid : in.processes) {  // first, or a child could make its temporary again
+      ::kill(pid, SIGKILL);
+      while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+      }
+    }
     for (auto it = in.paths.rbegin(); it != in.paths.rend(); ++it) {
       if (::unlink(it->c_str()) != 0 && (errno == EISDIR || errno == EPERM)) ::rmdir(it->c_str());
     }
@@ -92,6 +98,21 @@ void opening_by_name(const std::function<void()>& open) {
   // The watcher holds this lock from its first removal until the signal ends the process.
   std::lock_guard<std::mutex> hold(interrupts().lock);
   open();
+}
+
+static_assert(sizeof(pid_t) == sizeof(int), "process ids pass as int");
+
+int start_writing_process(const std::function<int()>& start) {
+  std::lock_guard<std::mutex> hold(interrupts().lock);
+  const int pid = start();
+  if (pid > 0) interrupts().processes.push_back(pid);
+  return pid;
+}
+
+void forget_writing_process(int pid) {
+  Interrupts& in = interrupts();
+  std::lock_guard<std::mutex> hold(in.lock);
+  in.processes.erase(std::remove(in.processes.begin(), in.processes.end(), pid), in.processes.end());
 }
 
 void remove_on_interrupt(const std::string& path) { add_path(path); }

@@ -17,6 +17,7 @@ namespace whatnext::io {
 struct Interrupts {
   std::mutex lock;
   std::vector<std::string> paths;  // removed in reverse order (files before their directory)
+  std::vector<int> processes;      // writers of temporaries by name, killed before the removal
   std::function<void(int)> stop;
   bool stopped = false;
   int pipe_write = -1;

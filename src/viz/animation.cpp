@@ -7,6 +7,8 @@
 
 #include <cairo.h>
 #include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -47,12 +49,6 @@ std::string find_on_path(const std::string& name) {
     if (::access(candidate.c_str(), X_OK) == 0) return candidate;
   }
   return "";
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
 }
 
 // Cairo's pixels into an Image (0xAARRGGBB, row by row without the stride's padding).
@@ -186,6 +182,68 @@ void check_animation_target(const std::string& path, const std::string& option) 
 }
 
 namespace {
+// ffmpeg, started without a shell (its arguments as they are) with a pipe for the frames, and
+// killed by an interrupt before the temporaries are removed (it writes its own by name).
+class FfmpegPipe {
+ public:
+  FfmpegPipe(const std::vector<std::string>& args, const std::string& option, const std::string& path) {
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) fail(option, path);
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, fds[0], 0);  // (the copy on 0 is not close-on-exec)
+    pid_ = start_writing_process([&] {
+      pid_t pid = -1;
+      return ::posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) == 0 ? pid : -1;
+    });
+    posix_spawn_file_actions_destroy(&actions);
+    ::close(fds[0]);
+    if (pid_ <= 0) {
+      ::close(fds[1]);
+      fail(option, path);
+    }
+    out_ = ::fdopen(fds[1], "w");
+    if (!out_) {
+      ::close(fds[1]);
+      finish();
+      fail(option, path);
+    }
+  }
+  FfmpegPipe(const FfmpegPipe&) = delete;
+  FfmpegPipe& operator=(const FfmpegPipe&) = delete;
+  ~FfmpegPipe() {
+    if (pid_ > 0) finish();  // an exception on the way: end of input, and ffmpeg's end awaited
+  }
+  bool write(const void* data, std::size_t size, std::size_t count) {
+    return std::fwrite(data, size, count, out_) == count;
+  }
+  // Closes the pipe and waits for ffmpeg: true if every byte went and it exited with 0.
+  bool finish() {
+    bool ok = true;
+    if (out_) {
+      ok = std::fflush(out_) == 0;
+      ok = std::fclose(out_) == 0 && ok;
+      out_ = nullptr;
+    }
+    forget_writing_process(pid_);
+    int status = 0;
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    pid_ = -1;
+    return ok && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  }
+
+ private:
+  [[noreturn]] static void fail(const std::string& option, const std::string& path) {
+    throw OutputError(fmt::format("{} {}: cannot start ffmpeg", option, printable(path, 96)));
+  }
+  int pid_ = -1;
+  FILE* out_ = nullptr;
+};
+
 // MP4 through ffmpeg, which writes the temporary by name; every frame's write into its pipe and its
 // exit status are checked, and a pipe ffmpeg closed early is an error, not SIGPIPE.
 template <class Dump>
@@ -196,10 +254,11 @@ int write_mp4(const Recording& rec, const View& view, const std::vector<Frame>& 
   const auto file = AtomicFile::during_work(path, option);
   // Raw BGRA frames (Cairo's ARGB32 in memory on little-endian machines) into ffmpeg; held
   // frames are repeated for their time on screen.
-  const std::string cmd = fmt::format(
-      "{} -loglevel error -y -f rawvideo -pix_fmt bgra -s {}x{} -r {:g} -i - "
-      "-vf pad=ceil(iw/2)*2:ceil(ih/2)*2 -c:v libx264 -pix_fmt yuv420p -f mp4 {}",
-      shell_quote(ffmpeg), view.width, view.height, opts.fps, shell_quote(file->temp_path()));
+  std::vector<std::string> args = {ffmpeg, "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "bgra"};
+  args.insert(args.end(), {"-s", fmt::format("{}x{}", view.width, view.height)});
+  args.insert(args.end(), {"-r", fmt::format("{:g}", opts.fps), "-i", "-"});
+  args.insert(args.end(), {"-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"});  // H.264 wants even sizes
+  args.insert(args.end(), {"-c:v", "libx264", "-pix_fmt", "yuv420p", "-f", "mp4", file->temp_path()});
   struct sigaction ignore {
   }, before{};
   ignore.sa_handler = SIG_IGN;
@@ -208,8 +267,7 @@ int write_mp4(const Recording& rec, const View& view, const std::vector<Frame>& 
     struct sigaction* before;
     ~Restore() { ::sigaction(SIGPIPE, before, nullptr); }
   } restore{&before};
-  FILE* pipe = ::popen(cmd.c_str(), "w");
-  if (!pipe) throw OutputError(fmt::format("{} {}: cannot start ffmpeg", option, printable(path, 96)));
+  FfmpegPipe pipe(args, option, path);
   double shown = 0.0;
   long written = 0;
   int index = 0;
@@ -218,17 +276,17 @@ int write_mp4(const Recording& rec, const View& view, const std::vector<Frame>& 
     const Image img = render_frame(rec, view, f, opts);
     dump(img, f, index);
     shown += f.delay;
-    const long until = std::lround(shown * opts.fps);
-    for (; ok && written < std::max(until, written + 1); ++written) {
-      ok =
-          std::fwrite(img.pixels.data(), sizeof(std::uint32_t), img.pixels.size(), pipe) == img.pixels.size();
+    // Up to the frame's end in whole video frames, and at least one (the bound fixed before the
+    // loop: a bound of written + 1 re-read in it never ends).
+    const long until = std::max(std::lround(shown * opts.fps), written + 1);
+    for (; ok && written < until; ++written) {
+      ok = pipe.write(img.pixels.data(), sizeof(std::uint32_t), img.pixels.size());
     }
     ++index;
     if (progress) progress(index, total);
     if (!ok) break;
   }
-  ok = std::fflush(pipe) == 0 && ok;
-  if (::pclose(pipe) != 0 || !ok) {
+  if (!pipe.finish() || !ok) {
     throw OutputError(
         fmt::format("{} {}: writing failed: ffmpeg could not write it", option, printable(path, 96)));
   }
