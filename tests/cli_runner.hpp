@@ -103,6 +103,29 @@ inline std::vector<fs::path> temps_in(const fs::path& dir) {
   return found;
 }
 
+// A stand-in for a program whatnext runs (ffmpeg): an executable shell script NAME in dir, with
+// dir first on PATH while this lives, and PATH as it was after.
+class StandIn {
+ public:
+  StandIn(const fs::path& dir, const std::string& name, const std::string& script) {
+    fs::create_directories(dir);
+    {
+      std::ofstream out(dir / name);
+      out << "#!/bin/sh\n" << script;
+    }
+    fs::permissions(dir / name, fs::perms::owner_all);
+    const char* path = std::getenv("PATH");
+    before_ = path ? path : "/usr/bin:/bin";
+    setenv("PATH", (dir.string() + ":" + before_).c_str(), 1);
+  }
+  StandIn(const StandIn&) = delete;
+  StandIn& operator=(const StandIn&) = delete;
+  ~StandIn() { setenv("PATH", before_.c_str(), 1); }
+
+ private:
+  std::string before_;
+};
+
 // Waits (up to about 20 s) until path exists; false if it never does. A path "TARGET.part" waits
 // for TARGET's temporary (temps_of).
 inline bool wait_for_file(const fs::path& path) {

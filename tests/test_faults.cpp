@@ -23,6 +23,7 @@ namespace fs = std::filesystem;
 using whatnext::test_support::CliResult;
 using whatnext::test_support::slurp;
 using whatnext::test_support::spawn_whatnext;
+using whatnext::test_support::StandIn;
 using whatnext::test_support::temps_in;
 using whatnext::test_support::wait_for_file;
 
@@ -274,21 +275,16 @@ TEST_F(Faults, RandomSignalsLeaveOldOrNewFilesAndNoTemporary) {
 // removes the temporaries. A stand-in ffmpeg on PATH says it has started, waits, and then writes
 // its output, as a slow ffmpeg would.
 TEST_F(Faults, AnInterruptedMp4LeavesNoTemporaryToFfmpeg) {
-  const fs::path bin = dir_ / "bin", out = dir_ / "mp4", started = dir_ / "ffmpeg-started";
-  fs::create_directories(bin);
+  const fs::path out = dir_ / "mp4", started = dir_ / "ffmpeg-started";
   fs::create_directories(out);
+  pid_t pid = -1;
   {
-    std::ofstream script(bin / "ffmpeg");
-    script << "#!/bin/sh\n: > '" << started.string() << "'\nsleep 1\nfor a; do last=$a; done\n"
-           << "echo late > \"$last\"\n";
+    const StandIn ffmpeg(
+        dir_ / "bin", "ffmpeg",
+        ": > '" + started.string() + "'\nsleep 1\nfor a; do last=$a; done\necho late > \"$last\"\n");
+    pid = spawn_whatnext(
+        {"animate", "-q", "--example", "1", "--width", "160", "--out", (out / "a.mp4").string()});
   }
-  fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
-  const char* path = std::getenv("PATH");
-  const std::string before = path ? path : "/usr/bin:/bin";
-  setenv("PATH", (bin.string() + ":" + before).c_str(), 1);
-  const pid_t pid = spawn_whatnext(
-      {"animate", "-q", "--example", "1", "--width", "160", "--out", (out / "a.mp4").string()});
-  setenv("PATH", before.c_str(), 1);
   ASSERT_TRUE(wait_for_file(started)) << "the stand-in ffmpeg never started";
   kill(pid, SIGTERM);
   int status = 0;

@@ -25,6 +25,7 @@
 #include "whatnext/output.hpp"
 #include "whatnext/viz/animation.hpp"
 #include "whatnext/viz/plots.hpp"
+#include "cli_runner.hpp"
 #include "viz/scene.hpp"  // internal: the scene the animation and the page draw
 
 namespace fs = std::filesystem;
@@ -992,36 +993,6 @@ TEST(VizAnimation, GifIsDeterministicAndBadOutputsFailCleanly) {
 
 // --- MP4 through ffmpeg, with stand-ins for it on PATH (ffmpeg itself is not a dependency) ----------
 
-namespace {
-
-// Runs f with dir first on PATH, where an executable "ffmpeg" with the given script waits.
-template <class F>
-void with_ffmpeg(const fs::path& dir, const std::string& script, F&& f) {
-  {
-    std::ofstream out(dir / "ffmpeg");
-    out << "#!/bin/sh\n" << script;
-  }
-  fs::permissions(dir / "ffmpeg", fs::perms::owner_all);
-  struct Path {
-    std::string before;
-    ~Path() { setenv("PATH", before.c_str(), 1); }  // also when f throws
-  } path{std::getenv("PATH") ? std::getenv("PATH") : "/usr/bin:/bin"};
-  setenv("PATH", (dir.string() + ":" + path.before).c_str(), 1);
-  f();
-}
-
-// The names of whatnext's temporaries (".NAME.XXXXXX.part") left in dir.
-std::vector<std::string> temporaries_in(const fs::path& dir) {
-  std::vector<std::string> found;
-  for (const auto& e : fs::directory_iterator(dir)) {
-    const std::string n = e.path().filename().string();
-    if (n.size() > 5 && n[0] == '.' && n.compare(n.size() - 5, 5, ".part") == 0) found.push_back(n);
-  }
-  return found;
-}
-
-}  // namespace
-
 // ffmpeg gets its arguments as they are (no shell: the padding filter's parentheses once made the
 // shell give up, and no MP4 was ever written), and the whole film: as many raw frames of the
 // view's size as the GIF of the same animation lasts at that frame rate, each animation frame at
@@ -1031,10 +1002,13 @@ TEST(VizAnimation, Mp4GivesFfmpegItsArgumentsAndTheWholeFilm) {
   const AnimationOptions o = small_animation();
   const fs::path dir = fresh_dir("mp4");
   write_animation(rec, (dir / "a.gif").string(), o);
-  with_ffmpeg(dir,
-              "for a; do last=$a; done\n"
-              "{ for a; do printf '%s\\n' \"$a\"; done; printf 'bytes %s\\n' \"$(wc -c)\"; } > \"$last\"\n",
-              [&] { EXPECT_GT(write_animation(rec, (dir / "a.mp4").string(), o), 0); });
+  {
+    const test_support::StandIn ffmpeg(
+        dir, "ffmpeg",
+        "for a; do last=$a; done\n"
+        "{ for a; do printf '%s\\n' \"$a\"; done; printf 'bytes %s\\n' \"$(wc -c)\"; } > \"$last\"\n");
+    EXPECT_GT(write_animation(rec, (dir / "a.mp4").string(), o), 0);
+  }
   std::vector<std::string> got;
   {
     std::ifstream in(dir / "a.mp4");
@@ -1061,7 +1035,7 @@ TEST(VizAnimation, Mp4GivesFfmpegItsArgumentsAndTheWholeFilm) {
   // The GIF's delays are whole hundredths; the film's frames whole tenths here.
   EXPECT_NEAR(static_cast<double>(bytes / frame), seconds * o.fps, 0.05 * gif.delays_cs.size() + 1.0);
   EXPECT_GE(bytes / frame, static_cast<long long>(gif.delays_cs.size()));
-  EXPECT_TRUE(temporaries_in(dir).empty());
+  EXPECT_TRUE(test_support::temps_in(dir).empty());
 }
 
 // An ffmpeg that fails (here without reading a frame) is an OutputError, and nothing is left: no
@@ -1074,11 +1048,12 @@ TEST(VizAnimation, AFailingFfmpegLeavesTheOldFileAndNoTemporary) {
     std::ofstream old(dir / "a.mp4");
     old << "old";
   }
-  with_ffmpeg(dir, "exit 1\n", [&] {
+  {
+    const test_support::StandIn ffmpeg(dir, "ffmpeg", "exit 1\n");
     EXPECT_THROW(write_animation(rec, (dir / "a.mp4").string(), o), whatnext::OutputError);
-  });
+  }
   EXPECT_EQ(slurp(dir / "a.mp4"), "old");
-  EXPECT_TRUE(temporaries_in(dir).empty());
+  EXPECT_TRUE(test_support::temps_in(dir).empty());
 }
 
 TEST(VizAnimation, RopeIsStraightWhenTautAndSagsWhenSlack) {
