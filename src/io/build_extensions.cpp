@@ -8,15 +8,16 @@
 namespace whatnext::io {
 
 namespace {
-bool flag(const Reader& in, std::string_view key, bool fallback) {
+bool flag(const Reader& in, Key key, bool fallback) {
   const ConfigValue* v = in.find(key);
   return v ? v->number != 0.0 : fallback;
 }
 // Not given, the seesaw's inertia is a uniform bar's, made from seesaw.mass, seesaw.left_arm and
 // seesaw.com_offset: a rule it breaks is told of the keys that were given (seesaw.inertia was not).
 void check_bar_inertia(const Reader& in, const Machine& m) {
-  const char* key = in.find("seesaw.left_arm") ? "seesaw.left_arm" : "seesaw.mass";
-  const double given = key[7] == 'l' ? m.seesaw_left_arm : m.seesaw_mass;
+  const bool arm = in.find("seesaw.left_arm") != nullptr;
+  const Key key = arm ? Key("seesaw.left_arm") : Key("seesaw.mass");
+  const double given = arm ? m.seesaw_left_arm : m.seesaw_mass;
   if (!(std::fabs(m.seesaw_inertia) <= kMaxInertia)) {
     in.fail(key, fmt::format(
                      "makes the seesaw (a uniform bar of seesaw.mass = {} kg from -seesaw.left_arm to r_H) "
@@ -86,8 +87,8 @@ void build_stretchy_rope(const Reader& in, Machine& m) {
     }
   }
   if (!m.stretchy_rope()) return;
-  const auto no = [&](const char* key, const char* why) {
-    if (in.find(key)) in.fail("rope.stiffness", fmt::format("does not go with {} ({})", key, why));
+  const auto no = [&](Key key, const char* why) {
+    if (in.find(key)) in.fail("rope.stiffness", fmt::format("does not go with {} ({})", key.name(), why));
   };
   // The built machine's floor and stop hold a seesaw with mass, which carries the pull itself; on
   // the massless seesaw the rope's pull is carried by the sandbag in free fall only.
@@ -157,7 +158,7 @@ void build_heavy_seesaw(const Reader& in, Machine& m) {
             "needs seesaw.left_arm (a uniform bar) or both seesaw.inertia and seesaw.com_offset");
   }
   if ((in.find("seesaw.inertia") || in.find("seesaw.com_offset")) && !in.find("seesaw.mass")) {
-    in.fail(in.find("seesaw.inertia") ? "seesaw.inertia" : "seesaw.com_offset",
+    in.fail(in.find("seesaw.inertia") ? Key("seesaw.inertia") : Key("seesaw.com_offset"),
             "needs seesaw.mass (the seesaw's weight acts at its centre of mass)");
   }
   if (!(m.seesaw_mass > 0.0)) return;

@@ -14,7 +14,7 @@ namespace {
 // with several faults is always told about the same one first.
 
 // The linkage: arms, lid, rope and the hinge (given as distance and angle, or as an offset).
-void read_geometry(const Reader& in, const Config& cfg, Machine& m) {
+void read_geometry(const Reader& in, Machine& m) {
   m.seesaw_right_arm = in.length("geometry.seesaw_right_arm");
   m.lid_half_length = in.length("geometry.lid_half_length");
   m.rope_length = in.length("geometry.rope_length");
@@ -27,8 +27,8 @@ void read_geometry(const Reader& in, const Config& cfg, Machine& m) {
                           fmt_num(2.0 * m.lid_half_length), fmt_num(m.rope_on_lid)));
     }
   }
-  if (cfg.has("geometry.hinge_offset")) {
-    if (cfg.has("geometry.hinge_distance") || cfg.has("geometry.hinge_angle")) {
+  if (in.find("geometry.hinge_offset")) {
+    if (in.find("geometry.hinge_distance") || in.find("geometry.hinge_angle")) {
       in.fail("geometry.hinge_offset", "and geometry.hinge_distance/hinge_angle both given: use one form");
     }
     const Vec2 v = in.pair("geometry.hinge_offset");
@@ -193,7 +193,7 @@ void check_start(const Reader& in, const Scenario& sc) {
 Scenario build_scenario(const Config& cfg) {
   const Reader in{cfg};
   Scenario sc;
-  read_geometry(in, cfg, sc.machine);
+  read_geometry(in, sc.machine);
   read_bodies(in, sc.machine);
   read_start(in, sc.start);
   read_run(in, sc.machine, sc.run);

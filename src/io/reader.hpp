@@ -2,6 +2,7 @@
 // which reads a Config's values with their rules and says which input broke which rule.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -11,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "input_common.hpp"
+#include "key_table.hpp"
 #include "whatnext/config.hpp"
 #include "whatnext/geometry.hpp"
 
@@ -37,56 +39,59 @@ constexpr double kMaxForce = 1e4;     // the radio's switch [N]
 
 // --- validation helpers ---------------------------------------------------------------------
 
-struct Reader {
+class Reader {
+ public:
   const Config& cfg;
 
-  // Keys are literals: looked up as string_views (Config's map compares transparently), and the
-  // unit looked up only for a message, since a sweep builds a machine for every row.
-  const ConfigValue* find(std::string_view key) const {
-    auto it = cfg.values.find(key);
-    return it == cfg.values.end() ? nullptr : &it->second;
+  // The values given, found by name once: validation reads about 180 keys, per machine of a sweep,
+  // by their places in the key table (Key), and a key outside the table is not read.
+  explicit Reader(const Config& config) : cfg(config) {
+    for (const auto& [name, value] : cfg.values) {
+      const std::size_t i = find_key_index(name);
+      if (i < kKeyCount) given_[i] = &value;
+    }
   }
-  std::string where(std::string_view key) const {
+
+  const ConfigValue* find(Key key) const { return given_[key.index()]; }
+  std::string where(Key key) const {
     const ConfigValue* v = find(key);
     return v ? v->origin : cfg.source;
   }
-  [[noreturn]] void fail(std::string_view key, const std::string& rule) const {
-    throw InputError(fmt::format("{}: {} {}", where(key), key, rule));
+  [[noreturn]] void fail(Key key, const std::string& rule) const {
+    throw InputError(fmt::format("{}: {} {}", where(key), key.name(), rule));
   }
   // The value as the input gave it: an integer too long for a double as written.
-  std::string shown(std::string_view key, double x) const {
+  std::string shown(Key key, double x) const {
     const ConfigValue* v = find(key);
     if (v && v->type == ConfigValue::Type::number && !v->text.empty() && v->number == x) return v->text;
     return fmt_num(x);
   }
-  std::string unit(std::string_view key) const {
-    const KeySpec* spec = find_key(key);
-    return spec ? std::string(spec->unit) : std::string();
-  }
+  static std::string unit(Key key) { return std::string(key.spec().unit); }
   // Without a fallback the key table's default stands for a key not given (key_default: the one
   // place it is written), looked up only then.
   static constexpr double kTable = std::numeric_limits<double>::quiet_NaN();
-  static double table_default(std::string_view key) {
-    const double x = key_default(key);
-    if (std::isnan(x)) throw std::logic_error("no numeric default in the key table for " + std::string(key));
+  static double table_default(Key key) {
+    const double x = key_default_at(key.index());
+    if (std::isnan(x))
+      throw std::logic_error("no numeric default in the key table for " + std::string(key.name()));
     return x;
   }
-  double number(std::string_view key) const { return number(key, kTable); }
-  double positive(std::string_view key) const { return positive(key, kTable); }
-  double length(std::string_view key) const { return length(key, kTable); }
-  double mass(std::string_view key) const { return mass(key, kTable); }
-  double offset(std::string_view key) const { return offset(key, kTable); }
-  double in_range(std::string_view key, double lo, bool lo_closed, double hi, bool hi_closed) const {
+  double number(Key key) const { return number(key, kTable); }
+  double positive(Key key) const { return positive(key, kTable); }
+  double length(Key key) const { return length(key, kTable); }
+  double mass(Key key) const { return mass(key, kTable); }
+  double offset(Key key) const { return offset(key, kTable); }
+  double in_range(Key key, double lo, bool lo_closed, double hi, bool hi_closed) const {
     return in_range(key, kTable, lo, lo_closed, hi, hi_closed);
   }
-  double number(std::string_view key, double fallback) const {
+  double number(Key key, double fallback) const {
     const ConfigValue* v = find(key);
     if (!v) return std::isnan(fallback) ? table_default(key) : fallback;
     if (!std::isfinite(v->number))
       fail(key, fmt::format("must be a finite number (given {})", shown(key, v->number)));
     return v->number;
   }
-  double positive(std::string_view key, double fallback) const {
+  double positive(Key key, double fallback) const {
     const double x = number(key, fallback);
     if (!(x > 0.0)) {
       const std::string u = unit(key);
@@ -94,8 +99,7 @@ struct Reader {
     }
     return x;
   }
-  double in_range(std::string_view key, double fallback, double lo, bool lo_closed, double hi,
-                  bool hi_closed) const {
+  double in_range(Key key, double fallback, double lo, bool lo_closed, double hi, bool hi_closed) const {
     const double x = number(key, fallback);
     const bool ok = (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
     if (!ok) {
@@ -106,30 +110,30 @@ struct Reader {
     return x;
   }
   // The plausibility limits: a value the rules accept, outside what the model is made for.
-  void plausible(std::string_view key, double x, double lo, double hi) const {
+  void plausible(Key key, double x, double lo, double hi) const {
     if (!(x >= lo && x <= hi)) {
       const std::string u = unit(key);
       fail(key, fmt::format("must be within [{}, {}]{}, the range the model is made for (given {})",
                             fmt_num(lo), fmt_num(hi), u.empty() ? "" : " " + u, shown(key, x)));
     }
   }
-  double length(std::string_view key, double fallback) const {
+  double length(Key key, double fallback) const {
     const double x = positive(key, fallback);
     plausible(key, x, kMinLength, kMaxLength);
     return x;
   }
-  double mass(std::string_view key, double fallback) const {
+  double mass(Key key, double fallback) const {
     const double x = positive(key, fallback);
     plausible(key, x, kMinMass, kMaxMass);
     return x;
   }
   // A signed distance (an offset or a start position) within the machine's reach.
-  double offset(std::string_view key, double fallback) const {
+  double offset(Key key, double fallback) const {
     const double x = number(key, fallback);
     plausible(key, x, -kMaxLength, kMaxLength);
     return x;
   }
-  Vec2 pair(std::string_view key) const {
+  Vec2 pair(Key key) const {
     const ConfigValue& v = *find(key);
     // As the input wrote it (v.text: numbers a double rounds), for the messages.
     const auto given = [&v] {
@@ -144,10 +148,13 @@ struct Reader {
     }
     return {v.pair[0], v.pair[1]};
   }
-  std::string text(std::string_view key, const std::string& fallback) const {
+  std::string text(Key key, const std::string& fallback) const {
     const ConfigValue* v = find(key);
     return v ? v->text : fallback;
   }
+
+ private:
+  std::array<const ConfigValue*, kKeyCount> given_{};
 };
 
 // The switches beyond the paper (build_extensions.cpp).
