@@ -1,6 +1,9 @@
 // Overrides: --set KEY=VALUE (VALUE as in TOML, bare words as text) and set_number for sweeps.
 #include <cctype>
+#include <iterator>
 #include <string>
+
+#include <fmt/compile.h>
 
 #include "input_common.hpp"
 
@@ -74,10 +77,15 @@ void set_number(Config& cfg, const std::string& key, double value) {
   if (spec->kind == KeyKind::text || spec->kind == KeyKind::pair || spec->kind == KeyKind::flag) {
     throw InputError(fmt::format("key {}: is not a single number", key));
   }
-  ConfigValue v;
+  // In place and with the format compiled: a sweep sets its keys for every machine, and the
+  // origin's text (longer than a short string) keeps its buffer. "{}" writes a double as shortest().
+  ConfigValue& v = cfg.values[key];
+  std::string origin = std::move(v.origin);
+  origin.clear();
+  fmt::format_to(std::back_inserter(origin), FMT_COMPILE("{} = {}"), key, value);
+  v = ConfigValue{};
   v.number = value;
-  v.origin = fmt::format("{} = {}", key, shortest(value));
-  cfg.values[key] = v;
+  v.origin = std::move(origin);
   if (key == "geometry.hinge_distance" || key == "geometry.hinge_angle") {
     cfg.values.erase("geometry.hinge_offset");
   }
