@@ -426,6 +426,21 @@ TEST(Keys, EveryKeyHasAUnitKindAndADefaultToShow) {
   EXPECT_EQ(wn::nearest_word("xyzzy", {"run", "plot", "sweep"}), "");
 }
 
+// find_key hashes a key by its length and three bytes (keys.cpp): every key is found as itself,
+// and a word sharing those with a key is not that key.
+TEST(Keys, EveryKeyIsFoundAndOnlyItself) {
+  for (const wn::KeySpec& k : wn::known_keys()) {
+    const wn::KeySpec* found = wn::find_key(k.key);
+    ASSERT_NE(found, nullptr) << k.key;
+    EXPECT_EQ(found->key, k.key);
+    std::string near(k.key);
+    near[near.size() / 2] = near[near.size() / 2] == 'x' ? 'y' : 'x';
+    EXPECT_EQ(wn::find_key(near), nullptr) << near;
+  }
+  EXPECT_EQ(wn::find_key(""), nullptr);
+  EXPECT_EQ(wn::find_key("ru"), nullptr);
+}
+
 // One default per key (issue 18): a key left out is the key table's default, the number it
 // documents; the same machine as with that number given. Keys whose presence is itself a switch
 // (giving them turns the radio, the drag or the floor on, or needs another key) are left out here.

@@ -69,15 +69,34 @@ double key_default_at(std::size_t index) {
   return index < kKeyCount ? table[index] : std::numeric_limits<double>::quiet_NaN();
 }
 
+namespace {
+// Validation finds the place of every key a machine gives, per machine of a sweep: hashed by its
+// length and three bytes (which tell the table's keys apart; std::hash reads all of them) into a
+// table of places a few times the keys', searched from there on (open addressing).
+std::size_t key_hash(std::string_view key) {
+  if (key.size() < 3) return key.size();
+  const auto byte = [&key](std::size_t i) { return static_cast<unsigned char>(key[i]) + std::size_t{0}; };
+  return key.size() * 97 + byte(0) * 31 + byte(key.size() - 3) * 7 + byte(key.size() - 1);
+}
+constexpr std::size_t kSlots = 256;  // four times the keys and more: few share a slot
+static_assert(kSlots >= 4 * kKeyCount && kKeyCount < 255, "the key table outgrew its hash table");
+}  // namespace
+
 std::size_t find_key_index(std::string_view key) {
-  // Hashed: validation finds the place of every key a machine gives, per machine of a sweep.
-  static const std::unordered_map<std::string_view, std::size_t> places = [] {
-    std::unordered_map<std::string_view, std::size_t> t;
-    for (std::size_t i = 0; i < kKeyCount; ++i) t.emplace(kKeys[i].key, i);
+  static const std::array<unsigned char, kSlots> places = [] {
+    std::array<unsigned char, kSlots> t;
+    t.fill(static_cast<unsigned char>(kKeyCount));  // an empty slot
+    for (std::size_t i = 0; i < kKeyCount; ++i) {
+      std::size_t s = key_hash(kKeys[i].key) % kSlots;
+      while (t[s] != kKeyCount) s = (s + 1) % kSlots;
+      t[s] = static_cast<unsigned char>(i);
+    }
     return t;
   }();
-  const auto it = places.find(key);
-  return it == places.end() ? kKeyCount : it->second;
+  for (std::size_t s = key_hash(key) % kSlots;; s = (s + 1) % kSlots) {
+    const std::size_t i = places[s];
+    if (i == kKeyCount || kKeys[i].key == key) return i;
+  }
 }
 }  // namespace io
 
