@@ -87,35 +87,23 @@ class Reader {
   double number(Key key, double fallback) const {
     const ConfigValue* v = find(key);
     if (!v) return std::isnan(fallback) ? table_default(key) : fallback;
-    if (!std::isfinite(v->number))
-      fail(key, fmt::format("must be a finite number (given {})", shown(key, v->number)));
+    if (!std::isfinite(v->number)) fail_finite(key, v->number);
     return v->number;
   }
   double positive(Key key, double fallback) const {
     const double x = number(key, fallback);
-    if (!(x > 0.0)) {
-      const std::string u = unit(key);
-      fail(key, fmt::format("must be > 0{} (given {})", u.empty() ? "" : " " + u, shown(key, x)));
-    }
+    if (!(x > 0.0)) fail_positive(key, x);
     return x;
   }
   double in_range(Key key, double fallback, double lo, bool lo_closed, double hi, bool hi_closed) const {
     const double x = number(key, fallback);
     const bool ok = (lo_closed ? x >= lo : x > lo) && (hi_closed ? x <= hi : x < hi);
-    if (!ok) {
-      const std::string u = unit(key);
-      fail(key, fmt::format("must be in {}{}, {}{}{} (given {})", lo_closed ? "[" : "(", fmt_num(lo),
-                            fmt_num(hi), hi_closed ? "]" : ")", u.empty() ? "" : " " + u, shown(key, x)));
-    }
+    if (!ok) fail_range(key, x, lo, lo_closed, hi, hi_closed);
     return x;
   }
   // The plausibility limits: a value the rules accept, outside what the model is made for.
   void plausible(Key key, double x, double lo, double hi) const {
-    if (!(x >= lo && x <= hi)) {
-      const std::string u = unit(key);
-      fail(key, fmt::format("must be within [{}, {}]{}, the range the model is made for (given {})",
-                            fmt_num(lo), fmt_num(hi), u.empty() ? "" : " " + u, shown(key, x)));
-    }
+    if (!(x >= lo && x <= hi)) fail_plausible(key, x, lo, hi);
   }
   double length(Key key, double fallback) const {
     const double x = positive(key, fallback);
@@ -155,6 +143,27 @@ class Reader {
 
  private:
   std::array<const ConfigValue*, kKeyCount> given_{};
+
+  // The messages of the rules above, out of line and cold: a sweep reads every key of every
+  // machine, and the reads are inlined where they are short.
+  [[noreturn, gnu::cold, gnu::noinline]] void fail_finite(Key key, double x) const {
+    fail(key, fmt::format("must be a finite number (given {})", shown(key, x)));
+  }
+  [[noreturn, gnu::cold, gnu::noinline]] void fail_positive(Key key, double x) const {
+    const std::string u = unit(key);
+    fail(key, fmt::format("must be > 0{} (given {})", u.empty() ? "" : " " + u, shown(key, x)));
+  }
+  [[noreturn, gnu::cold, gnu::noinline]] void fail_range(Key key, double x, double lo, bool lo_closed,
+                                                         double hi, bool hi_closed) const {
+    const std::string u = unit(key);
+    fail(key, fmt::format("must be in {}{}, {}{}{} (given {})", lo_closed ? "[" : "(", fmt_num(lo),
+                          fmt_num(hi), hi_closed ? "]" : ")", u.empty() ? "" : " " + u, shown(key, x)));
+  }
+  [[noreturn, gnu::cold, gnu::noinline]] void fail_plausible(Key key, double x, double lo, double hi) const {
+    const std::string u = unit(key);
+    fail(key, fmt::format("must be within [{}, {}]{}, the range the model is made for (given {})",
+                          fmt_num(lo), fmt_num(hi), u.empty() ? "" : " " + u, shown(key, x)));
+  }
 };
 
 // The switches beyond the paper (build_extensions.cpp).
