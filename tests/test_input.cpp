@@ -404,6 +404,27 @@ TEST(Toml, ToTomlWritesTheShortestNumbersThatReadBack) {
   EXPECT_EQ(std::stod(wn::shortest(0.1 + 0.2)), 0.1 + 0.2);
 }
 
+// set_number leaves a value's origin to the message (a sweep sets keys for every machine): a rule
+// it breaks names it "KEY = VALUE", the value in the fewest digits, also where a file gave it before.
+TEST(Sweep, AValueSetForAMachineIsNamedInItsMessage) {
+  wn::Config cfg = wn::example_config(2);
+  wn::set_number(cfg, "geometry.rope_length", -0.1 * 6.2);
+  try {
+    wn::build_scenario(cfg);
+    FAIL();
+  } catch (const wn::InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "geometry.rope_length = -0.6200000000000001: geometry.rope_length must be > 0 m "
+              "(given -0.6200000000000001)");
+  }
+  wn::set_number(cfg, "geometry.rope_length", 0.64);  // the message is of its rule
+  wn::set_number(cfg, "start.sandbag_height", 2e3);
+  expect_one_line([&] { wn::build_scenario(cfg); }, "start.sandbag_height = 2000: start.sandbag_height must");
+  wn::apply_set(cfg, "start.sandbag_height=3e3");  // --set names itself
+  expect_one_line([&] { wn::build_scenario(cfg); },
+                  "--set start.sandbag_height=3e3: start.sandbag_height must");
+}
+
 TEST(Limits, AFixedStepMustBeShorterThanADampersDecayTime) {
   // The lid's inertia m_L (2 r_L)^2 / 3 = 0.5 * 0.16 / 3 kg m^2 decays under 1000 N m s/rad in
   // 2.7e-5 s: a 1 ms Euler step is unstable, the adaptive integrator and a 10 us step are not.

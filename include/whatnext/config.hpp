@@ -44,7 +44,9 @@ struct ConfigValue {
   double number = 0.0;
   std::string text;
   double pair[2] = {0.0, 0.0};
-  std::string origin;  // "example1.toml:12", "--set", "whatnext.inp line 3"
+  // "example1.toml:12", "--set", "whatnext.inp line 3"; empty for a number set_number set (per
+  // machine of a sweep), which messages name "KEY = VALUE".
+  std::string origin;
 };
 
 class Config {

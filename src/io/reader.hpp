@@ -55,7 +55,12 @@ class Reader {
   const ConfigValue* find(Key key) const { return given_[key.index()]; }
   std::string where(Key key) const {
     const ConfigValue* v = find(key);
-    return v ? v->origin : cfg.source;
+    if (!v) return cfg.source;
+    // A number set_number set has its origin written here, only for a message.
+    if (v->origin.empty() && v->type == ConfigValue::Type::number) {
+      return fmt::format("{} = {}", key.name(), shortest(v->number));
+    }
+    return v->origin;
   }
   [[noreturn]] void fail(Key key, const std::string& rule) const {
     throw InputError(fmt::format("{}: {} {}", where(key), key.name(), rule));

@@ -1,9 +1,6 @@
 // Overrides: --set KEY=VALUE (VALUE as in TOML, bare words as text) and set_number for sweeps.
 #include <cctype>
-#include <iterator>
 #include <string>
-
-#include <fmt/compile.h>
 
 #include "input_common.hpp"
 
@@ -77,15 +74,11 @@ void set_number(Config& cfg, const std::string& key, double value) {
   if (spec->kind == KeyKind::text || spec->kind == KeyKind::pair || spec->kind == KeyKind::flag) {
     throw InputError(fmt::format("key {}: is not a single number", key));
   }
-  // In place and with the format compiled: a sweep sets its keys for every machine, and the
-  // origin's text (longer than a short string) keeps its buffer. "{}" writes a double as shortest().
+  // Without an origin: a sweep sets its keys for every machine, and the origin ("KEY = VALUE") is
+  // written only for a message (Reader::where).
   ConfigValue& v = cfg.values[key];
-  std::string origin = std::move(v.origin);
-  origin.clear();
-  fmt::format_to(std::back_inserter(origin), FMT_COMPILE("{} = {}"), key, value);
   v = ConfigValue{};
   v.number = value;
-  v.origin = std::move(origin);
   if (key == "geometry.hinge_distance" || key == "geometry.hinge_angle") {
     cfg.values.erase("geometry.hinge_offset");
   }
