@@ -169,6 +169,11 @@ class Model {
   // The balloon's upward acceleration at speed v (lift, weights and air drag): the flow, the
   // balloon guard and the jumps all use this one function.
   double balloon_acceleration(double v) const { return a_b_ - drag_ * v * std::fabs(v); }
+  // The lid's angular acceleration while it swings free of the rope and the box, with the hinge's
+  // damper and an extra torque q_l (friction, a stretched rope's pull): the flow's.
+  double lid_free_acceleration(double phi_l, double dphi_l, double q_l = 0.0) const;
+  // A balloon smaller than the box, which slides along the lid and flies in the plane.
+  bool small_balloon() const { return small_; }
 
  private:
   // The seesaw's angular acceleration with whatever it carries (J phiS'' = Q, docs/extensions.md),
@@ -209,7 +214,6 @@ class Model {
   static bool on_closure(const Discrete& d) {
     return d.taut && !d.lid_held() && !d.latched && (d.on_seesaw || d.heavy) && !d.seesaw_held();
   }
-  double lid_free_acceleration(double phi_l, double dphi_l, double q_l = 0.0) const;
   double lid_free_acceleration_at(double cos_l, double dphi_l, double q_l) const;  // cos phiL known
   // r'' of the sandbag on the arm (eq. 5): gravity along the arm and the centrifugal term.
   double along_arm_acceleration(double r, double sin_s, double dphi_s) const {

@@ -150,7 +150,8 @@ class Runner {
     switch (run.integrator) {
       case IntegratorKind::adaptive:
         if (BallisticStepper::applies(model_, sc_, hs_.d, hs_.y)) {  // the sandbag's parabola in closed form
-          BallisticStepper stepper(model_, hs_.d, sc_.machine.gravity, run.tolerance, kMaxAdaptiveStep);
+          BallisticStepper stepper(model_, hs_.d, hs_.y, sc_.machine.gravity, run.tolerance,
+                                   kMaxAdaptiveStep);
           c = integrate_dense(stepper, sys, hs_.y, t_, run.t_max, run.tolerance, kMaxAdaptiveStep,
                               run.event_time_tolerance, kMaxAdaptiveSteps - res_.stats.steps, grid_, sample,
                               res_.stats);
