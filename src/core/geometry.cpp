@@ -57,31 +57,30 @@ Transfer RopeGeometry::transfer(double phi_s, double phi_l) const {
   return transfer_at(seesaw_end(phi_s), polar(2.0 * r_l_, phi_l));
 }
 
-namespace {
-double clamp_unit(double c) { return c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c); }
-}  // namespace
-
+// The closures below solve the rope's triangle in the form with one division and one square
+// root in a row (the flow's hot path waits on each): with q the squared base and a, b the cosine
+// and sine of the angle at its end times the scale from the base to the side.
 RopeGeometry::Linkage RopeGeometry::from_seesaw(double cos_s, double sin_s, bool derivatives) const {
   const Vec2 r = seesaw_end({cos_s, sin_s});
   const Vec2 hr = r - hinge_;
-  const double d = std::sqrt(dot(hr, hr));
-  const double cs = clamp_unit((4.0 * r_l_ * r_l_ + d * d - l_r_ * l_r_) / (4.0 * r_l_ * d));
-  const double sn = std::sqrt(1.0 - cs * cs);  // sin sigma >= 0
+  // Law of cosines in H, R, E (sigma at H; sin sigma >= 0), scaled by 2 r_L / |HR|.
+  const double inv_q = 1.0 / dot(hr, hr);
+  const double a = 0.5 * (4.0 * r_l_ * r_l_ - l_r_ * l_r_) * inv_q + 0.5;
+  const double b = std::sqrt(std::fmax(4.0 * r_l_ * r_l_ * inv_q - a * a, 0.0));
   // E - H is HR turned clockwise by sigma and scaled to 2 r_L (the lid below the rope).
-  const double f = 2.0 * r_l_ / d;
-  const Vec2 el{f * (hr.x * cs + hr.h * sn), f * (hr.h * cs - hr.x * sn)};
+  const Vec2 el{hr.x * a + hr.h * b, hr.h * a - hr.x * b};
   return linkage_at(r, el, derivatives);
 }
 
 RopeGeometry::Linkage RopeGeometry::from_lid(double cos_l, double sin_l, int side, bool derivatives) const {
   const Vec2 el{2.0 * r_l_ * cos_l, 2.0 * r_l_ * sin_l};
   const Vec2 e = hinge_ + el;
-  const double de = std::sqrt(dot(e, e));
-  const double cr = clamp_unit((r_h_ * r_h_ + de * de - l_r_ * l_r_) / (2.0 * r_h_ * de));
-  const double sr = (side > 0 ? 1.0 : -1.0) * std::sqrt(1.0 - cr * cr);
+  // Law of cosines in O, E, R (rho at the pivot O), scaled by r_H / |E|.
+  const double inv_q = 1.0 / dot(e, e);
+  const double a = 0.5 * (r_h_ * r_h_ - l_r_ * l_r_) * inv_q + 0.5;
+  const double b = (side > 0 ? 1.0 : -1.0) * std::sqrt(std::fmax(r_h_ * r_h_ * inv_q - a * a, 0.0));
   // R is the direction of E turned by +-rho (counterclockwise for side +1), scaled to r_H.
-  const double f = r_h_ / de;
-  const Vec2 r{f * (e.x * cr - e.h * sr), f * (e.h * cr + e.x * sr)};
+  const Vec2 r{e.x * a - e.h * b, e.h * a + e.x * b};
   return linkage_at(r, el, derivatives);
 }
 
