@@ -12,7 +12,7 @@ namespace whatnext {
 
 class PendulumSeries {
  public:
-  static constexpr int kOrder = 20;
+  static constexpr int kOrder = 16;
 
   // The series of the motion through (phi0, dphi0) at tau = 0, for phi'' = -w cos(phi).
   void expand(double w, double phi0, double dphi0) {
