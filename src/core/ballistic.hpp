@@ -62,6 +62,7 @@ class BallisticStepper {
         g_(gravity),
         // The series' own error, far below the integrator's (the other pieces'), and not below rounding.
         series_error_(std::fmax(1e-3 * tolerance, 1e-16)),
+        lid_arc_(kLidArc * std::fmin(1.0, std::pow(tolerance / kLidArcTolerance, 0.2))),
         growth_(max_dt),
         inner_(make_dopri5<Moving>(tolerance, max_dt)) {
     exact_ = closed_forms(y);
@@ -97,9 +98,9 @@ class BallisticStepper {
         series_.expand(w_, phi, rate);
         // The guards are looked at every step end: a touch in between is seen by their cubic
         // through the ends, which follows the lid's circle only over a short arc.
-        for (double turn = std::fabs(series_.angle(h) - phi); turn > kLidArc;
+        for (double turn = std::fabs(series_.angle(h) - phi); turn > lid_arc_;
              turn = std::fabs(series_.angle(h) - phi))
-          h *= 0.9 * kLidArc / turn;
+          h *= 0.9 * lid_arc_ / turn;
         const double angle_error = series_error_ * (1.0 + std::fabs(phi)),
                      rate_error = series_error_ * (1.0 + std::fabs(rate));
         while (!series_.reaches(h, angle_error, rate_error)) h *= 0.5;
@@ -194,15 +195,18 @@ class BallisticStepper {
     }
   };
 
-  // [rad] The longest arc the lid turns through in one step. Dormand-Prince's steps turned it
-  // through about 0.05 at the sweeps' tolerance; 0.2 finds every event a tight Dormand-Prince run
-  // finds on 40,000 random machines around example 2, and steps beyond about 1 rad start to miss
-  // a rope that tightens again for an instant (docs/performance.md, "Issue 23, eighth round").
-  static constexpr double kLidArc = 0.2;
+  // [rad] The longest arc the lid turns through in one step at a sweep's default tolerance (its
+  // accuracy 1e-8 s / 15), shorter with the fifth root of a tighter one, as Dormand-Prince's steps
+  // are (which turned it through about 0.05 rad there). 0.2 finds every event a tight
+  // Dormand-Prince run finds on 40,000 random machines around example 2, and steps beyond about
+  // 1 rad start to miss a rope that tightens again for an instant (docs/performance.md, "Issue 23,
+  // eighth round").
+  static constexpr double kLidArc = 0.2, kLidArcTolerance = 1e-8 / 15.0;
   const Model* model_;
   const Discrete* d_;
   double g_;
   double series_error_;
+  double lid_arc_;  // [rad] (kLidArc)
   detail::StepGrowth growth_;
   bool exact_ = false, lid_swings_ = false, balloon_rises_ = false;
   double w_ = 0.0, balloon_a_ = 0.0;
