@@ -17,9 +17,10 @@
 namespace whatnext {
 
 // A dense-output stepper (integrate_dense's interface) for such a piece. Where every part is known
-// in closed form or in series the steps are as long as the series reach (at most max_dt, the
-// guards' bound), growing tenfold from a short start as Dormand-Prince's would where it meets no
-// error; the state anywhere inside a step is exact to rounding. Otherwise the lid and the balloon
+// in closed form or in series the steps are as long as the series reaches and the lid's turn
+// allows (kLidArc; at most max_dt, the guards' bound), growing tenfold from a short start as
+// Dormand-Prince's would where it meets no error; the state anywhere inside a step is exact to
+// rounding. Otherwise the lid and the balloon
 // take Dormand-Prince's steps on their four numbers (the sandbag's error estimate was rounding,
 // below the step growth's limit, so these are the whole state's steps and values, bit for bit).
 class BallisticStepper {
@@ -195,9 +196,9 @@ class BallisticStepper {
     }
   };
 
-  // [rad] The longest arc the lid turns through in one step at a sweep's default tolerance (its
-  // accuracy 1e-8 s / 15), shorter with the fifth root of a tighter one, as Dormand-Prince's steps
-  // are (which turned it through about 0.05 rad there). 0.2 finds every event a tight
+  // [rad] The longest arc the lid turns through in one step at tolerance kLidArcTolerance (where it
+  // was measured: a sweep's default, its accuracy 1e-8 s / 15), shorter with the fifth root of a
+  // tighter one, as Dormand-Prince's steps are (which turned it through about 0.05 rad there). 0.2 finds every event a tight
   // Dormand-Prince run finds on 40,000 random machines around example 2, and steps beyond about
   // 1 rad start to miss a rope that tightens again for an instant (docs/performance.md, "Issue 23,
   // eighth round").
