@@ -299,6 +299,24 @@ TEST(BallisticPieces, AgreeWithATightDormandPrinceOnTheWholeState) {
   }
 }
 
+// A lid thrown so fast that its series overflows is a motion that turned non-finite, found in
+// the piece's first step, not a step halved for ever.
+TEST(BallisticPieces, ALidWhoseSeriesOverflowsIsANonFiniteMotion) {
+  const wn::Scenario sc = wn::build_scenario(wn::example_config(2));
+  const wn::Model model(sc);
+  std::vector<wn::Event> events;
+  wn::HybridState hs = model.initial(events);
+  hs.d.on_seesaw = true;
+  hs.d.taut = false;
+  hs.d.lid_resting = false;
+  hs.y[wn::slot::dphi_l] = 1e200;  // its square, in the series' second coefficient on, is not finite
+  const PieceSystem sys{&model, hs.d};
+  ASSERT_TRUE(wn::BallisticStepper::applies(model, sc, hs.d, hs.y));
+  wn::BallisticStepper ballistic(model, hs.d, hs.y, sc.machine.gravity, sc.run.tolerance, 0.1);
+  const PieceEnd end = integrate_piece(ballistic, sc, sys, hs.y);
+  EXPECT_EQ(end.c.kind, wn::Crossing::non_finite);
+}
+
 // --- the lid's free swing in series (src/core/pendulum.hpp) ------------------------------------
 
 // phi'' = -w cos(phi) from the bottom (phi = -pi/2) at exactly the speed that just reaches the top

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 
 #include "integrate.hpp"
@@ -104,7 +105,10 @@ class BallisticStepper {
           h *= 0.9 * lid_arc_ / turn;
         const double angle_error = series_error_ * (1.0 + std::fabs(phi)),
                      rate_error = series_error_ * (1.0 + std::fabs(rate));
-        while (!series_.reaches(h, angle_error, rate_error)) h *= 0.5;
+        while (h > 0.0 && !series_.reaches(h, angle_error, rate_error)) h *= 0.5;
+        // A series that is not finite (overflow) reaches nowhere: integrate_dense takes the throw
+        // for a motion that turned non-finite, rather than the halving going on for ever.
+        if (!(h > 0.0)) throw std::runtime_error("the lid's series is not finite");
       }
       series_t_ = t_old;
       t_ += h;
