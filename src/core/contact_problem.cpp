@@ -99,7 +99,7 @@ double Model::coulomb_hold(const Discrete& d, const Kinematics& k, int i) const 
   const double own = pivot ? t_p_ : t_h_, other = pivot ? t_h_ : t_p_;
   const bool coupled = d.taut && !d.latched && (pivot ? !d.lid_resting : d.grounded == 0);
   if (!(other > 0.0) || !coupled) return own;
-  const double ratio = std::fabs(rope_.transfer(k.phi_s, k.phi_l).k);
+  const double ratio = std::fabs(rope_.transfer(Vec2{k.cos_s, k.sin_s}, Vec2{k.cos_l, k.sin_l}).k);
   return own + (pivot ? ratio * other : other / ratio);
 }
 

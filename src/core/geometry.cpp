@@ -53,10 +53,6 @@ bool RopeGeometry::seesaw_angle_for(double phi_l, int side, double& phi_s) const
   return true;
 }
 
-Transfer RopeGeometry::transfer(double phi_s, double phi_l) const {
-  return transfer_at(seesaw_end(phi_s), polar(2.0 * r_l_, phi_l));
-}
-
 // The closures below solve the rope's triangle in the form with one division and one square
 // root in a row (the flow's hot path waits on each): with q the squared base and a, b the cosine
 // and sine of the angle at its end times the scale from the base to the side.

@@ -14,13 +14,13 @@ using namespace model_detail;
 void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates, int only) const {
   g.fill(kInactive);
   if (rates) rates->fill(std::numeric_limits<double>::quiet_NaN());
-  const Kinematics k = kinematics(d, y);
+  const Kinematics k = guard_kinematics(d, y);
   balloon_guards(d, y, k, g, rates);
   // The radio's wait: only the balloon matters now; the built machine's seesaw and sandbag still
   // move on its stop and floor. A seesaw with inertia swings on, and must not swing round
   // (docs/model.md §6: no somersaults, whatever happens meanwhile).
   if (d.latched && !built_) {
-    if (d.heavy) g[kGuardSeesawVertical] = std::fabs(k.phi_s) - vertical_;
+    if (d.heavy) g[kGuardSeesawVertical] = seesaw_vertical_gap(k);
     return;
   }
 
@@ -137,7 +137,7 @@ WHATNEXT_STAGE void Model::linkage_guards(const Discrete& d, const Kinematics& k
   // ends the model, whatever it carries (docs/model.md §6). Only the parked massless seesaw (M1),
   // which nothing moves, is left out: its angle is the input's.
   const bool seesaw_moves = d.on_seesaw || d.heavy || d.taut;
-  if (seesaw_moves) g[kGuardSeesawVertical] = std::fabs(k.phi_s) - vertical_;
+  if (seesaw_moves) g[kGuardSeesawVertical] = seesaw_vertical_gap(k);
   if (d.on_seesaw && arm_ < kNoEnd && !stop_) g[kGuardArmEnd] = k.r - arm_;
 }
 

@@ -2,12 +2,18 @@
 #include "model.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "model_internal.hpp"
 
 namespace whatnext {
 
 using namespace model_detail;
+
+namespace {
+// phiS where guard_kinematics() does not ask for it: not a number, so that a reader shows.
+constexpr double kUnasked = std::numeric_limits<double>::quiet_NaN();
+}  // namespace
 
 // The layout of the continuous state follows from the contacts alone: it is decided once here,
 // and each layout has its own stage below that fills in positions, then (if asked) rates and
@@ -30,7 +36,8 @@ struct Model::KinematicsPass {
   const Discrete& d;
   const State& y;
   bool rates, memo;
-  Kinematics& k;                        // the caller's, returned without a copy
+  bool seesaw_angle;  // phiS itself, where only its cos and sin follow (guard_kinematics: not asked)
+  Kinematics& k;      // the caller's, returned without a copy
   bool trig_s = false, trig_l = false;  // cos and sin of phiS / phiL already known
   Torques q = {};  // what the swings add to the weights' torques (Model::extra_torques), with rates
 
@@ -73,7 +80,7 @@ struct Model::KinematicsPass {
   }
   // ... or from the lid's (the lid's chart).
   void by_lid(const LidSwing& p, double phi_l, double dphi_l) {
-    lid_chart(k, p, phi_l, dphi_l);
+    lid_chart(k, p, phi_l, dphi_l, seesaw_angle);
     trig_s = trig_l = true;
   }
   // Positions only: the same linkage the swings start from, without their accelerations, from the
@@ -84,7 +91,7 @@ struct Model::KinematicsPass {
         by_lid_angle ? m.rope_.from_lid(c, sn, d.side, false) : m.rope_.from_seesaw(c, sn, false);
     if (by_lid_angle) {
       k.phi_l = phi;
-      k.phi_s = lk.phi_s();
+      k.phi_s = seesaw_angle ? lk.phi_s() : kUnasked;
     } else {
       k.phi_l = lk.phi_l();
     }
@@ -183,7 +190,7 @@ struct Model::KinematicsPass {
   }
   // M3: the massless seesaw turns with the falling sandbag.
   void falling_on_seesaw() {
-    k.phi_s = std::atan2(-k.h, -k.x);
+    k.phi_s = seesaw_angle ? std::atan2(-k.h, -k.x) : kUnasked;
     const double c = -k.x / k.r, s = -k.h / k.r;
     k.cos_s = c, k.sin_s = s;
     trig_s = k.r > 0.0;
@@ -282,9 +289,18 @@ struct Model::KinematicsPass {
 };
 
 Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool memo) const {
+  return kinematics_pass(d, y, rates, memo, true);
+}
+
+Kinematics Model::guard_kinematics(const Discrete& d, const State& y) const {
+  return kinematics_pass(d, y, true, true, false);
+}
+
+Kinematics Model::kinematics_pass(const Discrete& d, const State& y, bool rates, bool memo,
+                                  bool seesaw_angle) const {
   Kinematics k;
   k.rope_let_go = d.latched;
-  KinematicsPass pass{*this, d, y, rates, memo, k};
+  KinematicsPass pass{*this, d, y, rates, memo, seesaw_angle, k};
   const Layout layout = Model::layout(d);
   if (d.polar()) {
     pass.polar(layout);
@@ -296,10 +312,10 @@ Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool
   return k;
 }
 
-void Model::lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l) {
+void Model::lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l, bool seesaw_angle) {
   // The lid's angle and rate are the state; the seesaw follows on the closure.
   k.phi_l = phi_l;
-  k.phi_s = p.lk.phi_s();
+  k.phi_s = seesaw_angle ? p.lk.phi_s() : kUnasked;
   k.dphi_l = dphi_l;
   k.dphi_s = p.lk.ds * dphi_l;
   k.ddphi_l = p.ddphi_l;

@@ -31,6 +31,7 @@ Model::Model(const Scenario& scenario)
       a_b_(scenario.machine.balloon_acceleration()),
       phi_l0_(scenario.start.lid_angle),
       vertical_(kHalfPi - scenario.run.vertical_margin),
+      cos_vertical_(std::cos(vertical_)),
       drag_(scenario.machine.balloon_drag_rate()),
       m_b_(scenario.machine.balloon_inertia()),
       i_s_(scenario.machine.seesaw_inertia),

@@ -128,6 +128,10 @@ class Model {
   // memo = false: without the memos of the flow's last swing (below), so that other threads may
   // call it while this model integrates; the same numbers.
   Kinematics kinematics(const Discrete& d, const State& y, bool rates = true, bool memo = true) const;
+  // What the guards read: kinematics() with rates, but phiS left NaN where only its cos and sin
+  // follow from the state (the sandbag's fall, the lid's chart): no guard reads the angle itself,
+  // and its atan2 was 4 % of a sweep.
+  Kinematics guard_kinematics(const Discrete& d, const State& y) const;
   // How the continuous state is laid out, decided by the contacts alone (kinematics.cpp):
   // polar (r, phiS) while the sandbag rides the seesaw with something to carry it, else Cartesian.
   enum class Layout {
@@ -208,8 +212,9 @@ class Model {
   };
   mutable Memo<Swing> swing_memo_;
   mutable Memo<LidSwing> lid_swing_memo_;
-  static void lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l);
+  static void lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l, bool seesaw_angle);
   struct KinematicsPass;  // kinematics.cpp: one evaluation, stage by stage
+  Kinematics kinematics_pass(const Discrete& d, const State& y, bool rates, bool memo, bool seesaw_angle) const;
   // The lid swings on the straight rope, driven through it by something with inertia.
   static bool on_closure(const Discrete& d) {
     return d.taut && !d.lid_held() && !d.latched && (d.on_seesaw || d.heavy) && !d.seesaw_held();
@@ -266,6 +271,8 @@ class Model {
   }
   // The sandbag's height above the arm's line and its distance along it from the pivot.
   static double height_above_arm(const Kinematics& k);
+  // Negative while |phiS| < vertical_, from cos phiS alone (guard_kinematics has no phiS).
+  double seesaw_vertical_gap(const Kinematics& k) const { return cos_vertical_ - k.cos_s; }
   static double along_arm(const Kinematics& k);
 
   // Contact changes. How the contact that triggered them tends: touching, letting go (its force
@@ -363,6 +370,7 @@ class Model {
   bool small_;  // balloon.radius < r_L
   SmallBalloon sb_;
   double g_, m_s_, m_l_, i_l_, r_l_, a_b_, phi_l0_, vertical_;
+  double cos_vertical_;  // of vertical_ (seesaw_vertical_gap)
   // Extensions (zero or infinite: the paper's machine, docs/model.md §1).
   double drag_, m_b_, i_s_, w_s_, c_p_, c_l_, arm_;
   bool heavy_, radio_;
