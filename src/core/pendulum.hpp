@@ -25,22 +25,24 @@ class PendulumSeries {
     ja[1] = dphi0;
     for (int n = 0; n + 2 <= kOrder; ++n) {
       if (n > 0) {
-        // n c[n] = -sum_j j a[j] s[n-j], n s[n] = sum_j j a[j] c[n-j] (j = 1..n). Odd and even j
-        // summed apart: each sum waits on its last addition, and four short chains run side by side.
-        double dc_odd = 0.0, ds_odd = 0.0, dc_even = 0.0, ds_even = 0.0;
-        int j = 1;
-        for (; j + 1 <= n; j += 2) {
-          dc_odd += ja[j] * s[n - j];
-          ds_odd += ja[j] * c[n - j];
-          dc_even += ja[j + 1] * s[n - j - 1];
-          ds_even += ja[j + 1] * c[n - j - 1];
+        // n c[n] = -sum_j j a[j] s[n-j], n s[n] = sum_j j a[j] c[n-j] (j = 1..n), summed from
+        // j = n down, odd and even j apart: the newest terms (c[n-1], s[n-1], just computed) come
+        // last, so that the older ones are summed while they are still being computed, and four
+        // short chains of additions run side by side instead of two long ones.
+        double dc_a = 0.0, ds_a = 0.0, dc_b = 0.0, ds_b = 0.0;
+        int j = n;
+        for (; j >= 2; j -= 2) {
+          dc_a += ja[j] * s[n - j];
+          ds_a += ja[j] * c[n - j];
+          dc_b += ja[j - 1] * s[n - j + 1];
+          ds_b += ja[j - 1] * c[n - j + 1];
         }
-        if (j == n) {
-          dc_odd += ja[j] * s[0];
-          ds_odd += ja[j] * c[0];
+        if (j == 1) {
+          dc_a += ja[1] * s[n - 1];
+          ds_a += ja[1] * c[n - 1];
         }
-        c[n] = -(dc_odd + dc_even) * kInverse[n];
-        s[n] = (ds_odd + ds_even) * kInverse[n];
+        c[n] = -(dc_a + dc_b) * kInverse[n];
+        s[n] = (ds_a + ds_b) * kInverse[n];
       }
       a_[n + 2] = -w * c[n] * kInverse[n + 1] * kInverse[n + 2];
       ja[n + 2] = (n + 2) * a_[n + 2];
