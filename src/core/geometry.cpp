@@ -80,6 +80,18 @@ RopeGeometry::Linkage RopeGeometry::from_lid(double cos_l, double sin_l, int sid
   return linkage_at(r, el, derivatives);
 }
 
+// Inline: the flow waits on it, and as a call it returned the partials through memory (the
+// 10^4 grid 2.5 % faster inlined).
+inline RopeGeometry::Partials RopeGeometry::partials_at(Vec2 r, Vec2 el) const {
+  // C = |D|^2 - l^2 with D = R(phiS) - E(phiL). Derivatives of R and E:
+  // R_S = perp(R), R_SS = -R; E_L = perp(E - H), E_LL = -(E - H).
+  const Vec2 d = r - (hinge_ + el);
+  const Vec2 r_s{-r.h, r.x};
+  const Vec2 e_l{-el.h, el.x};
+  return {2.0 * dot(d, r_s), -2.0 * dot(d, e_l), 2.0 * (dot(r_s, r_s) - dot(d, r)), -2.0 * dot(r_s, e_l),
+          2.0 * (dot(e_l, e_l) + dot(d, el))};
+}
+
 RopeGeometry::Linkage RopeGeometry::linkage_at(Vec2 r, Vec2 el, bool derivatives) const {
   Linkage g;
   g.cos_s = r.x * inv_rh_;
@@ -95,16 +107,6 @@ RopeGeometry::Linkage RopeGeometry::linkage_at(Vec2 r, Vec2 el, bool derivatives
   g.ds = -c.c_l * inv_cs;
   g.dds = -(c.c_ll + 2.0 * c.c_sl * g.ds + c.c_ss * g.ds * g.ds) * inv_cs;
   return g;
-}
-
-RopeGeometry::Partials RopeGeometry::partials_at(Vec2 r, Vec2 el) const {
-  // C = |D|^2 - l^2 with D = R(phiS) - E(phiL). Derivatives of R and E:
-  // R_S = perp(R), R_SS = -R; E_L = perp(E - H), E_LL = -(E - H).
-  const Vec2 d = r - (hinge_ + el);
-  const Vec2 r_s{-r.h, r.x};
-  const Vec2 e_l{-el.h, el.x};
-  return {2.0 * dot(d, r_s), -2.0 * dot(d, e_l), 2.0 * (dot(r_s, r_s) - dot(d, r)), -2.0 * dot(r_s, e_l),
-          2.0 * (dot(e_l, e_l) + dot(d, el))};
 }
 
 Transfer RopeGeometry::transfer_at(Vec2 r, Vec2 el) const {
