@@ -17,7 +17,8 @@ bool solve_dense(int n, std::array<std::array<double, kMaxUnknowns>, kMaxUnknown
   // Rows in units as different as 1/kg and 1/(kg m^2): equilibrate each to a largest entry of 1.
   for (int i = 0; i < n; ++i) {
     double m = 0.0;
-    for (int j = 0; j < n; ++j) m = std::fmax(m, std::fabs(a[i][j]));
+    // (A comparison, not std::fmax: a call into libm for every entry, and the same result.)
+    for (int j = 0; j < n; ++j) m = std::fabs(a[i][j]) > m ? std::fabs(a[i][j]) : m;
     if (!(m > 0.0) || !std::isfinite(m)) return false;
     const double inv = 1.0 / m;
     for (int j = 0; j < n; ++j) a[i][j] *= inv;

@@ -53,6 +53,11 @@ bool RopeGeometry::seesaw_angle_for(double phi_l, int side, double& phi_s) const
   return true;
 }
 
+namespace {
+// std::fmax(x, 0.0) (0 for NaN too) without its call into libm, on the flow's hot path.
+double at_least_zero(double x) { return x > 0.0 ? x : 0.0; }
+}  // namespace
+
 // The closures below solve the rope's triangle in the form with one division and one square
 // root in a row (the flow's hot path waits on each): with q the squared base and a, b the cosine
 // and sine of the angle at its end times the scale from the base to the side.
@@ -62,7 +67,7 @@ RopeGeometry::Linkage RopeGeometry::from_seesaw(double cos_s, double sin_s, bool
   // Law of cosines in H, R, E (sigma at H; sin sigma >= 0), scaled by 2 r_L / |HR|.
   const double inv_q = 1.0 / dot(hr, hr);
   const double a = 0.5 * (4.0 * r_l_ * r_l_ - l_r_ * l_r_) * inv_q + 0.5;
-  const double b = std::sqrt(std::fmax(4.0 * r_l_ * r_l_ * inv_q - a * a, 0.0));
+  const double b = std::sqrt(at_least_zero(4.0 * r_l_ * r_l_ * inv_q - a * a));
   // E - H is HR turned clockwise by sigma and scaled to 2 r_L (the lid below the rope).
   const Vec2 el{hr.x * a + hr.h * b, hr.h * a - hr.x * b};
   return linkage_at(r, el, derivatives);
@@ -74,7 +79,7 @@ RopeGeometry::Linkage RopeGeometry::from_lid(double cos_l, double sin_l, int sid
   // Law of cosines in O, E, R (rho at the pivot O), scaled by r_H / |E|.
   const double inv_q = 1.0 / dot(e, e);
   const double a = 0.5 * (r_h_ * r_h_ - l_r_ * l_r_) * inv_q + 0.5;
-  const double b = (side > 0 ? 1.0 : -1.0) * std::sqrt(std::fmax(r_h_ * r_h_ * inv_q - a * a, 0.0));
+  const double b = (side > 0 ? 1.0 : -1.0) * std::sqrt(at_least_zero(r_h_ * r_h_ * inv_q - a * a));
   // R is the direction of E turned by +-rho (counterclockwise for side +1), scaled to r_H.
   const Vec2 r{e.x * a - e.h * b, e.h * a + e.x * b};
   return linkage_at(r, el, derivatives);
