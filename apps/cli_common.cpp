@@ -44,7 +44,8 @@ void hand_over_to_full() {
   std::string tried;
   for (const fs::path& p : places) {
     if (::access(p.c_str(), X_OK) != 0) {
-      tried += (tried.empty() ? "" : ", ") + p.string();
+      if (!tried.empty()) tried += ", ";
+      tried += p.string();
       continue;
     }
     ::execv(p.c_str(), argv.data());
