@@ -115,7 +115,7 @@ struct Model::KinematicsPass {
       case Layout::on_rope_by_lid: on_rope_by_lid(); break;
       default: carried_on_rope(); break;
     }
-    if (!trig_s) k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s), trig_s = true;
+    if (!trig_s) trig(m.seesaw_trig_, k.phi_s, k.cos_s, k.sin_s, memo), trig_s = true;
     const double c = k.cos_s, s = k.sin_s;
     k.x = -k.r * c;
     k.h = -k.r * s;
@@ -235,8 +235,8 @@ struct Model::KinematicsPass {
 
   // What every layout shares: both angles' cos and sin, and the balloon.
   void finish() {
-    if (!trig_s) k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s);
-    if (!trig_l) k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
+    if (!trig_s) trig(m.seesaw_trig_, k.phi_s, k.cos_s, k.sin_s, memo);
+    if (!trig_l) trig(m.lid_trig_, k.phi_l, k.cos_l, k.sin_l, memo);
     if (m.small_) return small_balloon();
     k.balloon_x = m.r_l_;
     if (d.balloon_stuck) {

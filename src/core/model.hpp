@@ -212,6 +212,21 @@ class Model {
   };
   mutable Memo<Swing> swing_memo_;
   mutable Memo<LidSwing> lid_swing_memo_;
+  // cos and sin of an angle that stays put for a while (a resting lid, a parked seesaw: a third of
+  // the sincos calls in the sandbag's free fall): the last angle's are kept, and handed out again
+  // for the same angle. Like the memos above, for one thread's integration only.
+  struct Trig {
+    double angle = std::numeric_limits<double>::quiet_NaN(), cos = 1.0, sin = 0.0;
+  };
+  mutable Trig seesaw_trig_, lid_trig_;
+  static void trig(Trig& last, double angle, double& c, double& s, bool memo) {
+    if (!memo) {
+      c = std::cos(angle), s = std::sin(angle);
+      return;
+    }
+    if (!(last.angle == angle)) last.angle = angle, last.cos = std::cos(angle), last.sin = std::sin(angle);
+    c = last.cos, s = last.sin;
+  }
   static void lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l, bool seesaw_angle);
   struct KinematicsPass;  // kinematics.cpp: one evaluation, stage by stage
   Kinematics kinematics_pass(const Discrete& d, const State& y, bool rates, bool memo, bool seesaw_angle) const;
