@@ -56,30 +56,38 @@ bool RopeGeometry::seesaw_angle_for(double phi_l, int side, double& phi_s) const
 namespace {
 // std::fmax(x, 0.0) (0 for NaN too) without its call into libm, on the flow's hot path.
 double at_least_zero(double x) { return x > 0.0 ? x : 0.0; }
+
+// The rope's triangle, for both closures below: on a base v of squared length q, with sides of
+// squared lengths near2 from the base's start and far2 from its end, the third corner is
+// v a + perp(v) b, with a and b the cosine and sine (>= 0; |cos| > 1 clamped to 1) of the angle at
+// the start times sqrt(near2 / q) (the law of cosines). One division and one square root in a row:
+// the flow's hot path waits on each.
+struct Corner {
+  double a, b;
+};
+Corner corner(double q, double near2, double far2) {
+  const double inv_q = 1.0 / q;
+  const double a = 0.5 * (near2 - far2) * inv_q + 0.5;
+  return {a, std::sqrt(at_least_zero(near2 * inv_q - a * a))};
+}
 }  // namespace
 
-// The closures below solve the rope's triangle in the form with one division and one square
-// root in a row (the flow's hot path waits on each): with q the squared base and a, b the cosine
-// and sine of the angle at its end times the scale from the base to the side.
 RopeGeometry::Linkage RopeGeometry::from_seesaw(double cos_s, double sin_s, bool derivatives) const {
   const Vec2 r = seesaw_end({cos_s, sin_s});
   const Vec2 hr = r - hinge_;
-  // Law of cosines in H, R, E (sigma at H; sin sigma >= 0), scaled by 2 r_L / |HR|.
-  const double inv_q = 1.0 / dot(hr, hr);
-  const double a = 0.5 * (4.0 * r_l_ * r_l_ - l_r_ * l_r_) * inv_q + 0.5;
-  const double b = std::sqrt(at_least_zero(4.0 * r_l_ * r_l_ * inv_q - a * a));
+  // The triangle H, R, E (sigma at H; sin sigma >= 0).
+  const Corner t = corner(dot(hr, hr), 4.0 * r_l_ * r_l_, l_r_ * l_r_);
   // E - H is HR turned clockwise by sigma and scaled to 2 r_L (the lid below the rope).
-  const Vec2 el{hr.x * a + hr.h * b, hr.h * a - hr.x * b};
+  const Vec2 el{hr.x * t.a + hr.h * t.b, hr.h * t.a - hr.x * t.b};
   return linkage_at(r, el, derivatives);
 }
 
 RopeGeometry::Linkage RopeGeometry::from_lid(double cos_l, double sin_l, int side, bool derivatives) const {
   const Vec2 el{2.0 * r_l_ * cos_l, 2.0 * r_l_ * sin_l};
   const Vec2 e = hinge_ + el;
-  // Law of cosines in O, E, R (rho at the pivot O), scaled by r_H / |E|.
-  const double inv_q = 1.0 / dot(e, e);
-  const double a = 0.5 * (r_h_ * r_h_ - l_r_ * l_r_) * inv_q + 0.5;
-  const double b = (side > 0 ? 1.0 : -1.0) * std::sqrt(at_least_zero(r_h_ * r_h_ * inv_q - a * a));
+  // The triangle O, E, R (rho at the pivot O).
+  const Corner t = corner(dot(e, e), r_h_ * r_h_, l_r_ * l_r_);
+  const double a = t.a, b = (side > 0 ? 1.0 : -1.0) * t.b;
   // R is the direction of E turned by +-rho (counterclockwise for side +1), scaled to r_H.
   const Vec2 r{e.x * a - e.h * b, e.h * a + e.x * b};
   return linkage_at(r, el, derivatives);
