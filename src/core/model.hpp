@@ -212,9 +212,9 @@ class Model {
   };
   mutable Memo<Swing> swing_memo_;
   mutable Memo<LidSwing> lid_swing_memo_;
-  // cos and sin of an angle that stays put for a while (a resting lid, a parked seesaw: a third of
-  // the sincos calls in the sandbag's free fall): the last angle's are kept, and handed out again
-  // for the same angle. Like the memos above, for one thread's integration only.
+  // cos and sin of an angle that stays put for a while (a resting lid, a parked seesaw: every guard
+  // evaluation of the sandbag's fall took a sincos of each): the last angle's are kept, and handed
+  // out again for the same angle. Like the memos above, for one thread's integration only.
   struct Trig {
     double angle = std::numeric_limits<double>::quiet_NaN(), cos = 1.0, sin = 0.0;
   };
