@@ -44,6 +44,7 @@ def test_the_notebook_runs_from_any_folder(tmp_path):
     assert len(figures) >= 5  # Fig. 8, the samples, Fig. 9, the heat map, the radio
     assert "Without malfunctions the lid of Kermit's box is open" in text
     assert "tension: 0.0 N" not in text and "the rope's jerk" in text
+    assert "of the kinetic energy" in text  # an impact's loss as a share of what it can lose
 
 
 def test_the_first_cell_gives_a_command_the_project_installs():
@@ -65,13 +66,15 @@ def test_the_students_notebook_runs_with_the_exercises_open(tmp_path):
 
 def test_the_teacher_s_copy_answers_every_exercise(tmp_path):
     # Its checks: the Lagrangian gives the paper's eqs. (3) and (4) (SymPy), these agree with the
-    # simulator's accelerations at five states, the rope law loses energy where the kinetic-energy
-    # law keeps it, and every landing time of a sweep is the free fall's.
+    # simulator's accelerations at five states, the rope law loses that share of the free fall's
+    # kinetic energy where the kinetic-energy law keeps it, and every landing time of a sweep is the
+    # free fall's.
     text, figures = execute(TEACHER, tmp_path / "teacher")
     assert "still open" not in text
     for line in ("Both accelerations are the paper's eqs. (3) and (4).",
                  "The simulator moves by the paper's equations (3) and (4).",
-                 "every landing time is the free fall's"):
+                 "every landing time is the free fall's",
+                 "kinetic energy lost at the pull: rope law"):
         assert line in text
     assert len(figures) == 1
 
