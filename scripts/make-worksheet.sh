@@ -12,7 +12,7 @@
 set -eu
 cd "$(dirname "$0")/.."
 ROOT=$(pwd)
-BUILD=build OUT= CHECK=0 IMAGES=0
+BUILD=build OUT='' CHECK=0 IMAGES=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --build) BUILD=$2; shift 2 ;;
