@@ -61,7 +61,7 @@ for (const f of docs) {
 }
 // The lesson's steps as pictures: the link, the event to show, the picture's name.
 const steps = [['#machine=example1', 'rope_taut', 'teaching-jerk'],
-               ['#machine=example1&compare=laws:', 'rope_taut', 'teaching-laws'],
+               ['#machine=example1&compare=laws:', 'balloon_caught', 'teaching-laws'],
                ['#machine=example1&rope.stiffness=100000&compare=rigid:', 'rope_slack', 'teaching-stretchy'],
                ['#machine=konstanz', 'lid_open', 'teaching-konstanz']];
 
