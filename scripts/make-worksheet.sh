@@ -22,7 +22,6 @@ while [ $# -gt 0 ]; do
     *) echo "make-worksheet: unknown option '$1' (--build DIR, --out DIR, --check-links, --images)" >&2; exit 2 ;;
   esac
 done
-BUILD=$(cd "$BUILD" 2>/dev/null && pwd) || { echo "make-worksheet: no build folder '$BUILD'" >&2; exit 2; }
 OUT=${OUT:-$BUILD}
 mkdir -p "$OUT"
 CHROMIUM=${WHATNEXT_CHROMIUM:-/usr/bin/chromium}
@@ -40,6 +39,8 @@ for lang in en de; do
 done
 
 [ "$CHECK" = 1 ] || exit 0
+GIVEN=$BUILD
+BUILD=$(cd "$GIVEN" 2>/dev/null && pwd) || { echo "make-worksheet: no build folder '$GIVEN'" >&2; exit 2; }
 [ -f "$BUILD/web/whatnext.html" ] || { echo "make-worksheet: no page at $BUILD/web/whatnext.html (build with WHATNEXT_WEB=ON)" >&2; exit 2; }
 [ -x "$BUILD/whatnext" ] || { echo "make-worksheet: no $BUILD/whatnext" >&2; exit 2; }
 IMGDIR=
