@@ -99,3 +99,12 @@ def test_the_committed_notebooks_have_no_outputs(notebook):
     for c in cells:
         if c["cell_type"] == "code":
             assert c["outputs"] == [] and c["execution_count"] is None
+
+
+@pytest.mark.parametrize("notebook", [NOTEBOOK, STUDENTS, TEACHER])
+def test_the_notebooks_point_to_the_impact_question_and_the_lesson(notebook):
+    # Which impact law is right (a rope that stretches) and the lesson built on the same jerk.
+    cells = json.loads(notebook.read_text())["cells"]
+    text = "".join("".join(c["source"]) for c in cells if c["cell_type"] == "markdown")
+    for page in ("docs/impact.md", "docs/teaching.md"):
+        assert page in text and (ROOT / page).is_file()
