@@ -29,7 +29,7 @@ NotCovered; it never guesses.
     # -> [("sandbag_lands", 0.2431...), ("rope_taut", ...), ...]
 
 Command line: whatnext_reference.py FILE.toml [KEY=VALUE ...] prints the events.
-Needs Debian's python3-sympy (and Python >= 3.11 for tomllib).
+Needs Debian's python3-sympy (and Python >= 3.11 for tomllib). README.md here says more.
 """
 import math
 import sys
