@@ -2,17 +2,22 @@
 """Is `whatnext sweep` as accurate as its --accuracy says, beyond the issue's grid?
 
 For each family of random machines (a Latin hypercube around one of the paper's examples, with
-an extension or an impact law switched on), the same machines are swept twice: at the default
-accuracy of 1e-8 s, and as a reference at run.tolerance 1e-14 (events located to 1e-14 s).
-Every event column (each event type's first time) and the outcome are compared. Printed per
-family: the worst difference, as a fraction of the accuracy, and the machines whose outcome or
-set of events differs. docs/performance.md ("Sweeps") quotes its output.
+an extension or an impact law switched on), the same machines are swept at the default accuracy
+of 1e-8 s and compared with a reference: by default the same build at run.tolerance 1e-14
+(events located to 1e-14 s), or, with REFERENCE `solver`, the independent solver of
+scripts/reference (another method family, no code shared with whatnext) for the families it
+covers (the massless seesaw: ex1, ex2-lid, ex3, ex4). Every event column (each event type's first
+time) and the outcome are compared. Printed per family: the worst difference, as a fraction of the
+accuracy, and the machines whose outcome or set of events differs (and, with the solver, how many
+machines it does not cover). docs/performance.md ("Sweeps") quotes its output.
 
-Usage: scripts/check-sweep-accuracy.py [WHATNEXT] [MACHINES] [SEED] [FAMILY,...|all] [REFERENCE]
+Usage: scripts/check-sweep-accuracy.py [WHATNEXT] [MACHINES] [SEED] [FAMILY,...|all|solver] [REFERENCE]
   defaults: build/whatnext, 2000 machines a family, seed 11, every family, the reference runs
-  made by WHATNEXT itself. REFERENCE: another build for them (say, one before a change to how
-  often the guards are looked at, which a reference taking the same steps could not judge)
-Needs only the Python standard library.
+  made by WHATNEXT itself. FAMILY `solver`: the families the solver covers. REFERENCE: another
+  build for the reference runs (say, one before a change to how often the guards are looked at,
+  which a reference taking the same steps could not judge), or `solver`.
+The builds need only the Python standard library; the solver needs Debian's python3-sympy
+(about 0.1 s of CPU a machine).
 """
 import csv
 import os
@@ -63,6 +68,34 @@ FAMILIES = {
                      "--vary", "start.sandbag_height=0.3:1.5"],
 }
 NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
+SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4"]
+
+
+def solve(args, got):
+    """The reference solver's rows for the machines of a sweep's rows: each event type's first
+    time and the outcome, or the outcome 'not covered'."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, os.path.join(here, "reference"))
+    import whatnext_reference as ref
+    example = os.path.join(os.path.dirname(here), "examples", f"example{args[args.index('--example') + 1]}.toml")
+    fixed = {}
+    for flag, item in zip(args, args[1:]):
+        if flag == "--set":
+            key, value = item.split("=", 1)
+            fixed[key] = value
+    rows = []
+    for row in got:
+        over = dict(fixed, **{k: float(v) for k, v in row.items() if "." in k})
+        try:
+            events = ref.simulate(ref.load_machine(example, over))
+        except ref.NotCovered:
+            rows.append({"index": row["index"], "outcome": "not covered"})
+            continue
+        out = {"index": row["index"], "outcome": events[-1][0], "outcome_t": repr(events[-1][1])}
+        for name, t in events:
+            out.setdefault(name, repr(t))
+        rows.append({k: out.get(k, "") for k in row} | {"outcome": out["outcome"]})
+    return rows
 
 
 def sweep(whatnext, args, out, reference):
@@ -80,14 +113,25 @@ def main():
     machines = sys.argv[2] if len(sys.argv) > 2 else "2000"
     seed = sys.argv[3] if len(sys.argv) > 3 else "11"
     chosen = sys.argv[4].split(",") if len(sys.argv) > 4 and sys.argv[4] != "all" else list(FAMILIES)
+    if chosen == ["solver"]:
+        chosen = SOLVER_FAMILIES
     reference = sys.argv[5] if len(sys.argv) > 5 else whatnext
     with tempfile.TemporaryDirectory() as work:
         for name in chosen:
             args = FAMILIES[name] + ["--samples", machines, "--seed", seed]
             got = sweep(whatnext, args, os.path.join(work, "got.csv"), False)
-            ref = sweep(reference, args, os.path.join(work, "ref.csv"), True)
+            if reference == "solver":
+                if name not in SOLVER_FAMILIES:
+                    print(f"{name}: not covered by the solver", flush=True)
+                    continue
+                ref = solve(args, got)
+            else:
+                ref = sweep(reference, args, os.path.join(work, "ref.csv"), True)
             worst, where, other, valid = 0.0, "-", [], 0
+            uncovered = sum(1 for y in ref if y["outcome"] == "not covered")
             for x, y in zip(got, ref):
+                if y["outcome"] == "not covered":
+                    continue
                 if x["outcome"] != y["outcome"]:
                     other.append(x["index"])
                     continue
@@ -97,13 +141,14 @@ def main():
                 for k in x:
                     if k in NOT_TIMES or "." in k:  # the varied keys have a dot
                         continue
-                    if (x[k] == "") != (y[k] == ""):
+                    if (x[k] == "") != (y.get(k, "") == ""):
                         other.append(x["index"])
                         break
                     if x[k] and abs(float(x[k]) - float(y[k])) > worst:
                         worst, where = abs(float(x[k]) - float(y[k])), f"{k} of machine {x['index']}"
             print(f"{name}: {valid} valid machines of {len(got)}; worst {worst:.3g} s = {worst / ACCURACY:.2f} of "
-                  f"the accuracy ({where}); other events or outcome: {len(other)} {other[:5]}", flush=True)
+                  f"the accuracy ({where}); other events or outcome: {len(other)} {other[:5]}"
+                  + (f"; not covered by the solver: {uncovered}" if uncovered else ""), flush=True)
 
 
 if __name__ == "__main__":

@@ -162,3 +162,46 @@ TEST(RandomMachines, SandbagSlidingIntoThePivotEndsTheRun) {
 }
 
 }  // namespace
+
+// --- The machine students build (examples/konstanz.toml, docs/extensions.md) ------------------
+
+namespace {
+// The string's pull once straight: the balloon's net lift g (V (rho_air - rho_He) - m_rubber),
+// computed here from the machine's inputs, not read from the program.
+double net_lift(const wn::Machine& m) {
+  const double volume = 4.0 / 3.0 * 3.14159265358979323846 * std::pow(m.balloon_radius, 3);
+  return m.gravity * (volume * (m.air_density - m.helium_density) - m.balloon_rubber_mass);
+}
+}  // namespace
+
+TEST(Konstanz, ARealPartyBalloonCannotFlipTheSwitch) {
+  // The preset states a 20 cm latex balloon with a 2.2 g skin in Konstanz's air and a 0.03 N
+  // switch: by hand its lift is 0.0183 N, so the radio stays off; the program must agree, and must
+  // switch it on as soon as the switch asks a hair less than the lift (and not a hair more).
+  const wn::Scenario sc = wn::build_scenario(wn::example_config(std::string_view("konstanz")));
+  const double lift = net_lift(sc.machine);
+  EXPECT_NEAR(lift, 0.0183, 1e-4);
+  EXPECT_LT(lift, sc.machine.switch_force);
+  EXPECT_EQ(wn::simulate(sc).outcome().type, wn::EventType::switch_stays_off);
+  for (double factor : {0.999, 1.001}) {
+    wn::Config cfg = wn::example_config(std::string_view("konstanz"));
+    wn::apply_set(cfg, "radio.switch_force=" + std::to_string(lift * factor));
+    EXPECT_EQ(wn::simulate(wn::build_scenario(cfg)).outcome().type,
+              factor < 1 ? wn::EventType::radio_on : wn::EventType::switch_stays_off)
+        << factor;
+  }
+}
+
+TEST(Konstanz, TheBuildThatWorksSwitchesTheRadioOn) {
+  // docs/extensions.md's fix: a balloon filled to 22 cm and a 0.01 N switch; by hand its lift is
+  // 0.0316 N, three times the switch's force, and the radio comes on after the lid has opened.
+  wn::Config cfg = wn::example_config(std::string_view("konstanz"));
+  wn::apply_set(cfg, "balloon.radius=0.11");
+  wn::apply_set(cfg, "radio.switch_force=0.01");
+  const wn::Scenario sc = wn::build_scenario(cfg);
+  EXPECT_GT(net_lift(sc.machine), 3 * sc.machine.switch_force);
+  const wn::Result r = wn::simulate(sc);
+  EXPECT_EQ(r.outcome().type, wn::EventType::radio_on);
+  ASSERT_FALSE(times_of(r, wn::EventType::lid_open).empty());
+  EXPECT_GT(r.outcome().t, times_of(r, wn::EventType::lid_open).front());
+}

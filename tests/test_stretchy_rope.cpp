@@ -298,6 +298,8 @@ TEST(StretchyRope, TheBuiltMachineAndTheRadioKeepTheirBooks) {
     wn::Config cfg = wn::parse_toml(std::string(wn::example_toml("konstanz")), "konstanz.toml");
     wn::apply_set(cfg, std::string("rope.stiffness=") + k);
     wn::apply_set(cfg, "rope.damping=1");
+    wn::apply_set(cfg, "balloon.radius=0.11");  // the build whose balloon flips its switch
+    wn::apply_set(cfg, "radio.switch_force=0.01");  // (docs/extensions.md)
     const wn::Scenario sc = wn::build_scenario(cfg);
     const wn::Result r = wn::simulate(sc);
     EXPECT_EQ(r.outcome().type, wn::EventType::radio_on) << k;

@@ -1,0 +1,555 @@
+#!/usr/bin/env python3
+"""An accuracy reference for whatnext, written apart from its C++ code.
+
+The paper's machine with the massless seesaw (docs/model.md, sections 1-8): the sandbag falling,
+landing on the arm, the rope jerked straight (the `rope` impact law: the perfectly inelastic
+impact), the rope going slack, the lid swinging and landing on the box, the balloon caught and
+freed by the lid, and the stops (lid open, seesaw vertical, sandbag at the pivot, timeout).
+
+What is independent of whatnext here:
+* the equations of motion: the straight-rope phase (M4) is derived at import by SymPy from the
+  Lagrangian, with the lid's angle phiL a function of the seesaw's angle whose first and second
+  derivatives come from differentiating the rope's closure |R - E|^2 = l_R^2 implicitly;
+  the lid's angle is carried as a state of its own (phiL' = k phiS'), with no closed-form
+  closure, no atan2 branches and no chart switch;
+* the impact: the projection of the velocities onto the straight rope in the kinetic energy's
+  metric, computed numerically (not eq. 7 written out);
+* the integrator: Gragg-Bulirsch-Stoer extrapolation (the modified midpoint rule, Richardson
+  extrapolated in h^2 to order 16), not a Runge-Kutta method, with no dense output;
+* the events: each guard is watched at step ends (steps also bounded by the angles turned), and a
+  sign change is located by bisection, re-integrating from the step's start to each trial time
+  (a single extrapolation step), to 1e-15 s: no interpolant, no expansion of the guard.
+
+Machines it does not cover (a seesaw with mass, the extensions, other impact laws, a rope straight
+at the start or at a landing, a lid left resting on a straight rope, a jerk with k < 0 ...) raise
+NotCovered; it never guesses.
+
+    from whatnext_reference import simulate, load_machine
+    events = simulate(load_machine("examples/example2.toml", {"geometry.rope_length": 0.7}))
+    # -> [("sandbag_lands", 0.2431...), ("rope_taut", ...), ...]
+
+Command line: whatnext_reference.py FILE.toml [KEY=VALUE ...] prints the events.
+Needs Debian's python3-sympy (and Python >= 3.11 for tomllib). README.md here says more.
+"""
+import math
+import sys
+import tomllib
+
+import mpmath
+import sympy as sp
+
+
+class NotCovered(Exception):
+    """The machine, or a situation in its run, is outside what this reference models."""
+
+
+# ----------------------------------------------------------------------------------------------
+# The equations, derived once by SymPy.
+
+def _derive():
+    s, L, r, rd, sd = sp.symbols("phiS phiL r rd sd", real=True)
+    rH, Hx, Hy, a, lR, m, mL, rL, g, I = sp.symbols("rH Hx Hy a lR m mL rL g I", positive=True)
+    R = sp.Matrix([rH * sp.cos(s), rH * sp.sin(s)])
+    E = sp.Matrix([Hx + a * sp.cos(L), Hy + a * sp.sin(L)])
+    C = (R - E).dot(R - E) - lR ** 2
+    # phiL = P(phiS) on the straight rope: C(phiS, P(phiS)) = 0, differentiated twice.
+    P = sp.Function("P")
+    Cs = C.subs(L, P(s))
+    d1 = sp.solve(sp.diff(Cs, s), sp.Derivative(P(s), s))[0]
+    d2 = sp.solve(sp.diff(Cs, s, 2), sp.Derivative(P(s), (s, 2)))[0]
+    k_expr = d1.subs(P(s), L)
+    kp_expr = d2.subs(sp.Derivative(P(s), s), d1).subs(P(s), L)
+    # The Lagrangian of M4: the sandbag at (-r cos phiS, -r sin phiS) on the arm, the lid P(phiS).
+    t = sp.symbols("t")
+    rt, st = sp.Function("r")(t), sp.Function("s")(t)
+    Pt = P(st)
+    x, h = -rt * sp.cos(st), -rt * sp.sin(st)
+    T = m / 2 * (sp.diff(x, t) ** 2 + sp.diff(h, t) ** 2) + I / 2 * sp.diff(Pt, t) ** 2
+    V = m * g * h + mL * g * rL * sp.sin(Pt)
+    Lag = T - V
+    eqs = [sp.diff(sp.diff(Lag, sp.diff(q, t)), t) - sp.diff(Lag, q) for q in (rt, st)]
+    k, kp = sp.symbols("k kp")
+    rdd, sdd = sp.symbols("rdd sdd")
+    rep = {sp.Derivative(rt, (t, 2)): rdd, sp.Derivative(st, (t, 2)): sdd}
+    eqs = [e.subs(rep) for e in eqs]
+    rep2 = {sp.Derivative(P(st), st, 2): kp}
+    eqs = [e.subs(sp.Subs(sp.Derivative(P(s), (s, 2)), s, st), kp) for e in eqs]
+    eqs = [e.doit() for e in eqs]
+    eqs = [e.subs({sp.Derivative(P(st), (st, 2)): kp}) for e in eqs]
+    eqs = [e.subs({sp.Derivative(P(st), st): k}) for e in eqs]
+    eqs = [e.subs({sp.Derivative(rt, t): rd, sp.Derivative(st, t): sd}) for e in eqs]
+    eqs = [e.subs({P(st): L, rt: r, st: s}) for e in eqs]
+    sol = sp.solve(eqs, [rdd, sdd], dict=True)[0]
+    params = (rH, Hx, Hy, a, lR, m, mL, rL, g, I)
+    geo = (s, L) + params
+    acc = [sp.simplify(sol[rdd]), sp.simplify(sol[sdd])]
+    funs = []
+    for module in ("math", "mpmath"):
+        funs.append({
+            "C": sp.lambdify(geo, C, module),
+            "Cs": sp.lambdify(geo, sp.diff(C, s), module),
+            "CL": sp.lambdify(geo, sp.diff(C, L), module),
+            "k": sp.lambdify(geo, k_expr, module),
+            "kp": sp.lambdify(geo, kp_expr, module),
+            "acc": sp.lambdify((r, s, L, rd, sd, k, kp) + params, acc, module),
+        })
+    return funs
+
+
+F_FLOAT, F_MP = _derive()
+# The numbers a run computes with: floats (math) by default, or mpmath's at more digits (precise()).
+N, F = math, F_FLOAT
+
+
+def num(x):
+    return N.mpf(x) if N is not math else float(x)
+
+
+def precise(digits):
+    """Run with mpmath's numbers at this many digits (None: back to floats). Slow: for the
+    ill-conditioned events where a float's rounding of the rope's gap is the error."""
+    global N, F
+    if digits:
+        N, F = mpmath, F_MP
+        mpmath.mp.dps = digits
+    else:
+        N, F = math, F_FLOAT
+
+
+# ----------------------------------------------------------------------------------------------
+# The machine's inputs.
+
+DEFAULTS = {
+    "geometry.seesaw_right_arm": 0.6, "geometry.lid_half_length": 0.2, "geometry.rope_length": 1.0,
+    "geometry.hinge_distance": 0.8, "geometry.hinge_angle": 27.0, "masses.sandbag": 0.6,
+    "masses.lid": 0.5, "air.density": 1.29, "air.helium_density": 0.18, "balloon.model": "program",
+    "start.sandbag_x": -0.3, "start.sandbag_height": 1.0, "start.seesaw_angle": -25.0,
+    "start.lid_angle": 5.0, "run.t_max": 5.0, "run.vertical_margin": 0.9, "run.gravity": 9.81,
+    "run.impact_law": "rope",
+}
+# Keys that do not change the physics (how whatnext integrates or samples).
+IGNORED = {"run.output_step", "run.step", "run.integrator", "run.tolerance"}
+OTHER = {"geometry.hinge_offset", "geometry.rope_on_lid", "balloon.radius"}
+
+
+def load_machine(path=None, overrides=None):
+    """The machine of a TOML file (or the defaults) with 'section.key' overrides, as a dict."""
+    keys = dict(DEFAULTS)
+    if path:
+        with open(path, "rb") as f:
+            for section, table in tomllib.load(f).items():
+                for name, value in table.items():
+                    keys[f"{section}.{name}"] = value
+    for name, value in (overrides or {}).items():
+        keys[name] = value
+    if "geometry.hinge_offset" in (overrides or {}):
+        keys.pop("geometry.hinge_distance", None)
+    for name in keys:
+        if name not in DEFAULTS and name not in IGNORED and name not in OTHER:
+            raise NotCovered(f"{name} is not modelled by the reference")
+    if keys["run.impact_law"] != "rope":
+        raise NotCovered("only the rope impact law")
+    return keys
+
+
+class Machine:
+    def __init__(self, keys):
+        self.rH = num(keys["geometry.seesaw_right_arm"])
+        self.rL = num(keys["geometry.lid_half_length"])
+        self.lR = num(keys["geometry.rope_length"])
+        if "geometry.hinge_offset" in keys:
+            dx, dh = keys["geometry.hinge_offset"]
+            self.Hx, self.Hy = num(dx), -num(dh)
+        else:
+            f, gam = num(keys["geometry.hinge_distance"]), N.radians(num(keys["geometry.hinge_angle"]))
+            self.Hx, self.Hy = f * N.cos(gam), -f * N.sin(gam)
+        self.a = num(keys.get("geometry.rope_on_lid", 2 * self.rL))
+        self.m = num(keys["masses.sandbag"])
+        self.mL = num(keys["masses.lid"])
+        self.I = self.mL * (2 * self.rL) ** 2 / 3
+        self.g = num(keys["run.gravity"])
+        self.rB = num(keys.get("balloon.radius", self.rL))
+        if self.rB < self.rL:
+            raise NotCovered("a balloon smaller than the box")
+        rho_a, rho_he = num(keys["air.density"]), num(keys["air.helium_density"])
+        denominator = {"program": rho_a, "lagrangian": rho_he, "added-mass": rho_he + rho_a / 2}
+        self.aB = self.g * (rho_a - rho_he) / denominator[keys["balloon.model"]]
+        self.x0, self.h0 = num(keys["start.sandbag_x"]), num(keys["start.sandbag_height"])
+        self.s0 = N.radians(num(keys["start.seesaw_angle"]))
+        self.L0 = N.radians(num(keys["start.lid_angle"]))
+        self.t_max = num(keys["run.t_max"])
+        self.top = N.pi / 2 - N.radians(num(keys["run.vertical_margin"]))
+        self.params = (self.rH, self.Hx, self.Hy, self.a, self.lR, self.m, self.mL, self.rL, self.g, self.I)
+
+    # geometry
+    def C(self, s, L):
+        return F["C"](s, L, *self.params)
+
+    def k(self, s, L):
+        return F["k"](s, L, *self.params), F["kp"](s, L, *self.params)
+
+    def m4_acc(self, r, s, L, rd, sd):
+        k, kp = self.k(s, L)
+        rdd, sdd = F["acc"](r, s, L, rd, sd, k, kp, *self.params)
+        Ldd = k * sdd + kp * sd * sd
+        torque = self.I * Ldd + self.mL * self.g * self.rL * N.cos(L)  # the rope's on the lid
+        return rdd, sdd, k, torque
+
+    def lid_free_acc(self, L):
+        return -self.mL * self.g * self.rL * N.cos(L) / self.I
+
+    def h_lim(self, L, Ld):
+        c, sn = N.cos(L), N.sin(L)
+        return -self.rB * c / (1 + sn), self.rB * Ld / (1 + sn)
+
+    def h_lim_acc(self, L, Ld, Ldd):
+        sn, c = N.sin(L), N.cos(L)
+        return self.rB * (Ldd / (1 + sn) - Ld * Ld * c / (1 + sn) ** 2)
+
+
+# ----------------------------------------------------------------------------------------------
+# Gragg-Bulirsch-Stoer extrapolation.
+
+SEQ = [2 * (j + 1) for j in range(8)]
+
+
+def gbs(f, y, h):
+    """One extrapolation step of the autonomous y' = f(y); the result and its error estimate."""
+    table = []
+    for j, n in enumerate(SEQ):
+        hs = h / n
+        z0 = y
+        d = f(z0)
+        z1 = [a + hs * b for a, b in zip(z0, d)]
+        for _ in range(n - 1):
+            d = f(z1)
+            z0, z1 = z1, [a + 2 * hs * b for a, b in zip(z0, d)]
+        d = f(z1)
+        row = [[0.5 * (a + b + hs * c) for a, b, c in zip(z0, z1, d)]]
+        for kk in range(1, j + 1):
+            ratio = (n / SEQ[j - kk]) ** 2 - 1
+            row.append([a + (a - b) / ratio for a, b in zip(row[kk - 1], table[j - 1][kk - 1])])
+        table.append(row)
+    best, prev = table[-1][-1], table[-1][-2]
+    return best, [abs(a - b) for a, b in zip(best, prev)]
+
+
+# ----------------------------------------------------------------------------------------------
+# The run.
+
+class Run:
+    def __init__(self, mc, tol=1e-13):
+        self.mc, self.tol = mc, tol
+        self.events = []
+        self.energy = []
+
+    # The state: sandbag 'air' (M1) or 'arm' with rope 'slack' (M3, free fall) or 'taut' (M4);
+    # free fall: y = [x, h, vx, vh, phiL, phiL', hB, vB]; M4: y = [r, phiS, phiL, r', phiS', hB, vB].
+    def flow(self, y):
+        mc = self.mc
+        if self.rope == "taut":
+            r, s, L, rd, sd, hB, vB = y
+            rdd, sdd, k, _ = mc.m4_acc(r, s, L, rd, sd)
+            return [rd, sd, k * sd, rdd, sdd] + self.balloon_flow(vB)
+        x, h, vx, vh, L, Ld, hB, vB = y
+        Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L)
+        return [vx, vh, 0.0, -mc.g, Ld, Ldd] + self.balloon_flow(vB)
+
+    def balloon_flow(self, vB):
+        # A stuck balloon is wherever the lid's limit is: its two entries are not integrated.
+        return [vB, self.mc.aB] if self.balloon == "free" else [0.0, 0.0]
+
+    def kin(self, y):
+        """phiS, phiS', phiL, phiL', phiL'' and the sandbag's r of the state y."""
+        mc = self.mc
+        if self.rope == "taut":
+            r, s, L, rd, sd = y[:5]
+            rdd, sdd, k, _ = mc.m4_acc(r, s, L, rd, sd)
+            kk, kp = mc.k(s, L)
+            return s, sd, L, k * sd, k * sdd + kp * sd * sd, r
+        x, h, vx, vh, L, Ld = y[:6]
+        Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L)
+        if self.bag == "air":
+            return self.s_air, 0.0, L, Ld, Ldd, N.hypot(x, h)
+        r = N.hypot(x, h)
+        s = N.atan2(-h, -x)
+        sd = (vx * N.sin(s) - vh * N.cos(s)) / r
+        return s, sd, L, Ld, Ldd, r
+
+    def guards(self, y):
+        """name -> value; an event where a value reaches zero from above."""
+        mc = self.mc
+        s, sd, L, Ld, Ldd, r = self.kin(y)
+        out = {"lid_open": mc.top - L}
+        if self.lid == "free":
+            out["lid_rests"] = L - mc.L0
+        hl, hld = mc.h_lim(L, Ld)
+        if self.balloon == "free":
+            out["balloon_caught"] = hl - y[-2]
+        else:
+            out["balloon_free"] = mc.aB - mc.h_lim_acc(L, Ld, Ldd)
+        if self.bag == "air":
+            x, h = y[0], y[1]
+            out["sandbag_lands"] = -x * N.sin(self.s_air) + h * N.cos(self.s_air)
+            out["rope_taut"] = -mc.C(self.s_air, L)
+            return out
+        out["seesaw_vertical"] = mc.top - abs(s)
+        if self.rope == "slack":
+            out["rope_taut"] = -mc.C(s, L)
+            out["sandbag_at_pivot"] = -y[0]
+        else:
+            _, _, k, torque = mc.m4_acc(*y[:5])
+            out["rope_slack"] = torque
+            out["k"] = k
+            out["sandbag_at_pivot"] = y[0]
+        return out
+
+    def energy_of(self, y):
+        mc = self.mc
+        s, sd, L, Ld, Ldd, r = self.kin(y)
+        if self.rope == "taut":
+            v2 = y[3] ** 2 + (r * sd) ** 2
+            h = -r * N.sin(s)
+        else:
+            v2 = y[2] ** 2 + y[3] ** 2
+            h = y[1]
+        return 0.5 * mc.m * v2 + mc.m * mc.g * h + 0.5 * mc.I * Ld * Ld + mc.mL * mc.g * mc.rL * N.sin(L)
+
+    def to_free_fall(self, y):
+        r, s, L, rd, sd, hB, vB = y
+        for _ in range(3):  # the lid's angle back onto the closure, from the integration's drift
+            L -= F["C"](s, L, *self.mc.params) / F["CL"](s, L, *self.mc.params)
+        Ld = self.mc.k(s, L)[0] * sd
+        x, h = -r * N.cos(s), -r * N.sin(s)
+        vx = -rd * N.cos(s) + r * sd * N.sin(s)
+        vh = -rd * N.sin(s) - r * sd * N.cos(s)
+        return [x, h, vx, vh, L, Ld, hB, vB]
+
+    def event(self, name, t):
+        self.events.append((name, t))
+
+    # --- what happens at an event
+    def settle_balloon(self, y, t, released, v_before=None):
+        """A stuck balloon that the lid leaves behind goes free: by its rate if an impact jumped the
+        lid's (v_before: the balloon's speed before it), else by its acceleration."""
+        if self.balloon != "stuck":
+            return y
+        s, sd, L, Ld, Ldd, r = self.kin(y)
+        hl, hld = self.mc.h_lim(L, Ld)
+        if v_before is None:
+            v_before = hld
+        if hld > v_before + 1e-12 * (1 + abs(v_before)) or (
+                hld >= v_before and self.mc.h_lim_acc(L, Ld, Ldd) > self.mc.aB):
+            self.balloon = "free"
+            self.event("balloon_free", t)
+            released.add("balloon_caught")
+            return y[:-2] + [hl, v_before]
+        return y[:-2] + [hl, hld]
+
+    def jerk(self, y, t, released):
+        """The rope jerked straight from free fall with the sandbag on the arm."""
+        mc = self.mc
+        x, h, vx, vh, L, Ld, hB, vB = y
+        r = N.hypot(x, h)
+        s = N.atan2(-h, -x)
+        rd = -vx * N.cos(s) - vh * N.sin(s)
+        sd = (vx * N.sin(s) - vh * N.cos(s)) / r
+        k, _ = mc.k(s, L)
+        if k <= 0:
+            raise NotCovered(f"the rope jerked with k = {k:.3g} <= 0 at t = {t}")
+        e0 = self.energy_of(y)
+        if self.balloon == "stuck":
+            hB, vB = mc.h_lim(L, Ld)  # moving with the lid until the jerk
+        # Project (r', phiS', phiL') onto phiL' = k phiS' in the metric diag(m, m r^2, I).
+        minv = (1 / mc.m, 1 / (mc.m * r * r), 1 / mc.I)
+        n = (0.0, -k, 1.0)
+        lam = (n[1] * sd + n[2] * Ld) / (n[1] ** 2 * minv[1] + n[2] ** 2 * minv[2])
+        sd1 = sd - minv[1] * n[1] * lam
+        Ld1 = Ld - minv[2] * n[2] * lam
+        if self.lid == "rest" and Ld1 <= 0:
+            raise NotCovered(f"a jerk that leaves the lid on the box at t = {t}")
+        self.lid, self.rope = "free", "taut"
+        y4 = [r, s, L, rd, sd1, hB, vB]
+        self.event("rope_taut", t)
+        self.energy.append((t, e0, self.energy_of(y4)))
+        # hB, vB of a stuck balloon: decided on the velocities after the jerk
+        _, _, _, torque = mc.m4_acc(*y4[:5])
+        if torque < 0:
+            self.rope = "slack"
+            self.event("rope_slack", t)
+            released.add("rope_taut")
+            return self.settle_balloon(self.to_free_fall(y4), t, released, vB)
+        released.add("rope_slack")
+        return self.settle_balloon(y4, t, released, vB)
+
+    def simulate(self):
+        mc = self.mc
+        t = 0.0
+        # start: the sandbag on the arm if it is within 1e-9 m of it
+        gap = -mc.x0 * N.sin(mc.s0) + mc.h0 * N.cos(mc.s0)
+        self.bag = "arm" if abs(gap) <= 1e-9 else "air"
+        self.s_air = mc.s0
+        self.rope, self.lid, self.balloon = "slack", "rest", "stuck"
+        if mc.C(mc.s0, mc.L0) > -2 * mc.lR * 1e-9:
+            raise NotCovered("a rope straight (or too short) at the start")
+        hl, _ = mc.h_lim(mc.L0, 0.0)
+        y = [mc.x0, mc.h0, 0.0, 0.0, mc.L0, 0.0, hl, 0.0]
+        h = 1e-6
+        released = set()
+        pending = set()  # released guards still within rounding of zero: open by construction
+        while True:
+            if t >= mc.t_max:
+                self.event("timeout", t)
+                return self.events
+            pending |= released
+            released = set()
+            g0 = self.guards(y)
+            pending &= set(g0)
+            # one accepted step
+            while True:
+                h = min(h, mc.t_max - t)
+                y1, err = gbs(self.flow, y, h)
+                e = max(a / (self.tol * (1 + abs(b))) for a, b in zip(err, y1))
+                if e > 1:
+                    h *= max(0.2, 0.8 * e ** (-1 / 15))
+                    continue
+                # bound the angles turned in one step, so that a guard cannot dip and come back
+                # between two looks
+                s0_, _, L0_, _, _, _ = self.kin(y)
+                s1_, _, L1_, _, _, _ = self.kin(y1)
+                turn = max(abs(s1_ - s0_), abs(L1_ - L0_))
+                if turn > 0.02:
+                    h *= 0.5 * 0.02 / turn
+                    continue
+                break
+            g1 = self.guards(y1)
+            noise = {n: self.noise(n) for n in g1}
+            crossed = [n for n in g1 if n in g0 and (
+                (n in pending and g1[n] < -noise[n]) or (n not in pending and g0[n] > 0 and g1[n] <= 0))]
+            if not crossed:
+                t += h
+                y = y1
+                pending = {n for n in pending if abs(g1[n]) <= noise[n]}
+                h = min(4 * h, h * max(1.0, 0.8 * max(e, 1e-30) ** (-1 / 15)), 0.05)
+                continue
+            # locate the earliest crossing by bisection on re-integrations from t
+            best = None
+            for name in crossed:
+                lo = 0.0
+                if name in pending:  # from the last time where the gap is clearly open
+                    lo = None
+                    for j in range(1, 60):
+                        ym, _ = gbs(self.flow, y, h * 0.5 ** j)
+                        if self.guards(ym)[name] > noise[name]:
+                            lo = h * 0.5 ** j
+                            break
+                    if lo is None:
+                        raise NotCovered(f"{name}: a released contact closing again within rounding at t = {t}")
+                hi = h
+                while hi - lo > 0.01 * self.tol * max(1.0, t):
+                    mid = 0.5 * (lo + hi)
+                    ym, _ = gbs(self.flow, y, mid)
+                    if self.guards(ym)[name] > 0:
+                        lo = mid
+                    else:
+                        hi = mid
+                if best is None or hi < best[0]:
+                    best = (hi, name)
+            dt, name = best
+            y, _ = gbs(self.flow, y, dt)
+            t += dt
+            pending = set()
+            y = self.handle(name, y, t, released)
+            if y is None:
+                return self.events
+            h = 1e-6
+
+    def noise(self, name):
+        """How near zero a guard's value is rounding (and the integration's error), not a gap."""
+        scale = {"rope_taut": self.mc.lR ** 2, "balloon_caught": self.mc.rB}
+        return 10 * self.tol * scale.get(name, 1.0)
+
+    def handle(self, name, y, t, released):
+        mc = self.mc
+        if name in ("lid_open", "seesaw_vertical", "sandbag_at_pivot"):
+            self.event(name, t)
+            return None
+        if name == "balloon_caught":
+            self.balloon = "stuck"
+            self.event(name, t)
+            return y
+        if name == "balloon_free":
+            return self.settle_balloon(y, t, released)
+        if name == "sandbag_lands":
+            r = -(y[0] * N.cos(self.s_air) + y[1] * N.sin(self.s_air))
+            if r <= 0:
+                self.event("sandbag_at_pivot", t)
+                return None
+            if mc.C(self.s_air, y[4]) > -2 * mc.lR * 1e-9:
+                raise NotCovered("a landing on a straight rope")
+            self.bag = "arm"
+            self.event(name, t)
+            return y
+        if name == "rope_taut":
+            if self.bag == "air":
+                raise NotCovered("a rope pulled straight by the lid with the sandbag in the air")
+            return self.jerk(y, t, released)
+        if name in ("rope_slack", "k"):
+            self.rope = "slack"
+            self.event("rope_slack", t)
+            released.add("rope_taut")
+            y = self.to_free_fall(y)
+            return self.settle_balloon(y, t, released)
+        if name == "lid_rests":
+            self.event("lid_rests", t)
+            if self.rope == "taut":
+                y = self.to_free_fall(y)
+                x, hh, vx, vh = y[:4]
+                s = N.atan2(-hh, -x)
+                Cs = F["Cs"](s, y[4], *mc.params)
+                sd = (vx * N.sin(s) - vh * N.cos(s)) / N.hypot(x, hh)
+                if Cs * sd > 0:
+                    raise NotCovered("a lid landing while the seesaw stretches the rope")
+                self.rope = "slack"
+                self.event("rope_slack", t)
+                released.add("rope_taut")
+            self.lid = "rest"
+            y = y[:4] + [mc.L0, 0.0] + y[6:]
+            if self.balloon == "stuck":
+                hl, _ = mc.h_lim(mc.L0, 0.0)
+                y = y[:-2] + [hl, 0.0]
+            return y
+        raise AssertionError(name)
+
+
+def simulate(keys, tol=1e-13, digits=None):
+    """The events of the machine `keys` (from load_machine) as (name, time) pairs, in order:
+    with floats, each step's error within tol (relative to 1 + |y|); with digits, in mpmath's
+    numbers at that many digits (tol then 10^(10 - digits) unless given smaller)."""
+    precise(digits)
+    try:
+        if digits:
+            tol = min(tol, 10.0 ** (10 - digits))
+        return [(name, float(t)) for name, t in Run(Machine(keys), tol).simulate()]
+    finally:
+        precise(None)
+
+
+def main():
+    if len(sys.argv) < 2:
+        print(__doc__)
+        return 2
+    over = {}
+    for item in sys.argv[2:]:
+        key, value = item.split("=", 1)
+        over[key] = tomllib.loads(f"v = {value}")["v"]
+    run = Run(Machine(load_machine(sys.argv[1], over)))
+    for name, t in run.simulate():
+        print(f"{t:.12f}  {name}")
+    for t, e0, e1 in run.energy:
+        print(f"  energy at {t:.9f}: {e0:.6f} J -> {e1:.6f} J")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
