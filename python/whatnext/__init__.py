@@ -18,6 +18,7 @@ everything else SI. Bad input raises :class:`InputError` with the command's one-
 """
 
 import builtins
+import copyreg
 import dataclasses
 import difflib
 import numbers
@@ -163,8 +164,9 @@ class Machine:
 
     def __reduce__(self) -> Tuple[Any, ...]:
         # pickle and copy: the input's every value and where it came from (bindings.cpp), so the
-        # copy is the same machine to the last bit and to_toml() gives the same text.
-        return (Machine, (self._handle,))
+        # copy is the same machine to the last bit and to_toml() gives the same text. As plain
+        # values, so that every pickle protocol (0-5) works: see _handle_from_state.
+        return (_machine_from_state, (self._handle.__getstate__(),))
 
     def __copy__(self) -> "Machine":
         return self  # immutable
@@ -191,6 +193,22 @@ class Machine:
 
     def __repr__(self) -> str:
         return f"<whatnext.Machine {self.source}>"
+
+
+def _handle_from_state(state: Tuple[Any, ...]) -> "_core.MachineHandle":
+    # The compiled machine rebuilt from its plain values. Pickle protocols 0 and 1 would make the
+    # object with object.__new__, which a compiled class cannot survive (the interpreter aborts),
+    # so every protocol goes through here: the class's own __new__, then its __setstate__.
+    handle = _core.MachineHandle.__new__(_core.MachineHandle)
+    handle.__setstate__(state)
+    return handle
+
+
+def _machine_from_state(state: Tuple[Any, ...]) -> "Machine":
+    return Machine(_handle_from_state(state))
+
+
+copyreg.pickle(_core.MachineHandle, lambda handle: (_handle_from_state, (handle.__getstate__(),)))
 
 
 def example(n: Union[int, str]) -> Machine:
