@@ -432,6 +432,9 @@ def simulate(machine: Machine, *, output_step: Optional[float] = None, t_max: Op
     """
     if not isinstance(machine, Machine):
         raise TypeError("simulate(machine): make one with whatnext.example(), load() or machine()")
+    if not isinstance(samples, (bool, np.bool_)):  # bool('no') is True: a word would be taken as yes
+        raise TypeError(f"simulate(samples={samples!r}): True or False is expected, "
+                        f"not {type(samples).__name__}")
     overrides: Dict[str, Value] = {}
     if output_step is not None:
         overrides["run.output_step"] = output_step
@@ -504,7 +507,11 @@ class Sweep(Mapping[str, np.ndarray]):
         if path is None:
             return data.decode("utf-8")
         target = pathlib.Path(os.fspath(path))
-        fd, part = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=target.parent or ".")
+        try:
+            fd, part = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=target.parent)
+        except OSError as e:  # named in the user's words, not the hidden temporary file's
+            raise type(e)(e.errno, f"to_csv({os.fspath(path)!r}): cannot write into the folder "
+                                   f"'{target.parent}' ({e.strerror})") from None
         try:
             umask = os.umask(0)
             os.umask(umask)
