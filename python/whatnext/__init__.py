@@ -18,6 +18,7 @@ everything else SI. Bad input raises :class:`InputError` with the command's one-
 """
 
 import builtins
+import copyreg
 import dataclasses
 import difflib
 import numbers
@@ -163,8 +164,9 @@ class Machine:
 
     def __reduce__(self) -> Tuple[Any, ...]:
         # pickle and copy: the input's every value and where it came from (bindings.cpp), so the
-        # copy is the same machine to the last bit and to_toml() gives the same text.
-        return (Machine, (self._handle,))
+        # copy is the same machine to the last bit and to_toml() gives the same text. As plain
+        # values, so that every pickle protocol (0-5) works: see _handle_from_state.
+        return (_machine_from_state, (self._handle.__getstate__(),))
 
     def __copy__(self) -> "Machine":
         return self  # immutable
@@ -191,6 +193,22 @@ class Machine:
 
     def __repr__(self) -> str:
         return f"<whatnext.Machine {self.source}>"
+
+
+def _handle_from_state(state: Tuple[Any, ...]) -> "_core.MachineHandle":
+    # The compiled machine rebuilt from its plain values. Pickle protocols 0 and 1 would make the
+    # object with object.__new__, which a compiled class cannot survive (the interpreter aborts),
+    # so every protocol goes through here: the class's own __new__, then its __setstate__.
+    handle = _core.MachineHandle.__new__(_core.MachineHandle)
+    handle.__setstate__(state)
+    return handle
+
+
+def _machine_from_state(state: Tuple[Any, ...]) -> "Machine":
+    return Machine(_handle_from_state(state))
+
+
+copyreg.pickle(_core.MachineHandle, lambda handle: (_handle_from_state, (handle.__getstate__(),)))
 
 
 def example(n: Union[int, str]) -> Machine:
@@ -414,6 +432,9 @@ def simulate(machine: Machine, *, output_step: Optional[float] = None, t_max: Op
     """
     if not isinstance(machine, Machine):
         raise TypeError("simulate(machine): make one with whatnext.example(), load() or machine()")
+    if not isinstance(samples, (bool, np.bool_)):  # bool('no') is True: a word would be taken as yes
+        raise TypeError(f"simulate(samples={samples!r}): True or False is expected, "
+                        f"not {type(samples).__name__}")
     overrides: Dict[str, Value] = {}
     if output_step is not None:
         overrides["run.output_step"] = output_step
@@ -486,7 +507,11 @@ class Sweep(Mapping[str, np.ndarray]):
         if path is None:
             return data.decode("utf-8")
         target = pathlib.Path(os.fspath(path))
-        fd, part = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=target.parent or ".")
+        try:
+            fd, part = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=target.parent)
+        except OSError as e:  # named in the user's words, not the hidden temporary file's
+            raise type(e)(e.errno, f"to_csv({os.fspath(path)!r}): cannot write into the folder "
+                                   f"'{target.parent}' ({e.strerror})") from None
         try:
             umask = os.umask(0)
             os.umask(umask)

@@ -452,3 +452,31 @@ def test_event_of_an_unknown_name_raises():
     python_words(lambda: run.event("lid_opn"), "event('lid_opn'): no event is called that (did you mean 'lid_open'?)")
     with pytest.raises(TypeError):
         run.event(3)
+
+
+# --- Arguments checked in Python's words ------------------------------------------------------
+
+
+@pytest.mark.parametrize("samples", ["no", "False", 0, 1, None, [], 0.0])
+def test_simulate_samples_must_be_true_or_false(samples):
+    with pytest.raises(TypeError, match=r"simulate\(samples=.*\): True or False is expected"):
+        whatnext.simulate(whatnext.example(1), samples=samples)
+
+
+def test_simulate_samples_accepts_numpy_bools():
+    assert whatnext.simulate(whatnext.example(1), samples=np.bool_(False)).samples is None
+    assert whatnext.simulate(whatnext.example(1), samples=np.bool_(True)).samples is not None
+
+
+def test_to_csv_into_a_missing_folder_names_that_folder(tmp_path):
+    sweep = whatnext.sweep(whatnext.example(1), {"geometry.rope_length": [0.62, 0.7]})
+    target = tmp_path / "no-such-folder" / "sweep.csv"
+    with pytest.raises(FileNotFoundError) as caught:
+        sweep.to_csv(target)
+    message = str(caught.value)
+    assert f"'{target.parent}'" in message and ".part" not in message and "\n" not in message
+    assert list(tmp_path.iterdir()) == []  # nothing written anywhere
+    (tmp_path / "a-file").write_text("x")
+    with pytest.raises(NotADirectoryError, match="a-file"):
+        sweep.to_csv(tmp_path / "a-file" / "sweep.csv")
+    assert (tmp_path / "a-file").read_text() == "x"
