@@ -12,7 +12,7 @@ cd "$(dirname "$0")"
 job="${1:-example}"
 ./scripts/install-deps.sh
 # Clang 14 (installed for the sanitizer build too): the command's sweeps run 7-8 % faster than with
-# GCC 12, the same bytes out (docs/performance.md, "Issue 23, ninth round").
+# GCC 12, the same bytes out (docs/performance.md, "The machine and the build").
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++-14 >/dev/null
 cmake --build build -j "$(nproc)"
 case "$job" in
@@ -26,8 +26,8 @@ case "$job" in
     failed=0
     ctest --test-dir build --output-on-failure -j "$(nproc)" || failed=1
     # The same tests, and the fuzz harnesses of fuzz/ for a fixed number of inputs each, built with
-    # clang under AddressSanitizer and UndefinedBehaviorSanitizer (issue 12); run even when the
-    # first round failed, so that one run reports everything.
+    # clang under AddressSanitizer and UndefinedBehaviorSanitizer; run even when the first pass
+    # failed, so that one run reports everything.
     cmake -S . -B build-asan -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=Debug \
       -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" -DWHATNEXT_SANITIZE=ON -DWHATNEXT_FUZZ=ON -DWHATNEXT_BENCH=OFF \
       -DWHATNEXT_WEB=OFF -DWHATNEXT_PYTHON=OFF >/dev/null

@@ -108,7 +108,7 @@ void run_example(benchmark::State& state, int example, Method m) {
   state.counters["t_end_s"] = once.outcome().t;
 }
 
-// The sweep: 10^4 example-2-class machines, rope length and drop height varied around
+// The grid of docs/performance.md: 10^4 example-2-class machines, rope length and drop height varied around
 // example 2, as `whatnext sweep` runs them (the tolerance chosen from the accuracy asked, rows
 // formatted as CSV lines in the workers, the CSV written).
 explore::Plan sweep_plan() {

@@ -1,7 +1,7 @@
 #!/bin/sh
 # The whole-process figures of docs/performance.md, side by side in one run: the paper's own
 # Fortran program and `whatnext run` on the same input (example 3 with the paper's step 0.00025 s,
-# 79,777 rows of whatnext.dat), the same run's CSV, and the 10^4-machine sweep.
+# 79,777 rows of whatnext.dat), the same run's CSV, and the 10^4-machine sweep of docs/performance.md ("the grid").
 #
 # The Fortran listing is extracted from the paper's LaTeX source and compiled (gfortran -O2) in a
 # temporary directory that is removed afterwards; nothing of it is kept or committed.

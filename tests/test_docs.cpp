@@ -1,6 +1,7 @@
 // What the README and docs/ promise a reader: the shipped inputs they use exist and run, they cite
-// no file the reader does not have, and the output references name every column and key the
-// program writes.
+// no file the reader does not have (and every source file they name exists), the output references
+// name every column and key the program writes, and they speak of the project as it is, not of its
+// history.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -11,6 +12,7 @@
 #include <sstream>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "cli_runner.hpp"
 #include "whatnext/config.hpp"
@@ -155,12 +157,78 @@ TEST_F(Docs, PicturesPageDescribesEulerAsItRuns) {
 TEST_F(Docs, UserPagesCiteNoMissingSpecification) {
   for (const char* page :
        {"README.md", "CONTRIBUTING.md", "docs/architecture.md", "docs/inputs.md", "docs/pictures.md",
-        "docs/explore.md", "docs/model.md",
-        "docs/extensions.md", "docs/impact.md", "docs/performance.md", "docs/python.md", "docs/web.md",
-        "examples/example1.toml", "examples/example2.toml", "examples/example3.toml",
-        "examples/example4.toml", "examples/example1-radio.toml", "examples/whatnext.inp"}) {
+        "docs/explore.md", "docs/model.md", "docs/extensions.md", "docs/impact.md", "docs/performance.md",
+        "docs/python.md", "docs/web.md", "examples/example1.toml", "examples/example2.toml",
+        "examples/example3.toml", "examples/example4.toml", "examples/example1-radio.toml",
+        "examples/whatnext.inp"}) {
     EXPECT_EQ(slurp(kSource + "/" + page).find("MODEL.md"), std::string::npos) << page;
   }
+}
+
+// The texts that speak of the project as it is: what changed and when belongs in CHANGELOG.md and
+// the commits, not in a reference. A file or a folder (searched through) per entry; src/ joins
+// them once its comments no longer cite issues.
+const char* const kPresentTense[] = {"README.md", "CONTRIBUTING.md", "docs"};
+
+std::vector<fs::path> texts_under(const fs::path& root) {
+  if (!fs::is_directory(root)) return {root};
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    const std::string ext = entry.path().extension().string();
+    if (entry.is_regular_file() && (ext == ".md" || ext == ".cpp" || ext == ".hpp" || ext == ".h")) {
+      files.push_back(entry.path());
+    }
+  }
+  return files;
+}
+
+// The lines of `text` that cite an issue by its number ("issue 23", "Issues 18 and 23", "issue #7")
+// or as "the issue's".
+std::vector<std::string> history_lines(const std::string& text) {
+  const std::regex cited(R"(\bissues?\s*#?\s*[0-9]+|\bthe issue's\b)", std::regex::icase);
+  std::vector<std::string> found;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (std::regex_search(line, cited)) found.push_back(line);
+  }
+  return found;
+}
+
+TEST(DocsHistory, TheCheckFindsAnIssueCitedByNumber) {
+  EXPECT_EQ(history_lines("As issue 23 asked.\nIssues 18 and 23 found it.\nSee issue #7.\n").size(), 3u);
+  EXPECT_EQ(history_lines("the issue's grid").size(), 1u);
+  EXPECT_TRUE(history_lines("A known issue with 3 rounds of tests; 23 issues.\n").empty());
+}
+
+TEST(DocsHistory, ReferencesSpeakOfTheProjectAsItIs) {
+  int files = 0;
+  for (const char* root : kPresentTense) {
+    for (const fs::path& file : texts_under(kSource + "/" + root)) {
+      ++files;
+      for (const std::string& line : history_lines(slurp(file)))
+        ADD_FAILURE() << file.string() << ": " << line;
+    }
+  }
+  EXPECT_GE(files, 10);
+}
+
+// The source files that the pages for contributors name by their path exist: a renamed file
+// renames its mention. Build outputs and globs are left out; `whatnext/x.hpp` is an include path.
+TEST(DocsPaths, EveryFileThePagesNameExists) {
+  const std::regex path(
+      R"(^[A-Za-z0-9_./-]+/[A-Za-z0-9_.-]+\.(cpp|hpp|js|py|sh|md|txt|toml|cmake|c|xml|html)$)");
+  int checked = 0;
+  for (const char* page : {"README.md", "CONTRIBUTING.md", "docs/architecture.md", "docs/performance.md"}) {
+    for (const std::string& name : backticked(slurp(kSource + "/" + page))) {
+      if (!std::regex_match(name, path) || name.rfind("build/", 0) == 0 || name.rfind("out/", 0) == 0)
+        continue;
+      const bool found = fs::exists(kSource + "/" + name) ||
+                         (name.rfind("whatnext/", 0) == 0 && fs::exists(kSource + "/include/" + name));
+      EXPECT_TRUE(found) << page << " names " << name;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 40);
 }
 
 // inputs.md names every column of the run's CSV and of a sweep's CSV, and every key of the JSON.
