@@ -460,10 +460,12 @@ class Sweep(Mapping[str, np.ndarray]):
     """
 
     def __init__(self, keys: List[str], columns: Dict[str, np.ndarray],
-                 axes: Optional[Dict[str, np.ndarray]]) -> None:
+                 axes: Optional[Dict[str, np.ndarray]], study_info: Optional[Dict[str, Any]] = None) -> None:
         self.keys_varied: List[str] = keys
         self.columns: Dict[str, np.ndarray] = columns
         self.axes: Optional[Dict[str, np.ndarray]] = axes
+        # What made the sweep (the machine's TOML, the accuracy, samples and seed): to_xarray()'s attributes.
+        self.study_info: Optional[Dict[str, Any]] = study_info
         self.shape: Tuple[int, ...] = (tuple(len(a) for a in axes.values()) if axes is not None
                                        else (len(columns["index"]),))
         self._freeze()
@@ -526,6 +528,15 @@ class Sweep(Mapping[str, np.ndarray]):
             raise
         return None
 
+    def to_xarray(self) -> Any:
+        """The sweep as an ``xarray.Dataset``: for a grid one dimension per varied key (its values the
+        coordinate), for a Latin hypercube a ``machine`` dimension with the drawn values as
+        coordinates; every other column a variable with its unit (``attrs["units"]``); the machine's
+        TOML, the accuracy and the program's version as attributes. ``to_zarr()``/``to_netcdf()``
+        and back keep every value (see :mod:`whatnext.dataset`)."""
+        from . import dataset as _dataset
+        return _dataset.to_xarray(self)
+
     def plot(self, value: str = "lid_open", **kwargs: Any) -> Any:
         """A heat map of ``value`` over the two varied keys (see :func:`whatnext.plot.heatmap`)."""
         from . import plot as _plot
@@ -548,6 +559,9 @@ def grid(a: float, b: float, n: int) -> np.ndarray:
 # Sweeps larger than this need force_large=True, as the command's --force-large: every row is
 # kept in memory (a few hundred bytes each).
 LARGE_SWEEP = 1_000_000
+# A grid written into a Zarr store (sweep(store=...)) is never held in memory: its bound is the
+# machine index's (whole numbers exact in a float64 coordinate).
+MAX_STUDY = 2**53
 
 
 @dataclasses.dataclass(frozen=True)
@@ -561,6 +575,13 @@ class _Plan:
     size: int
     accuracy: Optional[float]
     first: int = 0  # points[0] is machine `first`: a chunk of a Latin hypercube carries its rows only
+    samples: Optional[int] = None  # a Latin hypercube's size and seed, for the result's description
+    seed: Optional[int] = None
+
+    def info(self) -> Dict[str, Any]:
+        """What made the sweep, for :meth:`Sweep.to_xarray`'s attributes."""
+        return {"machine": self.machine.to_toml(), "accuracy": self.accuracy, "samples": self.samples,
+                "seed": self.seed}
 
     def run(self, start: int, stop: int, threads: int) -> Dict[str, np.ndarray]:
         """Machines start..stop-1 of the sweep: their columns (index start..stop-1)."""
@@ -581,7 +602,7 @@ class _Plan:
 
 
 def _plan(machine: Machine, values: Mapping[str, Any], samples: Optional[int], seed: int,
-          accuracy: Optional[float], force_large: bool) -> _Plan:
+          accuracy: Optional[float], force_large: bool, stored: bool = False) -> _Plan:
     """Checks a sweep's arguments, each wrong one named in Python's words."""
     if not isinstance(machine, Machine):
         raise TypeError("sweep(machine, values): make the machine with whatnext.example(), load() or machine()")
@@ -626,23 +647,25 @@ def _plan(machine: Machine, values: Mapping[str, Any], samples: Optional[int], s
                 raise InputError(f"sweep: {k} needs a one-dimensional sequence of at least one value")
             axes[k] = axis
             size *= axis.size
-        if size > _core.MAX_MACHINES:
+        if size > (MAX_STUDY if stored else _core.MAX_MACHINES):
             raise InputError(f"sweep: the grid has {size} machines, more than {_core.MAX_MACHINES}; use fewer values")
-    if size > LARGE_SWEEP and not force_large:
+    if size > LARGE_SWEEP and not force_large and not stored:
         row_bytes = 8 * (4 + len(keys) + len(_core.event_names())) + 4 * 16
         raise InputError(f"sweep: {size} machines would hold at least {size * row_bytes / 1e9:.1f} GB in memory; "
                          f"use fewer, or pass force_large=True")
     if samples is not None:
         points = _core.lhs_points(keys, lo, hi, size, seed_n)
         points.flags.writeable = False
-    return _Plan(machine, keys, axes, points, size, accuracy_s)
+    return _Plan(machine, keys, axes, points, size, accuracy_s, samples=None if samples is None else size,
+                 seed=None if samples is None else seed_n)
 
 
 def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int] = None, seed: int = 1,
           threads: Optional[int] = None, accuracy: Optional[float] = _core.DEFAULT_ACCURACY,
           force_large: bool = False, client: Any = None, chunk: Optional[int] = None,
           progress: Union[bool, Callable[[int, int], None]] = False,
-          csv: Union[None, str, "os.PathLike[str]"] = None, resume: bool = False) -> Sweep:
+          csv: Union[None, str, "os.PathLike[str]"] = None, resume: bool = False,
+          store: Union[None, str, "os.PathLike[str]"] = None) -> Any:
     """Run many variants of a machine on all cores; the Python form of ``whatnext sweep``.
 
     ``values`` maps input keys (any numeric key of docs/inputs.md, angles in degrees) to the
@@ -686,6 +709,14 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
     another sweep is refused with :class:`InputError` and left as it was; so is a second sweep
     writing the same file while the first runs. Not with ``client=``.
 
+    ``store="study.zarr"`` with ``client=`` runs a study of any size: each Dask worker writes its
+    chunks straight into that Zarr store (Debian's ``python3-zarr``), laid out as
+    :meth:`Sweep.to_xarray`'s dataset, so the client never holds the results; the call returns the
+    store opened lazily as an ``xarray.Dataset`` (``whatnext.dataset.open_study`` opens it later).
+    Interrupted (the client or workers killed), the same call continues from the chunks already
+    written; a store of another study is refused with :class:`InputError` naming what differs.
+    A grid may then have up to 2^53 machines; a Latin hypercube's points are drawn on the client.
+
     Returns a :class:`Sweep`: columns named like the sweep CSV (``outcome``, ``outcome_t``,
     ``lid_open``, ``rope_taut``, ..., ``error``), each a read-only numpy array with a row per
     machine; ``to_csv(path)`` writes that CSV.
@@ -696,7 +727,10 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
                                                  "masses.sandbag": np.linspace(0.2, 2.0, 37)})
         s.grid("lid_open")        # 29 x 37, NaN where the lid never opens
     """
-    plan = _plan(machine, values, samples, seed, accuracy, force_large)
+    if store is not None and client is None:
+        raise TypeError("sweep: store= is written by the workers of a Dask cluster: give client=... too "
+                        "(on this computer use csv=...)")
+    plan = _plan(machine, values, samples, seed, accuracy, force_large, stored=store is not None)
     if client is None and (chunk is not None or progress is not False):
         raise TypeError("sweep: chunk= and progress= belong to a sweep on a Dask cluster (client=...)")
     if not isinstance(resume, (bool, np.bool_)):
@@ -709,6 +743,10 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
         if csv is not None:
             raise TypeError("sweep: csv= writes a sweep on this computer; on a Dask cluster write the "
                             "result with to_csv(path)")
+        if store is not None:
+            from . import dataset as _dataset
+            return _dataset.study(plan, client, store, samples=plan.samples, seed=plan.seed, chunk=chunk,
+                                  threads=threads, progress=progress)
         from . import dask as _dask
         return _dask.run(plan, client, chunk=chunk, threads=threads, progress=progress)
     n_threads = 0 if threads is None else _whole("sweep: threads", threads, 1, 4096)
@@ -718,8 +756,9 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
             raise TypeError(f"sweep: csv is a file name as text, not {type(path).__name__} {path!r}")
         axes = list(plan.axes.values()) if plan.axes is not None else None
         return Sweep(plan.keys, _core.sweep_to_file(plan.machine._handle, plan.keys, axes, plan.points, n_threads,
-                                                    plan.accuracy, path, bool(resume)), plan.axes)
-    return Sweep(plan.keys, plan.run(0, plan.size, n_threads), plan.axes)
+                                                    plan.accuracy, path, bool(resume)), plan.axes, plan.info())
+    return Sweep(plan.keys, plan.run(0, plan.size, n_threads), plan.axes, plan.info())
 
 
 from . import plot  # noqa: E402  (matplotlib itself is imported only when a figure is drawn)
+from . import dataset  # noqa: E402  (xarray and Zarr themselves are imported only when used)

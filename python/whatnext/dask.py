@@ -74,7 +74,7 @@ def run(plan: _Plan, client: Any, *, chunk: Optional[int] = None, threads: Optio
         raise
     names = list(parts[0]) if parts else []
     columns = {name: np.concatenate([p[name] for p in parts]) for name in names}  # type: ignore[index]
-    return Sweep(plan.keys, columns, plan.axes)
+    return Sweep(plan.keys, columns, plan.axes, plan.info())
 
 
 def _reporter(progress: Union[bool, Callable[[int, int], None]]) -> Callable[[int, int], None]:
