@@ -1031,7 +1031,8 @@
     } else if (!on && document.fullscreenElement) {
       document.exitFullscreen().catch(() => {});
     }
-    requestAnimationFrame(() => { sizeCanvas(); fitCanvas(); plots.resize(); });
+    // The plots are made again: their type follows the page's.
+    requestAnimationFrame(() => { sizeCanvas(); fitCanvas(); if (st.run) plots.show(st.run, st.compare.runs); plots.resize(); });
   }
   $('projector').addEventListener('click', () => setProjector(!document.body.classList.contains('projector')));
   // Leaving full screen (Escape) leaves projector mode.

@@ -144,13 +144,17 @@
       const { plot, figure } = chart;
       if (chart.u) chart.u.destroy();
       const width = Math.max(200, figure.clientWidth);
+      const type = Math.round(Math.max(12, 0.72 * parseFloat(getComputedStyle(document.body).fontSize)));
       const u = new uPlot({
         width, height: plotHeight(width, figure),
         scales: { x: { time: false } },
         axes: [
           // The ticks' numbers with the page's decimal sign (uPlot's own are English).
-          { label: 't [s]', labelSize: 20, size: 36, values: (uu, ticks) => ticks.map((v) => S.decimals(String(Number(v.toPrecision(6))))) },
-          { label: plot.axis, labelSize: 20, size: 56, values: (uu, ticks) => ticks.map((v) => S.decimals(String(Number(v.toPrecision(6))))) },
+          // The axes' type grows with the page's (projector mode: legible from the back).
+          { label: 't [s]', labelSize: 1.4 * type, size: 2.4 * type, font: `${type}px sans-serif`, labelFont: `bold ${type}px sans-serif`,
+            values: (uu, ticks) => ticks.map((v) => S.decimals(String(Number(v.toPrecision(6))))) },
+          { label: plot.axis, labelSize: 1.4 * type, size: 3.8 * type, font: `${type}px sans-serif`, labelFont: `bold ${type}px sans-serif`,
+            values: (uu, ticks) => ticks.map((v) => S.decimals(String(Number(v.toPrecision(6))))) },
         ],
         series: seriesFor(plot, others),
         cursor: { y: false, sync: { key: 'whatnext' }, drag: { x: true, y: false }, points: { size: 6 } },

@@ -1443,6 +1443,14 @@ const checks = {
       assert.match(label, /^Energy bars: /);
       assert.match(label, new RegExp(`lost in impacts ${events[1].ledger.lost_impacts.toFixed(3)} J`));
       assert.match(await page.textContent('#bars-zero'), /pivot's height/);
+      // The drawing is an image whose description follows the run; an event reached is announced.
+      await page.evaluate(() => window.whatnext.seek(0));
+      assert.equal(await page.getAttribute('#machine', 'role'), 'img');
+      assert.match(await page.getAttribute('#machine', 'aria-label'), /no event yet/);
+      await page.keyboard.press(']');
+      assert.equal(await page.textContent('#announce'), `${events[0].t.toFixed(3)} s: sandbag lands`);
+      assert.match(await page.getAttribute('#machine', 'aria-label'), /M3: sandbag on the seesaw, rope slack; last event at [\d.]+ s: sandbag lands/);
+      assert.equal(await page.getAttribute('#announce', 'aria-live'), 'polite');
     });
     await withPage(async (page) => {
       assert.match(await page.getAttribute('#bars', 'aria-label'), /^Energiebalken: /);
@@ -1503,6 +1511,15 @@ const checks = {
       const dark = new Set(qr.cells.map(([x, y]) => `${x},${y}`));
       for (const [x, y] of [[4, 4], [qr.size - 5, 4], [4, qr.size - 5]]) assert.ok(dark.has(`${x},${y}`), `finder at ${x},${y}`);
       await page.screenshot({ path: path.join(outDir, 'web-qr.png') });
+      // Scanned as a phone would (zbar, where it is installed): the link itself.
+      if (fs.existsSync('/usr/bin/zbarimg')) {
+        const shot = path.join(outDir, 'web-qr-code.png');
+        await page.locator('#qr-code svg').screenshot({ path: shot });
+        const scan = spawnSync('/usr/bin/zbarimg', ['-q', '--raw', shot], { encoding: 'utf8' });
+        assert.equal(scan.stdout.trim(), qr.href, `zbarimg read ${scan.stdout}`);
+      } else {
+        console.log('qr_code: no zbarimg here, the code is not scanned');
+      }
     });
   },
 
