@@ -1421,12 +1421,18 @@ const checks = {
       const end = await page.evaluate(() => window.whatnext.forces.arrows.map((a) => a.what));
       assert.ok(end.includes('floor_on_seesaw') || end.includes('stop_on_sandbag') || end.includes('floor_on_sandbag'), `konstanz at its end: ${end}`);
       await page.screenshot({ path: path.join(outDir, 'web-forces-konstanz.png') });
+      // The mode's words fit the machine as built (the library's words, as the GIF's caption).
+      assert.match(await page.evaluate(() => window.whatnext.caption), /M3: sandbag at the stop, seesaw on the floor, rope let go/);
     }, { viewport: { width: 1400, height: 900 }, hash: '#machine=example2' });
   },
 
   // The energy bars: the ledger at the time shown, adding up to the energy at the start (the
   // command line's initial_total) at every time; named for screen readers in both languages.
   async energy_bars() {
+    await withPage(async (page) => {  // the built machine's mode in German words
+      await page.keyboard.press('End');
+      assert.match(await page.evaluate(() => window.whatnext.caption), /M3: Sandsack am Anschlag, Wippe auf dem Boden, Seil losgelassen/);
+    }, { locale: 'de-DE', hash: '#machine=konstanz' });
     const events = cliEvents(['--example', '1']).events;
     const start = events[0].ledger.initial_total;
     await withPage(async (page) => {
