@@ -147,7 +147,10 @@
           field.fromSlider = (p) => (log ? lo * Math.pow(hi / lo, p / kSliderSteps) : lo + (hi - lo) * p / kSliderSteps);
           const text = () => String(Number(field.fromSlider(Number(slider.value)).toPrecision(3)));
           // Said as the value with its unit, not the slider's position.
-          field.speak = (v) => slider.setAttribute('aria-valuetext', `${shown(String(Number(Number(v).toPrecision(4))))} ${spec.unit ? unitWords(spec.unit) : ''}`.trim());
+          field.speak = (v) => {
+            const said = `${shown(String(Number(Number(v).toPrecision(4))))} ${spec.unit ? unitWords(spec.unit) : ''}`.trim();
+            if (slider.getAttribute('aria-valuetext') !== said) slider.setAttribute('aria-valuetext', said);  // written only when it changes
+          };
           slider.addEventListener('input', () => { input.value = shown(text()); field.speak(text()); send(text(), false); });
           slider.addEventListener('change', () => send(text(), true));
           field.slider = slider;
