@@ -135,6 +135,12 @@ struct Snapshot {
   double sandbag_kinetic = 0, sandbag_potential = 0, lid_kinetic = 0, lid_potential = 0;
   double normal_force = 0;  // arm on the sandbag [N] (0 when off the arm)
   double box_reaction = 0;  // box on the resting lid [N m] (0 when swinging)
+  // The built machine's reactions (not CSV columns): the end stop on the sandbag along the arm, the
+  // floor on the seesaw's end that stands on it, the floor on the sandbag [N] (0 where none acts).
+  double stop_reaction = 0, floor_reaction = 0, bag_floor_reaction = 0;
+  // ... and its contacts, for the mode's words (viz::mode_words): the sandbag held by the end stop
+  // or lying on the floor, the seesaw standing on the floor, the rope let go at the radio's latch.
+  bool at_stop = false, bag_on_floor = false, seesaw_on_floor = false, rope_let_go = false;
   // Energy ledger (docs/extensions.md). Potentials: zero at the pivot level (sandbag, seesaw), at
   // the hinge (lid) and, for the balloon's net lift, at the hinge level.
   double seesaw_kinetic = 0, seesaw_potential = 0, balloon_kinetic = 0, balloon_potential = 0;

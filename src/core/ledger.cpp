@@ -50,6 +50,7 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
   s.rope_taut = d.taut;
   s.lid_resting = d.lid_resting;
   s.balloon_stuck = d.balloon_stuck;
+  s.at_stop = d.at_stop, s.bag_on_floor = d.bag_on_floor, s.seesaw_on_floor = d.grounded != 0, s.rope_let_go = d.latched;
   s.x = k.x, s.h = k.h, s.vx = k.vx, s.vh = k.vh, s.r = k.r, s.dr = k.dr;
   s.phi_s = k.phi_s, s.dphi_s = k.dphi_s;
   s.phi_l = k.phi_l, s.dphi_l = k.dphi_l, s.ddphi_l = k.ddphi_l;
@@ -60,12 +61,19 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
   s.balloon_limit_rate = balloon_limit_rate(k);
   s.balloon_v = k.balloon_v;
   s.balloon_vx = k.balloon_vx;
-  if (!d.latched) {
+  // After the radio's latch the built machine's seesaw and sandbag still move on its stop and floor
+  // (guards.cpp): their reactions go on.
+  if (!d.latched || built_) {
     contact::PerContact f;
     contact_forces(d, k, f);
-    s.tension = f[kRope];
-    s.normal_force = f[kBag];
-    s.box_reaction = f[kLid];
+    if (!d.latched) {
+      s.tension = f[kRope];
+      s.normal_force = f[kBag];
+      s.box_reaction = f[kLid];
+    }
+    s.stop_reaction = f[kStop];
+    s.floor_reaction = f[kFloorLeft] + f[kFloorRight];  // one end at a time stands on the floor
+    s.bag_floor_reaction = f[kBagFloor];
   }
   s.sandbag_kinetic = 0.5 * m_s_ * (k.vx * k.vx + k.vh * k.vh);
   s.sandbag_potential = m_s_ * g_ * k.h;

@@ -79,7 +79,7 @@ void caption(cairo_t* cr, const View& v, const Recording& rec, const std::vector
   cairo_rectangle(cr, 0, 0, v.width, v.top);
   cairo_fill(cr);
   set(cr, kBlack);
-  const std::string line1 = fmt::format("t = {:.3f} s    {}", frame.t, mode_words(s.mode));
+  const std::string line1 = fmt::format("t = {:.3f} s    {}", frame.t, mode_words(s));
   fit_text(cr, line1, font, v.width - 2 * margin);
   cairo_move_to(cr, margin, 1.15 * font);
   cairo_show_text(cr, line1.c_str());

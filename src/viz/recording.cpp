@@ -109,15 +109,30 @@ std::vector<EventGroup> group_events(const Result& result) {
   return groups;
 }
 
-std::string mode_words(Mode mode) {
-  switch (mode) {
-    case Mode::M1: return "M1: sandbag falling, rope slack";
-    case Mode::M2: return "M2: sandbag falling, rope taut";
-    case Mode::M3: return "M3: sandbag on the seesaw, rope slack";
-    case Mode::M4: return "M4: sandbag on the seesaw, rope pulls the lid";
-    case Mode::M5: return "M5: rope taut, lid resting";
+std::string mode_words(Mode mode) { return mode_words(Snapshot{0.0, mode}); }
+
+// The paper's words for its modes (M1-M5), and where the built machine's contacts hold, the words
+// that fit them instead: the page, the CLI's animation and the GIF all say these.
+std::string mode_words(const Snapshot& s) {
+  const bool falling = s.mode == Mode::M1 || s.mode == Mode::M2;
+  const std::string bag = s.bag_on_floor ? "sandbag on the floor"
+                          : falling      ? "sandbag falling"
+                          : s.at_stop    ? "sandbag at the stop"
+                                         : "sandbag on the seesaw";
+  std::string rope;
+  switch (s.mode) {
+    case Mode::M1:
+    case Mode::M3: rope = "rope slack"; break;
+    case Mode::M2: rope = "rope taut"; break;
+    case Mode::M4: rope = "rope pulls the lid"; break;
+    case Mode::M5: rope = "rope taut, lid resting"; break;
   }
-  return "";
+  if (s.rope_let_go) rope = "rope let go";
+  const bool built = s.at_stop || s.bag_on_floor || s.seesaw_on_floor || s.rope_let_go;
+  std::string words = std::string(to_string(s.mode)) + ": ";
+  if (s.mode != Mode::M5 || built) words += bag + ", ";  // the paper's M5 names the rope and the lid only
+  if (s.seesaw_on_floor) words += "seesaw on the floor, ";
+  return words + rope;
 }
 
 }  // namespace whatnext::viz

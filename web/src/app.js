@@ -141,7 +141,9 @@
     compare: { mode: 'none', law: 'kinetic-energy', step: '0.001', run: null, runs: [], label: '', message: '' },
     t: 0, playing: false, speed: 'auto', holdUntil: 0, last: 0,
     view: null, dpr: 1, font: 16, lines: 1, band: 46, aspect: 0.7, runMs: 0, runs: 0, answers: 0, problem: '', caption: '',
+    forces: false, drawnForces: null, described: '', announced: null, ghost: 0,
   };
+  const Teach = window.whatnextTeach;
 
   // Changes come faster than a slow run: the newest change waits while one runs, and replaces any
   // change waiting before it (which would be shown only to be overwritten). A machine chosen is
@@ -414,7 +416,6 @@
     st.view = null;
     showTimeline();
     $('outcome').textContent = T('Outcome: {sentence}.', { sentence: S.sentence(run.outcome.sentence) });
-    $('stage-outcome').textContent = $('outcome').textContent;  // on a phone, above the drawing
     const c = st.compare;
     $('compare-outcome').hidden = c.mode === 'none';
     if (c.mode === 'laws') {
@@ -434,8 +435,11 @@
     } else {
       $('compare-outcome').textContent = c.run ? T('Dashed, {label}: {sentence}.', { label: c.label, sentence: S.sentence(c.run.outcome.sentence) }) : c.message;
     }
-    $('compare-note').textContent = c.mode === 'laws' ? T('each law in its colour: outlines in the drawing, dashes in the plots')
+    $('compare-note').textContent = c.mode === 'laws' ? T('each law in its colour; in the drawing one at a time (choose it below)')
                                    : c.run ? T('dashed in the plots, blue outline in the drawing') : '';
+    showLegend();
+    whyFor = null;
+    if ($('why').open) showWhy();
     plots.show(run, c.runs);
     panel.show(run.values, st.sets);
     showTicks();
@@ -445,6 +449,46 @@
     document.body.dataset.runs = String(st.runs);
     writeUrlSoon();
     render();
+  }
+
+  // The "why", built when opened for the machine shown (it runs the machine with each law).
+  let whyFor = null;
+  function showWhy() {
+    const machine = JSON.stringify([st.base.id, st.base.toml, [...st.good]]);
+    if (whyFor === machine) return;
+    whyFor = machine;
+    const base = st.base, good = new Map(st.good);
+    Teach.why((extra) => ask('run', inputFor(base, good, extra), null, true), st.run.machine.run.impact_law);
+  }
+  function openWhy() {
+    $('why').open = true;
+    showWhy();
+    $('why').scrollIntoView({ block: 'start', behavior: reducedMotion ? 'auto' : 'smooth' });
+    $('why').querySelector('summary').focus({ preventScroll: true });
+  }
+
+  // The four laws' legend: each law in its colour; the one chosen is drawn as the ghost (one at a
+  // time: four outlines on one spot cannot be told apart).
+  function showLegend() {
+    const c = st.compare, box = $('compare-legend');
+    box.textContent = '';
+    box.hidden = c.mode !== 'laws' || !c.runs.length;
+    if (box.hidden) return;
+    st.ghost = Math.min(st.ghost, c.runs.length - 1);
+    const own = document.createElement('span');
+    own.innerHTML = '<span class="swatch" style="border-color: var(--ink)"></span>';
+    own.append(T('{law} (this run, filled)', { law: st.run.machine.run.impact_law }));
+    box.append(own);
+    c.runs.forEach((o, i) => {
+      const b = document.createElement('button');
+      b.type = 'button';
+      b.setAttribute('aria-pressed', String(i === st.ghost));
+      b.innerHTML = `<span class="swatch" style="border-color: ${o.colour}"></span>`;
+      b.append(T('{law} (outline)', { law: o.label }));
+      b.style.color = o.colour;
+      b.addEventListener('click', () => { st.ghost = i; showLegend(); render(); });
+      box.append(b);
+    });
   }
 
   // The timeline as `whatnext run` prints it: its own lines, a row per event, and the energy
@@ -461,9 +505,10 @@
       row.tabIndex = 0;
       cells.slice(0, 6).forEach((text, k) => {
         const cell = row.insertCell();
-        cell.textContent = text;
+        cell.textContent = k === 1 || k === 2 ? text : S.decimals(text);
         if (k === 1) cell.title = e.words;
         // In another language the event's name in its words (the command line's name in the title).
+        if (k === 2) cell.title = S.sentence(names.modes[Number(text.replace(/\D/g, ''))] || text);
         if (k === 1 && S.lang !== 'en') {
           cell.textContent = S.eventWords(text.replace(/_/g, ' '));
           cell.title = text;
@@ -486,11 +531,20 @@
             `; ${T('impulse')} ${list.replace(/\b(floor on seesaw|floor on sandbag|sandbag|rope|lid|stop)\b/g, (w) => T(w))}${end}`)
           .replace(/; not the (\S+) law: (.*)$/, (all, law, note) => `; ${T('not the {law} law: {note}', { law, note: T(note) })}`);
         // A negative energy is no error: the potential's zero is at the pivot's height.
+        cell.textContent = S.decimals(cell.textContent);
         if (/-\d/.test(cell.textContent.split(';')[0])) {
           const why = document.createElement('span');
           why.className = 'why';
           why.textContent = ` (${T('Energy from the pivot\'s height: below it, potential energy is negative.')})`;
           cell.append(why);
+        }
+        if (e.type === 'rope_taut' || e.type === 'lid_open' && st.run.machine.radio) {
+          const link = document.createElement('button');
+          link.type = 'button';
+          link.className = 'why-link';
+          link.textContent = T('Why?');
+          link.addEventListener('click', (ev) => { ev.stopPropagation(); openWhy(); });
+          cell.append(' ', link);
         }
         note.addEventListener('click', go);
       }
@@ -570,6 +624,9 @@
     return Math.max(kSlow, (b - a - 2 * kPad) / 2);
   }
 
+  // prefers-reduced-motion: playback starts in slow motion nowhere, the events are held longer, and
+  // nothing moves unless asked (no auto-play exists).
+  const reducedMotion = window.matchMedia('(prefers-reduced-motion: reduce)').matches;
   // A touch screen has no Space bar to mention.
   const touch = window.matchMedia('(pointer: coarse)').matches;
   function speedWords() {
@@ -593,18 +650,28 @@
     const s = Machine.stateAt(run.samples, st.t);
     const group = groupAt(run, st.t);
     const caption = [
-      `t = ${S.decimals(st.t.toFixed(3))} s    ${S.sentence(names.modes[s.mode])}`,
+      `t = ${S.decimals(st.t.toFixed(3))} s    ${S.sentence(modeWords(s))}`,
       group ? T('event at {t} s: {words}', { t: S.decimals(group.t.toFixed(3)), words: group.events.map((i) => S.eventWords(run.events[i].words)).join(' + ') })
             : speedWords(),
     ];
-    const ghosts = (st.compare.runs || []).map((o) => ({ run: o.run, colour: o.colour, state: Machine.stateAt(o.run.samples, Math.min(st.t, o.run.tEnd)) }));
+    const shownRuns = st.compare.mode === 'laws' ? (st.compare.runs || []).slice(st.ghost, st.ghost + 1) : (st.compare.runs || []);
+    const ghosts = shownRuns.map((o) => ({ run: o.run, colour: o.colour, state: Machine.stateAt(o.run.samples, Math.min(st.t, o.run.tEnd)) }));
     ctx.setTransform(st.dpr, 0, 0, st.dpr, 0, 0);
-    const drawn = Machine.draw(ctx, st.view, { run, state: s, ghosts, caption, event: group, font: st.font, lines: st.lines });
+    // At an impact's frame its impulses flash instead of the forces.
+    const impacts = group ? group.events.map((i) => run.events[i]).filter((e) => e.impact && e.impulses) : [];
+    const impulses = impacts.length ? impacts.map((e) => ({ state: e.state, impulses: e.impulses })) : null;
+    const drawn = Machine.draw(ctx, st.view, { run, state: s, ghosts, caption, event: group, font: st.font, lines: st.lines,
+                                              forces: st.forces, impulses });
+    st.drawnForces = drawn.forces;
     st.caption = [...caption, drawn.far].filter(Boolean).join('\n');
+    Teach.bars(run, st.t);
+    describe(run, s, group);
 
     $('clock').textContent = `t = ${S.decimals(st.t.toFixed(6))} s`;
     const scrub = $('scrub');
     if (document.activeElement !== scrub || st.playing) scrub.value = String(st.t);
+    const said = `t = ${S.decimals(st.t.toFixed(3))} s`;
+    if (scrub.getAttribute('aria-valuetext') !== said) scrub.setAttribute('aria-valuetext', said);
     if ($('play').dataset.playing !== String(st.playing)) {
       $('play').dataset.playing = String(st.playing);
       $('play').innerHTML = st.playing ? kPauseIcon : kPlayIcon;
@@ -615,6 +682,54 @@
       row.classList.toggle('past', e.t < st.t && !(group && group.t === e.t));
     }
     plots.setTime(st.t);
+  }
+
+  // The mode in words that fit the machine as built (the library's table, names.modeWords: the
+  // sandbag at the stop, the seesaw on the floor, the rope let go), as the CLI's animation says it.
+  const bit = (x) => (x ? 1 : 0);
+  const modeWords = (s) => (names.modeWords && names.modeWords[`${s.mode},${bit(s.at_stop)},${bit(s.bag_on_floor)},${bit(s.seesaw_on_floor)},${bit(s.rope_let_go)}`])
+    || names.modes[s.mode];
+
+  // The drawing's description for screen readers (it is an image): the machine, its mode, the
+  // last event and the outcome; changed only when one of them does, not at every frame.
+  function describe(run, s, group) {
+    const past = run.groups.filter((g) => g.t <= st.t + 1e-12 * Math.max(1, st.t));
+    const last = past.length ? past[past.length - 1] : null;
+    const lastWords = last ? T('last event at {t} s: {words}', { t: S.decimals(last.t.toFixed(3)), words: last.events.map((i) => S.eventWords(run.events[i].words)).join(' + ') })
+                           : T('no event yet');
+    const text = `${T('The machine drawn to scale')}. ${S.sentence(modeWords(s))}; ${lastWords}. ${$('outcome').textContent}`;
+    if (text !== st.described) {
+      st.described = text;
+      canvas.setAttribute('aria-label', text);
+    }
+    if (st.forces && st.drawnForces) {
+      const f = st.drawnForces.arrows.map((a) => `${T(kForceWords[a.what] || a.what)} ${S.decimals(String(Number(a.value.toPrecision(3))))} ${a.unit}`).join(', ');
+      $('force-scale').textContent = `${T('Arrows (scale at the upper right): green gravity, purple the rope, blue the arm, the stop and the floor, orange velocities; red at an impact its impulses. An arrow cut by two bars is longer than drawn.')} ${f}`;
+    }
+  }
+
+  // The library's names of the arrows (web/wasm/bindings.cpp forces), in words.
+  const kForceWords = {
+    weight_sandbag: 'gravity on the sandbag', weight_lid: 'gravity on the lid', weight_seesaw: 'gravity on the seesaw',
+    tension_on_sandbag: 'the rope on the sandbag', tension_on_lid: 'the rope on the lid', arm_on_sandbag: 'the arm on the sandbag',
+    stop_on_sandbag: 'the stop on the sandbag', floor_on_seesaw: 'the floor on the seesaw', floor_on_sandbag: 'the floor on the sandbag',
+    velocity_sandbag: 'velocity of the sandbag', velocity_lid_edge: 'velocity of the lid\'s edge',
+    impulse_sandbag: 'impulse of the arm on the sandbag', impulse_rope_on_sandbag: 'impulse of the rope on the sandbag',
+    impulse_rope_on_lid: 'impulse of the rope on the lid', impulse_stop: 'impulse of the stop', impulse_floor_seesaw: 'impulse of the floor on the seesaw',
+    impulse_floor_sandbag: 'impulse of the floor on the sandbag',
+  };
+
+  // Each event as playback reaches it, said to screen readers (aria-live) in the page's language.
+  function announce(group) {
+    const run = st.run;
+    $('announce').textContent = T('{t} s: {words}', { t: S.decimals(group.t.toFixed(3)), words: group.events.map((i) => S.eventWords(run.events[i].words)).join(' + ') });
+  }
+
+  function setForces(on) {
+    st.forces = on;
+    $('forces').setAttribute('aria-pressed', String(on));
+    $('force-scale').hidden = !on;
+    render();
   }
 
   function seek(t) {
@@ -642,7 +757,7 @@
     const groups = st.run.groups;
     const g = direction > 0 ? groups.find((x) => x.t > st.t + eps) : [...groups].reverse().find((x) => x.t < st.t - eps);
     seek(g ? g.t : direction > 0 ? st.run.tEnd : 0);
-    if (g) soundOf(g);
+    if (g) { soundOf(g); announce(g); }
   }
 
   // The sound of the events at one instant: the tune when the radio comes on, else a click when
@@ -655,7 +770,9 @@
   }
   function showSound() {
     $('sound').setAttribute('aria-pressed', String(!sound.muted));
-    $('sound').textContent = T(sound.muted ? 'Sound: off' : 'Sound: on');
+    const words = T(sound.muted ? 'Sound: off' : 'Sound: on');
+    $('sound').innerHTML = `<span class="wide"></span><span class="narrow">${icon(sound.muted ? 'M3 9v6h4l5 5V4L7 9zM16 8l6 8M22 8l-6 8' : 'M3 9v6h4l5 5V4L7 9zM16 7a6 6 0 0 1 0 10')}</span>`;
+    $('sound').firstChild.textContent = words;
   }
 
   // The player: simulated time runs at the chosen speed and stops for a moment at each event.
@@ -669,8 +786,10 @@
         const next = st.run.groups.find((g) => g.t > st.t);
         if (next && next.t <= t) {
           t = next.t;
-          st.holdUntil = now + kHoldMs;
+          // Reduced motion: no jump into the event's frame and out at once; it is held a little longer.
+          st.holdUntil = now + (reducedMotion ? 2 * kHoldMs : kHoldMs);
           soundOf(next);
+          announce(next);
         }
         if (t >= st.run.tEnd) {
           t = st.run.tEnd;
@@ -912,7 +1031,8 @@
     } else if (!on && document.fullscreenElement) {
       document.exitFullscreen().catch(() => {});
     }
-    requestAnimationFrame(() => { sizeCanvas(); fitCanvas(); plots.resize(); });
+    // The plots are made again: their type follows the page's.
+    requestAnimationFrame(() => { sizeCanvas(); fitCanvas(); if (st.run) plots.show(st.run, st.compare.runs); plots.resize(); });
   }
   $('projector').addEventListener('click', () => setProjector(!document.body.classList.contains('projector')));
   // Leaving full screen (Escape) leaves projector mode.
@@ -941,6 +1061,23 @@
     const local = location.protocol === 'file:' || /^(localhost|127\.|\[::1\])/.test(location.hostname);
     toast(`${T('Link copied: it opens this machine.')} ${local ? T('This address works on this computer only: serve the page (./run.sh web --lan, or any web server) to share it.') : ''}`, link);
   });
+  // The header's menus close when one of their items is chosen, or on a click elsewhere, or Escape.
+  const menus = [$('share-menu'), $('download-menu')];
+  for (const m of menus) m.addEventListener('click', (e) => { if (e.target.closest('button')) m.open = false; });
+  document.addEventListener('click', (e) => { for (const m of menus) if (m.open && !m.contains(e.target)) m.open = false; });
+  document.addEventListener('keydown', (e) => { if (e.key === 'Escape') for (const m of menus) if (m.open) { m.open = false; m.querySelector('summary').focus(); } });
+  $('why').addEventListener('toggle', () => { if ($('why').open && st.run) showWhy(); });
+  $('why-compare').addEventListener('click', openWhy);
+  $('qr').addEventListener('click', () => { writeUrl(); Teach.showQr(location.href); });
+  $('forces').addEventListener('click', () => setForces(!st.forces));
+  // Projector mode's one plot: the energy plot unless another is chosen.
+  function choosePlot(id) {
+    for (const f of document.querySelectorAll('.plot-grid > figure')) f.classList.toggle('chosen', f.id === id);
+    $('plot-choice').value = id;
+    requestAnimationFrame(() => plots.resize());
+  }
+  $('plot-choice').addEventListener('change', (e) => choosePlot(e.target.value));
+  choosePlot('plot-energy');
   $('dl-toml').addEventListener('click', () => download('toml'));
   $('dl-json').addEventListener('click', () => download('json'));
   $('dl-csv').addEventListener('click', () => download('csv'));
@@ -1006,6 +1143,8 @@
     } else if (e.key === 'm' || e.key === 'M') {
       sound.muted = !sound.muted;
       showSound();
+    } else if (e.key === 'v' || e.key === 'V') {
+      setForces(!st.forces);
     } else if (e.key === 'f' || e.key === 'F') {
       setProjector(!document.body.classList.contains('projector'));
     } else if (e.key === '?') {
@@ -1070,6 +1209,8 @@
     // The canvas's caption as drawn (its lines, and how far a part beyond the picture is), and
     // where the picture below it starts, in canvas pixels.
     get caption() { return st.caption; },
+    // The forces, velocities or impulses drawn now: [{what, value, unit, cut}] and the scale's legend.
+    get forces() { return st.drawnForces; },
     get pictureTop() { return st.band * st.dpr; },
     validity: (key) => panel.field(key).validity,
     probes: (key) => panel.probes().find((p) => p.key === key).values,

@@ -94,22 +94,27 @@
 
   // The state at time t: continuous quantities interpolated between the recorded states around
   // t, the contacts and the mode from the last recorded state at or before t (after an event at t).
-  const kContinuous = ['x', 'h', 'r', 'phi_s', 'phi_l', 'balloon_h', 'balloon_x', 'tension', 'energy'];
-  const kDiscrete = ['on_seesaw', 'rope_taut', 'mode', 'lid_resting', 'balloon_stuck'];
+  const kContinuous = ['x', 'h', 'r', 'phi_s', 'phi_l', 'balloon_h', 'balloon_x', 'tension', 'energy',
+                       'vx', 'vh', 'dphi_l', 'normal_force', 'stop_reaction', 'floor_reaction', 'bag_floor_reaction'];
+  const kDiscrete = ['on_seesaw', 'rope_taut', 'mode', 'lid_resting', 'balloon_stuck',
+                     'at_stop', 'bag_on_floor', 'seesaw_on_floor', 'rope_let_go'];
   function stateAt(samples, t) {
     const ts = samples.t;
     const j = firstAfter(ts, t), i = Math.max(0, j - 1);
     const s = { t };
     const w = j < ts.length && ts[j] > ts[i] && t > ts[i] ? (t - ts[i]) / (ts[j] - ts[i]) : 0;
-    for (const k of kContinuous) s[k] = w > 0 ? samples[k][i] + (samples[k][j] - samples[k][i]) * w : samples[k][i];
-    for (const k of kDiscrete) s[k] = samples[k][i];
+    for (const k of kContinuous) {
+      if (!samples[k]) continue;
+      s[k] = w > 0 ? samples[k][i] + (samples[k][j] - samples[k][i]) * w : samples[k][i];
+    }
+    for (const k of kDiscrete) if (samples[k]) s[k] = samples[k][i];
     return s;
   }
 
   // The i-th recorded state.
   function sampleAt(samples, i) {
     const s = { t: samples.t[i] };
-    for (const k of [...kContinuous, ...kDiscrete]) s[k] = samples[k][i];
+    for (const k of [...kContinuous, ...kDiscrete]) if (samples[k]) s[k] = samples[k][i];
     return s;
   }
 
@@ -471,11 +476,140 @@
       ctx.lineWidth = 4;
       ctx.strokeRect(2, 2, v.width - 4, v.height - 4);
     }
-    return { ...bag, far: far.join(' · ') };
+    let forces = null;
+    if (frame.forces) {
+      ctx.save();
+      ctx.beginPath();
+      ctx.rect(0, v.top, v.width, v.height - v.top);
+      ctx.clip();
+      forces = drawForces(ctx, v, run, s, font, frame.impulses);
+      ctx.restore();
+    }
+    return { ...bag, far: far.join(' · '), forces };
+  }
+
+  // ---- forces, velocities and impulses on the machine ----
+  // The arrows are the library's (its `forces` export: the snapshot's tension, contact forces and
+  // velocities, each placed where it acts); the page only scales them. One scale per run, stated
+  // in the legend: the sandbag's weight is a fixed share of the picture, so that gravity, the arm's
+  // push and the floor's reactions read against it; an arrow longer than kLongest of the picture
+  // is cut short (marked with two bars) and its value says how much it is.
+  const kArrowColour = { weight: 'rgb(0,110,40)', tension: 'rgb(110,40,150)', contact: 'rgb(0,85,204)',
+                         velocity: 'rgb(200,90,0)', impulse: 'rgb(200,0,60)' };
+  const kindOf = (what) => (what.startsWith('weight') ? 'weight' : what.startsWith('tension') ? 'tension'
+    : what.startsWith('velocity') ? 'velocity' : what.startsWith('impulse') ? 'impulse' : 'contact');
+  const kLongest = 0.38;
+  function arrowsOf(run, s, v, impulses) {
+    const state = Object.assign({}, s);
+    const r = library.forces(run.input, state, drawnArm(run, v.leftArm, farthestAt(run, s.t)), stopHeight(v), run.release,
+                             impulses || null);
+    if (!r.ok) throw new Error(r.message);
+    return r.arrows;
+  }
+  // Pixels per N, per m/s and per N s for a run in a view: the sandbag's weight a tenth of the
+  // picture's height, its fastest speed and the largest impulse a quarter.
+  const scales = new WeakMap();
+  function scalesOf(run, v) {
+    let k = scales.get(run);
+    if (!k || k.height !== v.height) {
+      const m = run.machine, s = run.samples, areaH = v.height - v.top;
+      let speed = 0, impulse = 0;
+      for (let i = 0; i < s.t.length; ++i) speed = Math.max(speed, Math.hypot(s.vx[i], s.vh[i]));
+      for (const e of run.events) if (e.impulses) for (const [key, j] of Object.entries(e.impulses)) if (!/lid/.test(key)) impulse = Math.max(impulse, Math.abs(j));
+      const nice = (x) => { const p = Math.pow(10, Math.floor(Math.log10(x))); return [1, 2, 5, 10].map((f) => f * p).find((y) => y >= x * 0.999); };
+      const weight = m.sandbag_mass * m.gravity;
+      k = { height: v.height, force: 0.1 * areaH / weight, velocity: speed > 0 ? 0.25 * areaH / speed : 0,
+            impulse: impulse > 0 ? 0.25 * areaH / impulse : 0 };
+      // The legend's round values: N, m/s and N s that are about a tenth of the picture.
+      k.legend = { force: nice(0.1 * areaH / k.force), velocity: k.velocity ? nice(0.1 * areaH / k.velocity) : 0,
+                   impulse: k.impulse ? nice(0.1 * areaH / k.impulse) : 0 };
+      scales.set(run, k);
+    }
+    return k;
+  }
+  function arrowShape(ctx, x0, y0, x1, y1, colour, width, cut) {
+    const dx = x1 - x0, dy = y1 - y0, len = Math.hypot(dx, dy);
+    if (len < 1) return;
+    const ux = dx / len, uy = dy / len, head = Math.min(len * 0.5, 4 + 2.5 * width);
+    ctx.save();
+    ctx.lineCap = 'round';
+    for (const [style, w] of [['white', width + 3], [colour, width]]) {
+      ctx.strokeStyle = style;
+      ctx.lineWidth = w;
+      ctx.beginPath();
+      ctx.moveTo(x0, y0);
+      ctx.lineTo(x1 - ux * head * 0.8, y1 - uy * head * 0.8);
+      ctx.stroke();
+    }
+    ctx.fillStyle = colour;
+    ctx.beginPath();
+    ctx.moveTo(x1, y1);
+    ctx.lineTo(x1 - ux * head - uy * head * 0.55, y1 - uy * head + ux * head * 0.55);
+    ctx.lineTo(x1 - ux * head + uy * head * 0.55, y1 - uy * head - ux * head * 0.55);
+    ctx.closePath();
+    ctx.fill();
+    if (cut) {  // two bars across the shaft: longer than drawn
+      const mx = x0 + dx * 0.5, my = y0 + dy * 0.5;
+      ctx.strokeStyle = colour;
+      ctx.lineWidth = 2;
+      for (const d of [-3, 3]) {
+        ctx.beginPath();
+        ctx.moveTo(mx + ux * d - uy * 6, my + uy * d + ux * 6);
+        ctx.lineTo(mx + ux * d + uy * 6, my + uy * d - ux * 6);
+        ctx.stroke();
+      }
+    }
+    ctx.restore();
+  }
+  // Draws the forces and velocities of state s (impulses: an impact's, flashed instead of them)
+  // and returns what was drawn, [{what, value, unit}], for the page's words and its tests.
+  function drawForces(ctx, v, run, s, font, impulses) {
+    const k = scalesOf(run, v), drawn = [];
+    const areaH = v.height - v.top, longest = kLongest * areaH;
+    const list = impulses ? impulses.flatMap((imp) => arrowsOf(run, imp.state, v, imp.impulses)) : arrowsOf(run, s, v, null);
+    ctx.save();
+    ctx.font = `600 ${Math.max(11, 0.72 * font)}px sans-serif`;
+    for (const a of list) {
+      const kind = kindOf(a.what);
+      const value = Math.hypot(a.vec.x, a.vec.h);
+      const per = kind === 'velocity' ? k.velocity : kind === 'impulse' ? k.impulse : k.force;
+      if (!(per > 0)) continue;
+      const o = toPixel(v, a.at);
+      let len = value * per;
+      const cut = len > longest;
+      if (cut) len = longest;
+      if (len < 3) continue;
+      const x1 = o.x + (a.vec.x / value) * len, y1 = o.y - (a.vec.h / value) * len;
+      arrowShape(ctx, o.x, o.y, x1, y1, kArrowColour[kind], kind === 'impulse' ? 4 : 2.5, cut);
+      const label = `${number(value)} ${a.unit}`;
+      ctx.fillStyle = kArrowColour[kind];
+      ctx.textAlign = x1 >= o.x ? 'left' : 'right';
+      ctx.lineWidth = 3;
+      ctx.strokeStyle = 'white';
+      const lx = x1 + (x1 >= o.x ? 4 : -4), ly = y1 + (y1 > o.y ? font * 0.8 : -3);
+      ctx.strokeText(label, lx, ly);
+      ctx.fillText(label, lx, ly);
+      drawn.push({ what: a.what, value, unit: a.unit, cut });
+    }
+    // The scale, in the picture's upper right corner (below the caption), clear of the floor.
+    ctx.textAlign = 'left';
+    let y = v.top + 1.0 * font;
+    const bars = impulses ? [['impulse', k.legend.impulse, 'N s', k.impulse]]
+      : [['weight', k.legend.force, 'N', k.force], ['velocity', k.legend.velocity, 'm/s', k.velocity]];
+    for (const [kind, amount, unit, per] of bars) {
+      if (!(per > 0) || !(amount > 0)) continue;
+      const text = `${number(amount)} ${unit}`, x0 = v.width - 0.6 * font - ctx.measureText(text).width - 5 - amount * per;
+      arrowShape(ctx, x0, y, x0 + amount * per, y, kArrowColour[kind], 2.5, false);
+      ctx.fillStyle = kArrowColour[kind];
+      ctx.fillText(text, x0 + amount * per + 5, y + 0.35 * font);
+      y += 1.2 * font;
+    }
+    ctx.restore();
+    return { arrows: drawn, legend: k.legend };
   }
 
   // The rope as drawn in state s of a run (scene.cpp's rope_at), for the page's tests.
   const ropePath = (run, s) => scene(run, s, 0, library.stopHeight(Infinity)).rope;
 
-  window.whatnextMachine = { draw, extent, makeView, toPixel, stateAt, ropePath, colour, useLibrary };
+  window.whatnextMachine = { draw, extent, makeView, toPixel, stateAt, ropePath, colour, useLibrary, arrowColour: kArrowColour };
 })();

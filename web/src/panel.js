@@ -57,6 +57,10 @@
     return e;
   }
 
+  const kSmall = '(max-width: 900px) and (orientation: portrait), (max-width: 600px)';
+  // A number with its unit, as a screen reader says a slider's value.
+  const unitWords = (unit) => unit.replace('^2', '²').replace('^3', '³');
+
   function create(form, keys, names, onChange) {
     const fields = new Map();  // key -> {spec, root, inputs, slider, error, reset}
     // What a blank field means for the keys a machine without them does not write: the key
@@ -66,8 +70,11 @@
 
     const groups = kGroups.map((g) => {
       const details = element('details', { class: 'group' });
-      if (!g.closed) details.open = true;
-      details.append(element('summary', { text: S.t(g.title) }));
+      // On a phone or an upright tablet every section starts closed: the physics comes first.
+      if (!g.closed && !window.matchMedia(kSmall).matches) details.open = true;
+      const summary = element('summary', { text: S.t(g.title) });
+      summary.append(element('span', { class: 'changed-count' }));
+      details.append(summary);
       form.append(details);
       return { ...g, details };
     });
@@ -87,7 +94,8 @@
       const root = element('div', { class: `field kind-${spec.kind}`, 'data-key': key });
       const label = element('label', { for: id },
                             element('span', { class: 'name', text: words(key) }),
-                            spec.unit ? element('span', { class: 'unit', text: spec.unit.replace('^2', '²').replace('^3', '³') }) : null);
+                            spec.unit ? document.createTextNode(' ') : null,
+                            spec.unit ? element('span', { class: 'unit', text: `[${unitWords(spec.unit)}]` }) : null);
       const reset = element('button', { type: 'button', class: 'reset', title: S.t('back to the machine as loaded'),
                                         'aria-label': S.t('reset {key}', { key }) });
       reset.textContent = '↺';
@@ -133,12 +141,17 @@
         row.append(input);
         if (kNumberKinds.includes(spec.kind) && kRanges[key]) {
           const slider = element('input', { type: 'range', min: 0, max: kSliderSteps, step: 1, class: 'slider',
-                                           'aria-label': `${key} slider`, tabindex: -1 });
+                                           'aria-label': words(key), tabindex: -1 });
           const [lo, hi, log] = kRanges[key];
           field.toSlider = (v) => kSliderSteps * (log ? Math.log(v / lo) / Math.log(hi / lo) : (v - lo) / (hi - lo));
           field.fromSlider = (p) => (log ? lo * Math.pow(hi / lo, p / kSliderSteps) : lo + (hi - lo) * p / kSliderSteps);
           const text = () => String(Number(field.fromSlider(Number(slider.value)).toPrecision(3)));
-          slider.addEventListener('input', () => { input.value = shown(text()); send(text(), false); });
+          // Said as the value with its unit, not the slider's position.
+          field.speak = (v) => {
+            const said = `${shown(String(Number(Number(v).toPrecision(4))))} ${spec.unit ? unitWords(spec.unit) : ''}`.trim();
+            if (slider.getAttribute('aria-valuetext') !== said) slider.setAttribute('aria-valuetext', said);  // written only when it changes
+          };
+          slider.addEventListener('input', () => { input.value = shown(text()); field.speak(text()); send(text(), false); });
           slider.addEventListener('change', () => send(text(), true));
           field.slider = slider;
         }
@@ -243,9 +256,20 @@
             put(input, 'placeholder', shown(blank));
             if (field.slider) {
               const v = Number(point(text) || blank);
-              if (Number.isFinite(v)) put(field.slider, 'value', String(Math.round(field.toSlider(v))));
+              if (Number.isFinite(v)) {
+                put(field.slider, 'value', String(Math.round(field.toSlider(v))));
+                field.speak(v);
+              }
             }
           }
+        }
+        // Each section's summary says how many of its values were changed.
+        for (const details of form.querySelectorAll('details.group')) {
+          const n = details.querySelectorAll('.field.changed').length;
+          const mark = details.querySelector('summary .changed-count');
+          const text = n ? ` · ${S.t('{n} changed', { n })}` : '';
+          if (mark.textContent !== text) mark.textContent = text;
+          details.classList.toggle('has-changes', n > 0);
         }
       },
       showError(key, message) {

@@ -89,9 +89,9 @@
     }
 
     function seriesFor(plot, others) {
-      const series = [{ label: 't [s]', value: (u, v) => (v == null ? '' : v.toFixed(4)) }];
+      const series = [{ label: 't [s]', value: (u, v) => (v == null ? '' : S.decimals(v.toFixed(4))) }];
       // Rounding noise (an energy-keeping impact's loss of -1.8e-15 J) reads as the zero it is.
-      const format = (v) => (v == null ? '—' : Math.abs(v) < 1e-9 ? '0' : Number(v.toPrecision(5)).toString());
+      const format = (v) => (v == null ? '—' : Math.abs(v) < 1e-9 ? '0' : S.decimals(Number(v.toPrecision(5)).toString()));
       // With two runs a row holds one run's values only: the other's value at that time is its
       // nearest row.
       const value = (u, v, sidx, idx) => {
@@ -144,12 +144,17 @@
       const { plot, figure } = chart;
       if (chart.u) chart.u.destroy();
       const width = Math.max(200, figure.clientWidth);
+      const type = Math.round(Math.max(12, 0.72 * parseFloat(getComputedStyle(document.body).fontSize)));
       const u = new uPlot({
-        width, height: plotHeight(width),
+        width, height: plotHeight(width, figure),
         scales: { x: { time: false } },
         axes: [
-          { label: 't [s]', labelSize: 20, size: 36 },
-          { label: plot.axis, labelSize: 20, size: 56 },
+          // The ticks' numbers with the page's decimal sign (uPlot's own are English).
+          // The axes' type grows with the page's (projector mode: legible from the back).
+          { label: 't [s]', labelSize: 1.4 * type, size: 2.4 * type, font: `${type}px sans-serif`, labelFont: `bold ${type}px sans-serif`,
+            values: (uu, ticks) => ticks.map((v) => S.decimals(String(Number(v.toPrecision(6))))) },
+          { label: plot.axis, labelSize: 1.4 * type, size: 3.8 * type, font: `${type}px sans-serif`, labelFont: `bold ${type}px sans-serif`,
+            values: (uu, ticks) => ticks.map((v) => S.decimals(String(Number(v.toPrecision(6))))) },
         ],
         series: seriesFor(plot, others),
         cursor: { y: false, sync: { key: 'whatnext' }, drag: { x: true, y: false }, points: { size: 6 } },
@@ -180,8 +185,15 @@
       return u;
     }
 
-    function plotHeight(width) {
-      return Math.round(Math.min(320, Math.max(170, 0.5 * width)));
+    function plotHeight(width, figure) {
+      const usual = Math.min(320, Math.max(170, 0.5 * width));
+      // Projector mode: the one plot ends on the screen, its legend under it included.
+      if (!document.body.classList.contains('projector') || !figure) return Math.round(usual);
+      const top = figure.getBoundingClientRect().top + window.scrollY, caption = figure.querySelector('figcaption');
+      const over = top + (caption ? caption.offsetHeight : 0);
+      const legend = figure.querySelector('.u-legend');
+      const room = window.innerHeight - over - (legend ? legend.offsetHeight : 60) - 16;
+      return Math.round(Math.max(140, Math.min(usual, room)));
     }
 
     // The plotting area's width in CSS pixels, as uPlot set it: reading clientWidth instead would
@@ -237,7 +249,7 @@
         for (const chart of charts) {
           if (!chart.u) continue;
           const width = Math.max(200, chart.figure.clientWidth);
-          chart.u.setSize({ width, height: plotHeight(width) });
+          chart.u.setSize({ width, height: plotHeight(width, chart.figure) });
         }
         placeAll();
       },

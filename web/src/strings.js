@@ -222,6 +222,79 @@
     'sandbag {d} m out': 'Sandsack {d} m draußen',
     'balloon {d} m up': 'Ballon {d} m oben',
     'each law in its colour: outlines in the drawing, dashes in the plots': 'jedes Gesetz in seiner Farbe: Umrisse in der Zeichnung, Striche in den Diagrammen',
+
+    // The header's menus, the forces, the energy bars, the "why", the QR code
+    'Share this machine: a link, or a QR code to scan': 'Diese Maschine teilen: ein Link oder ein QR-Code zum Scannen',
+    Share: 'Teilen',
+    'A QR code of the link, to scan with a phone': 'Ein QR-Code des Links, zum Scannen mit dem Handy',
+    'QR code': 'QR-Code',
+    'QR code of this machine': 'QR-Code dieser Maschine',
+    'QR code of the link': 'QR-Code des Links',
+    'This link is too long for a QR code ({n} characters): use Copy link.': 'Dieser Link ist für einen QR-Code zu lang ({n} Zeichen): Link kopieren benutzen.',
+    'Download the machine and its run': 'Die Maschine und ihren Lauf herunterladen',
+    Sound: 'Ton',
+    'Forces and velocities drawn on the machine (V)': 'Kräfte und Geschwindigkeiten an der Maschine (V)',
+    Forces: 'Kräfte',
+    'forces and velocities on / off': 'Kräfte und Geschwindigkeiten an / aus',
+    Show: 'Zeigen',
+    'Energy bars': 'Energiebalken',
+    'Why? The physics behind what you see': 'Warum? Die Physik hinter dem Bild',
+    'Why?': 'Warum?',
+    'What each impact law keeps and loses, and what a real rope does': 'Was jedes Stoßgesetz erhält und verliert, und was ein echtes Seil tut',
+    'each law in its colour; in the drawing one at a time (choose it below)': 'jedes Gesetz in seiner Farbe; in der Zeichnung eines nach dem anderen (unten wählen)',
+    '{law} (this run, filled)': '{law} (dieser Lauf, gefüllt)',
+    '{law} (outline)': '{law} (Umriss)',
+    'last event at {t} s: {words}': 'letztes Ereignis bei {t} s: {words}',
+    'no event yet': 'noch kein Ereignis',
+    '{t} s: {words}': '{t} s: {words}',
+    '{n} changed': '{n} geändert',
+    'Arrows (scale at the upper right): green gravity, purple the rope, blue the arm, the stop and the floor, orange velocities; red at an impact its impulses. An arrow cut by two bars is longer than drawn.':
+      'Pfeile (Maßstab rechts oben): grün die Schwerkraft, violett das Seil, blau der Arm, der Anschlag und der Boden, orange Geschwindigkeiten; rot bei einem Stoß seine Kraftstöße. Ein Pfeil mit zwei Querstrichen ist länger als gezeichnet.',
+    'gravity on the sandbag': 'Schwerkraft auf den Sandsack', 'gravity on the lid': 'Schwerkraft auf den Deckel',
+    'gravity on the seesaw': 'Schwerkraft auf die Wippe', 'the rope on the sandbag': 'Seil auf den Sandsack',
+    'the rope on the lid': 'Seil auf den Deckel', 'the arm on the sandbag': 'Arm auf den Sandsack',
+    'the stop on the sandbag': 'Anschlag auf den Sandsack', 'the floor on the seesaw': 'Boden auf die Wippe',
+    'the floor on the sandbag': 'Boden auf den Sandsack', 'velocity of the sandbag': 'Geschwindigkeit des Sandsacks',
+    "velocity of the lid's edge": 'Geschwindigkeit der Deckelkante',
+    'impulse of the arm on the sandbag': 'Kraftstoß des Arms auf den Sandsack', 'impulse of the rope on the sandbag': 'Kraftstoß des Seils auf den Sandsack',
+    'impulse of the rope on the lid': 'Kraftstoß des Seils auf den Deckel', 'impulse of the stop': 'Kraftstoß des Anschlags',
+    'impulse of the floor on the seesaw': 'Kraftstoß des Bodens auf die Wippe', 'impulse of the floor on the sandbag': 'Kraftstoß des Bodens auf den Sandsack',
+    'sandbag, kinetic': 'Sandsack, kinetisch', 'sandbag, potential': 'Sandsack, potentiell', 'lid, kinetic': 'Deckel, kinetisch',
+    'lid, potential': 'Deckel, potentiell', 'seesaw, kinetic': 'Wippe, kinetisch', 'seesaw, potential': 'Wippe, potentiell',
+    'rope, spring': 'Seil, Feder', 'balloon, kinetic and lift': 'Ballon, kinetisch und Auftrieb', 'lost in impacts': 'bei Stößen verloren',
+    'friction heat': 'Reibungswärme', damping: 'Dämpfung', "lid's work on the balloon": 'Arbeit des Deckels am Ballon',
+    'Sum {sum} J = energy at the start {start} J': 'Summe {sum} J = Energie am Anfang {start} J',
+    "Zero of potential energy: the sandbag and the seesaw at the pivot's height, the lid lying flat (at its hinge's height), the balloon's lift at the box's top. Below the zero a potential energy is negative (a bar to the left).":
+      'Nullpunkt der potentiellen Energie: Sandsack und Wippe in Höhe der Achse, der Deckel flach liegend (in Höhe seines Scharniers), der Auftrieb des Ballons an der Oberkante der Kiste. Unter dem Nullpunkt ist eine potentielle Energie negativ (ein Balken nach links).',
+    'What each impact law keeps and loses': 'Was jedes Stoßgesetz erhält und was es verliert',
+    'When the rope snaps straight (or the sandbag lands), the speeds jump in no time. The paper offers four laws for the jump; each keeps something else:':
+      'Wenn das Seil ruckartig straff wird (oder der Sandsack landet), springen die Geschwindigkeiten ohne Zeitverlust. Der Artikel bietet vier Gesetze für den Sprung an; jedes erhält etwas anderes:',
+    "rope (the paper's eq. 7): the jerk is perfectly inelastic, like clay on clay. After it the sandbag and the lid move together as the straight rope lets them; the kinetic energy they lose is the most any law may lose.":
+      'rope (Gl. 7 des Artikels): der Ruck ist vollkommen unelastisch, wie Knete auf Knete. Danach bewegen sich Sandsack und Deckel gemeinsam, wie das gestreckte Seil es zulässt; sie verlieren so viel kinetische Energie, wie ein Gesetz höchstens verlieren darf.',
+    "angular-momentum-sum: keeps the sum of the sandbag's angular momentum about the pivot and the lid's about its hinge. It loses less kinetic energy than the rope law, and on some machines can even gain some.":
+      'angular-momentum-sum: erhält die Summe der Drehimpulse des Sandsacks um die Achse und des Deckels um sein Scharnier. Es verliert weniger kinetische Energie als das Seilgesetz und kann an manchen Maschinen sogar welche gewinnen.',
+    'kinetic-energy: keeps the kinetic energy: an elastic jerk, nothing lost. The lid leaves faster than under the rope law.':
+      'kinetic-energy: erhält die kinetische Energie: ein elastischer Ruck, nichts geht verloren. Der Deckel fliegt schneller los als beim Seilgesetz.',
+    "linear-momentum: keeps the linear momentum of the sandbag and the lid's centre. It can make energy out of nothing: the paper calls it unphysical.":
+      'linear-momentum: erhält den Impuls von Sandsack und Deckelmitte. Es kann Energie aus dem Nichts erzeugen: der Artikel nennt es unphysikalisch.',
+    "(this run's law)": '(das Gesetz dieses Laufs)',
+    'A real rope stretches: the answer of a stiff rope': 'Ein echtes Seil dehnt sich: die Antwort eines steifen Seils',
+    'A stiff rope that stretches gives none of the four in general: it gives the rope law followed by a rebound. The rope springs back with Newton\'s restitution e(ζ), which depends only on the rope\'s damping ratio ζ: e = 1 for an undamped rope (an elastic bounce), e = 0.135 at ζ = 1, almost 0 for a well damped rope (the rope law). That is why "the rope that does not stretch" can change when the lid opens: a rope that stretches springs back.':
+      'Ein steifes Seil, das sich dehnt, ergibt im Allgemeinen keines der vier: es ergibt das Seilgesetz, gefolgt von einem Rückprall. Das Seil federt mit Newtons Stoßzahl e(ζ) zurück, die nur vom Dämpfungsgrad ζ des Seils abhängt: e = 1 für ein ungedämpftes Seil (ein elastischer Stoß), e = 0,135 bei ζ = 1, fast 0 für ein stark gedämpftes Seil (das Seilgesetz). Darum kann „das Seil, das sich nicht dehnt“ ändern, wann der Deckel aufgeht: ein Seil, das sich dehnt, federt zurück.',
+    "rope's damping ratio ζ": 'Dämpfungsgrad ζ des Seils',
+    'ζ = {z}: e(ζ) = {e}': 'ζ = {z}: e(ζ) = {e}',
+    "The lid's speed right after the first jerk, from runs of this machine by the library: under each law, and under the rope law with the rebound e(ζ) (restitution.rope).":
+      'Die Geschwindigkeit des Deckels direkt nach dem ersten Ruck, aus Läufen dieser Maschine durch die Bibliothek: unter jedem Gesetz und unter dem Seilgesetz mit dem Rückprall e(ζ) (restitution.rope).',
+    'rope law with the rebound e(ζ)': 'Seilgesetz mit Rückprall e(ζ)',
+    law: 'Gesetz',
+    "lid's speed after the jerk [°/s]": 'Deckel nach dem Ruck [°/s]',
+    'no jerk': 'kein Ruck',
+    'Why the lid latches (the radio machines)': 'Warum der Deckel einrastet (die Maschinen mit Radio)',
+    "With a radio, the lid latches open at the angle where it counts as open and the rope is let go: the latch catches the lid, and the lid's kinetic energy goes into the latch (counted with the impacts' losses in the energy bars). In the built machine (Konstanz) the seesaw then lands on the floor and the sandbag slides to the end stop: those impacts lose energy too, and the floor and the stop hold them (their reactions in the forces).":
+      'Mit Radio rastet der Deckel bei dem Winkel ein, bei dem er als offen gilt, und das Seil wird losgelassen: die Raste fängt den Deckel, und seine kinetische Energie geht in die Raste (in den Energiebalken bei den Stoßverlusten gezählt). In der gebauten Maschine (Konstanz) landet die Wippe dann auf dem Boden und der Sandsack rutscht an den Anschlag: auch diese Stöße verlieren Energie, und Boden und Anschlag halten sie (ihre Gegenkräfte bei den Kräften).',
+    'Why energies can be negative': 'Warum Energien negativ sein können',
+    "Potential energy is measured from a chosen zero: here the pivot's height (the lid: lying flat). A sandbag below the pivot has negative potential energy, so the machine's energy E can be below zero. Only differences matter: what is lost at an impact is the same whatever the zero.":
+      'Potentielle Energie wird von einem gewählten Nullpunkt aus gemessen: hier die Höhe der Achse (beim Deckel: flach liegend). Ein Sandsack unter der Achse hat negative potentielle Energie, also kann die Energie E der Maschine unter null liegen. Nur Differenzen zählen: was bei einem Stoß verloren geht, ist bei jedem Nullpunkt gleich.',
   };
 
   // The parameters' names and help (the library's list, docs/inputs.md), by key.
@@ -302,6 +375,8 @@
     [/^M5: rope taut, lid resting$/, 'M5: Seil straff, Deckel liegt auf'],
     [/^seesaw vertical at ([\d.]+) s without the sandbag \(it is (\S+) m from the pivot\); the lid never opens \(it is at ([-\d.]+) deg\)$/,
       'Wippe senkrecht bei $1 s ohne den Sandsack (er ist $2 m von der Achse entfernt); der Deckel öffnet nie (er steht bei $3°)'],
+    // The built machine's modes: their parts, each in German.
+    [/^(M\d): ((?:sandbag|seesaw|rope|lid)[a-z ,]*)$/, (m, mode, parts) => `${mode}: ${parts.split(', ').map((p) => deModeParts[p] || p).join(', ')}`],
     [/^([a-z_]+) at ([\d.]+) s$/, (m, type, t) => `${deEvents[type.replace(/_/g, ' ')] || type} bei ${t} s`],
   ];
 
@@ -477,6 +552,12 @@
     'sandbag bounces': 'Sandsack prallt ab', 'switch stays off': 'Schalter bleibt aus',
     'balloon escapes': 'Ballon entweicht', 'sandbag sticks': 'Sandsack haftet', 'sandbag slips': 'Sandsack rutscht',
     'seesaw sticks': 'Wippe haftet', 'seesaw slips': 'Wippe dreht sich wieder', 'lid sticks': 'Deckel haftet', 'lid slips': 'Deckel dreht sich wieder',
+  };
+
+  const deModeParts = {
+    'sandbag falling': 'Sandsack fällt', 'sandbag on the seesaw': 'Sandsack auf der Wippe', 'sandbag at the stop': 'Sandsack am Anschlag',
+    'sandbag on the floor': 'Sandsack auf dem Boden', 'seesaw on the floor': 'Wippe auf dem Boden', 'rope slack': 'Seil locker',
+    'rope taut': 'Seil straff', 'rope pulls the lid': 'Seil zieht den Deckel', 'lid resting': 'Deckel liegt auf', 'rope let go': 'Seil losgelassen',
   };
 
   const kLanguages = {

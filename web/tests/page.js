@@ -173,8 +173,15 @@ function sameText(mine, theirs, what) {
   });
 }
 
+// Clicks an item of the header's menus (Share, Download), opening its menu first.
+async function menuClick(page, button) {
+  const menu = await page.evaluate((b) => { const d = document.querySelector(b).closest('details'); return d && !d.open ? d.id : null; }, button);
+  if (menu) await page.click(`#${menu} > summary`);
+  await page.click(button);
+}
+
 async function download(page, button, dir) {
-  const [dl] = await Promise.all([page.waitForEvent('download'), page.click(button)]);
+  const [dl] = await Promise.all([page.waitForEvent('download'), menuClick(page, button)]);
   const file = path.join(dir, dl.suggestedFilename());
   await dl.saveAs(file);
   return file;
@@ -246,6 +253,38 @@ async function checkTimelineWhole(page, name) {
 }
 
 // ---- the checks --------------------------------------------------------------------------------
+
+// axe-core in the page: no WCAG 2.1 A or AA violation, at the start, after playing to the end (the
+// past rows greyed) with the forces drawn and the "why" open, in English and German.
+async function axeCheck(name, viewport, options) {
+  const axe = fs.readFileSync(require.resolve('axe-core/axe.min.js', {
+    paths: [...(process.env.NODE_PATH || '').split(':').filter(Boolean), path.join(sourceDir, 'build/web-npm/node_modules')],
+  }), 'utf8');
+  for (const locale of ['en-GB', 'de-DE']) {
+    await withPage(async (page) => {
+      const check = async (when) => {
+        await page.addScriptTag({ content: axe });
+        const result = await page.evaluate(() => window.axe.run(document, {
+          runOnly: { type: 'tag', values: ['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa'] },
+        }));
+        const found = result.violations.map((v) => `${v.id}: ${v.help} (${v.nodes.slice(0, 3).map((n) => n.target.join(' ')).join('; ')})`);
+        assert.deepEqual(found, [], `${name} ${locale}, ${when}: WCAG 2.1 A/AA violations`);
+      };
+      if (options.projector) {
+        await page.keyboard.press('f');
+        await page.waitForTimeout(300);
+      }
+      await check('at the start');
+      await page.evaluate(() => window.whatnext.play());
+      await page.evaluate(() => window.whatnext.seek(window.whatnext.run.tEnd));
+      await page.evaluate(() => document.querySelector('#forces').click());
+      await page.evaluate(() => { document.getElementById('why').open = true; });
+      await page.waitForSelector('#why[data-ready]');
+      await check('at the end, forces drawn, the why open');
+      await page.screenshot({ path: path.join(outDir, `web-axe-${name}-${locale.slice(0, 2)}.png`) });
+    }, { viewport, locale, touch: options.touch, scale: options.scale });
+  }
+}
 
 const checks = {
   // Every shipped machine loads, plays and compares without an error in the console, and nothing
@@ -584,10 +623,12 @@ const checks = {
       const names = await page.$$eval('#timeline tbody tr.event td:nth-child(2)', (cells) => cells.map((c) => c.textContent));
       for (const name of ['Wippe hebt ab', 'Wippe auf dem Boden', 'Sandsack am Anschlag', 'Ballon entweicht', 'Radio an']) assert.ok(names.includes(name), `${name} in ${names}`);
       const notes = (await page.$$eval('#timeline tbody tr.note', (r) => r.map((x) => x.textContent))).join(' | ');
-      assert.match(notes, /Kraftstoß Sandsack 0\.5479 N s, Boden auf Wippe 0\.6474 N s/);
-      assert.match(notes, /Anschlag 1\.1980 N s/);
+      // ... with the decimal comma of the German page.
+      assert.match(notes, /Kraftstoß Sandsack 0,5479 N s, Boden auf Wippe 0,6474 N s/);
+      assert.match(notes, /Anschlag 1,1980 N s/);
+      assert.doesNotMatch(notes, /\d\.\d/);
       for (const name of names) assert.deepEqual(englishIn(name), [], name);
-      assert.deepEqual(englishIn(notes.replace(/\d\.\d+ N s|N s|J/g, '')), [], notes);
+      assert.deepEqual(englishIn(notes.replace(/\d,\d+ N s|N s|J/g, '')), [], notes);
       await page.click('details.group:last-of-type > summary');
       await setFieldAndRun(page, 'radio.switch_force', '0,1');
       assert.equal(await outcomeText(page),
@@ -658,6 +699,12 @@ const checks = {
       assert.deepEqual(lines, ['rope', 'angular-momentum-sum', 'kinetic-energy', 'linear-momentum'].map(
         (law) => `${law}: ${cliOutcome([...machine, '--set', `run.impact_law=${law}`])}`));
       assert.notEqual(await picture(), plain);
+      // The drawing shows one other law at a time, chosen in the legend (each law its colour).
+      assert.deepEqual(await page.$$eval('#compare-legend button', (bs) => bs.map((b) => b.getAttribute('aria-pressed'))), ['true', 'false', 'false']);
+      const firstGhost = await picture();
+      await page.click('#compare-legend button:nth-of-type(2)');
+      assert.equal(await page.getAttribute('#compare-legend button:nth-of-type(2)', 'aria-pressed'), 'true');
+      assert.notEqual(await picture(), firstGhost);
       const labels = await page.$$eval('#plot-angles .u-legend .u-label', (ls) => ls.map((l) => l.textContent));
       for (const law of ['angular-momentum-sum', 'kinetic-energy', 'linear-momentum']) assert.ok(labels.includes(`φS seesaw, ${law}`), labels.join('; '));
       assert.match(page.url(), /compare=laws%3A$/);
@@ -907,7 +954,13 @@ const checks = {
           if (document.body.dataset.busy !== 'false') return;
           clearInterval(done);
           observer.disconnect();
-          resolve(new Set(records.map((r) => r.target.closest('[data-key]').dataset.key)));
+          // A field's own key; its section's summary (how many values changed) and the section.
+          const owner = (r) => {
+            const el = r.target.nodeType === 1 ? r.target : r.target.parentElement;
+            const field = el.closest('[data-key]');
+            return field ? field.dataset.key : el.closest('summary') ? 'summary' : el.matches('details') ? 'section' : el.tagName;
+          };
+          resolve(new Set(records.map(owner).filter((k) => k !== 'summary' && k !== 'section')));
         }, 5);
       }).then((keys) => [...keys]));
       assert.ok(touched.length <= 2, `a change of masses.lid rewrote ${touched.join(', ')}`);
@@ -1063,7 +1116,9 @@ const checks = {
   async single_file() {
     const file = path.join(webDir, 'whatnext.html');
     const html = fs.readFileSync(file, 'utf8');
-    assert.doesNotMatch(html, /<(script|link|img)[^>]+(src|href)="(?!data:)/, 'whatnext.html loads another file');
+    // The tags themselves: the inlined scripts' text is code (qrcode.js builds "<img src=" strings).
+    const tags = html.replace(/(<(script|style)\b[^>]*>)[\s\S]*?<\/\2>/g, '$1');
+    assert.doesNotMatch(tags, /<(script|link|img)[^>]+(src|href)="(?!data:)/, 'whatnext.html loads another file');
     const url = `file://${file}`;
     await withPage(async (page) => {
       assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(['--example', '1'])}.`);
@@ -1129,7 +1184,7 @@ const checks = {
       assert.equal(m[1], `http://${lanHost.address}:${lan.port}/`);
       await withPage(async (page) => {
         assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(['--example', '1'])}.`);
-        await page.click('#share');
+        await menuClick(page, '#share');
         // Not secure (http on a LAN address): no clipboard API; the page copies all the same.
         await page.waitForSelector('.toast');
         assert.equal(await page.textContent('.toast code'), `${m[1]}#machine=example1`);
@@ -1178,7 +1233,7 @@ const checks = {
   // 1's machine was a fifth of the width and a third of the height).
   async projector() {
     fs.mkdirSync(outDir, { recursive: true });
-    for (const viewport of [{ width: 1920, height: 1080 }, { width: 1280, height: 720 }]) {
+    for (const viewport of [{ width: 1920, height: 1080 }, { width: 1366, height: 768 }, { width: 1280, height: 720 }]) {
       const name = `${viewport.width}x${viewport.height}`;
       await withPage(async (page) => {
         await page.keyboard.press('f');
@@ -1213,6 +1268,35 @@ const checks = {
         assert.ok(Math.abs(await page.evaluate(() => window.whatnext.time) - events[0].t) < 1e-9);
         assert.ok(await page.locator('#timeline tr.now').isVisible());
         await checkTimelineWhole(page, `projector ${name}`);
+        if (viewport.width >= 1366) {
+          // What teaches, in view together: the machine, the outcome, the timeline, the energy plot
+          // and the comparison's choice.
+          for (const part of ['#machine', '#outcome', '#timeline', '#plot-energy', '#compare', '#plot-choice']) {
+            const r = await page.locator(part).boundingBox();
+            assert.ok(r && r.y >= 0 && r.y + r.height <= viewport.height && r.x + r.width <= viewport.width, `${name}: ${part} is out of view (${JSON.stringify(r)})`);
+          }
+          // Legible from the back: the timeline's text at 16 px and more; past events at 4.5:1.
+          await page.keyboard.press('End');
+          const type = await page.$$eval('#timeline td', (tds) => Math.min(...tds.filter((td) => td.offsetParent).map((td) => parseFloat(getComputedStyle(td).fontSize))));
+          assert.ok(type >= 16, `${name}: timeline text of ${type} px`);
+          const contrast = await page.$$eval('#timeline tr.past td', (tds) => {
+            const lum = (c) => {
+              const [r, g, b] = c.match(/\d+/g).slice(0, 3).map(Number).map((v) => { v /= 255; return v <= 0.03928 ? v / 12.92 : ((v + 0.055) / 1.055) ** 2.4; });
+              return 0.2126 * r + 0.7152 * g + 0.0722 * b;
+            };
+            return Math.min(...tds.map((td) => (1.05) / (lum(getComputedStyle(td).color) + 0.05)));
+          });
+          assert.ok(contrast >= 4.5, `${name}: past events at ${contrast.toFixed(2)}:1`);
+          // Another plot instead of the energy plot.
+          await page.selectOption('#plot-choice', 'plot-angles');
+          assert.ok(await page.locator('#plot-angles').isVisible());
+          assert.equal(await page.locator('#plot-energy').isVisible(), false);
+          await page.selectOption('#plot-choice', 'plot-energy');
+          await page.evaluate(() => document.activeElement.blur());
+          await page.keyboard.press('Home');
+          await page.keyboard.press('PageDown');
+          await page.keyboard.press('PageDown');
+        }
         await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
         await page.screenshot({ path: path.join(outDir, viewport.width >= 1920 ? 'web-projector.png' : `web-projector-${name}.png`) });
         // Example 3's long run: the timeline's columns whole in projector mode too.
@@ -1227,39 +1311,53 @@ const checks = {
     }
   },
 
-  // A phone, upright (360x740) and on its side (740x360), with a touch screen: nothing is cut or
-  // wider than the screen, the drawing stays in view while a parameter is changed, and no hint
-  // speaks of keys.
+  // A phone upright (390x844) and on its side (740x360), and a tablet upright (768x1024), with a
+  // touch screen: nothing is cut or wider than the screen; upright, the header is one row and the
+  // physics comes first: the outcome, the drawing, the timeline (its top within 1.5 screen heights)
+  // and the first plot above every parameter, whose sections start closed and say when changed.
   async phone() {
     fs.mkdirSync(outDir, { recursive: true });
-    for (const [name, viewport] of [['phone', { width: 360, height: 740 }], ['phone-landscape', { width: 740, height: 360 }]]) {
+    for (const [name, viewport] of [['phone', { width: 390, height: 844 }], ['phone-landscape', { width: 740, height: 360 }],
+                                    ['tablet', { width: 768, height: 1024 }]]) {
       await withPage(async (page) => {
         const cut = await page.evaluate(() => {
           const out = [];
           for (const el of document.body.querySelectorAll('*')) {
             const r = el.getBoundingClientRect();
-            if (!r.width || !r.height || el.closest('.table-box, dialog, .u-legend, pre') || getComputedStyle(el).visibility === 'hidden') continue;
+            if (!r.width || !r.height || el.closest('.table-box, dialog, .u-legend, pre, .visually-hidden, .brand') || getComputedStyle(el).visibility === 'hidden') continue;
             if (r.left < -0.5 || r.right > window.innerWidth + 0.5) out.push(`${el.tagName}#${el.id}.${el.className} ${r.left}-${r.right}`);
           }
           return out;
         });
         assert.deepEqual(cut, [], `${name}: cut at the sides`);
         assert.ok(await page.evaluate(() => document.documentElement.scrollWidth <= window.innerWidth), `${name}: wider than the screen`);
-        // A parameter brought into view and changed: the drawing is in view with it.
+        const top = (sel) => page.evaluate((s) => document.querySelector(s).getBoundingClientRect().top + window.scrollY, sel);
+        if (name !== 'phone-landscape') {
+          const header = await page.locator('header.bar').boundingBox();
+          const preset = await page.locator('#preset').boundingBox();
+          assert.ok(header.height <= 56, `${name}: the header is ${header.height} px high (one row)`);
+          assert.ok(preset.width >= 0.3 * viewport.width, `${name}: the machine's choice is ${preset.width} px wide`);
+          const panel = await top('#panel');
+          for (const part of ['#outcome', '#machine', '#timeline', '#plot-angles']) {
+            assert.ok(await top(part) < panel, `${name}: ${part} is below the parameters`);
+          }
+          const timeline = await top('#timeline');
+          assert.ok(timeline <= 1.5 * viewport.height, `${name}: the timeline starts at ${timeline} px`);
+          console.log(`${name}: the timeline starts at ${Math.round(timeline)} px, the parameters at ${Math.round(panel)} px`);
+          const open = await page.$$eval('#fields details.group', (ds) => ds.filter((d) => d.open).length);
+          assert.equal(open, 0, `${name}: parameter sections open at the start`);
+        }
+        // A parameter changed: its section opened on demand says so, and the run is the CLI's.
         const field = fieldId('masses.lid');
+        const section = await page.evaluate((f) => { const d = document.querySelector(f).closest('details'); d.open = true; return d.querySelector('summary').textContent; }, field);
+        assert.doesNotMatch(section, /changed/);
         await page.locator(field).scrollIntoViewIfNeeded();
         await page.tap(field);
         await page.fill(field, '0.45');
         await page.press(field, 'Tab');
         await idle(page);
-        const inView = (sel) => page.evaluate((s) => {
-          const r = document.querySelector(s).getBoundingClientRect();
-          return r.top >= -1 && r.bottom <= window.innerHeight + 1 && r.height > 0;
-        }, sel);
-        assert.ok(await inView('#machine'), `${name}: the drawing is out of view`);
-        assert.ok(await inView(field), `${name}: the field is out of view`);
-        assert.ok(await inView('#stage-outcome'), `${name}: the outcome is out of view`);
-        assert.equal(await page.textContent('#stage-outcome'), `Outcome: ${cliOutcome(['--example', '1', '--set', 'masses.lid=0.45'])}.`);
+        assert.match(await page.evaluate((f) => document.querySelector(f).closest('details').querySelector('summary').textContent, field), /1 changed/);
+        assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(['--example', '1', '--set', 'masses.lid=0.45'])}.`);
         const box = await page.locator('#machine').boundingBox();
         assert.ok(box.height >= 150, `${name}: the drawing is ${box.height} px high`);
         const text = await page.evaluate(() => document.body.innerText);
@@ -1268,9 +1366,182 @@ const checks = {
         await page.evaluate(() => window.scrollTo(0, 0));
         await page.waitForSelector('body[data-checked]');  // the sliders' red stretches drawn
         await page.screenshot({ path: path.join(outDir, `web-${name}.png`) });
+        if (name === 'phone') await page.screenshot({ path: path.join(outDir, 'web-phone-full.png'), fullPage: true });
       }, { viewport, scale: 2, touch: true });
     }
   },
+
+  // Forces and velocities on the machine (V, or the button): the library's values, placed where
+  // they act; at an impact its impulses instead, in N s.
+  async forces() {
+    const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-forces-'));
+    const csvFile = path.join(dir, 'run.csv');
+    assert.equal(cli('run', '--example', '2', '--csv', csvFile, '-q').status, 0);
+    const lines = fs.readFileSync(csvFile, 'utf8').trim().split('\n');
+    fs.rmSync(dir, { recursive: true, force: true });
+    const head = lines[0].split(',');
+    const rows = lines.slice(1).map((l) => l.split(','));
+    const col = (row, name) => Number(row[head.indexOf(name)]);
+    // A sample while the rope pulls the lid (mode M4, tension above zero).
+    const pulling = rows.find((r) => r[head.indexOf('mode')] === 'M4' && col(r, 'tension_N') > 0.1);
+    assert.ok(pulling, 'example 2 has a sample with the rope pulling');
+    const events = cliEvents(['--example', '2']).events;
+    const jerk = events.find((e) => e.type === 'rope_taut');
+    await withPage(async (page) => {
+      assert.equal(await page.getAttribute('#forces', 'aria-pressed'), 'false');
+      assert.match(await page.textContent('#outcome'), /0\.550 s/);
+      await page.keyboard.press('v');
+      assert.equal(await page.getAttribute('#forces', 'aria-pressed'), 'true');
+      const t = col(pulling, 't_s');
+      await page.evaluate((x) => window.whatnext.seek(x), t);
+      const drawn = await page.evaluate(() => window.whatnext.forces);
+      const byName = Object.fromEntries(drawn.arrows.map((a) => [a.what, a]));
+      const m = await page.evaluate(() => window.whatnext.run.machine);
+      // Gravity: m g on each body.
+      assert.ok(Math.abs(byName.weight_sandbag.value - m.sandbag_mass * m.gravity) < 1e-9);
+      assert.ok(Math.abs(byName.weight_lid.value - m.lid_mass * m.gravity) < 1e-9);
+      // The rope's tension as the command line writes it, on both ends.
+      for (const end of ['tension_on_sandbag', 'tension_on_lid']) {
+        assert.ok(Math.abs(byName[end].value - col(pulling, 'tension_N')) <= 1e-6 * col(pulling, 'tension_N'), `${end}: ${byName[end].value}`);
+      }
+      assert.ok(byName.arm_on_sandbag, 'the arm pushes the sandbag');
+      // The lid's edge moves at the lid's angular speed times its length (2 r_L).
+      const edge = Math.abs(col(pulling, 'dphi_l_deg_per_s')) * Math.PI / 180 * 2 * m.lid_half_length;
+      assert.ok(Math.abs(byName.velocity_lid_edge.value - edge) <= 1e-6 * edge, `the lid's edge at ${byName.velocity_lid_edge.value} m/s, not ${edge}`);
+      assert.ok(byName.velocity_sandbag);
+      assert.match(await page.textContent('#force-scale'), /gravity on the sandbag/);
+      // The jerk: its impulses (N s), the rope's as the events JSON gives it.
+      // (Example 2: the taut rope pulls the lid open.)
+      await page.evaluate((x) => window.whatnext.seek(x), jerk.t);
+      const flash = await page.evaluate(() => window.whatnext.forces);
+      const rope = flash.arrows.find((a) => a.what === 'impulse_rope_on_lid');
+      assert.ok(rope && rope.unit === 'N s', 'the rope\'s impulse at the jerk');
+      assert.ok(Math.abs(rope.value - jerk.impulses.rope_N_s) <= 1e-9 * jerk.impulses.rope_N_s);
+      assert.ok(flash.arrows.every((a) => a.what.startsWith('impulse')));
+      await page.screenshot({ path: path.join(outDir, 'web-forces-jerk.png') });
+      await page.evaluate((x) => window.whatnext.seek(x), t);
+      await page.screenshot({ path: path.join(outDir, 'web-forces.png') });
+      await page.click('#forces');
+      assert.equal(await page.evaluate(() => window.whatnext.forces), null);
+      // Konstanz: the floor holds the seesaw and the stop the sandbag after the latch.
+      await page.selectOption('#preset', 'konstanz');
+      await idle(page);
+      await page.keyboard.press('v');
+      await page.keyboard.press('End');
+      const end = await page.evaluate(() => window.whatnext.forces.arrows.map((a) => a.what));
+      assert.ok(end.includes('floor_on_seesaw') || end.includes('stop_on_sandbag') || end.includes('floor_on_sandbag'), `konstanz at its end: ${end}`);
+      await page.screenshot({ path: path.join(outDir, 'web-forces-konstanz.png') });
+      // The mode's words fit the machine as built (the library's words, as the GIF's caption).
+      assert.match(await page.evaluate(() => window.whatnext.caption), /M3: sandbag at the stop, seesaw on the floor, rope let go/);
+    }, { viewport: { width: 1400, height: 900 }, hash: '#machine=example2' });
+  },
+
+  // The energy bars: the ledger at the time shown, adding up to the energy at the start (the
+  // command line's initial_total) at every time; named for screen readers in both languages.
+  async energy_bars() {
+    await withPage(async (page) => {  // the built machine's mode in German words
+      await page.keyboard.press('End');
+      assert.match(await page.evaluate(() => window.whatnext.caption), /M3: Sandsack am Anschlag, Wippe auf dem Boden, Seil losgelassen/);
+    }, { locale: 'de-DE', hash: '#machine=konstanz' });
+    const events = cliEvents(['--example', '1']).events;
+    const start = events[0].ledger.initial_total;
+    await withPage(async (page) => {
+      for (const t of [0, events[0].t, events[1].t, 0.6, events[events.length - 1].t]) {
+        await page.evaluate((x) => window.whatnext.seek(x), t);
+        const values = await page.$$eval('#bars .bar-value', (vs) => vs.map((v) => Number(v.textContent.replace(' J', ''))));
+        const sum = values.reduce((a, b) => a + b, 0);
+        assert.ok(Math.abs(sum - start) <= 0.0005 * values.length + 1e-9, `t = ${t}: the bars add up to ${sum}, not ${start}`);
+        assert.match(await page.textContent('#bars .bar-total'), new RegExp(`= energy at the start ${start.toFixed(3)} J`));
+      }
+      // At the jerk, what the impacts lost so far is the command line's.
+      await page.evaluate((x) => window.whatnext.seek(x), events[1].t);
+      const label = await page.getAttribute('#bars', 'aria-label');
+      assert.match(label, /^Energy bars: /);
+      assert.match(label, new RegExp(`lost in impacts ${events[1].ledger.lost_impacts.toFixed(3)} J`));
+      assert.match(await page.textContent('#bars-zero'), /pivot's height/);
+      // The drawing is an image whose description follows the run; an event reached is announced.
+      await page.evaluate(() => window.whatnext.seek(0));
+      assert.equal(await page.getAttribute('#machine', 'role'), 'img');
+      assert.match(await page.getAttribute('#machine', 'aria-label'), /no event yet/);
+      await page.keyboard.press(']');
+      assert.equal(await page.textContent('#announce'), `${events[0].t.toFixed(3)} s: sandbag lands`);
+      assert.match(await page.getAttribute('#machine', 'aria-label'), /M3: sandbag on the seesaw, rope slack; last event at [\d.]+ s: sandbag lands/);
+      assert.equal(await page.getAttribute('#announce', 'aria-live'), 'polite');
+    });
+    await withPage(async (page) => {
+      assert.match(await page.getAttribute('#bars', 'aria-label'), /^Energiebalken: /);
+      assert.match(await page.textContent('#energy-bars figcaption'), /^Energiebalken$/);
+    }, { locale: 'de-DE' });
+  },
+
+  // The "why": reachable from the comparison and the timeline; the stiff rope's rebound e(ζ) at
+  // the closed form's values (docs/impact.md), and the lid's speed after the jerk under the rope
+  // law as the command line's events give it.
+  async why() {
+    const jerk = cliEvents(['--example', '1']).events.find((e) => e.type === 'rope_taut');
+    await withPage(async (page) => {
+      const e = await page.evaluate(() => [0, 0.1, 1, 10].map((z) => window.whatnextTeach.restitution(z)));
+      assert.equal(e[0], 1);
+      assert.ok(Math.abs(e[2] - Math.exp(-2)) < 1e-9, `e(1) = ${e[2]}`);
+      assert.ok(Math.abs(e[1] - 0.744) < 0.0006, `e(0.1) = ${e[1]}`);
+      assert.ok(Math.abs(e[3] - 0.0024) < 0.00006, `e(10) = ${e[3]}`);
+      await page.click('#why-compare');
+      await page.waitForSelector('#why[data-ready]');
+      const rows = await page.$$eval('#zeta-table tr', (rs) => rs.map((r) => [...r.cells].map((c) => c.textContent)));
+      const rope = rows.find((r) => r[0] === 'rope');
+      assert.equal(rope[1], jerk.state.dphi_l_deg_per_s.toFixed(1));
+      assert.equal(rows.length, 6);
+      // The interactive: ζ chosen so that e = 0.5 is not on its steps; a step's e and the run agree
+      // with a run of the command line at restitution.rope = e (here: the step nearest e = 0.5).
+      await page.$eval('#zeta', (el) => { el.value = '2'; el.dispatchEvent(new Event('change')); });
+      await page.waitForFunction(() => /0\.2/.test(document.getElementById('zeta-out').textContent));
+      assert.match(await page.getAttribute('#zeta', 'aria-valuetext'), /^ζ = 0\.2: e\(ζ\) = 0\.\d{3}$/);
+      // From the timeline: the jerk's line has a "Why?".
+      await page.evaluate(() => { document.getElementById('why').open = false; });
+      await page.click('#timeline tr.note .why-link');
+      assert.ok(await page.evaluate(() => document.getElementById('why').open));
+      await page.screenshot({ path: path.join(outDir, 'web-why.png'), fullPage: true });
+    });
+  },
+
+  // Share -> QR code: drawn in the page (nothing fetched), dark modules on white with a quiet zone.
+  async qr_code() {
+    await withPage(async (page) => {
+      await menuClick(page, '#qr');
+      await page.waitForSelector('#qr-dialog[open] svg');
+      const qr = await page.evaluate(() => {
+        const svg = document.querySelector('#qr-code svg');
+        const size = Number(svg.getAttribute('viewBox').split(' ')[2]);
+        const cells = [...svg.querySelector('path').getAttribute('d').matchAll(/M(\d+) (\d+)/g)].map((m) => [Number(m[1]), Number(m[2])]);
+        return { size, cells, link: document.getElementById('qr-note').textContent, href: location.href,
+                 fill: svg.querySelector('path').getAttribute('fill'), back: svg.querySelector('rect').getAttribute('fill') };
+      });
+      assert.equal(qr.link, qr.href);
+      assert.match(qr.link, /#machine=example1/);
+      assert.equal(qr.fill, '#000');
+      assert.equal(qr.back, '#fff');
+      // Version v has 17 + 4 v modules a side, plus 4 quiet modules each side.
+      assert.equal((qr.size - 8 - 17) % 4, 0, `a side of ${qr.size}`);
+      assert.ok(qr.cells.every(([x, y]) => x >= 4 && y >= 4 && x < qr.size - 4 && y < qr.size - 4), 'a dark module in the quiet zone');
+      // The three finder patterns: dark 7x7 squares' corners.
+      const dark = new Set(qr.cells.map(([x, y]) => `${x},${y}`));
+      for (const [x, y] of [[4, 4], [qr.size - 5, 4], [4, qr.size - 5]]) assert.ok(dark.has(`${x},${y}`), `finder at ${x},${y}`);
+      await page.screenshot({ path: path.join(outDir, 'web-qr.png') });
+      // Scanned as a phone would (zbar, where it is installed): the link itself.
+      if (fs.existsSync('/usr/bin/zbarimg')) {
+        const shot = path.join(outDir, 'web-qr-code.png');
+        await page.locator('#qr-code svg').screenshot({ path: shot });
+        const scan = spawnSync('/usr/bin/zbarimg', ['-q', '--raw', shot], { encoding: 'utf8' });
+        assert.equal(scan.stdout.trim(), qr.href, `zbarimg read ${scan.stdout}`);
+      } else {
+        console.log('qr_code: no zbarimg here, the code is not scanned');
+      }
+    });
+  },
+
+  async axe_desktop() { await axeCheck('desktop', { width: 1400, height: 900 }, {}); },
+  async axe_phone() { await axeCheck('phone', { width: 390, height: 844 }, { touch: true, scale: 2 }); },
+  async axe_projector() { await axeCheck('projector', { width: 1366, height: 768 }, { projector: true }); },
 
   // German: from the browser's language; every word of the page in German, numbers with a decimal
   // comma, the library's messages in German words; the switch back to English.
@@ -1517,6 +1788,11 @@ const checks = {
     await withPage(async (page) => {
       await page.waitForSelector('body[data-checked]');
       const key = 'geometry.rope_length';
+      // A slider says its value with its unit, not its position; the label's name and unit apart.
+      const shown = await page.$eval(fieldId(key), (i) => i.value || i.placeholder);
+      assert.equal(await page.$eval(`[data-key="${key}"] input.slider`, (el) => el.getAttribute('aria-valuetext')), `${shown} m`);
+      assert.equal(await page.$eval(`[data-key="${key}"] label`, (el) => el.textContent), 'rope length [m]');
+      assert.match(await page.getAttribute('#scrub', 'aria-valuetext'), /^t = \d\.\d{3} s$/);
       const [valid, values] = await page.evaluate((k) => {
         const probe = document.querySelector(`[data-key="${k}"] input.slider`);
         return [window.whatnext.validity(k), window.whatnext.probes(k), probe];

@@ -115,6 +115,16 @@ const std::vector<Column>& columns() {
              WHATNEXT_COLUMN(dphi_l),
              WHATNEXT_COLUMN(balloon_x),  // from the hinge sideways: a balloon smaller than the box moves
              WHATNEXT_COLUMN(normal_force),
+             WHATNEXT_COLUMN(box_reaction),
+             WHATNEXT_COLUMN(stop_reaction),
+             WHATNEXT_COLUMN(floor_reaction),
+             WHATNEXT_COLUMN(bag_floor_reaction),
+             WHATNEXT_COLUMN(at_stop),  // the built machine's contacts (the mode's words)
+             WHATNEXT_COLUMN(bag_on_floor),
+             WHATNEXT_COLUMN(seesaw_on_floor),
+             WHATNEXT_COLUMN(rope_let_go),
+             WHATNEXT_COLUMN(rope_potential),  // a rope that stretches: its spring, its damper's heat
+             WHATNEXT_COLUMN(dissipated_rope),
              WHATNEXT_COLUMN(initial_total),
              WHATNEXT_COLUMN(on_seesaw),
              WHATNEXT_COLUMN(rope_taut),
@@ -433,6 +443,92 @@ val scene(val input, val state, double arm, double stop_height, val release) {
   });
 }
 
+// The forces on the machine and the velocities in state `state` of a run of `input` (its
+// fields as the run's samples name them), drawn on the scene as `scene` places it: each arrow
+// {what, at {x, h}, vec {x, h}, unit}, where the force acts, in N (velocities in m/s). With
+// `impulses` (an impact's, as its event holds them, N s) the impulses instead, along the same
+// lines. The magnitudes are the library's snapshot (tension, the contact forces, the velocities);
+// here they get only their directions, from the scene's points.
+val forces(val input, val state, double arm, double stop_height, val release, val impulses) {
+  return guarded([&] {
+    const Scenario& sc = drawn_scenario(input);
+    const Machine& m = sc.machine;
+    auto get = [&](const char* k) { return state[k].isNumber() ? state[k].as<double>() : 0.0; };
+    Snapshot s;
+    s.t = get("t"), s.x = get("x"), s.h = get("h"), s.phi_s = get("phi_s"), s.phi_l = get("phi_l");
+    s.balloon_h = get("balloon_h"), s.balloon_x = get("balloon_x");
+    s.rope_taut = get("rope_taut") != 0.0;
+    viz::scene::Release r;
+    r.latch = release["latch"].as<double>();
+    r.off = release["off"].as<double>();
+    const viz::scene::MovingParts mp = viz::scene::moving_parts(m, s, r, arm, stop_height);
+    const auto unit = [](Vec2 v) {
+      const double n = std::hypot(v.x, v.h);
+      return n > 0 ? Vec2{v.x / n, v.h / n} : Vec2{0, 0};
+    };
+    const auto scaled = [](Vec2 v, double k) { return Vec2{v.x * k, v.h * k}; };
+    val arrows = val::array();
+    const auto arrow = [&](const char* what, Vec2 at, Vec2 vec, const char* u) {
+      if (!(std::hypot(vec.x, vec.h) > 0.0)) return;
+      val a = val::object();
+      a.set("what", std::string(what));
+      a.set("at", xy(at));
+      a.set("vec", xy(vec));
+      a.set("unit", std::string(u));
+      arrows.call<void>("push", a);
+    };
+    // Directions: the rope from each of its ends inwards, the arm's normal (up from the bar) and
+    // its line towards the pivot (the stop pushes the sandbag inwards), up from the floor.
+    Vec2 to_rope_bag{0, 0}, to_rope_lid{0, 0}, knot = mp.lid_end;
+    if (mp.rope.size() >= 2) {
+      const bool bag_first = std::hypot(mp.rope.front().x - mp.sandbag.x, mp.rope.front().h - mp.sandbag.h) <=
+                             std::hypot(mp.rope.back().x - mp.sandbag.x, mp.rope.back().h - mp.sandbag.h);
+      const Vec2 a = bag_first ? mp.rope.front() : mp.rope.back(), a1 = bag_first ? mp.rope[1] : mp.rope[mp.rope.size() - 2];
+      const Vec2 b = bag_first ? mp.rope.back() : mp.rope.front(), b1 = bag_first ? mp.rope[mp.rope.size() - 2] : mp.rope[1];
+      to_rope_bag = unit({a1.x - a.x, a1.h - a.h});
+      to_rope_lid = unit({b1.x - b.x, b1.h - b.h});
+      knot = b;
+    }
+    const Vec2 along = unit({mp.arm_right.x - mp.arm_left.x, mp.arm_right.h - mp.arm_left.h});
+    const Vec2 normal{-along.h, along.x};
+    const Vec2 up{0, 1};
+    const Vec2 grounded_end = mp.arm_left.h < mp.arm_right.h ? mp.arm_left : mp.arm_right;
+    if (!impulses.isUndefined() && !impulses.isNull()) {
+      auto imp = [&](const char* k) { return impulses[k].isNumber() ? impulses[k].as<double>() : 0.0; };
+      arrow("impulse_sandbag", mp.sandbag, scaled(normal, imp("sandbag_N_s")), "N s");
+      arrow("impulse_rope_on_sandbag", mp.sandbag, scaled(to_rope_bag, imp("rope_N_s")), "N s");
+      arrow("impulse_rope_on_lid", knot, scaled(to_rope_lid, imp("rope_N_s")), "N s");
+      arrow("impulse_stop", mp.sandbag, scaled(along, imp("stop_N_s")), "N s");
+      arrow("impulse_floor_seesaw", grounded_end, scaled(up, imp("floor_seesaw_N_s")), "N s");
+      arrow("impulse_floor_sandbag", mp.sandbag, scaled(up, imp("floor_sandbag_N_s")), "N s");
+    } else {
+      const double g = m.gravity;
+      arrow("weight_sandbag", mp.sandbag, {0, -m.sandbag_mass * g}, "N");
+      arrow("weight_lid", {0.5 * (mp.hinge.x + mp.lid_end.x), 0.5 * (mp.hinge.h + mp.lid_end.h)},
+            {0, -m.lid_mass * g}, "N");
+      const Vec2 right = unit(mp.arm_right);
+      arrow("weight_seesaw", scaled(right, m.seesaw_com_offset), {0, -m.seesaw_mass * g}, "N");
+      const double tension = get("tension");
+      arrow("tension_on_sandbag", mp.sandbag, scaled(to_rope_bag, tension), "N");
+      arrow("tension_on_lid", knot, scaled(to_rope_lid, tension), "N");
+      if (get("on_seesaw") != 0.0) arrow("arm_on_sandbag", mp.sandbag, scaled(normal, get("normal_force")), "N");
+      arrow("stop_on_sandbag", mp.sandbag, scaled(along, get("stop_reaction")), "N");
+      arrow("floor_on_seesaw", grounded_end, scaled(up, get("floor_reaction")), "N");
+      arrow("floor_on_sandbag", mp.sandbag, scaled(up, get("bag_floor_reaction")), "N");
+      arrow("velocity_sandbag", mp.sandbag, {get("vx"), get("vh")}, "m/s");
+      // The lid's edge moves across the lid at dphi_l times its length: the derivative of the
+      // scene's lid_end along phi_l.
+      const double d = 1e-6, w = get("dphi_l");
+      const Vec2 e1 = viz::scene::lid_end(m, s.phi_l + d), e0 = viz::scene::lid_end(m, s.phi_l - d);
+      arrow("velocity_lid_edge", mp.lid_end, {(e1.x - e0.x) / (2 * d) * w, (e1.h - e0.h) / (2 * d) * w}, "m/s");
+    }
+    val v = val::object();
+    v.set("ok", true);
+    v.set("arrows", arrows);
+    return v;
+  });
+}
+
 // The left arm's drawn length and the end stop's height, as the animation draws them
 // (src/viz/scene.hpp drawn_arm, stop_height): leftArm is the machine's seesaw_left_arm (Infinity:
 // endless), farthest how far out the sandbag has been on the arm so far.
@@ -537,6 +633,21 @@ val names() {
     modes.set(static_cast<int>(m), viz::mode_words(m));
   }
   out.set("modes", modes);
+  // The words of every mode with the built machine's contacts (viz::mode_words), keyed
+  // "mode,at_stop,bag_on_floor,seesaw_on_floor,rope_let_go" (0 or 1 each): the page's caption.
+  val contacts = val::object();
+  for (Mode m : {Mode::M1, Mode::M2, Mode::M3, Mode::M4, Mode::M5}) {
+    for (int bits = 0; bits < 16; ++bits) {
+      Snapshot s;
+      s.mode = m;
+      s.at_stop = bits & 1, s.bag_on_floor = bits & 2, s.seesaw_on_floor = bits & 4, s.rope_let_go = bits & 8;
+      contacts.set(std::to_string(static_cast<int>(m)) + ',' + std::to_string(bits & 1) + ',' +
+                       std::to_string((bits >> 1) & 1) + ',' + std::to_string((bits >> 2) & 1) + ',' +
+                       std::to_string((bits >> 3) & 1),
+                   viz::mode_words(s));
+    }
+  }
+  out.set("modeWords", contacts);
   return out;
 }
 
@@ -580,6 +691,7 @@ EMSCRIPTEN_BINDINGS(whatnext) {
   emscripten::function("names", &names);
   emscripten::function("scene", &scene);
   emscripten::function("sceneTrace", &scene_trace);
+  emscripten::function("forces", &forces);
   emscripten::function("drawnArm", &drawn_arm);
   emscripten::function("stopHeight", &stop_height);
   emscripten::function("colours", &colours);

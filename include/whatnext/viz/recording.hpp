@@ -38,7 +38,9 @@ std::vector<EventGroup> group_events(const Result& result);
 // "rope taut (impact, 5.97 J -> 4.03 J)": an event in words for labels.
 std::string event_words(const Event& e, bool with_energy);
 
-// "M3: sandbag on the seesaw, rope slack"
+// "M3: sandbag on the seesaw, rope slack"; with the built machine's contacts of a state, the words
+// that fit it: "M3: sandbag at the stop, seesaw on the floor, rope let go".
 std::string mode_words(Mode mode);
+std::string mode_words(const Snapshot& s);
 
 }  // namespace whatnext::viz
