@@ -479,6 +479,38 @@
     'seesaw sticks': 'Wippe haftet', 'seesaw slips': 'Wippe dreht sich wieder', 'lid sticks': 'Deckel haftet', 'lid slips': 'Deckel dreht sich wieder',
   };
 
+  // The map and the phase plots (map.js, phase.js).
+  Object.assign(de, {
+    'Map: which machines work': 'Karte: welche Maschinen gehen',
+    'Many machines around the one shown, two keys varied: each cell is one machine run to its end. Point at a cell to read it, click it (or Enter) to load that machine.':
+      'Viele Maschinen um die gezeigte herum, zwei Größen verändert: jede Zelle ist eine Maschine, bis zu ihrem Ende gerechnet. Auf eine Zelle zeigen, um sie zu lesen; klicken (oder Enter), um diese Maschine zu laden.',
+    across: 'waagrecht', up: 'senkrecht', from: 'von', to: 'bis', steps: 'Schritte', colour: 'Farbe',
+    'Draw the map': 'Karte zeichnen', Stop: 'Anhalten',
+    "Download the map's CSV": 'CSV der Karte herunterladen',
+    "The map's machines as whatnext sweep writes them": 'Die Maschinen der Karte, wie whatnext sweep sie schreibt',
+    'the outcome': 'der Ausgang', "the outcome's time": 'die Zeit des Ausgangs', 'the time of: {event}': 'die Zeit von: {event}',
+    'Starting…': 'Starte…', 'Stopping…': 'Halte an…',
+    '{size} machines in {s} s on {workers} workers.': '{size} Maschinen in {s} s auf {workers} Workern.',
+    'Stopped: {done} of {size} machines in {s} s.': 'Angehalten: {done} von {size} Maschinen in {s} s.',
+    '{done} of {size} machines': '{done} von {size} Maschinen',
+    'the WebAssembly module failed ({message})': 'das WebAssembly-Modul ist ausgefallen ({message})',
+    'Steps of {key}: a whole number from 1 to {max}, not "{given}".': 'Schritte von {key}: eine ganze Zahl von 1 bis {max}, nicht „{given}“.',
+    'The map needs two different keys (both are {key}).': 'Die Karte braucht zwei verschiedene Größen (beide sind {key}).',
+    'did not happen': 'kam nicht vor', 'invalid machine': 'ungültige Maschine', 'the run failed': 'der Lauf scheiterte',
+    '⊕ the machine shown': '⊕ die gezeigte Maschine', 'not run yet': 'noch nicht gerechnet', '{event} at {t} s': '{event} bei {t} s',
+    'Outcome of each machine: {y} down, {x} across': 'Ausgang jeder Maschine: {y} senkrecht, {x} waagrecht',
+    invalid: 'ungültig', failed: 'gescheitert', never: 'nie',
+    'The map (arrow keys move between machines, Enter loads one; the table below says the same)':
+      'Die Karte (Pfeiltasten wandern zwischen den Maschinen, Enter lädt eine; die Tabelle darunter sagt dasselbe)',
+    'The same map on the command line': 'Dieselbe Karte auf der Kommandozeile', 'The map as a table': 'Die Karte als Tabelle',
+    'Any variable against any other': 'Jede Größe gegen jede andere',
+    'φL against φS': 'φL gegen φS', 'r against its rate': 'r gegen seine Rate', 'the lid: angle against its rate': 'der Deckel: Winkel gegen seine Rate',
+    'the energy by part against time': 'die Energie jedes Teils gegen die Zeit', 'Plots to start from': 'Fertige Diagramme',
+    events: 'Ereignisse', 'energy [J]': 'Energie [J]', 'Events marked (rings): {list}.': 'Markierte Ereignisse (Ringe): {list}.',
+    'The columns of whatnext run --csv. Drag to zoom in, double-click to zoom out.':
+      'Die Spalten von whatnext run --csv. Ziehen vergrößert, Doppelklick verkleinert.',
+  });
+
   const kLanguages = {
     en: { name: 'English', table: {}, keys: {}, patterns: [], messages: [], place: (w) => w, events: {}, decimal: '.', html: 'en' },
     de: { name: 'Deutsch', table: de, keys: deKeys, patterns: dePatterns, messages: deMessages, place: dePlace, events: deEvents,
