@@ -12,6 +12,7 @@
   const T = (english, args) => S.t(english, args);
   // The page's numbers with its decimal sign; what goes to the library keeps the point.
   const shown = (v) => S.decimals(String(v));
+  const grid = (v) => shown(Number(v.toPrecision(9)));  // a grid value as read (0.638787879), kept whole
   const point = (text) => text.trim().replace(/^([-+]?\d*),(\d+([eE][-+]?\d+)?)$/, '$1.$2');
   const kNumberKinds = ['length', 'mass', 'density', 'angle', 'time', 'acceleration', 'positive'];
   const kBlock = 50;        // machines per message: a few milliseconds of work for a worker
@@ -198,12 +199,12 @@
     return v && v.number !== undefined ? v.number : null;
   }
 
-  // A range around the machine's value: a fifth either side (an angle: ten degrees; zero: ±1).
+  // A range around the machine's value: half of it either side (an angle: twenty degrees; zero: ±1).
   function around(key) {
     const v = valueOf(key);
     if (v === null) return [0, 1];
     const kind = app.keys.find((k) => k.key === key).kind;
-    const span = kind === 'angle' ? 10 : v !== 0 ? Math.abs(v) * 0.2 : 1;
+    const span = kind === 'angle' ? 20 : v !== 0 ? Math.abs(v) * 0.5 : 1;
     const tidy = (x) => Number(x.toPrecision(3));
     return [tidy(v - span), tidy(v + span)];
   }
@@ -442,7 +443,8 @@
 
   // The words for machine (ix, iy): its values and what became of it.
   function describe(ix, iy) {
-    const i = ix * m.ny + iy, values = `${S.keyName(m.keys[0], m.keys[0])} = ${shown(m.axes[0][ix])}, ${S.keyName(m.keys[1], m.keys[1])} = ${shown(m.axes[1][iy])}`;
+    const v = (d, j) => `${S.keyName(m.keys[d], m.keys[d])} = ${grid(m.axes[d][j])}`;
+    const i = ix * m.ny + iy, values = `${v(0, ix)}, ${v(1, iy)}`;
     if (!m.done[i]) return { values, outcome: T('not run yet') };
     const code = m.numbers[i * m.stride];
     if (code < 0) {
@@ -506,12 +508,12 @@
     if (!m || !m.size) return;
     t.append(el('caption', {}, T('Outcome of each machine: {y} down, {x} across', { x: axisName(m.keys[0]), y: axisName(m.keys[1]) })));
     const head = el('tr', {}, el('th', { scope: 'col' }, `${S.keyName(m.keys[1], m.keys[1])} \\ ${S.keyName(m.keys[0], m.keys[0])}`));
-    for (let ix = 0; ix < m.nx; ++ix) head.append(el('th', { scope: 'col' }, shown(m.axes[0][ix])));
+    for (let ix = 0; ix < m.nx; ++ix) head.append(el('th', { scope: 'col' }, grid(m.axes[0][ix])));
     t.append(el('thead', {}, head));
     const body = el('tbody');
     const k = valueIndex();
     for (let iy = m.ny - 1; iy >= 0; --iy) {
-      const row = el('tr', {}, el('th', { scope: 'row' }, shown(m.axes[1][iy])));
+      const row = el('tr', {}, el('th', { scope: 'row' }, grid(m.axes[1][iy])));
       for (let ix = 0; ix < m.nx; ++ix) {
         const i = ix * m.ny + iy, code = m.numbers[i * m.stride];
         let text = '–';
@@ -563,7 +565,7 @@
   function build(section) {
     const keySelect = (axis) => {
       const s = el('select', { id: `map-${axis}-key` });
-      for (const key of numericKeys()) s.append(new Option(`${S.keyName(key, key)} (${key})`, key));
+      for (const key of numericKeys()) s.append(new Option(S.keyName(key, key) === key ? key : `${S.keyName(key, key)} (${key})`, key));
       return s;
     };
     const axisRow = (axis, label) => el('fieldset', { class: 'map-axis' },
@@ -630,9 +632,9 @@
     get state() { return m && { id: m.id, size: m.size, finished: m.finished, ms: m.ms, workers: pool.length, command: m.command, nx: m.nx, ny: m.ny }; },
     csv: () => csvText(),
     describe: (ix, iy) => describe(ix, iy),
-    cellPixel(ix, iy) {  // page coordinates of cell (ix, iy)'s centre
-      const f = frame(), r = $('map-canvas').getBoundingClientRect();
-      return { x: r.left + f.x0 + (ix + 0.5) * f.w / m.nx, y: r.top + f.y0 + (m.ny - iy - 0.5) * f.h / m.ny };
+    cellPixel(ix, iy) {  // where cell (ix, iy)'s centre is on the map's canvas, in CSS pixels
+      const f = frame();
+      return { x: f.x0 + (ix + 0.5) * f.w / m.nx, y: f.y0 + (m.ny - iy - 0.5) * f.h / m.ny };
     },
     marker: () => (m && m.size ? marker(frame()) : null),
   };

@@ -109,10 +109,20 @@
           g.save();
           g.font = `${11 * dpr}px system-ui, sans-serif`;
           g.fillStyle = '#000';
+          g.textAlign = 'left';
+          g.textBaseline = 'bottom';
+          // Events at one point (an impact and what it starts) under one label.
+          const at = new Map();
           ev.forEach((name, i) => {
-            const x = u.valToPos(ex[i], 'x', true), y = u.valToPos(ey[i], 'y', true);
-            g.fillText(S.eventWords(name.replace(/_/g, ' ')), x + 7 * dpr, y - 4 * dpr);
+            const x = Math.round(u.valToPos(ex[i], 'x', true)), y = Math.round(u.valToPos(ey[i], 'y', true));
+            const key = `${x},${y}`, words = S.eventWords(name.replace(/_/g, ' '));
+            at.set(key, at.has(key) ? `${at.get(key)}, ${words}` : words);
           });
+          for (const [key, words] of at) {
+            const [x, y] = key.split(',').map(Number);
+            g.textAlign = x > u.bbox.left + u.bbox.width * 0.7 ? 'right' : 'left';
+            g.fillText(words, x + (g.textAlign === 'right' ? -7 : 7) * dpr, y - 4 * dpr);
+          }
           g.restore();
         }],
       },
