@@ -369,7 +369,7 @@
 
   function ticks(lo, hi) {
     if (!(hi > lo)) return [lo];
-    const raw = (hi - lo) / 4, mag = 10 ** Math.floor(Math.log10(raw));
+    const raw = (hi - lo) / 5, mag = 10 ** Math.floor(Math.log10(raw));
     const step = [1, 2, 2.5, 5, 10].map((s) => s * mag).find((s) => s >= raw);
     const out = [];
     for (let v = Math.ceil(lo / step) * step; v <= hi + step * 1e-9; v += step) out.push(Number(v.toPrecision(12)));
