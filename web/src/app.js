@@ -1088,7 +1088,7 @@
   };
   // ---- the map and the phase plots (map.js, phase.js): the machine shown, and loading another ----
   const studies = { keys, input: () => inputFor(st.base, st.good), base: () => st.base, sets: () => new Map(st.good),
-                    run: () => st.run, load: (sets) => choose(st.base, sets) };
+                    run: () => st.run, load: (sets, base = st.base) => choose(base, sets) };
   for (const part of [window.whatnextMap, window.whatnextPhase]) if (part) part.attach(studies);
   document.body.dataset.ready = 'true';
 })();

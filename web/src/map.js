@@ -100,9 +100,10 @@
     if (!spec) return;
     startWorkers();
     const id = nextMap++;
-    m = { id, input: app.input(), keys: [spec.x.key, spec.y.key], spec, vary: [spec.x, spec.y].map((r) => `${r.key}=${r.lo}:${r.hi}:${r.n}`),
+    m = { id, input: app.input(), base: app.base(), sets: app.sets(), keys: [spec.x.key, spec.y.key], spec, vary: [spec.x, spec.y].map((r) => `${r.key}=${r.lo}:${r.hi}:${r.n}`),
           next: 0, blocksDone: 0, finished: 0, stopped: false, rows: [], errors: new Map(), t0: performance.now(), started: 0 };
     m.command = commandLine(m);
+    $('map-stale').hidden = true;
     showRunning(true);
     status(T('Starting…'));
     await Promise.all(pool.map((w) => w.ready));
@@ -335,7 +336,7 @@
     g.strokeRect(f.x0 - 0.5, f.y0 - 0.5, f.w + 1, f.h + 1);
     axes(g, f);
     // The machine shown, where it lies in the map.
-    const here = marker(f);
+    const here = ofTheMap() ? marker(f) : null;
     if (here) {
       g.lineWidth = 2.5;
       g.strokeStyle = '#fff';
@@ -476,12 +477,24 @@
 
   // Loads machine (ix, iy): the machine shown with the two keys set (and so its link).
   function load(ix, iy) {
-    const sets = new Map(app.sets());
+    const sets = new Map(m.sets);
     for (const [d, v] of [[0, m.axes[0][ix]], [1, m.axes[1][iy]]]) {
       sets.delete(m.keys[d]);
       sets.set(m.keys[d], String(v));
     }
-    app.load(sets);
+    app.load(sets, m.base);
+  }
+
+  // Whether the machine shown is one of the map's: the map's machine with its two keys at any values.
+  function ofTheMap() {
+    const now = app.input(), without = (sets) => sets.filter((s) => !m.keys.some((k) => s.startsWith(`${k}=`)));
+    return now.toml === m.input.toml && now.format === m.input.format &&
+           JSON.stringify(without(now.sets)) === JSON.stringify(without(m.input.sets));
+  }
+  function machineChanged() {
+    if (!m || !m.size) return;
+    $('map-stale').hidden = ofTheMap();
+    paint();
   }
 
   function keydown(e) {
@@ -586,6 +599,7 @@
       el('div', { id: 'map-progress-box', class: 'progress', hidden: '' }, el('progress', { id: 'map-progress', value: '0', max: '1' })),
       el('p', { id: 'map-status', class: 'note', 'aria-live': 'polite' }),
       el('p', { id: 'map-problem', class: 'problem', role: 'alert', hidden: '' }),
+      el('p', { id: 'map-stale', class: 'note', hidden: '' }, T('This map is of the machine before the last change (other keys or another machine): a cell loads its own machine; Draw the map again for the machine shown.')),
       el('div', { id: 'map-box' },
         el('canvas', { id: 'map-canvas', tabindex: '0', role: 'img',
                        'aria-label': T('The map (arrow keys move between machines, Enter loads one; the table below says the same)') }),
@@ -614,7 +628,7 @@
     canvas.addEventListener('blur', () => { $('map-tip').hidden = true; });
     new ResizeObserver(() => layout()).observe($('map-box'));
     // The machine shown changed (app.js counts its runs on the body): its mark moves.
-    new MutationObserver(() => paint()).observe(document.body, { attributes: true, attributeFilter: ['data-runs'] });
+    new MutationObserver(machineChanged).observe(document.body, { attributes: true, attributeFilter: ['data-runs'] });
     layout();
   }
 
@@ -636,6 +650,6 @@
       const f = frame();
       return { x: f.x0 + (ix + 0.5) * f.w / m.nx, y: f.y0 + (m.ny - iy - 0.5) * f.h / m.ny };
     },
-    marker: () => (m && m.size ? marker(frame()) : null),
+    marker: () => (m && m.size && ofTheMap() ? marker(frame()) : null),
   };
 })();

@@ -166,6 +166,12 @@ const checks = {
       // The times of the lid's opening: a scale, and the cells where it never opened grey.
       await page.selectOption('#map-value', 'lid_open');
       assert.match(await page.textContent('#map-legend'), /s .* s/);
+      // Another machine shown: the map says it is not that machine's, and marks nothing.
+      const runs = await page.evaluate(() => Number(document.body.dataset.runs));
+      await page.selectOption('#preset', 'example1');
+      await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, runs);
+      await page.waitForSelector('#map-stale:not([hidden])');
+      assert.equal(await page.evaluate(() => window.whatnextMap.marker()), null);
     }, { hash: '#machine=example2' });
   },
 
@@ -197,6 +203,11 @@ const checks = {
       await page.waitForFunction(() => window.whatnext.run.values.given['geometry.rope_length'] !== undefined);
       const outcome = await page.textContent('#outcome');
       assert.ok(outcome.length > 0 && cli.status === 0);
+      // The machine loaded is one of the map's, marked where it was clicked.
+      assert.equal(await page.isHidden('#map-stale'), true);
+      const mark = await page.evaluate(() => window.whatnextMap.marker());
+      const canvas = await page.locator('#map-canvas').boundingBox(), box = await page.locator('#map-box').boundingBox();
+      assert.ok(Math.abs(mark.x - at.x) < 1 && Math.abs(mark.y - at.y) < 1, JSON.stringify([mark, at, canvas, box]));
       // The tip said the outcome the loaded machine has.
       const event = await page.evaluate(() => window.whatnext.run.outcome.type.replace(/_/g, ' '));
       assert.match(tip, new RegExp(event));
