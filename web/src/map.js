@@ -52,7 +52,7 @@
     // The single-file page holds the library and this worker's script as text (single.js).
     const inlined = $('map-worker-source');
     if (!inlined) return 'map-worker.js';
-    return URL.createObjectURL(new Blob([$('whatnext-module').textContent, inlined.textContent].join('\n'), { type: 'text/javascript' }));
+    return URL.createObjectURL(new Blob([[$('whatnext-module').textContent, inlined.textContent].join('\n')], { type: 'text/javascript' }));
   }
   function startWorkers() {
     if (pool.length) return;

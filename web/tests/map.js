@@ -149,6 +149,15 @@ const checks = {
     }, { hash: '#machine=example2' });
   },
 
+  // The single-file page (whatnext.html, opened from the disk) runs its map in the same workers.
+  async single_file() {
+    await withPage(async (page) => {
+      const state = await drawMap(page, kX, kY);
+      assert.equal(state.finished, kX.n * kY.n);
+      sameSweep(await page.evaluate(() => window.whatnextMap.csv()), sweepCsv(['--example', '2', ...vary(kX), ...vary(kY)]));
+    }, { base: `file://${path.join(webDir, 'whatnext.html')}`, hash: '#machine=example2' });
+  },
+
   // A map fills every cell, with the outcomes' colours, and marks the machine shown.
   async fills() {
     await withPage(async (page) => {
