@@ -578,7 +578,12 @@
   function build(section) {
     const keySelect = (axis) => {
       const s = el('select', { id: `map-${axis}-key` });
-      for (const key of numericKeys()) s.append(new Option(S.keyName(key, key) === key ? key : `${S.keyName(key, key)} (${key})`, key));
+      // The key's name in the page's language (the key itself in English), the key as its title.
+      for (const key of numericKeys()) {
+        const o = new Option(S.keyName(key, key), key);
+        o.title = key;
+        s.append(o);
+      }
       return s;
     };
     const axisRow = (axis, label) => el('fieldset', { class: 'map-axis' },
@@ -588,7 +593,9 @@
       el('label', {}, T('steps'), ' ', el('input', { id: `map-${axis}-n`, type: 'text', inputmode: 'numeric', size: '4', value: '100' })));
     section.append(
       el('h2', { id: 'map-title' }, T('Map: which machines work')),
-      el('p', { class: 'note' }, T('Many machines around the one shown, two keys varied: each cell is one machine run to its end. Point at a cell to read it, click it (or Enter) to load that machine.')),
+      el('p', { class: 'note' }, T('Many machines around the one shown, two keys varied: each cell is one machine run to its end.'), ' ',
+        el('span', { class: 'keys-only' }, T('Point at a cell to read it, click it (or Enter) to load that machine.')),
+        el('span', { class: 'touch-only' }, T('Tap a cell to read it, tap it again to load that machine.'))),
       el('form', { id: 'map-form', autocomplete: 'off' },
         axisRow('x', T('across')), axisRow('y', T('up')),
         el('div', { class: 'map-actions' },
@@ -623,7 +630,21 @@
     const canvas = $('map-canvas');
     canvas.addEventListener('mousemove', (e) => showTip(cellAt(e), e));
     canvas.addEventListener('mouseleave', () => { $('map-tip').hidden = true; });
-    canvas.addEventListener('click', (e) => { const c = cellAt(e); if (c && m.done[c[0] * m.ny + c[1]]) load(c[0], c[1]); });
+    // A mouse's click loads the machine it points at; a finger has no pointing, so its first tap
+    // reads the cell and a second tap on it loads it.
+    let tapped = null, touched = false;
+    canvas.addEventListener('pointerdown', (e) => { touched = e.pointerType !== 'mouse'; });
+    canvas.addEventListener('click', (e) => {
+      const c = cellAt(e);
+      if (!c || !m.done[c[0] * m.ny + c[1]]) return;
+      if (touched && !(tapped && tapped[0] === c[0] && tapped[1] === c[1])) {
+        tapped = c;
+        showTip(c, e);
+        return;
+      }
+      tapped = null;
+      load(c[0], c[1]);
+    });
     canvas.addEventListener('keydown', keydown);
     canvas.addEventListener('blur', () => { $('map-tip').hidden = true; });
     new ResizeObserver(() => layout()).observe($('map-box'));

@@ -135,7 +135,8 @@
   function select(id, names, value) {
     const s = $(id);
     s.textContent = '';
-    for (const c of columns) if (names(c)) s.append(new Option(`${label(c.name)}${c.meaning ? ` – ${c.meaning}` : ''}`, c.name));
+    // The columns' meanings are the library's, in English: in another language the names and units alone.
+    for (const c of columns) if (names(c)) s.append(new Option(`${label(c.name)}${c.meaning && S.lang === 'en' ? ` – ${c.meaning}` : ''}`, c.name));
     s.value = value;
   }
 
@@ -155,7 +156,8 @@
       el('p', { id: 'phase-problem', class: 'problem', role: 'alert', hidden: '' }),
       el('div', { id: 'phase-plot', class: 'phase-plot' }),
       el('p', { id: 'phase-events', class: 'note' }),
-      el('p', { class: 'note' }, T('The columns of whatnext run --csv. Drag to zoom in, double-click to zoom out.')));
+      el('p', { class: 'note' }, T('The columns of'), ' ', el('code', {}, 'whatnext run --csv'), '. ',
+        el('span', { class: 'keys-only' }, T('Drag to zoom in, double-click to zoom out.'))));
     $('phase-x').addEventListener('change', (e) => { choice.x = e.target.value; draw(); });
     $('phase-y').addEventListener('change', (e) => { choice.y = [e.target.value]; draw(); });
     new MutationObserver(() => refresh()).observe(document.body, { attributes: true, attributeFilter: ['data-runs'] });

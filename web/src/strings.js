@@ -482,8 +482,10 @@
   // The map and the phase plots (map.js, phase.js).
   Object.assign(de, {
     'Map: which machines work': 'Karte: welche Maschinen gehen',
-    'Many machines around the one shown, two keys varied: each cell is one machine run to its end. Point at a cell to read it, click it (or Enter) to load that machine.':
-      'Viele Maschinen um die gezeigte herum, zwei Größen verändert: jede Zelle ist eine Maschine, bis zu ihrem Ende gerechnet. Auf eine Zelle zeigen, um sie zu lesen; klicken (oder Enter), um diese Maschine zu laden.',
+    'Many machines around the one shown, two keys varied: each cell is one machine run to its end.':
+      'Viele Maschinen um die gezeigte herum, zwei Größen verändert: jede Zelle ist eine Maschine, bis zu ihrem Ende gerechnet.',
+    'Point at a cell to read it, click it (or Enter) to load that machine.': 'Auf eine Zelle zeigen, um sie zu lesen; klicken (oder Enter), um diese Maschine zu laden.',
+    'Tap a cell to read it, tap it again to load that machine.': 'Eine Zelle antippen, um sie zu lesen; noch einmal antippen, um diese Maschine zu laden.',
     across: 'waagrecht', up: 'senkrecht', from: 'von', to: 'bis', steps: 'Schritte', colour: 'Farbe',
     'Draw the map': 'Karte zeichnen', Stop: 'Anhalten',
     "Download the map's CSV": 'CSV der Karte herunterladen',
@@ -509,8 +511,7 @@
     events: 'Ereignisse', 'energy [J]': 'Energie [J]', 'Events marked (rings): {list}.': 'Markierte Ereignisse (Ringe): {list}.',
     'This map is of the machine before the last change (other keys or another machine): a cell loads its own machine; Draw the map again for the machine shown.':
       'Diese Karte gehört zur Maschine vor der letzten Änderung (andere Werte oder eine andere Maschine): eine Zelle lädt ihre eigene Maschine; „Karte zeichnen“ zeichnet sie für die gezeigte Maschine neu.',
-    'The columns of whatnext run --csv. Drag to zoom in, double-click to zoom out.':
-      'Die Spalten von whatnext run --csv. Ziehen vergrößert, Doppelklick verkleinert.',
+    'The columns of': 'Die Spalten von', 'Drag to zoom in, double-click to zoom out.': 'Ziehen vergrößert, Doppelklick verkleinert.',
   });
 
   const kLanguages = {
