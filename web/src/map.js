@@ -301,9 +301,12 @@
   }
 
   // Plot coordinates: cell (ix, iy) of the map; x grows to the right, y upwards.
+  // The margins and the labels grow with the page's type (large in projector mode).
   function frame() {
     const c = $('map-canvas'), dpr = c.width / c.clientWidth;
-    return { dpr, x0: kPad.left, y0: kPad.top, w: c.clientWidth - kPad.left - kPad.right, h: c.clientHeight - kPad.top - kPad.bottom };
+    const em = (parseFloat(getComputedStyle(c).fontSize) || 16) / 16;
+    const pad = Object.fromEntries(Object.entries(kPad).map(([k, v]) => [k, v * em]));
+    return { dpr, em, x0: pad.left, y0: pad.top, w: c.clientWidth - pad.left - pad.right, h: c.clientHeight - pad.top - pad.bottom };
   }
 
   function paint() {
@@ -379,7 +382,7 @@
 
   function axes(g, f) {
     g.fillStyle = '#222';
-    g.font = '12px system-ui, sans-serif';
+    g.font = `${Math.round(12 * f.em)}px system-ui, sans-serif`;
     const ax = m.axes[0], ay = m.axes[1];
     const pos = (v, a, n) => (n === 1 ? 0.5 : 0.5 / n + ((v - a[0]) / (a[n - 1] - a[0])) * (n - 1) / n);
     g.textAlign = 'center';
@@ -387,9 +390,9 @@
     for (const v of ticks(ax[0], ax[m.nx - 1])) {
       const x = f.x0 + pos(v, ax, m.nx) * f.w;
       g.fillRect(x, f.y0 + f.h, 1, 4);
-      g.fillText(shown(v), x, f.y0 + f.h + 6);
+      g.fillText(shown(v), x, f.y0 + f.h + 6 * f.em);
     }
-    g.fillText(axisName(m.keys[0]), f.x0 + f.w / 2, f.y0 + f.h + 24);
+    g.fillText(axisName(m.keys[0]), f.x0 + f.w / 2, f.y0 + f.h + 24 * f.em);
     g.textAlign = 'right';
     g.textBaseline = 'middle';
     for (const v of ticks(ay[0], ay[m.ny - 1])) {
@@ -398,7 +401,7 @@
       g.fillText(shown(v), f.x0 - 6, y);
     }
     g.save();
-    g.translate(14, f.y0 + f.h / 2);
+    g.translate(14 * f.em, f.y0 + f.h / 2);
     g.rotate(-Math.PI / 2);
     g.textAlign = 'center';
     g.fillText(axisName(m.keys[1]), 0, 0);
@@ -650,6 +653,7 @@
     new ResizeObserver(() => layout()).observe($('map-box'));
     // The machine shown changed (app.js counts its runs on the body): its mark moves.
     new MutationObserver(machineChanged).observe(document.body, { attributes: true, attributeFilter: ['data-runs'] });
+    new MutationObserver(layout).observe(document.body, { attributes: true, attributeFilter: ['class'] });  // projector mode
     layout();
   }
 

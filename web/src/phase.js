@@ -159,7 +159,7 @@
       el('p', { class: 'note' }, T('The columns of'), ' ', el('code', {}, 'whatnext run --csv'), '. ',
         el('span', { class: 'keys-only' }, T('Drag to zoom in, double-click to zoom out.'))));
     $('phase-x').addEventListener('change', (e) => { choice.x = e.target.value; draw(); });
-    $('phase-y').addEventListener('change', (e) => { choice.y = [e.target.value]; draw(); });
+    $('phase-y').addEventListener('change', (e) => { choice.y = e.target.value === 'energy' ? 'energy' : [e.target.value]; draw(); });
     new MutationObserver(() => refresh()).observe(document.body, { attributes: true, attributeFilter: ['data-runs'] });
     let width = 0;
     new ResizeObserver(() => { if (Math.abs($('phase-plot').clientWidth - width) > 20) { width = $('phase-plot').clientWidth; draw(); } }).observe($('phase-plot'));
@@ -168,6 +168,8 @@
   function showChoice() {
     select('phase-x', () => true, choice.x);
     select('phase-y', (c) => c.name !== 't_s', Array.isArray(choice.y) ? choice.y[0] : 'energy_J');
+    $('phase-y').prepend(new Option(T('the energy of each part'), 'energy'));
+    $('phase-y').value = Array.isArray(choice.y) ? choice.y[0] : 'energy';
   }
 
   window.whatnextPhase = {

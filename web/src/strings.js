@@ -507,7 +507,7 @@
     'The same map on the command line': 'Dieselbe Karte auf der Kommandozeile', 'The map as a table': 'Die Karte als Tabelle',
     'Any variable against any other': 'Jede Größe gegen jede andere',
     'φL against φS': 'φL gegen φS', 'r against its rate': 'r gegen seine Rate', 'the lid: angle against its rate': 'der Deckel: Winkel gegen seine Rate',
-    'the energy by part against time': 'die Energie jedes Teils gegen die Zeit', 'Plots to start from': 'Fertige Diagramme',
+    'the energy by part against time': 'die Energie jedes Teils gegen die Zeit', 'the energy of each part': 'die Energie jedes Teils', 'Plots to start from': 'Fertige Diagramme',
     events: 'Ereignisse', 'energy [J]': 'Energie [J]', 'Events marked (rings): {list}.': 'Markierte Ereignisse (Ringe): {list}.',
     'This map is of the machine before the last change (other keys or another machine): a cell loads its own machine; Draw the map again for the machine shown.':
       'Diese Karte gehört zur Maschine vor der letzten Änderung (andere Werte oder eine andere Maschine): eine Zelle lädt ihre eigene Maschine; „Karte zeichnen“ zeichnet sie für die gezeigte Maschine neu.',

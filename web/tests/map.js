@@ -302,6 +302,7 @@ const checks = {
       await page.click('[data-preset=energy]');
       shown = await page.evaluate(() => window.whatnextPhase.shown);
       assert.equal(shown.x, 't_s');
+      assert.equal(await page.inputValue('#phase-y'), 'energy');
       assert.ok(shown.series.some((s) => /^sandbag_kinetic_J/.test(s)) && shown.series.some((s) => /^lid_potential_J/.test(s)), shown.series.join());
       await page.selectOption('#phase-y', 'tension_N');
       shown = await page.evaluate(() => window.whatnextPhase.shown);
