@@ -118,7 +118,7 @@
       if (done) done(d.result);
       return;
     }
-    if (!m || d.map !== m.id) return;  // an earlier map's
+    if (!m || d.map !== m.id || m.ms !== undefined) return;  // an earlier map's, or one stopped before it began
     if (d.started) {
       const r = d.started;
       if (!r.ok) { fail(S.sentence(r.message)); return; }
@@ -169,6 +169,11 @@
     if (m.ms !== undefined) return;
     m.ms = performance.now() - m.t0;
     showRunning(false);
+    if (!m.size) {
+      status(T('Stopped before the first machine.'));
+      document.body.dataset.mapDone = String(m.id);
+      return;
+    }
     paint();
     const args = { done: count(m.finished), size: count(m.size), s: shown((m.ms / 1000).toFixed(2)), workers: pool.length };
     status(m.finished === m.size ? T('{size} machines in {s} s on {workers} workers.', args)

@@ -491,7 +491,7 @@
     "Download the map's CSV": 'CSV der Karte herunterladen',
     "The map's machines as whatnext sweep writes them": 'Die Maschinen der Karte, wie whatnext sweep sie schreibt',
     'the outcome': 'der Ausgang', "the outcome's time": 'die Zeit des Ausgangs', 'the time of: {event}': 'die Zeit von: {event}',
-    'Starting…': 'Starte…', 'Stopping…': 'Halte an…',
+    'Starting…': 'Starte…', 'Stopping…': 'Halte an…', 'Stopped before the first machine.': 'Vor der ersten Maschine angehalten.',
     '{size} machines in {s} s on {workers} workers.': '{size} Maschinen in {s} s auf {workers} Workern.',
     'Stopped: {done} of {size} machines in {s} s.': 'Angehalten: {done} von {size} Maschinen in {s} s.',
     '{done} of {size} machines': '{done} von {size} Maschinen',
