@@ -18,6 +18,7 @@
   const kBlock = 50;        // machines per message: a few milliseconds of work for a worker
   const kInFlight = 2;      // blocks per worker at a time, so that none waits for the page
   const kMaxSteps = 400;    // per key: 160,000 machines, a few seconds
+  const kTableMost = 40000; // machines in the table alternative
   // The outcomes' colours (an outcome not named here: kOtherStop), and the map's other cells.
   const kOutcomeColours = {
     lid_open: [38, 150, 70], seesaw_vertical: [232, 140, 20], radio_on: [45, 110, 210],
@@ -527,6 +528,10 @@
     const t = $('map-table');
     t.textContent = '';
     if (!m || !m.size) return;
+    if (m.size > kTableMost) {  // a table of more cells than that takes the page seconds to lay out
+      t.append(el('caption', {}, T('The table holds maps of up to {most} machines; the CSV holds every one.', { most: count(kTableMost) })));
+      return;
+    }
     t.append(el('caption', {}, T('Outcome of each machine: {y} down, {x} across', { x: axisName(m.keys[0]), y: axisName(m.keys[1]) })));
     const head = el('tr', {}, el('th', { scope: 'col' }, `${S.keyName(m.keys[1], m.keys[1])} \\ ${S.keyName(m.keys[0], m.keys[0])}`));
     for (let ix = 0; ix < m.nx; ++ix) head.append(el('th', { scope: 'col' }, grid(m.axes[0][ix])));

@@ -502,6 +502,7 @@
     '⊕ the machine shown': '⊕ die gezeigte Maschine', 'not run yet': 'noch nicht gerechnet', '{event} at {t} s': '{event} bei {t} s',
     'Outcome of each machine: {y} down, {x} across': 'Ausgang jeder Maschine: {y} senkrecht, {x} waagrecht',
     invalid: 'ungültig', failed: 'gescheitert', never: 'nie',
+    'The table holds maps of up to {most} machines; the CSV holds every one.': 'Die Tabelle fasst Karten bis {most} Maschinen; die CSV-Datei enthält alle.',
     'The map (arrow keys move between machines, Enter loads one; the table below says the same)':
       'Die Karte (Pfeiltasten wandern zwischen den Maschinen, Enter lädt eine; die Tabelle darunter sagt dasselbe)',
     'The same map on the command line': 'Dieselbe Karte auf der Kommandozeile', 'The map as a table': 'Die Karte als Tabelle',
