@@ -235,9 +235,10 @@ const checks = {
       await page.keyboard.press('ArrowRight');
       await page.keyboard.press('ArrowUp');
       const here = await page.textContent('#map-here');
-      assert.match(here, /= 0\.75.*= 1\b|= 0\.75/, here);  // from the middle (4, 4): one right, one up
+      // From the middle (4, 4), one right and one up: 0.5 + 5 * 0.05 and -0.2 + 5 * 0.2.
+      assert.match(here, /^geometry\.rope_length = 0\.75, start\.sandbag_height = 0\.8: /, here);
       await page.keyboard.press('Enter');
-      await page.waitForFunction(() => /rope_length=0\.75/.test(location.hash));
+      await page.waitForFunction(() => /rope_length=0\.75/.test(location.hash) && /sandbag_height=0\.8(&|$)/.test(location.hash));
     }, { hash: '#machine=example2' });
   },
 
