@@ -19,7 +19,7 @@
   ];
   const kColours = ['#1f5fbf', '#d4641c', '#2a8f3a', '#a0309a', '#6b4b2a', '#c0392b', '#0f8a8a', '#777'];
 
-  let app = null, columns = null, table = null, plot = null, choice = { x: 'phi_s_deg', y: ['phi_l_deg'] }, asked = 0;
+  let app = null, columns = null, table = null, plot = null, choice = { x: 'phi_s_deg', y: ['phi_l_deg'] };
   const el = (tag, attrs = {}, ...children) => {
     const e = document.createElement(tag);
     for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
@@ -31,13 +31,17 @@
     return c ? `${name}${c.unit ? ` [${c.unit}]` : ''}` : name;
   };
 
-  // The run shown, again, in the CSV's columns.
+  // The run shown, again, in the CSV's columns. While a slider moves the runs come faster than
+  // the tables: one table at a time, then the latest run's.
+  let busy = false, again = false;
   async function refresh() {
     const run = app.run();
     if (!run || !columns) return;
-    const id = ++asked;
+    if (busy) { again = true; return; }
+    busy = true;
     const r = await window.whatnextMap.phaseTable(app.input(), kMaxRows);
-    if (id !== asked) return;  // a later run's table is on its way
+    busy = false;
+    if (again) { again = false; refresh(); return; }
     table = r.ok ? r : null;
     $('phase-problem').hidden = r.ok;
     if (!r.ok) $('phase-problem').textContent = S.sentence(r.message);
