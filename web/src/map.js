@@ -3,8 +3,8 @@
 // block of machines at a time, so that it fills in while the page stays responsive. Each cell is
 // coloured by the machine's outcome or by the time of an event; the machine shown is marked;
 // pointing at a cell (mouse, touch or the arrow keys) tells its values and outcome, choosing it
-// loads that machine. The map's CSV is the rows the library wrote for `whatnext sweep`, the same
-// bytes; a table beside it says the same for screen readers.
+// loads that machine. The map's CSV is the rows the library's sweep writer made, as `whatnext
+// sweep` writes them; a table beside it says the same for screen readers.
 (function () {
   'use strict';
 

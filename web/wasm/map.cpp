@@ -1,8 +1,9 @@
 // The page's map and phase plots (web/src/map.js, phase.js), through the library's own sweep
 // (include/whatnext/explore/sweep.hpp): a map is `whatnext sweep` over two --vary keys, its
 // machines run a block at a time in the map's Web Workers, and every block comes back as one
-// typed array of numbers and the CSV rows the command writes for those machines, so that the map's
-// download is the command's file byte for byte. The phase plots get a run's samples in the
+// typed array of numbers and the CSV rows the command's own writer makes for those machines, so
+// that the map's download is the command's file (its numbers as WebAssembly's maths library gives
+// them: web/tests/map.js says how close). The phase plots get a run's samples in the
 // columns of `whatnext run --csv` (columns.hpp), in the CSV's units.
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
