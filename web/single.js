@@ -23,6 +23,8 @@ html = html.replace('<script src="whatnext.js"></script>',
                     () => `<script id="whatnext-module">\n${safe(read('whatnext.js'), 'script')}\n</script>`);
 html = html.replace(/<script src="([^"]+)"><\/script>/g, (m, name) => `<script>\n${safe(read(name), 'script')}\n</script>`);
 const worker = read('worker.js');
+// The map's workers (map.js) likewise.
+html = html.replace('<body>', () => `<body>\n<script type="text/plain" id="map-worker-source">\n${safe(read('map-worker.js'), 'script')}\n</script>`);
 // Before the page's scripts, which look for it as they start.
 html = html.replace('<body>', () => `<body>\n<script type="text/plain" id="worker-source">\n${safe(worker, 'script')}\n</script>`);
 if (/<(script|link)[^>]+(src|href)="(?!data:)/.test(html)) {

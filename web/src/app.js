@@ -1227,5 +1227,9 @@
     // in the worker.
     timeRun: (id, repeat) => ask('timeRun', { input: inputFor(presets.find((x) => x.id === id), []), repeat }),
   };
+  // ---- the map and the phase plots (map.js, phase.js): the machine shown, and loading another ----
+  const studies = { keys, input: () => inputFor(st.base, st.good), base: () => st.base, sets: () => new Map(st.good),
+                    run: () => st.run, load: (sets, base = st.base) => choose(base, sets) };
+  for (const part of [window.whatnextMap, window.whatnextPhase]) if (part) part.attach(studies);
   document.body.dataset.ready = 'true';
 })();

@@ -560,6 +560,42 @@
     'rope taut': 'Seil straff', 'rope pulls the lid': 'Seil zieht den Deckel', 'lid resting': 'Deckel liegt auf', 'rope let go': 'Seil losgelassen',
   };
 
+  // The map and the phase plots (map.js, phase.js).
+  Object.assign(de, {
+    'Map: which machines work': 'Karte: welche Maschinen gehen',
+    'Many machines around the one shown, two keys varied: each cell is one machine run to its end.':
+      'Viele Maschinen um die gezeigte herum, zwei Größen verändert: jede Zelle ist eine Maschine, bis zu ihrem Ende gerechnet.',
+    'Point at a cell to read it, click it (or Enter) to load that machine.': 'Auf eine Zelle zeigen, um sie zu lesen; klicken (oder Enter), um diese Maschine zu laden.',
+    'Tap a cell to read it, tap it again to load that machine.': 'Eine Zelle antippen, um sie zu lesen; noch einmal antippen, um diese Maschine zu laden.',
+    across: 'waagrecht', up: 'senkrecht', from: 'von', to: 'bis', steps: 'Schritte', colour: 'Farbe',
+    'Draw the map': 'Karte zeichnen', Stop: 'Anhalten',
+    "Download the map's CSV": 'CSV der Karte herunterladen',
+    "The map's machines as whatnext sweep writes them": 'Die Maschinen der Karte, wie whatnext sweep sie schreibt',
+    'the outcome': 'der Ausgang', "the outcome's time": 'die Zeit des Ausgangs', 'the time of: {event}': 'die Zeit von: {event}',
+    'Starting…': 'Starte…', 'Stopping…': 'Halte an…', 'Stopped before the first machine.': 'Vor der ersten Maschine angehalten.',
+    '{size} machines in {s} s on {workers} workers.': '{size} Maschinen in {s} s auf {workers} Workern.',
+    'Stopped: {done} of {size} machines in {s} s.': 'Angehalten: {done} von {size} Maschinen in {s} s.',
+    '{done} of {size} machines': '{done} von {size} Maschinen',
+    'the WebAssembly module failed ({message})': 'das WebAssembly-Modul ist ausgefallen ({message})',
+    'Steps of {key}: a whole number from 1 to {max}, not "{given}".': 'Schritte von {key}: eine ganze Zahl von 1 bis {max}, nicht „{given}“.',
+    'The map needs two different keys (both are {key}).': 'Die Karte braucht zwei verschiedene Größen (beide sind {key}).',
+    'did not happen': 'kam nicht vor', 'invalid machine': 'ungültige Maschine', 'the run failed': 'der Lauf scheiterte',
+    '⊕ the machine shown': '⊕ die gezeigte Maschine', 'not run yet': 'noch nicht gerechnet', '{event} at {t} s': '{event} bei {t} s',
+    'Outcome of each machine: {y} down, {x} across': 'Ausgang jeder Maschine: {y} senkrecht, {x} waagrecht',
+    invalid: 'ungültig', failed: 'gescheitert', never: 'nie',
+    'The table holds maps of up to {most} machines; the CSV holds every one.': 'Die Tabelle fasst Karten bis {most} Maschinen; die CSV-Datei enthält alle.',
+    'The map (arrow keys move between machines, Enter loads one; the table below says the same)':
+      'Die Karte (Pfeiltasten wandern zwischen den Maschinen, Enter lädt eine; die Tabelle darunter sagt dasselbe)',
+    'The same map on the command line': 'Dieselbe Karte auf der Kommandozeile', 'The map as a table': 'Die Karte als Tabelle',
+    'Any variable against any other': 'Jede Größe gegen jede andere',
+    'φL against φS': 'φL gegen φS', 'r against its rate': 'r gegen seine Rate', 'the lid: angle against its rate': 'der Deckel: Winkel gegen seine Rate',
+    'the energy by part against time': 'die Energie jedes Teils gegen die Zeit', 'the energy of each part': 'die Energie jedes Teils', 'Plots to start from': 'Fertige Diagramme',
+    events: 'Ereignisse', 'energy [J]': 'Energie [J]', 'Events marked (rings): {list}.': 'Markierte Ereignisse (Ringe): {list}.',
+    'This map is of the machine before the last change (other keys or another machine): a cell loads its own machine; Draw the map again for the machine shown.':
+      'Diese Karte gehört zur Maschine vor der letzten Änderung (andere Werte oder eine andere Maschine): eine Zelle lädt ihre eigene Maschine; „Karte zeichnen“ zeichnet sie für die gezeigte Maschine neu.',
+    'The columns of': 'Die Spalten von', 'Drag to zoom in, double-click to zoom out.': 'Ziehen vergrößert, Doppelklick verkleinert.',
+  });
+
   const kLanguages = {
     en: { name: 'English', table: {}, keys: {}, patterns: [], messages: [], place: (w) => w, events: {}, decimal: '.', html: 'en' },
     de: { name: 'Deutsch', table: de, keys: deKeys, patterns: dePatterns, messages: deMessages, place: dePlace, events: deEvents,

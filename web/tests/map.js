@@ -1,0 +1,320 @@
+// The page's map and phase plots in Chromium (playwright-core), checked against the whatnext
+// command line run by the test itself.
+//   node web/tests/map.js CHECK     (CHECK: one of the names in `checks` below)
+// Settings from the environment, as web/tests/page.js takes them: WHATNEXT_WEB_DIR, WHATNEXT_CLI,
+// WHATNEXT_SOURCE_DIR, WHATNEXT_CHROMIUM.
+'use strict';
+const assert = require('assert/strict');
+const fs = require('fs');
+const http = require('http');
+const os = require('os');
+const path = require('path');
+const { spawnSync } = require('child_process');
+
+const env = (name, fallback) => process.env[name] || fallback;
+const sourceDir = path.resolve(env('WHATNEXT_SOURCE_DIR', '.'));
+const webDir = path.resolve(env('WHATNEXT_WEB_DIR', path.join(sourceDir, 'build/web')));
+const cliPath = path.resolve(env('WHATNEXT_CLI', path.join(sourceDir, 'build/whatnext')));
+const chromiumPath = env('WHATNEXT_CHROMIUM', '/usr/bin/chromium');
+const { chromium } = require(require.resolve('playwright-core', {
+  paths: [...(process.env.NODE_PATH || '').split(':').filter(Boolean), path.join(sourceDir, 'build/web-npm/node_modules')],
+}));
+const kChromiumFlags = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+                        '--disable-background-networking', '--disable-component-update', '--disable-sync'];
+
+function serve(dir) {
+  const types = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.svg': 'image/svg+xml' };
+  const server = http.createServer((req, res) => {
+    const file = path.join(dir, decodeURIComponent(new URL(req.url, 'http://x').pathname).replace(/\/$/, '/index.html'));
+    if (!file.startsWith(dir) || !fs.existsSync(file)) { res.writeHead(404); res.end(); return; }
+    res.writeHead(200, { 'Content-Type': types[path.extname(file)] || 'application/octet-stream' });
+    fs.createReadStream(file).pipe(res);
+  });
+  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => {
+    resolve({ url: `http://127.0.0.1:${server.address().port}/`, close: () => server.close() });
+  }));
+}
+
+// The page in a fresh browser; any console error, page error or failed request fails the check.
+async function withPage(fn, options = {}) {
+  const server = await serve(webDir);
+  const base = options.base || server.url;
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-chromium-'));
+  const context = await chromium.launchPersistentContext(profile, {
+    executablePath: chromiumPath, headless: true, args: kChromiumFlags, acceptDownloads: true,
+    viewport: options.viewport || { width: 1400, height: 900 }, locale: options.locale || 'en-GB',
+  });
+  const problems = [];
+  const page = await context.newPage();
+  page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });
+  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
+  page.on('requestfailed', (r) => problems.push(`request failed: ${r.url()}`));
+  try {
+    await page.goto(base + (options.hash || ''));
+    await page.waitForSelector('body[data-ready]', { timeout: 60000 });
+    await fn(page);
+    assert.deepEqual(problems, [], 'the browser reported problems');
+  } finally {
+    await context.close();
+    server.close();
+    fs.rmSync(profile, { recursive: true, force: true });
+  }
+}
+
+// Fills the map's form and draws; returns when it is done (or stopped).
+async function drawMap(page, x, y, value = 'outcome', stopAfter = null) {
+  for (const [axis, r] of [['x', x], ['y', y]]) {
+    await page.selectOption(`#map-${axis}-key`, r.key);
+    await page.fill(`#map-${axis}-lo`, r.lo);
+    await page.fill(`#map-${axis}-hi`, r.hi);
+    await page.fill(`#map-${axis}-n`, String(r.n));
+  }
+  const before = await page.evaluate(() => document.body.dataset.mapDone || '');
+  await page.click('#map-draw');
+  if (stopAfter !== null) {
+    await page.waitForFunction((n) => window.whatnextMap.state && window.whatnextMap.state.finished >= n, stopAfter);
+    await page.click('#map-stop');
+  }
+  await page.waitForFunction((b) => (document.body.dataset.mapDone || '') !== b, before, { timeout: 120000 });
+  if (value !== 'outcome') await page.selectOption('#map-value', value);
+  return page.evaluate(() => window.whatnextMap.state);
+}
+
+function sweepCsv(args) {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-map-'));
+  try {
+    const out = path.join(dir, 'map.csv');
+    const p = spawnSync(cliPath, ['sweep', ...args, '--out', out], { encoding: 'utf8' });
+    assert.equal(p.status, 0, p.stderr);
+    return fs.readFileSync(out, 'utf8');
+  } finally {
+    fs.rmSync(dir, { recursive: true, force: true });
+  }
+}
+
+// The page's sweep CSV against the command's. The two builds do not share a maths library
+// (web/tests/wasm_native.js: Emscripten's musl against glibc differ in the last bit of sin, atan2,
+// ...), so a run's numbers may differ in their last digits; everything else is the same bytes: the
+// header, the rows' order, index, the grid's values, the outcome, which events happened, the
+// invalid machines' rows whole with their messages. The numbers agree within the sweep's accuracy
+// (1e-8 s: each is that close to the exact time, so the two are within twice that), and the
+// numbers of example 2's grid that are not byte for byte the same must stay few.
+function sameSweep(page, native) {
+  const pageRows = page.split('\n'), nativeRows = native.split('\n');
+  assert.equal(pageRows[0], nativeRows[0], 'the header');
+  assert.equal(pageRows.length, nativeRows.length, 'the rows');
+  let numbers = 0, differ = 0;
+  const fields = (row) => row.match(/("([^"]|"")*"|[^,]*)(,|$)/g).map((f) => f.replace(/,$/, ''));
+  for (let i = 1; i < nativeRows.length; ++i) {
+    if (/,(invalid|failed),/.test(nativeRows[i]) || nativeRows[i] === '') {
+      assert.equal(pageRows[i], nativeRows[i]);
+      continue;
+    }
+    const a = fields(pageRows[i]), b = fields(nativeRows[i]);
+    assert.deepEqual(a.slice(0, 4), b.slice(0, 4), `row ${i}: index, values and outcome`);
+    assert.equal(a.length, b.length);
+    for (let k = 4; k < b.length; ++k) {
+      assert.equal(a[k] === '', b[k] === '', `row ${i} column ${k}: the same events happened`);
+      if (b[k] === '') continue;
+      ++numbers;
+      if (a[k] !== b[k]) ++differ;
+      // final_phi_l_deg (column 6) in degrees, final_r in metres, the rest in seconds.
+      const tolerance = k === 6 ? 1e-5 : k === 5 ? 1e-6 : 2e-8;
+      assert.ok(Math.abs(Number(a[k]) - Number(b[k])) <= tolerance, `row ${i} column ${k}: ${a[k]} against ${b[k]}`);
+    }
+  }
+  assert.ok(numbers > 100 && differ < numbers / 2, `${differ} of ${numbers} numbers differ in their last digits`);
+  return { numbers, differ };
+}
+
+// A small grid of example 2 that has more than one outcome and invalid machines (a negative height).
+const kX = { key: 'geometry.rope_length', lo: '0.5', hi: '0.9', n: 9 };
+const kY = { key: 'start.sandbag_height', lo: '-0.2', hi: '1.2', n: 8 };
+const vary = (r) => ['--vary', `${r.key}=${r.lo}:${r.hi}:${r.n}`];
+
+const checks = {
+  // The download is `whatnext sweep`'s file, byte for byte, and the command shown is that command.
+  async csv() {
+    await withPage(async (page) => {
+      const state = await drawMap(page, kX, kY);
+      assert.equal(state.finished, kX.n * kY.n);
+      const expected = sweepCsv(['--example', '2', ...vary(kX), ...vary(kY)]);
+      assert.match(expected, /,invalid,/, 'the grid has invalid machines');
+      const csv = await page.evaluate(() => window.whatnextMap.csv());
+      sameSweep(csv, expected);
+      const [download] = await Promise.all([page.waitForEvent('download'), page.click('#map-csv')]);
+      assert.equal(fs.readFileSync(await download.path(), 'utf8'), csv);
+      assert.equal(state.command, `whatnext sweep --example 2 --vary ${kX.key}=${kX.lo}:${kX.hi}:${kX.n} --vary ${kY.key}=${kY.lo}:${kY.hi}:${kY.n} --out map.csv`);
+      assert.equal(await page.textContent('#map-command'), state.command);
+    }, { hash: '#machine=example2' });
+  },
+
+  // The single-file page (whatnext.html, opened from the disk) runs its map in the same workers.
+  async single_file() {
+    await withPage(async (page) => {
+      const state = await drawMap(page, kX, kY);
+      assert.equal(state.finished, kX.n * kY.n);
+      sameSweep(await page.evaluate(() => window.whatnextMap.csv()), sweepCsv(['--example', '2', ...vary(kX), ...vary(kY)]));
+    }, { base: `file://${path.join(webDir, 'whatnext.html')}`, hash: '#machine=example2' });
+  },
+
+  // A map fills every cell, with the outcomes' colours, and marks the machine shown.
+  async fills() {
+    await withPage(async (page) => {
+      const state = await drawMap(page, { key: 'geometry.rope_length', lo: '0.6', hi: '0.85', n: 40 },
+                                  { key: 'start.sandbag_height', lo: '0.3', hi: '1.2', n: 30 });
+      assert.equal(state.finished, 1200);
+      assert.ok(state.workers >= 1);
+      const marker = await page.evaluate(() => window.whatnextMap.marker());
+      assert.ok(marker, 'example 2 lies inside the map and is marked');
+      // Colours drawn: more than one outcome, and the legend names them with counts adding up.
+      const legend = await page.textContent('#map-legend');
+      const counts = [...legend.matchAll(/: ([\d,]+)/g)].map((m) => Number(m[1].replace(/,/g, '')));
+      assert.equal(counts.reduce((a, b) => a + b, 0), 1200, legend);
+      assert.ok(counts.length >= 2, legend);
+      // The times of the lid's opening: a scale, and the cells where it never opened grey.
+      await page.selectOption('#map-value', 'lid_open');
+      assert.match(await page.textContent('#map-legend'), /s .* s/);
+      // Another machine shown: the map says it is not that machine's, and marks nothing.
+      const runs = await page.evaluate(() => Number(document.body.dataset.runs));
+      await page.selectOption('#preset', 'example1');
+      await page.waitForFunction((n) => Number(document.body.dataset.runs) > n, runs);
+      await page.waitForSelector('#map-stale:not([hidden])');
+      assert.equal(await page.evaluate(() => window.whatnextMap.marker()), null);
+    }, { hash: '#machine=example2' });
+  },
+
+  // Stop ends the map early; what ran is kept and its CSV is the command's rows for those machines.
+  async stop() {
+    await withPage(async (page) => {
+      const state = await drawMap(page, { key: 'geometry.rope_length', lo: '0.6', hi: '0.85', n: 300 },
+                                  { key: 'start.sandbag_height', lo: '0.3', hi: '1.2', n: 300 }, 'outcome', 500);
+      assert.ok(state.finished >= 500 && state.finished < 90000, `finished ${state.finished}`);
+      assert.match(await page.textContent('#map-status'), /^Stopped: /);
+      const csv = await page.evaluate(() => window.whatnextMap.csv());
+      assert.equal(csv.split('\n').length - 2, state.finished);
+      assert.equal(await page.isDisabled('#map-draw'), false);
+    }, { hash: '#machine=example2' });
+  },
+
+  // Pointing at a cell tells its machine; clicking loads it (and the link follows).
+  async hover_click() {
+    await withPage(async (page) => {
+      await drawMap(page, kX, kY);
+      const at = await page.evaluate(() => window.whatnextMap.cellPixel(3, 5));
+      await page.hover('#map-canvas', { position: at });
+      const tip = await page.textContent('#map-tip');
+      assert.match(tip, /rope length|geometry\.rope_length/);
+      assert.match(tip, /0\.65/);  // rope length 0.5 + 3 * 0.05
+      await page.click('#map-canvas', { position: at });
+      await page.waitForFunction(() => /rope_length=0\.65/.test(location.hash));
+      const cli = spawnSync(cliPath, ['run', '--example', '2', '--set', 'geometry.rope_length=0.65', '--set', 'start.sandbag_height=1', '-q'], { encoding: 'utf8' });
+      await page.waitForFunction(() => window.whatnext.run.values.given['geometry.rope_length'] !== undefined);
+      const outcome = await page.textContent('#outcome');
+      assert.ok(outcome.length > 0 && cli.status === 0);
+      // The machine loaded is one of the map's, marked where it was clicked.
+      assert.equal(await page.isHidden('#map-stale'), true);
+      const mark = await page.evaluate(() => window.whatnextMap.marker());
+      const canvas = await page.locator('#map-canvas').boundingBox(), box = await page.locator('#map-box').boundingBox();
+      assert.ok(Math.abs(mark.x - at.x) < 1 && Math.abs(mark.y - at.y) < 1, JSON.stringify([mark, at, canvas, box]));
+      // The tip said the outcome the loaded machine has.
+      const event = await page.evaluate(() => window.whatnext.run.outcome.type.replace(/_/g, ' '));
+      assert.match(tip, new RegExp(event));
+      // An invalid machine says why.
+      const bad = await page.evaluate(() => window.whatnextMap.cellPixel(0, 0));
+      await page.hover('#map-canvas', { position: bad });
+      assert.match(await page.textContent('#map-tip'), /invalid machine: .*sandbag/i);
+    }, { hash: '#machine=example2' });
+  },
+
+  // Keyboard: the map takes the focus, the arrows move between machines, Enter loads one.
+  async keyboard() {
+    await withPage(async (page) => {
+      await drawMap(page, kX, kY);
+      await page.focus('#map-canvas');
+      await page.keyboard.press('ArrowRight');
+      await page.keyboard.press('ArrowUp');
+      const here = await page.textContent('#map-here');
+      // From the middle (4, 4), one right and one up: 0.5 + 5 * 0.05 and -0.2 + 5 * 0.2.
+      assert.match(here, /^geometry\.rope_length = 0\.75, start\.sandbag_height = 0\.8: /, here);
+      await page.keyboard.press('Enter');
+      await page.waitForFunction(() => /rope_length=0\.75/.test(location.hash) && /sandbag_height=0\.8(&|$)/.test(location.hash));
+    }, { hash: '#machine=example2' });
+  },
+
+  // The table alternative holds every machine's outcome.
+  async table() {
+    await withPage(async (page) => {
+      await drawMap(page, kX, kY);
+      await page.click('#map-table-box summary');
+      await page.waitForSelector('#map-table caption');
+      const shape = await page.evaluate(() => ({
+        rows: document.querySelectorAll('#map-table tbody tr').length,
+        cells: document.querySelectorAll('#map-table tbody td').length,
+        caption: document.querySelector('#map-table caption').textContent,
+      }));
+      assert.deepEqual([shape.rows, shape.cells], [kY.n, kX.n * kY.n]);
+      const csv = await page.evaluate(() => window.whatnextMap.csv());
+      const lidOpen = csv.split('\n').slice(1).filter((l) => /^\d+,[^,]*,[^,]*,lid_open,/.test(l)).length;
+      const cells = await page.evaluate(() => [...document.querySelectorAll('#map-table td')].filter((td) => td.textContent === 'lid open').length);
+      assert.equal(cells, lidOpen);
+    }, { hash: '#machine=example2' });
+  },
+
+  // German: decimal commas in, decimal commas shown, the same rows as the command.
+  async german() {
+    await withPage(async (page) => {
+      assert.match(await page.inputValue('#map-x-lo'), /^\d+,\d+$/);
+      const state = await drawMap(page, { ...kX, lo: '0,5', hi: '0,9' }, { ...kY, lo: '-0,2', hi: '1,2' });
+      assert.equal(state.finished, kX.n * kY.n);
+      sameSweep(await page.evaluate(() => window.whatnextMap.csv()), sweepCsv(['--example', '2', ...vary(kX), ...vary(kY)]));
+      assert.match(await page.textContent('#map-status'), /Maschinen in \d+,\d+ s/);
+      assert.match(await page.textContent('#map-title'), /Karte/);
+    }, { hash: '#machine=example2&lang=de', locale: 'de-DE' });
+  },
+
+  // A range the command refuses is refused in its words, and nothing runs.
+  async bad_range() {
+    await withPage(async (page) => {
+      await page.fill('#map-x-lo', '0.9');
+      await page.fill('#map-x-hi', '0.5');
+      await page.click('#map-draw');
+      await page.waitForSelector('#map-problem:not([hidden])');
+      const p = spawnSync(cliPath, ['sweep', '--example', '2', '--vary', `geometry.rope_length=0.9:0.5:100`, '--vary', 'start.sandbag_height=0.3:1.2:3', '--out', '-'], { encoding: 'utf8' });
+      assert.equal(p.status, 2);
+      assert.equal(await page.textContent('#map-problem'), p.stderr.trim().replace(/^whatnext: error: /, ''));
+    }, { hash: '#machine=example2' });
+  },
+
+  // Any column against any other, from the CSV's columns, with the run's events marked.
+  async phase() {
+    await withPage(async (page) => {
+      await page.waitForSelector('#phase-plot canvas');
+      const header = spawnSync(cliPath, ['run', '--example', '2', '--csv', '-', '-q'], { encoding: 'utf8' }).stdout.split('\n')[0].split(',');
+      const options = await page.evaluate(() => [...document.querySelectorAll('#phase-x option')].map((o) => o.value));
+      for (const o of options) assert.ok(header.includes(o), `${o} is a column of whatnext run --csv`);
+      assert.ok(options.includes('phi_l_deg') && options.includes('dr_m_per_s'));
+      await page.click('[data-preset=angles]');
+      let shown = await page.evaluate(() => window.whatnextPhase.shown);
+      assert.equal(shown.x, 'phi_s_deg');
+      const events = await page.evaluate(() => window.whatnext.run.events.length);
+      const marked = (await page.textContent('#phase-events')).match(/\([^()]*; [^()]*\)/g).length;
+      assert.equal(marked, events);
+      await page.click('[data-preset=energy]');
+      shown = await page.evaluate(() => window.whatnextPhase.shown);
+      assert.equal(shown.x, 't_s');
+      assert.equal(await page.inputValue('#phase-y'), 'energy');
+      assert.ok(shown.series.some((s) => /^sandbag_kinetic_J/.test(s)) && shown.series.some((s) => /^lid_potential_J/.test(s)), shown.series.join());
+      await page.selectOption('#phase-y', 'tension_N');
+      shown = await page.evaluate(() => window.whatnextPhase.shown);
+      assert.equal(shown.series[0], 'tension_N [N]');
+    }, { hash: '#machine=example2' });
+  },
+};
+
+const name = process.argv[2];
+if (!checks[name]) {
+  console.error(`usage: node map.js CHECK (one of ${Object.keys(checks).join(', ')})`);
+  process.exit(2);
+}
+checks[name]().then(() => console.log(`map ${name}: ok`), (e) => { console.error(e); process.exit(1); });
