@@ -242,8 +242,9 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
 bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
   if (stretchy_) {  // the contact decision names modes by its contacts: add the stretched rope
     const std::size_t first = out.size();
+    const bool was_stretched = hs.d.stretched;
     const bool end = jump_contacts(fired, hs, out);
-    stretchy_modes(hs.d, out, first);
+    stretchy_modes(was_stretched, hs.d, out, first);
     return end;
   }
   return jump_contacts(fired, hs, out);
