@@ -216,9 +216,11 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   // The radio's question goes on: the lid latches open where it is (its kinetic energy is lost to
   // the latch), the rope is let go for good, the sandbag falls freely off the story and the
   // balloon rises without a limit.
+  const bool pulled = hs.d.taut || hs.d.stretched;
   hs.d.latched = true;
   hs.d.lid_resting = false;
   hs.d.taut = false;
+  hs.d.stretched = false;
   // The built machine's sandbag stays where it is (on the arm, at the stop): it has a floor to
   // land on and the drawing shows it.
   if (!built_) hs.d.on_seesaw = false;
@@ -227,7 +229,15 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   Kinematics k = k0;
   k.dphi_l = 0.0;
   place(hs, k);
-  out.push_back(make_event(EventType::lid_open, hs, before, hs.d.mode()));
+  // The latch is an impact: it stops the lid (the box's angular impulse through it, I_L phiL', along
+  // the latch's normal) and takes the lid's kinetic energy and a stretched rope's.
+  Event latch = make_event(EventType::lid_open, hs, before, hs.d.mode());
+  latch.impact = true;
+  latch.energy_before = energy(k0);
+  latch.impulse[2] = i_l_ * k0.dphi_l;
+  out.push_back(latch);
+  // The rope is let go for good: an event of its own.
+  if (pulled) out.push_back(make_event(EventType::rope_slack, hs, hs.d.mode(), hs.d.mode()));
   if (hs.d.balloon_stuck) {
     const Mode m = hs.d.mode();
     if (small_) {
