@@ -158,9 +158,11 @@ bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mo
   Discrete& d = hs.d;
   d.stretched = !d.stretched;
   out.push_back(make_event(d.stretched ? EventType::rope_taut : EventType::rope_slack, hs, before, d.mode()));
-  if (d.stretched && d.lid_resting && lid_lift(k0, rope_pull(d, k0)) > 0.0) {
-    // A damped rope pulls c s' at once: a lid that this lifts is decided now, as an impact's would be.
-    resolve(hs, kinematics(d, hs.y), kLid, Trend::releasing, out);
+  if (d.stretched && c_rope_ > 0.0 && (d.lid_resting || (heavy_ && d.on_seesaw))) {
+    // A damped rope pulls c s' at once: the contacts it loads or unloads (the lid on the box, the
+    // sandbag on a seesaw with inertia, friction's sticking) are decided now with it, as after an
+    // impact (nothing changes where all of them still hold).
+    resolve(hs, kinematics(d, hs.y), d.lid_resting ? kLid : kBag, Trend::releasing, out);
   }
   // The guard starts at zero and turns negative (without damping at the span's rate).
   const RopePull p = rope_pull(d, k0);
