@@ -231,13 +231,14 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   place(hs, k);
   // The latch is an impact: it stops the lid (the box's angular impulse through it, I_L phiL', along
   // the latch's normal) and takes the lid's kinetic energy and a stretched rope's.
-  Event latch = make_event(EventType::lid_open, hs, before, hs.d.mode());
+  // The rope is let go for good: an event of its own, after the latch's (M4 > M4, then M4 > M3).
+  const Mode latched = Discrete::mode_of(hs.d.on_seesaw, pulled, false);
+  Event latch = make_event(EventType::lid_open, hs, before, latched);
   latch.impact = true;
   latch.energy_before = energy(k0);
   latch.impulse[2] = i_l_ * k0.dphi_l;
   out.push_back(latch);
-  // The rope is let go for good: an event of its own.
-  if (pulled) out.push_back(make_event(EventType::rope_slack, hs, hs.d.mode(), hs.d.mode()));
+  if (pulled) out.push_back(make_event(EventType::rope_slack, hs, latched, hs.d.mode()));
   if (hs.d.balloon_stuck) {
     const Mode m = hs.d.mode();
     if (small_) {
