@@ -468,3 +468,33 @@ TEST(Radio, ASeesawWithMassMustNotSwingRoundWhileTheRadioWaits) {
   EXPECT_NE(find(r.events, wn::EventType::lid_open), nullptr);
   EXPECT_NEAR(std::fabs(r.outcome().after.phi_s), kPi / 2.0 - sc.run.vertical_margin, 1e-9);
 }
+
+// With the radio the latch that holds the lid open is an impact: it names the energy it takes (the
+// lid's kinetic energy, I_L phiL'^2 / 2 with the rate just before it) and the lid's angular impulse
+// I_L phiL', and the rope let go from the seesaw at that instant is an event of its own.
+TEST(Radio, TheLatchIsAnImpactThatNamesItsLossAndTheRopesRelease) {
+  const wn::Scenario sc = wn::build_scenario(wn::example_config(std::string_view("konstanz")));
+  wn::Recorder rec;
+  wn::Scenario fine = sc;
+  fine.run.output_step = 1e-5;
+  const wn::Result r = wn::simulate(fine, &rec);
+  std::size_t open = r.events.size();
+  for (std::size_t i = 0; i < r.events.size(); ++i)
+    if (r.events[i].type == wn::EventType::lid_open) open = i;
+  ASSERT_LT(open, r.events.size());
+  const wn::Event& latch = r.events[open];
+  EXPECT_TRUE(latch.impact);
+  ASSERT_LT(open + 1, r.events.size());
+  EXPECT_EQ(r.events[open + 1].type, wn::EventType::rope_slack);
+  EXPECT_EQ(r.events[open + 1].t, latch.t);
+  // The lid's rate just before the latch: the last sample before it.
+  double rate = 0.0;
+  for (const wn::Snapshot& s : rec.samples)
+    if (s.t < latch.t) rate = s.dphi_l;
+  const double i_l = sc.machine.lid_inertia();
+  ASSERT_GT(rate, 0.0);
+  // (The sample is up to 1e-5 s before the latch: the rate moves by less than 1 % meanwhile.)
+  EXPECT_NEAR(latch.impulse[2], i_l * rate, 0.01 * i_l * rate);
+  EXPECT_NEAR(latch.energy_before - latch.energy_after, 0.5 * i_l * rate * rate, 0.02 * 0.5 * i_l * rate * rate);
+  EXPECT_DOUBLE_EQ(latch.after.dphi_l, 0.0);
+}

@@ -337,7 +337,15 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
   // Which of the held contacts carry the motion on: forces >= 0, released ones separating.
   using contact::has;
   x.k1 = with_velocity(x.k0, x.u);
-  const contact::System sys1 = contact_system(with_contacts(d, x.held), x.k1);
+  Discrete held = with_contacts(d, x.held);
+  // A stretched rope is a force of one sign, T = k s + c s' >= 0, decided with the contacts: where
+  // the impact's velocities would make it push (its damper, s' changed by a jump elsewhere), it lets
+  // go now, and the contacts' forces are found without it.
+  if (x.impacted && stretchy_ && held.stretched && spring_rope(held) && !(rope_pull(held, x.k1).tension > 0.0)) {
+    held.stretched = false;
+    x.rope_let_go = true;
+  }
+  const contact::System sys1 = contact_system(held, x.k1);
   x.mot = contact::solve_motion(sys1, x.held, x.ch);
   if (!x.mot.ok) no_consistent("set of contacts", t, d.mode());
   x.s2 = x.mot.active;
@@ -395,6 +403,7 @@ void Model::enter_contacts(HybridState& hs, const Decision& x) const {
     d.armed[gi].floor = guard_floor(gi, d);
   }
   if (x.trend == Trend::forced_off) d.fallen_off = true;
+  if (x.rope_let_go) d.stretched = false;
   place(hs, x.k2);
 }
 
@@ -486,6 +495,7 @@ void Model::report_changes(HybridState& hs, const Decision& x, Mode before, std:
   const Set frictions = bit(kBagSlip) | bit(kPivotSlip) | bit(kHingeSlip);
   step_to((x.held & ~frictions) | (x.s0 & frictions), false);
   step_to(x.s2, trigger_changed && x.trend == Trend::closing);
+  if (x.rope_let_go) emit(EventType::rope_slack);
 }
 
 }  // namespace whatnext

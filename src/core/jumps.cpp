@@ -216,9 +216,11 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   // The radio's question goes on: the lid latches open where it is (its kinetic energy is lost to
   // the latch), the rope is let go for good, the sandbag falls freely off the story and the
   // balloon rises without a limit.
+  const bool pulled = hs.d.taut || hs.d.stretched;
   hs.d.latched = true;
   hs.d.lid_resting = false;
   hs.d.taut = false;
+  hs.d.stretched = false;
   // The built machine's sandbag stays where it is (on the arm, at the stop): it has a floor to
   // land on and the drawing shows it.
   if (!built_) hs.d.on_seesaw = false;
@@ -227,7 +229,16 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   Kinematics k = k0;
   k.dphi_l = 0.0;
   place(hs, k);
-  out.push_back(make_event(EventType::lid_open, hs, before, hs.d.mode()));
+  // The latch is an impact: it stops the lid (the box's angular impulse through it, I_L phiL', along
+  // the latch's normal) and takes the lid's kinetic energy and a stretched rope's.
+  // The rope is let go for good: an event of its own, after the latch's (M4 > M4, then M4 > M3).
+  const Mode latched = Discrete::mode_of(hs.d.on_seesaw, pulled, false);
+  Event latch = make_event(EventType::lid_open, hs, before, latched);
+  latch.impact = true;
+  latch.energy_before = energy(k0);
+  latch.impulse[2] = i_l_ * k0.dphi_l;
+  out.push_back(latch);
+  if (pulled) out.push_back(make_event(EventType::rope_slack, hs, latched, hs.d.mode()));
   if (hs.d.balloon_stuck) {
     const Mode m = hs.d.mode();
     if (small_) {
@@ -242,8 +253,9 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
 bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
   if (stretchy_) {  // the contact decision names modes by its contacts: add the stretched rope
     const std::size_t first = out.size();
+    const bool was_stretched = hs.d.stretched;
     const bool end = jump_contacts(fired, hs, out);
-    stretchy_modes(hs.d, out, first);
+    stretchy_modes(was_stretched, hs.d, out, first);
     return end;
   }
   return jump_contacts(fired, hs, out);

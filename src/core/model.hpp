@@ -319,6 +319,9 @@ class Model {
     contact::Set s2 = 0;              // the contacts that carry the motion on
     GuardStart released[kContactCount];  // how each contact's gap opens if it is released
     Kinematics k2;                    // the state the motion goes on from
+    // A rope that stretches pulls k s + c s' >= 0: an impact that changes s' so that the pull would
+    // be negative lets it go at that instant (its force's side of the complementarity).
+    bool rope_let_go = false;
     bool impulsive(int i) const {  // friction's impulse may have either sign
       return contact::has(imp.impulsive, i) &&
              (is_friction(i) ? std::fabs(imp.impulse[i]) : imp.impulse[i]) > ch.impulse_tol;
@@ -450,7 +453,7 @@ class Model {
   double lid_lift(const Kinematics& k, const RopePull& p) const;  // minus the box's push on the lid
   void stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const;
   bool stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before, std::vector<Event>& out) const;
-  static void stretchy_modes(const Discrete& d, std::vector<Event>& out, std::size_t first);
+  static void stretchy_modes(bool was_stretched, const Discrete& d, std::vector<Event>& out, std::size_t first);
   void stretchy_snapshot(const Discrete& d, const Kinematics& k, const State& y, Snapshot& s) const;
 };
 

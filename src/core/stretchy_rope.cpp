@@ -50,10 +50,12 @@ Model::RopePull Model::rope_pull(const Discrete& d, const Kinematics& k) const {
 
 Model::RopePull Model::heavy_pull(const Discrete& d, double phi_s, double dphi_s, double phi_l,
                                   double dphi_l) const {
-  if (!stretchy_ || !heavy_ || !d.stretched || !spring_rope(d) || d.seesaw_held()) return {};
+  if (!stretchy_ || !heavy_ || !d.stretched || !spring_rope(d)) return {};
   Kinematics k;
   k.cos_s = std::cos(phi_s), k.sin_s = std::sin(phi_s), k.cos_l = std::cos(phi_l), k.sin_l = std::sin(phi_l);
-  k.dphi_s = dphi_s;
+  // A seesaw held (on the floor, or by its pivot's friction) still has the rope pull the lid: what
+  // the seesaw's end gives is the floor's or the pivot's, and the heat is the damper's on that pull.
+  k.dphi_s = d.seesaw_held() ? 0.0 : dphi_s;
   k.dphi_l = d.lid_resting ? 0.0 : dphi_l;
   RopePull p = rope_pull(d, k);
   if (d.lid_resting) p.q_l = 0.0;  // the box holds the lid (its lifting is a guard)
@@ -156,9 +158,11 @@ bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mo
   Discrete& d = hs.d;
   d.stretched = !d.stretched;
   out.push_back(make_event(d.stretched ? EventType::rope_taut : EventType::rope_slack, hs, before, d.mode()));
-  if (d.stretched && d.lid_resting && lid_lift(k0, rope_pull(d, k0)) > 0.0) {
-    // A damped rope pulls c s' at once: a lid that this lifts is decided now, as an impact's would be.
-    resolve(hs, kinematics(d, hs.y), kLid, Trend::releasing, out);
+  if (d.stretched && c_rope_ > 0.0 && (d.lid_resting || (heavy_ && d.on_seesaw))) {
+    // A damped rope pulls c s' at once: the contacts it loads or unloads (the lid on the box, the
+    // sandbag on a seesaw with inertia, friction's sticking) are decided now with it, as after an
+    // impact (nothing changes where all of them still hold).
+    resolve(hs, kinematics(d, hs.y), d.lid_resting ? kLid : kBag, Trend::releasing, out);
   }
   // The guard starts at zero and turns negative (without damping at the span's rate).
   const RopePull p = rope_pull(d, k0);
@@ -168,19 +172,24 @@ bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mo
   return false;
 }
 
-void Model::stretchy_modes(const Discrete& d, std::vector<Event>& out, std::size_t first) {
+void Model::stretchy_modes(bool was_stretched, const Discrete& d, std::vector<Event>& out, std::size_t first) {
   // While the spring pulls, M3 (on the arm, the rope's contact open) is M4 or M5: the lid's contact
-  // after each event follows from the events in order.
-  if (!d.stretched || !d.on_seesaw) return;
-  auto named = [](Mode m, bool resting) { return m == Mode::M3 ? (resting ? Mode::M5 : Mode::M4) : m; };
+  // after each event follows from the events in order, and the pull from rope_taut and rope_slack.
+  // (Off the seesaw, M1 is M2: a seesaw with inertia stretches the rope whatever it carries.)
+  if (!(was_stretched || d.stretched)) return;
+  auto named = [](Mode m, bool resting) {
+    return m == Mode::M3 ? (resting ? Mode::M5 : Mode::M4) : (m == Mode::M1 ? Mode::M2 : m);
+  };
+  bool pulls = was_stretched;
   for (std::size_t i = first; i < out.size(); ++i) {
     Event& e = out[i];
     const bool rests_before = e.mode_before == Mode::M5 || (i > first ? out[i - 1].mode_after == Mode::M5 : false);
     const bool rests_after = e.type == EventType::lid_rests || (e.type != EventType::lid_lifts && rests_before);
-    if (e.type != EventType::rope_taut && e.type != EventType::rope_slack) {
-      e.mode_before = named(e.mode_before, rests_before);
-      e.mode_after = named(e.mode_after, rests_after);
-    }
+    const bool pulls_after =
+        e.type == EventType::rope_taut ? true : (e.type == EventType::rope_slack ? false : pulls);
+    if (pulls) e.mode_before = named(e.mode_before, rests_before);
+    if (pulls_after) e.mode_after = named(e.mode_after, rests_after);
+    pulls = pulls_after;
   }
 }
 
@@ -188,7 +197,12 @@ void Model::stretchy_snapshot(const Discrete& d, const Kinematics& k, const Stat
   s.rope_taut = d.taut || d.stretched;
   s.rope_potential = rope_energy(k);
   s.dissipated_rope = y[slot::lost_rope];
-  if (spring_rope(d)) s.tension = std::fmax(0.0, rope_pull(d, k).tension);  // -rounding at the slack
+  if (spring_rope(d)) {
+    // At the slack the pull is zero within rounding: written as zero. A pull below that would be
+    // a rope that pushes, and is shown as it is.
+    const double t = rope_pull(d, k).tension, rounding = 1e-10 * (m_s_ + m_l_ + sc_.machine.seesaw_mass) * g_;
+    s.tension = t < 0.0 && t >= -rounding ? 0.0 : t;
+  }
 }
 
 }  // namespace whatnext
