@@ -99,8 +99,5 @@ def test_the_reference_places_the_retightening_rope_at_a_float_solvers_time():
     assert abs(taut[1] - 0.4330450320) < 3e-10
 
 
-@pytest.mark.xfail(strict=False, reason="whatnext places a closing predicted by the guard's expansion "
-                   "without refining it on the step's dense output (0.4330464620 s at the default "
-                   "tolerance); fixed in the core, then this passes")
 def test_a_rope_that_tightens_again(tmp_path):
     assert_same_story(whatnext_events(2, RETIGHTENING, tmp_path), reference_events(2, RETIGHTENING, digits=24))
