@@ -341,7 +341,7 @@
 
   // The other runs' colours in the drawing and their dashes in the plots ("all four laws": one
   // each for the three laws the machine does not use).
-  const kGhosts = [{ colour: 'rgb(60,90,200)', dash: [8, 5] }, { colour: 'rgb(20,140,60)', dash: [2, 3] },
+  const kGhosts = [{ colour: 'rgb(60,90,200)', dash: [8, 5] }, { colour: 'rgb(15,120,50)', dash: [2, 3] },
                    { colour: 'rgb(150,40,170)', dash: [12, 4, 2, 4] }];
 
   // Whether the machine shown has a rope that stretches, or friction: its changes, else its run's values.
