@@ -1012,7 +1012,9 @@
   showSound();
 
   // The language: the page is made again in the one chosen (the link keeps the machine).
-  for (const [code, name] of Object.entries(S.languages)) $('lang').append(new Option(name, code));
+  // On a phone's one-row header the language's code ("DE"); its name where there is room.
+  const narrowHeader = window.matchMedia('(max-width: 900px)').matches;
+  for (const [code, name] of Object.entries(S.languages)) $('lang').append(new Option(narrowHeader ? code.toUpperCase() : name, code));
   $('lang').value = S.lang;
   $('lang').addEventListener('change', (e) => {
     S.set(e.target.value);
