@@ -341,7 +341,7 @@
 
   // The other runs' colours in the drawing and their dashes in the plots ("all four laws": one
   // each for the three laws the machine does not use).
-  const kGhosts = [{ colour: 'rgb(60,90,200)', dash: [8, 5] }, { colour: 'rgb(20,140,60)', dash: [2, 3] },
+  const kGhosts = [{ colour: 'rgb(60,90,200)', dash: [8, 5] }, { colour: 'rgb(15,120,50)', dash: [2, 3] },
                    { colour: 'rgb(150,40,170)', dash: [12, 4, 2, 4] }];
 
   // Whether the machine shown has a rope that stretches, or friction: its changes, else its run's values.
@@ -1012,7 +1012,9 @@
   showSound();
 
   // The language: the page is made again in the one chosen (the link keeps the machine).
-  for (const [code, name] of Object.entries(S.languages)) $('lang').append(new Option(name, code));
+  // On a phone's one-row header the language's code ("DE"); its name where there is room.
+  const narrowHeader = window.matchMedia('(max-width: 900px)').matches;
+  for (const [code, name] of Object.entries(S.languages)) $('lang').append(new Option(narrowHeader ? code.toUpperCase() : name, code));
   $('lang').value = S.lang;
   $('lang').addEventListener('change', (e) => {
     S.set(e.target.value);

@@ -281,6 +281,9 @@ async function axeCheck(name, viewport, options) {
       await page.evaluate(() => { document.getElementById('why').open = true; });
       await page.waitForSelector('#why[data-ready]');
       await check('at the end, forces drawn, the why open');
+      await page.selectOption('#compare', 'laws');
+      await idle(page);
+      await check('all four impact laws compared (their colours as text)');
       await page.screenshot({ path: path.join(outDir, `web-axe-${name}-${locale.slice(0, 2)}.png`) });
     }, { viewport, locale, touch: options.touch, scale: options.scale });
   }
