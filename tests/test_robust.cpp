@@ -229,6 +229,50 @@ TEST_F(Abuse, InputsWhereTheModelBreaksAreRefused) {
   expect_rejected("run --example 1 --set run.t_max=1e9", "run.t_max");
 }
 
+TEST_F(Abuse, RopesAndFixedStepsThatWouldRunForMinutesAreRefused) {
+  // A rope damper of 1e9 N s/m on example 2 (taut for 0.17 s) took minutes of steps before the
+  // step budget failed the run; 1e8 steps of rk4 took over 20 s.
+  const std::string csv = path("r.csv");
+  expect_rejected("run --example 2 --set rope.stiffness=1e3 --set rope.damping=1e9 --csv " + csv,
+                  "rope.damping", {csv});
+  expect_rejected("run --example 2 --set rope.stiffness=1e12 --csv " + csv, "rope.stiffness", {csv});
+  expect_rejected("run --example 1 --set run.integrator=rk4 --set run.step=1e-7", "at most 1e+07");
+  EXPECT_EQ(whatnext("run -q --example 1 --set run.integrator=rk4 --set run.step=2e-7").code, 0);
+  // The bounds are docs/inputs.md's: with m the lighter of the sandbag and a third of the lid,
+  // c m^-1 t_max <= 2e7 and sqrt(k / m) t_max <= 3e6; just inside runs, just outside is refused,
+  // and a shorter run.t_max takes a rope the longer run refuses.
+  const whatnext::Config base = whatnext::example_config(2);
+  const whatnext::Scenario ex2 = whatnext::build_scenario(base);
+  const double m = std::fmin(ex2.machine.sandbag_mass, ex2.machine.lid_mass / 3.0);
+  const double t_max = ex2.run.t_max;
+  const auto builds = [&](const std::vector<std::string>& sets) {
+    whatnext::Config cfg = base;
+    for (const std::string& s : sets) whatnext::apply_set(cfg, s);
+    try {
+      whatnext::build_scenario(cfg);
+      return true;
+    } catch (const whatnext::InputError&) {
+      return false;
+    }
+  };
+  const double c_most = m * 2e7 / t_max, k_most = m * std::pow(3e6 / t_max, 2);
+  const auto num = [](double v) {
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", v);
+    return std::string(text);
+  };
+  EXPECT_TRUE(builds({"rope.stiffness=1e3", "rope.damping=" + num(c_most * 0.999)}));
+  EXPECT_FALSE(builds({"rope.stiffness=1e3", "rope.damping=" + num(c_most * 1.001)}));
+  EXPECT_TRUE(builds({"rope.stiffness=" + num(k_most * 0.999)}));
+  EXPECT_FALSE(builds({"rope.stiffness=" + num(k_most * 1.001)}));
+  EXPECT_TRUE(builds({"rope.stiffness=" + num(k_most * 2.0), "run.t_max=" + num(t_max / 2.0)}));
+  // The message names the most the machine takes.
+  const CliResult r = whatnext("run --example 2 --set rope.stiffness=1e3 --set rope.damping=1e9");
+  char most[64];
+  std::snprintf(most, sizeof most, "at most %.3g N s/m", c_most);
+  EXPECT_NE(r.err.find(most), std::string::npos) << r.err;
+}
+
 TEST_F(Abuse, SweepValuesStayFiniteOverTheWholeRangeOfDoubles) {
   // Each machine is invalid (and says why in its row), but no varied value may overflow.
   const fs::path csv = dir_ / "s.csv";

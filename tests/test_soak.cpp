@@ -15,6 +15,8 @@
 // A failing machine is printed as the `whatnext run` command that reproduces it.
 #include <gtest/gtest.h>
 #include <poll.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <chrono>
@@ -37,6 +39,12 @@
 
 #ifndef WHATNEXT_SOAK_MACHINES
 #define WHATNEXT_SOAK_MACHINES 4000
+#endif
+// Machines drawn across the whole documented ranges (docs/inputs.md "Limits"): a sample in the
+// default suite; the long suite (ctest -L long, tests/CMakeLists.txt) sets WHATNEXT_SOAK_IN_RANGE
+// to 10,000.
+#ifndef WHATNEXT_SOAK_IN_RANGE_MACHINES
+#define WHATNEXT_SOAK_IN_RANGE_MACHINES 300
 #endif
 
 namespace fs = std::filesystem;
@@ -247,10 +255,14 @@ struct ChildReport {
   std::vector<std::string> lines;
   std::string outcome;
   bool timed_out = false, crashed = false;
-  double seconds = 0.0;
+  double seconds = 0.0;  // wall-clock
+  double cpu = 0.0;      // the child's computing time: what a loaded machine does not inflate
 };
 
-ChildReport run_in_child(const Scenario& sc, const RandomMachine& m, double limit) {
+// `cpu_limit` > 0: the child is stopped by the kernel after that many seconds of computing
+// (RLIMIT_CPU), which counts as timed out; `physics` false: only the run's end is watched.
+ChildReport run_in_child(const Scenario& sc, const RandomMachine& m, double limit, double cpu_limit = 0.0,
+                         bool physics = true) {
   int fds[2];
   ChildReport rep;
   if (pipe(fds) != 0) {
@@ -261,11 +273,16 @@ ChildReport run_in_child(const Scenario& sc, const RandomMachine& m, double limi
   const pid_t pid = fork();
   if (pid == 0) {
     close(fds[0]);
+    if (cpu_limit > 0.0) {
+      const auto secs = static_cast<rlim_t>(std::ceil(cpu_limit));
+      const rlimit cap{secs, secs + 1};
+      setrlimit(RLIMIT_CPU, &cap);
+    }
     Failures f;
     std::string out;
     Checker checker(sc, m, f);
     try {
-      const Result r = simulate(sc, &checker);
+      const Result r = simulate(sc, physics ? &checker : nullptr);
       checker.flush();
       if (!is_stop(r.outcome().type)) f.add("a run ends without an outcome", m, "");
       out += fmt::format("outcome\t{}\n", to_string(r.outcome().type));
@@ -303,8 +320,12 @@ ChildReport run_in_child(const Scenario& sc, const RandomMachine& m, double limi
   }
   close(fds[0]);
   int status = 0;
-  waitpid(pid, &status, 0);
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
   rep.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  rep.cpu = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+            1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+  if (WIFSIGNALED(status) && WTERMSIG(status) == SIGXCPU) rep.timed_out = true;
   rep.crashed = !rep.timed_out && !(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   std::istringstream in(got);
   for (std::string line; std::getline(in, line);) {
@@ -401,6 +422,144 @@ TEST_F(Soak, RandomMachinesKeepThePromiseAndThePhysics) {
   }
   std::printf("soak: %d machines, %d ran, %d refused, %d through the command; outcomes:%s; slowest:%s\n",
               WHATNEXT_SOAK_MACHINES, ran, refused, through_cli, seen.c_str(), slow.c_str());
+  EXPECT_TRUE(failures.empty()) << failures.report();
+}
+
+// One machine anywhere inside the documented ranges (docs/inputs.md "Limits"): an example with a
+// few keys drawn across their whole range, the ends of each range more often (one in five), since
+// that is where the slow machines were (a rope damper of 1e9 N s/m, a hinge's friction of 1000 N m).
+class RangeDraw {
+ public:
+  explicit RangeDraw(Draw& d) : d_(d) {}
+  // log-uniform in [lo, hi], or one of the ends
+  double scale(double lo, double hi) {
+    const double r = d_.uniform(0.0, 1.0);
+    if (r < 0.1) return hi;
+    if (r < 0.2) return lo;
+    return std::exp(d_.uniform(std::log(lo), std::log(hi)));
+  }
+  double linear(double lo, double hi) { return d_.uniform(lo, hi); }
+  bool chance(double p) { return d_.chance(p); }
+  int pick(int n) { return d_.pick(n); }
+
+ private:
+  Draw& d_;
+};
+
+RandomMachine in_range_machine(Draw& draw, int index) {
+  RangeDraw d(draw);
+  RandomMachine m;
+  m.index = index;
+  m.example = 1 + d.pick(4);
+  // One draw per statement (see random_machine): the same machines in every build.
+  auto set = [&](const char* key, double v) { m.sets.push_back(fmt::format("{}={}", key, v)); };
+  auto on = [&](const char* key) { m.sets.push_back(fmt::format("{}=true", key)); };
+  auto pick = [&](const char* key, std::initializer_list<const char*> words) {
+    const int k = d.pick(static_cast<int>(words.size()));
+    m.sets.push_back(fmt::format("{}={}", key, *(words.begin() + k)));
+  };
+  for (const char* key : {"geometry.seesaw_right_arm", "geometry.lid_half_length", "geometry.rope_length",
+                          "geometry.hinge_distance", "balloon.radius"}) {
+    if (d.chance(0.08)) set(key, d.scale(1e-3, 1e3));
+  }
+  if (d.chance(0.08)) set("geometry.hinge_angle", d.linear(-180.0, 180.0));
+  if (d.chance(0.15)) set("geometry.rope_on_lid", d.scale(1e-3, 0.4));
+  if (d.chance(0.2)) set("masses.sandbag", d.scale(1e-3, 1e3));
+  if (d.chance(0.2)) set("masses.lid", d.scale(1e-3, 1e3));
+  if (d.chance(0.1)) set("air.density", d.scale(1e-3, 1e3));
+  if (d.chance(0.1)) set("air.helium_density", 1.29 * d.linear(0.001, 0.999));
+  if (d.chance(0.1)) pick("balloon.model", {"program", "lagrangian", "added-mass"});
+  if (d.chance(0.1)) set("balloon.rubber_mass", d.scale(1e-3, 1e3));
+  if (d.chance(0.1)) set("balloon.drag_coefficient", d.linear(0.0, 10.0));
+  if (d.chance(0.2)) on("radio.enabled");
+  if (d.chance(0.05)) set("radio.string_length", d.scale(1e-3, 1e3));
+  if (d.chance(0.05)) set("radio.switch_force", d.scale(1e-3, 1e4));
+  if (d.chance(0.1)) set("damping.lid_hinge", d.scale(1e-6, 1e3));
+  if (d.chance(0.4)) {
+    set("seesaw.left_arm", d.scale(1e-3, 1e3));
+    if (d.chance(0.5)) {
+      set("seesaw.mass", d.scale(1e-3, 1e3));
+      if (d.chance(0.3)) set("damping.pivot", d.scale(1e-6, 1e3));
+      if (d.chance(0.3)) set("friction.pivot", d.scale(1e-6, 1e3));
+    }
+    if (d.chance(0.4)) on("seesaw.end_stop");
+    if (d.chance(0.4)) on("floor.enabled");
+    if (d.chance(0.2)) set("floor.restitution", d.linear(0.0, 1.0));
+    if (d.chance(0.2)) set("restitution.stop", d.linear(0.0, 1.0));
+  }
+  if (d.chance(0.2)) set("restitution.sandbag", d.linear(0.0, 1.0));
+  if (d.chance(0.1)) set("restitution.rope", d.linear(0.0, 1.0));
+  if (d.chance(0.2)) set("restitution.lid", d.linear(0.0, 1.0));
+  if (d.chance(0.15)) set("friction.sandbag", d.linear(0.0, 10.0));
+  if (d.chance(0.15)) set("friction.lid_hinge", d.scale(1e-6, 1e3));
+  if (d.chance(0.2)) {
+    set("rope.stiffness", d.scale(1e-3, 1e12));
+    if (d.chance(0.5)) set("rope.damping", d.scale(1e-3, 1e9));
+  }
+  if (d.chance(0.1)) set("start.sandbag_x", -d.scale(1e-3, 1e3));
+  if (d.chance(0.1)) set("start.sandbag_height", d.scale(1e-3, 1e3));
+  if (d.chance(0.1)) set("start.seesaw_angle", d.linear(-89.9, 89.9));
+  if (d.chance(0.1)) set("start.lid_angle", d.linear(0.0, 89.9));
+  if (d.chance(0.1)) set("run.t_max", d.scale(1e-2, 1e4));
+  if (d.chance(0.1)) set("run.tolerance", d.scale(1e-15, 1e-3));
+  if (d.chance(0.1)) set("run.gravity", d.scale(1e-2, 1e3));
+  if (d.chance(0.2)) pick("run.impact_law", {"rope", "angular-momentum-sum", "kinetic-energy", "linear-momentum"});
+  if (d.chance(0.1)) set("run.vertical_margin", d.linear(0.0, 10.0));
+  if (d.chance(0.1)) {
+    pick("run.integrator", {"euler", "rk4"});
+    set("run.step", d.scale(1e-6, 1e-2));
+  }
+  return m;
+}
+
+TEST(SoakInRange, EveryMachineInsideTheRangesEndsWithinTenSeconds) {
+  // "Ends": with its outcome, or refused at once with one line naming the rule. Measured as the
+  // child's computing time, so that a machine shared with other jobs does not fail the test; the
+  // slowest are printed. A run that fails (the integrator's step budget) is listed, not judged here.
+  constexpr double kCpuLimit = 10.0;
+  const char* seed = std::getenv("WHATNEXT_SOAK_SEED");
+  Draw draw(seed ? std::strtoull(seed, nullptr, 10) : 20261128);
+  const char* machines = std::getenv("WHATNEXT_SOAK_IN_RANGE");
+  const int count = machines ? std::atoi(machines) : WHATNEXT_SOAK_IN_RANGE_MACHINES;
+  Failures failures;
+  int ran = 0, refused = 0, failed = 0;
+  std::vector<std::pair<double, RandomMachine>> slowest;
+  for (int i = 0; i < count; ++i) {
+    const RandomMachine m = in_range_machine(draw, i);
+    Config cfg = example_config(m.example);
+    Scenario sc;
+    try {
+      for (const std::string& s : m.sets) apply_set(cfg, s);
+      sc = build_scenario(cfg);
+    } catch (const InputError& e) {
+      ++refused;
+      const std::string what = e.what();
+      if (what.empty() || what.find('\n') != std::string::npos) failures.add("a refusal is not one line", m, what);
+      continue;
+    }
+    if (std::getenv("WHATNEXT_SOAK_TRACE")) std::fprintf(stderr, "%d: %s\n", i, m.command().c_str());
+    const ChildReport rep = run_in_child(sc, m, 20.0 * kCpuLimit, kCpuLimit, false);
+    if (rep.timed_out) {
+      failures.add(fmt::format("a run takes more than {} s", kCpuLimit), m,
+                   fmt::format("stopped after {:.1f} s of computing", rep.cpu));
+    } else if (rep.crashed) {
+      failures.add("a run crashes", m, "");
+    } else if (rep.outcome == "failed") {
+      ++failed;
+      if (failed <= 3) std::printf("soak in range: fails (exit 3) after %.2f s: %s\n", rep.cpu, m.command().c_str());
+    } else {
+      ++ran;
+    }
+    slowest.emplace_back(rep.cpu, m);
+  }
+  std::sort(slowest.begin(), slowest.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::printf("soak in range: %d machines, %d ran to their outcome, %d refused, %d failed; slowest:\n",
+              count, ran, refused, failed);
+  for (std::size_t k = 0; k < std::min<std::size_t>(3, slowest.size()); ++k) {
+    std::printf("  %.2f s  %s\n", slowest[k].first, slowest[k].second.command().c_str());
+  }
+  // The draw must reach machines that run, not only refusals.
+  EXPECT_GT(ran, count / 5) << refused << " refused";
   EXPECT_TRUE(failures.empty()) << failures.report();
 }
 

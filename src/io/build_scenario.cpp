@@ -86,6 +86,37 @@ void read_start(const Reader& in, Start& st) {
   st.lid_angle = in.in_range("start.lid_angle", 0.0, true, 90.0, false) * units::kRadiansPerDegree;
 }
 
+// While the rope that stretches is taut, the adaptive integrator follows its fastest motion step
+// by step: its ringing sqrt(k / m) and its damper's c / m, with m the lighter body at its ends (the
+// sandbag, or the lid's inertia at its edge, a third of the lid's mass). Over run.t_max those are
+// the radians and the decay times to follow. Measured on examples 2, 3 and 4, a taut rope costs
+// about 1e-6 s of computing per radian of ringing and 1e-7 to 3e-7 s per decay time, so these
+// bounds keep a run whose rope stays taut throughout within a few seconds, while the impact
+// study's ropes (up to 1e8 N/m at damping ratios up to 10) stay inside (docs/inputs.md "Limits").
+constexpr double kMaxRopeRadians = 3e6, kMaxRopeDecays = 2e7;
+
+void check_rope_pace(const Reader& in, const Machine& m, const RunSettings& run) {
+  const double mass = std::fmin(m.sandbag_mass, m.lid_mass / 3.0);
+  const double radians = std::sqrt(m.rope_stiffness / mass) * run.t_max;
+  if (radians > kMaxRopeRadians) {
+    const double most = mass * std::pow(kMaxRopeRadians / run.t_max, 2);
+    in.fail("rope.stiffness",
+            fmt::format("makes the rope ring {:.3g} radians within run.t_max = {} s (sqrt(k / m) with m = {:.3g} kg, "
+                        "the sandbag or a third of the lid), more than the {:.0e} a run can follow in seconds: at "
+                        "most {:.3g} N/m here, or a shorter run.t_max (given {})",
+                        radians, fmt_num(run.t_max), mass, kMaxRopeRadians, most, fmt_num(m.rope_stiffness)));
+  }
+  const double decays = m.rope_damping / mass * run.t_max;
+  if (decays > kMaxRopeDecays) {
+    const double most = mass * kMaxRopeDecays / run.t_max;
+    in.fail("rope.damping",
+            fmt::format("makes the rope's damper stop its ends {:.3g} times within run.t_max = {} s (c / m with "
+                        "m = {:.3g} kg, the sandbag or a third of the lid), more than the {:.0e} a run can follow "
+                        "in seconds: at most {:.3g} N s/m here, or a shorter run.t_max (given {})",
+                        decays, fmt_num(run.t_max), mass, kMaxRopeDecays, most, fmt_num(m.rope_damping)));
+  }
+}
+
 // How to run: end time, output spacing, integrator, impact law, and the work that asks for.
 void read_run(const Reader& in, const Machine& m, RunSettings& run) {
   run.t_max = in.positive("run.t_max");
@@ -131,6 +162,7 @@ void read_run(const Reader& in, const Machine& m, RunSettings& run) {
     stable("damping.lid_hinge", m.lid_hinge_damping, m.lid_inertia());
     if (m.heavy_seesaw()) stable("damping.pivot", m.pivot_damping, m.seesaw_inertia);
   }
+  if (m.stretchy_rope()) check_rope_pace(in, m, run);
   if (run.t_max / run.output_step > kMaxSamples) {
     in.fail(
         "run.output_step",

@@ -18,7 +18,7 @@
 
 namespace whatnext::io {
 
-constexpr double kMaxSteps = 1e8;    // fixed-step runs longer than this are refused
+constexpr double kMaxSteps = 1e7;    // fixed-step runs longer than this are refused (rk4: about 2 s)
 constexpr double kMaxSamples = 1e7;  // output rows
 
 // Where the model is made for (docs/inputs.md "Limits"): a tabletop machine. Far outside, lengths
