@@ -501,6 +501,10 @@ class Run:
             y = self.to_free_fall(y)
             return self.settle_balloon(y, t, released)
         if name == "lid_rests":
+            v_balloon = None  # a stuck balloon moves down with the lid until the box stops it
+            if self.balloon == "stuck":
+                _, _, L, Ld, _, _ = self.kin(y)
+                v_balloon = mc.h_lim(L, Ld)[1]
             self.event("lid_rests", t)
             if self.rope == "taut":
                 y = self.to_free_fall(y)
@@ -515,9 +519,8 @@ class Run:
                 released.add("rope_taut")
             self.lid = "rest"
             y = y[:4] + [mc.L0, 0.0] + y[6:]
-            if self.balloon == "stuck":
-                hl, _ = mc.h_lim(mc.L0, 0.0)
-                y = y[:-2] + [hl, 0.0]
+            if v_balloon is not None:  # it goes on down, free, if it was moving
+                y = self.settle_balloon(y[:-1] + [v_balloon], t, released, v_balloon)
             return y
         raise AssertionError(name)
 
