@@ -4,6 +4,9 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <charconv>
+#include <cstdint>
+#include <limits>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -160,6 +163,20 @@ CLI::Validator number_text(bool whole, double lo, double hi) {
         return std::string();
       },
       range.empty() ? std::string() : range.substr(1));  // shown in --help: "INT:from 1 to 100"
+}
+
+CLI::Validator seed_text() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::uint64_t v = 0;
+        const char* end = text.data() + text.size();
+        const auto [ptr, ec] = std::from_chars(text.data(), end, v);
+        if (text.empty() || ptr != end || ec != std::errc())
+          return fmt::format("must be a whole number from 0 to {} (given '{}')",
+                             std::numeric_limits<std::uint64_t>::max(), printable(text, 40));
+        return std::string();
+      },
+      "from 0 to 2^64-1");
 }
 
 bool given(const CLI::App& cmd, const std::string& option) { return cmd.count(option) > 0; }

@@ -58,6 +58,11 @@ void check_leftovers(const CLI::App& cmd);
 // 100000 (given 'abc')" instead of CLI11's "Could not convert" or "Value abc not in range".
 CLI::Validator number_text(bool whole, double lo = -HUGE_VAL, double hi = HUGE_VAL);
 
+// For an option that takes a seed: the text must be a whole number from 0 to 2^64 - 1, written
+// out in digits (as Python's seed=); "-1", "2^64" and "1e23" are refused in one line instead of
+// wrapping around or rounding to another seed.
+CLI::Validator seed_text();
+
 // True when the option was given on the command line (even as an empty string).
 bool given(const CLI::App& cmd, const std::string& option);
 
