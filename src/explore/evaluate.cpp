@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "whatnext/output.hpp"
+#include "whatnext/writers.hpp"
 #include "whatnext/simulate.hpp"
 #include "whatnext/units.hpp"
 

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "whatnext/output.hpp"
+#include "whatnext/config.hpp"
 #include "whatnext/units.hpp"
 
 namespace whatnext::explore {

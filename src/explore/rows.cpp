@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "whatnext/explore/sweep.hpp"
-#include "whatnext/output.hpp"
+#include "whatnext/config.hpp"
 
 namespace whatnext::explore {
 

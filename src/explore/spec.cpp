@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "whatnext/output.hpp"
+#include "whatnext/config.hpp"
 
 namespace whatnext::explore {
 
