@@ -104,6 +104,10 @@ void prepare_picture_dir(const std::string& dir, const std::string& option);
 // Removes the directories prepare_picture_dir created, if they are still empty.
 void remove_empty_picture_dirs();
 
+// A sweep's interrupts from the process's start on: one that lands before the sweep can stop
+// (cmd_sweep.cpp) is held, and the sweep then ends at once with 128 + its number.
+void hold_early_interrupts();
+
 // Each subcommand registers itself and sets `exit_code` when it runs.
 void register_run(CLI::App& app, int& exit_code);       // cmd_run.cpp
 void register_plot(CLI::App& app, int& exit_code);      // cmd_plot.cpp

@@ -44,9 +44,15 @@ struct SweepOptions {
 constexpr std::int64_t kLargeSweep = 1'000'000;
 constexpr double kSweepRowBytes = 600.0;
 
+// An interrupt that landed before the sweep could stop (hold_early_interrupts).
+std::atomic<int> early_interrupt{0};
+
 // Interrupts stop the sweep instead of ending the process while this lives.
 struct InterruptStops {
-  explicit InterruptStops(std::function<void(int)> stop) { set_interrupt_handler(std::move(stop)); }
+  explicit InterruptStops(const std::function<void(int)>& stop) {
+    set_interrupt_handler(stop);
+    if (const int sig = early_interrupt.exchange(0)) stop(sig);
+  }
   ~InterruptStops() { set_interrupt_handler({}); }
   InterruptStops(const InterruptStops&) = delete;
   InterruptStops& operator=(const InterruptStops&) = delete;
@@ -328,6 +334,7 @@ std::string done_line(const SweepOptions& o, const explore::SweepJob& job, const
 }
 
 int run_sweep(const CLI::App& cmd, const SweepOptions& o) {
+  if (const int sig = early_interrupt.load()) return 128 + sig;  // before anything was read or written
   check_leftovers(cmd);
   explore::check_accuracy(o.accuracy, "--accuracy");
   // Everything about the input is checked before any machine runs or any file appears.
@@ -375,6 +382,10 @@ int run_sweep(const CLI::App& cmd, const SweepOptions& o) {
 }
 
 }  // namespace
+
+void hold_early_interrupts() {
+  set_interrupt_handler([](int sig) { early_interrupt.store(sig); });
+}
 
 void register_sweep(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<SweepOptions>();

@@ -684,6 +684,8 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
         if csv is not None:
             raise TypeError("sweep: csv= writes a sweep on this computer; on a Dask cluster write the "
                             "result with to_csv(path)")
+        if not callable(getattr(client, "submit", None)):
+            raise TypeError(f"sweep: client is a dask.distributed.Client, not {type(client).__name__} {client!r:.60}")
         from . import dask as _dask
         return _dask.run(plan, client, chunk=chunk, threads=threads, progress=progress)
     n_threads = 0 if threads is None else _whole("sweep: threads", threads, 1, 4096)

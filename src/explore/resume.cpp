@@ -1,5 +1,6 @@
 #include "whatnext/explore/resume.hpp"
 
+#include <cstring>
 #include <iterator>
 
 #include <fmt/compile.h>
@@ -7,9 +8,15 @@
 
 #include "whatnext/explore/evaluate.hpp"
 #include "whatnext/explore/rows.hpp"
-#include "whatnext/output.hpp"
+#include "whatnext/config.hpp"
+
+#ifndef WHATNEXT_VERSION
+#define WHATNEXT_VERSION "unknown"
+#endif
 
 namespace whatnext::explore {
+
+const char* const kProgramVersion = WHATNEXT_VERSION;
 
 namespace {
 // The start of machine i's row: its index and values, and the comma before its outcome.
@@ -45,6 +52,11 @@ bool check_header(std::string_view text, const std::string& header, std::string_
     return false;
   }
   const std::string_view first = text.substr(0, eol + 1);
+  if (eol > 0 && text[eol - 1] == '\r' && header.compare(0, header.size() - 1, first.substr(0, eol - 1)) == 0) {
+    throw InputError(fmt::format("{}: its lines end in CR LF (as an editor or a copy from Windows may leave them), "
+                                 "not in the LF whatnext writes; convert them back (dos2unix) or {}",
+                                 what, words.remedy));
+  }
   if (first != header) {
     throw InputError(
         fmt::format("{}: was written by a sweep over other columns (it varies {}; this sweep varies {}); {}",
@@ -52,39 +64,6 @@ bool check_header(std::string_view text, const std::string& header, std::string_
                     header_keys(std::string_view(header).substr(0, header.size() - 1)), words.remedy));
   }
   return true;
-}
-
-// A row's machine index, or -1 for a damaged line (the zeros a power cut can leave, a line cut
-// short): it and all after it are run again.
-std::int64_t row_index(std::string_view line) {
-  if (line.find('\0') != std::string_view::npos) return -1;
-  std::int64_t index = 0;
-  std::size_t k = 0;
-  while (k < line.size() && line[k] >= '0' && line[k] <= '9' && k < 12)
-    index = index * 10 + (line[k++] - '0');
-  if (k == 0 || k >= line.size() || line[k] != ',') return -1;
-  return index;
-}
-
-// A row of machine index (after the row of machine previous) must be this sweep's: in order, and
-// with this plan's values. Returns what follows the values: the outcome's columns.
-std::string_view checked_outcome(std::string_view line, std::int64_t index, std::int64_t previous,
-                                 const Machines& machines, std::vector<double>& values, std::string_view what,
-                                 const ResumeWords& words) {
-  if (index <= previous || index >= machines.size()) {
-    throw InputError(
-        fmt::format("{}: holds a row for machine {}{}, which this sweep does not have there; the "
-                    "file is another sweep's ({}): {}",
-                    what, index, index <= previous ? " out of order" : "", words.plan, words.remedy));
-  }
-  const std::string start = row_start(machines, index, values);
-  if (line.compare(0, start.size(), start) != 0) {
-    throw InputError(
-        fmt::format("{}: its row for machine {} has other values than this sweep's ({}); the file "
-                    "is another sweep's ({}): {}",
-                    what, index, printable(start.substr(0, start.size() - 1), 80), words.plan, words.remedy));
-  }
-  return line.substr(start.size());
 }
 
 // Running the first and the last kept machine again checks what the rows do not show: the
@@ -114,32 +93,139 @@ Resumable read_resumable(std::string_view text, const Machines& machines, const 
   if (!check_header(text, header, what, words)) return r;
   r.header = true;
   r.prefix_bytes = header.size();
-  std::vector<double> values(machines.plan().ranges.size());
+  const std::size_t n_keys = machines.plan().ranges.size();
+  std::vector<double> values(n_keys);
   std::int64_t previous = -1;
   std::pair<std::int64_t, std::string_view> checked[2] = {{-1, {}}, {-1, {}}};  // the first and last row
+  Row row;
   for (std::size_t pos = header.size(); pos < text.size();) {
     const auto end = text.find('\n', pos);
     if (end == std::string_view::npos) break;  // a partial last line
     const std::string_view line = text.substr(pos, end + 1 - pos);
-    const std::int64_t index = row_index(line);
-    if (index < 0) break;
-    const std::string_view rest = checked_outcome(line, index, previous, machines, values, what, words);
-    if (rest.rfind("invalid,", 0) == 0) ++r.invalid;
-    if (rest.rfind("failed,", 0) == 0) ++r.failed;
-    if (index == r.prefix_rows && r.later.empty()) {
+    // The file is this sweep's (its identity says so): a row that is not complete, or not of this
+    // plan's machine in its place, is damage. It and every row after it run again.
+    if (!read_row(line, n_keys, row).empty() || row.index <= previous || row.index >= machines.size()) break;
+    machines.point(row.index, values.data());
+    if (row.values != values) break;
+    if (!row.outcome.valid) ++(row.outcome.failed ? r.failed : r.invalid);
+    if (row.index == r.prefix_rows && r.later.empty()) {
       ++r.prefix_rows;
       r.prefix_bytes = end + 1;
     } else {
-      r.later.emplace_back(index, std::string(line));
+      r.later.emplace_back(row.index, std::string(line));
     }
-    if (checked[0].first < 0) checked[0] = {index, line};
-    checked[1] = {index, line};
-    previous = index;
+    if (checked[0].first < 0) checked[0] = {row.index, line};
+    checked[1] = {row.index, line};
+    previous = row.index;
     ++r.kept;
     pos = end + 1;
   }
   if (checked[1].first >= 0) check_by_running_again(checked, machines, base, accuracy, what, words);
   return r;
+}
+
+namespace {
+
+// A value as the identity writes it: numbers in the shortest form that reads back the same.
+std::string value_text(const ConfigValue& v) {
+  switch (v.type) {
+    case ConfigValue::Type::text:
+      return fmt::format("'{}'", printable(v.text, 200));
+    case ConfigValue::Type::pair:
+      return fmt::format("[{}, {}]", shortest(v.pair[0]), shortest(v.pair[1]));
+    case ConfigValue::Type::number:
+      break;
+  }
+  return shortest(v.number);
+}
+
+// FNV-1a over the values' bits: a digest of values too many to write out.
+struct Digest {
+  std::uint64_t h = 1469598103934665603ull;
+  void add(double v) {
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &v, sizeof bits);
+    for (int b = 0; b < 8; ++b) h = (h ^ ((bits >> (8 * b)) & 0xff)) * 1099511628211ull;
+  }
+};
+
+// "name = value" lines, by name.
+std::vector<std::pair<std::string_view, std::string_view>> identity_lines(std::string_view text) {
+  std::vector<std::pair<std::string_view, std::string_view>> out;
+  while (!text.empty()) {
+    const auto eol = text.find('\n');
+    const std::string_view line = text.substr(0, eol);
+    text = eol == std::string_view::npos ? std::string_view() : text.substr(eol + 1);
+    const auto eq = line.find(" = ");
+    if (eq == std::string_view::npos) {
+      out.emplace_back(line, std::string_view());
+    } else {
+      out.emplace_back(line.substr(0, eq), line.substr(eq + 3));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string sweep_identity(const Config& base, const Machines& machines, double accuracy) {
+  std::string out = fmt::format("whatnext sweep identity 1\nprogram = whatnext {}\n", kProgramVersion);
+  out += fmt::format("accuracy = {}\n", accuracy > 0.0 ? shortest(accuracy) : "the machine's own run settings");
+  for (const auto& [key, value] : base.values) out += fmt::format("machine {} = {}\n", key, value_text(value));
+  const Plan& plan = machines.plan();
+  if (machines.is_grid()) {
+    for (std::size_t d = 0; d < plan.ranges.size(); ++d) {
+      const std::vector<double> axis = machines.axis(d);
+      Digest digest;
+      for (double v : axis) digest.add(v);
+      out += fmt::format("values of {} = {} from {} to {} (digest {:016x})\n", plan.ranges[d].key, axis.size(),
+                         shortest(axis.front()), shortest(axis.back()), digest.h);
+    }
+    return out;
+  }
+  Digest digest;
+  std::vector<double> values(plan.ranges.size());
+  for (std::int64_t i = 0; i < machines.size(); ++i) {
+    machines.point(machines.first() + i, values.data());
+    for (double v : values) digest.add(v);
+  }
+  std::string keys;
+  for (const Range& r : plan.ranges) keys += (keys.empty() ? "" : ", ") + r.key;
+  out += fmt::format("machines = {} drawn over {} (digest {:016x})\n", machines.size(), keys, digest.h);
+  return out;
+}
+
+void check_identity(std::string_view now, std::string_view file, std::string_view what, const ResumeWords& words) {
+  if (now == file) return;
+  const auto here = identity_lines(now), there = identity_lines(file);
+  const auto find = [](const auto& lines, std::string_view name) -> const std::string_view* {
+    for (const auto& [n, v] : lines) {
+      if (n == name) return &v;
+    }
+    return nullptr;
+  };
+  std::string_view name, a = "not given", b = "not given";
+  for (const auto& [n, v] : here) {
+    const std::string_view* w = find(there, n);
+    if (!w || *w != v) {
+      name = n, a = v, b = w ? *w : "not given";
+      break;
+    }
+  }
+  if (name.empty()) {
+    for (const auto& [n, v] : there) {
+      if (!find(here, n)) {
+        name = n, b = v;
+        break;
+      }
+    }
+  }
+  const bool plan = name.rfind("values of ", 0) == 0 || name.rfind("machines", 0) == 0;
+  if (name.rfind("machine ", 0) == 0) name.remove_prefix(8);
+  throw InputError(fmt::format("{}: was written by another sweep ({}: {} here, {} in the file); the file is another "
+                               "sweep's ({}): {}",
+                               what, printable(name, 80), printable(a, 80), printable(b, 80),
+                               plan ? words.plan : words.machine, words.remedy));
 }
 
 }  // namespace whatnext::explore

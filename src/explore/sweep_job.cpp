@@ -1,10 +1,36 @@
 #include "whatnext/explore/sweep_job.hpp"
 
+#include <fstream>
+#include <sstream>
+
 #include <fmt/format.h>
 
-#include "whatnext/output.hpp"
+#include "whatnext/atomic_file.hpp"
+
+#include "whatnext/config.hpp"
 
 namespace whatnext::explore {
+
+namespace {
+
+// The identity beside the file; false when there is none.
+bool read_identity(const std::string& path, std::string& out) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in.is_open()) return false;
+  std::ostringstream all;
+  all << in.rdbuf();
+  out = all.str();
+  return true;
+}
+
+// Written whole or not at all, as every output (AtomicFile): renamed over the old one.
+void write_identity(const std::string& path, const std::string& identity) {
+  AtomicFile file(path, "sweep identity");
+  file.stream() << identity;
+  file.commit();
+}
+
+}  // namespace
 
 SweepJob::SweepJob(const Config& base, const Machines& machines, double accuracy)
     : base_(base), machines_(machines), accuracy_(accuracy) {}
@@ -14,10 +40,30 @@ SweepJob::~SweepJob() = default;
 void SweepJob::to_file(const std::string& target, const std::string& given, std::string_view option, bool resume,
                        std::string_view resume_option, const ResumeWords& words) {
   file_ = std::make_unique<SweepFile>(target, given, std::string(option));
+  identity_path_ = target + ".id";
+  identity_ = sweep_identity(base_, machines_, accuracy_);
   if (!resume) return;
   text_ = file_->previous();
-  kept_ = read_resumable(text_, machines_, base_, accuracy_,
-                         fmt::format("{} {}", resume_option, printable(file_->source(), 96)), words);
+  if (text_.empty()) return;  // nothing to resume
+  const std::string what = fmt::format("{} {}", resume_option, printable(file_->source(), 96));
+  // Its columns first: a sweep over other keys is told so in those words. A file without a
+  // complete row holds nothing to keep: whatever wrote it, the sweep starts from its header.
+  const std::size_t eol = text_.find('\n');
+  (void)read_resumable(std::string_view(text_).substr(0, eol + 1), machines_, base_, accuracy_, what, words);
+  if (eol == std::string::npos || text_.find('\n', eol + 1) == std::string::npos) {
+    kept_ = read_resumable(text_, machines_, base_, accuracy_, what, words);
+    return;
+  }
+  // The rows are this sweep's only if the identity beside them says so: every input that changes
+  // a row, which the rows themselves do not show (a --set, the accuracy, the program).
+  std::string file_identity;
+  if (!read_identity(identity_path_, file_identity)) {
+    throw InputError(fmt::format("{}: {}.id, which says what sweep wrote it, is missing, so its rows cannot be proven "
+                                 "this sweep's; {}",
+                                 what, printable(given, 96), words.remedy));
+  }
+  check_identity(identity_, file_identity, what, words);
+  kept_ = read_resumable(text_, machines_, base_, accuracy_, what, words);
 }
 
 void SweepJob::to_stream(std::ostream& out, std::function<void()> sync) {
@@ -45,7 +91,17 @@ std::vector<Row> SweepJob::kept_rows() const {
 
 void SweepJob::start() {
   if (!file_) return;
-  file_->start(std::string_view(text_).substr(0, kept_.prefix_bytes));
+  const bool fresh = !kept_.header;
+  file_->start(fresh ? std::string_view() : std::string_view(text_).substr(0, kept_.prefix_bytes));
+  if (fresh) {
+    // The file holds its header before the identity is written: a .part file that is empty is
+    // never this sweep's (a resumed sweep then reads the target instead).
+    const std::string header = csv_header(machines_.plan());
+    file_->stream().write(header.data(), static_cast<std::streamsize>(header.size()));
+    file_->sync();
+    kept_.header = true;
+  }
+  write_identity(identity_path_, identity_);
   stream_ = &file_->stream();
   stream_sync_ = [this] { file_->sync(); };
 }

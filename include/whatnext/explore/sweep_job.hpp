@@ -41,9 +41,10 @@ class SweepJob {
 
   // The CSV goes to the regular file `target` (regular_output_target's; given: the name as the
   // user wrote it, option: the argument that gave it) through a SweepFile. With resume, what an
-  // interrupted sweep left there is read now and checked to be this sweep's (InputError in
-  // words' terms otherwise; `resume_option` names the argument, "--resume"). Nothing is written
-  // before start().
+  // interrupted sweep left there is read now and checked to be this sweep's: its identity
+  // (TARGET.id) the same as this sweep's, then every row (read_resumable); InputError in words'
+  // terms otherwise (`resume_option` names the argument, "--resume"). Nothing is written before
+  // start().
   void to_file(const std::string& target, const std::string& given, std::string_view option, bool resume,
                std::string_view resume_option, const ResumeWords& words = {});
   // Or to a stream the caller owns and commits (standard output, a pipe, an AtomicFile), made
@@ -55,7 +56,8 @@ class SweepJob {
   // The kept rows read back, in index order.
   std::vector<Row> kept_rows() const;
 
-  // After every other check: only now is the file cut or made (a refused sweep touches nothing).
+  // After every other check: only now is the file cut or made (a refused sweep touches nothing),
+  // with its header, and the sweep's identity written beside it (TARGET.id).
   void start();
   // Runs the machines not kept; the rows go to the file or stream in index order as they are done.
   // A failed write stops the workers and is thrown once they ended.
@@ -74,6 +76,7 @@ class SweepJob {
   std::unique_ptr<SweepFile> file_;
   std::ostream* stream_ = nullptr;
   std::function<void()> stream_sync_;
+  std::string identity_path_, identity_;  // TARGET.id and this sweep's identity (resume.hpp)
   std::string text_;  // what an interrupted sweep left, while kept rows are read from it
   Resumable kept_;
   std::atomic<bool> stop_{false};
