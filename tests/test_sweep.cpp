@@ -362,7 +362,7 @@ class SweepResume : public SweepCli {
 TEST_F(SweepResume, AnotherMachineIsRefusedWhereTheKeptRowsAreAlike) {
   // run.t_max = 3 leaves the first and last kept rows as they are, and changes row 30.
   put("s.csv.part", head(42));
-  put("s.csv.id", id_);
+  put("s.csv.part.id", id_);
   refused(s_ + " --set run.t_max=3", "s.csv", "(run.t_max: 3 here, 2 in the file)");
 }
 
@@ -394,7 +394,7 @@ TEST_F(SweepResume, TheFirstDamagedRowAndAllAfterItRunAgain) {
         "9,0.62,0.82" + line.substr(line.find(",lid_open,")),                           // other values
         std::string(line.size(), '\0')}) {                                              // a power cut
     put("d.csv.part", part.substr(0, row) + damaged + part.substr(end));
-    put("d.csv.id", id_);
+    put("d.csv.part.id", id_);
     const CliResult r = whatnext(s_ + " --resume --out " + (dir_ / "d.csv").string());
     ASSERT_EQ(r.code, 0) << damaged << r.err;
     EXPECT_NE(r.out.find("(9 rows kept from the interrupted sweep)"), std::string::npos) << damaged << r.out;
@@ -402,11 +402,27 @@ TEST_F(SweepResume, TheFirstDamagedRowAndAllAfterItRunAgain) {
   }
 }
 
+TEST_F(SweepResume, TheIdentityFollowsItsFile) {
+  // A .part file is proven by NAME.part.id, and only by it; the finished file gets it as NAME.id.
+  put("p.csv.part", head(42));
+  put("p.csv.id", id_);
+  refused(s_, "p.csv", "p.csv.part.id, which says what sweep wrote it, is missing");
+  put("p.csv.part.id", id_);
+  ASSERT_EQ(whatnext(s_ + " --resume --out " + (dir_ / "p.csv").string()).code, 0);
+  EXPECT_EQ(slurp(dir_ / "p.csv"), ref_);
+  EXPECT_EQ(slurp(dir_ / "p.csv.id"), id_);
+  EXPECT_FALSE(fs::exists(dir_ / "p.csv.part.id"));
+  // A new sweep that fails to start leaves the old file and its identity as they were.
+  const CliResult r = whatnext(s_ + " --set run.t_max=3 --out " + (dir_ / "p.csv").string() + " --heatmap /no/such.png");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(slurp(dir_ / "p.csv.id"), id_);
+}
+
 TEST_F(SweepResume, ACrLfFileIsRefusedSayingSo) {
   std::string crlf;
   for (char c : head(20)) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
   put("c.csv.part", crlf);
-  put("c.csv.id", id_);
+  put("c.csv.part.id", id_);
   refused(s_, "c.csv", "its lines end in CR LF");
 }
 

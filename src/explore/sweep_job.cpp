@@ -1,5 +1,8 @@
 #include "whatnext/explore/sweep_job.hpp"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -41,6 +44,7 @@ void SweepJob::to_file(const std::string& target, const std::string& given, std:
                        std::string_view resume_option, const ResumeWords& words) {
   file_ = std::make_unique<SweepFile>(target, given, std::string(option));
   identity_path_ = target + ".id";
+  part_identity_path_ = target + ".part.id";
   identity_ = sweep_identity(base_, machines_, accuracy_);
   if (!resume) return;
   text_ = file_->previous();
@@ -56,11 +60,15 @@ void SweepJob::to_file(const std::string& target, const std::string& given, std:
   }
   // The rows are this sweep's only if the identity beside them says so: every input that changes
   // a row, which the rows themselves do not show (a --set, the accuracy, the program).
+  // A .part file's identity is NAME.part.id; a finished file's NAME.id, or NAME.part.id where
+  // the end of its sweep was cut off between the two renames (commit()).
   std::string file_identity;
-  if (!read_identity(identity_path_, file_identity)) {
-    throw InputError(fmt::format("{}: {}.id, which says what sweep wrote it, is missing, so its rows cannot be proven "
-                                 "this sweep's; {}",
-                                 what, printable(given, 96), words.remedy));
+  const bool part_identity = file_->from_part() || read_identity(part_identity_path_, file_identity);
+  const std::string& path = part_identity ? part_identity_path_ : identity_path_;
+  if (!read_identity(path, file_identity)) {
+    throw InputError(fmt::format("{}: {}{}.id, which says what sweep wrote it, is missing, so its rows cannot be "
+                                 "proven this sweep's; {}",
+                                 what, printable(given, 96), part_identity ? ".part" : "", words.remedy));
   }
   check_identity(identity_, file_identity, what, words);
   kept_ = read_resumable(text_, machines_, base_, accuracy_, what, words);
@@ -92,6 +100,9 @@ std::vector<Row> SweepJob::kept_rows() const {
 void SweepJob::start() {
   if (!file_) return;
   const bool fresh = !kept_.header;
+  // An identity beside the .part file says what the .part file holds: from here on, until the
+  // new one is written, it holds nothing of the old one's.
+  if (!(file_->from_part() && !fresh)) (void)std::remove(part_identity_path_.c_str());
   file_->start(fresh ? std::string_view() : std::string_view(text_).substr(0, kept_.prefix_bytes));
   if (fresh) {
     // The file holds its header before the identity is written: a .part file that is empty is
@@ -101,7 +112,7 @@ void SweepJob::start() {
     file_->sync();
     kept_.header = true;
   }
-  write_identity(identity_path_, identity_);
+  write_identity(part_identity_path_, identity_);
   stream_ = &file_->stream();
   stream_sync_ = [this] { file_->sync(); };
 }
@@ -140,7 +151,12 @@ void SweepJob::sync() {
 }
 
 void SweepJob::commit() {
-  if (file_) file_->commit();
+  if (!file_) return;
+  file_->commit();
+  // The identity follows its file: the old NAME.id stays until the new NAME is in place.
+  if (std::rename(part_identity_path_.c_str(), identity_path_.c_str()) != 0) {
+    throw OutputError(fmt::format("{}: writing failed: {}", printable(identity_path_, 96), std::strerror(errno)));
+  }
 }
 
 }  // namespace whatnext::explore

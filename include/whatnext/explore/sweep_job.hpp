@@ -57,7 +57,7 @@ class SweepJob {
   std::vector<Row> kept_rows() const;
 
   // After every other check: only now is the file cut or made (a refused sweep touches nothing),
-  // with its header, and the sweep's identity written beside it (TARGET.id).
+  // with its header, and the sweep's identity written beside it (TARGET.part.id).
   void start();
   // Runs the machines not kept; the rows go to the file or stream in index order as they are done.
   // A failed write stops the workers and is thrown once they ended.
@@ -66,7 +66,7 @@ class SweepJob {
   void stop() { stop_.store(true); }
   // Makes every row written durable (the file's sync); OutputError when a write failed.
   void sync();
-  // sync(), then the file appears under its name (a file job only).
+  // sync(), then the file appears under its name and its identity as TARGET.id (a file job only).
   void commit();
 
  private:
@@ -76,7 +76,9 @@ class SweepJob {
   std::unique_ptr<SweepFile> file_;
   std::ostream* stream_ = nullptr;
   std::function<void()> stream_sync_;
-  std::string identity_path_, identity_;  // TARGET.id and this sweep's identity (resume.hpp)
+  // TARGET.id, TARGET.part.id (the .part file's, renamed to TARGET.id by commit()) and this
+  // sweep's identity (resume.hpp).
+  std::string identity_path_, part_identity_path_, identity_;
   std::string text_;  // what an interrupted sweep left, while kept rows are read from it
   Resumable kept_;
   std::atomic<bool> stop_{false};
