@@ -142,6 +142,10 @@ LoadedInput load_input(const InputOptions& opts) {
 }
 
 CLI::Validator number_text(bool whole, double lo, double hi) {
+  // A whole number goes into an int unless a range is given: beyond it CLI11 would say "Could not
+  // convert" in its own words.
+  if (whole && !std::isfinite(lo)) lo = std::numeric_limits<int>::min();
+  if (whole && !std::isfinite(hi)) hi = std::numeric_limits<int>::max();
   const std::string what = whole ? "a whole number" : "a number";
   std::string range;
   if (std::isfinite(lo) && std::isfinite(hi))

@@ -55,7 +55,8 @@ void check_leftovers(const CLI::App& cmd);
 
 // For a numeric option: the text must be one number, a whole one if `whole` ("1e3" is read as
 // 1000), within [lo, hi] if those are given; otherwise "--grid: must be a whole number from 2 to
-// 100000 (given 'abc')" instead of CLI11's "Could not convert" or "Value abc not in range".
+// 100000 (given 'abc')" instead of CLI11's "Could not convert" or "Value abc not in range". A whole
+// number without a range is one an int holds.
 CLI::Validator number_text(bool whole, double lo = -HUGE_VAL, double hi = HUGE_VAL);
 
 // For an option that takes a seed: the text must be a whole number from 0 to 2^64 - 1, written

@@ -436,6 +436,18 @@ TEST_F(SweepCli, IntegerOptionsOutOfRangeAreRefusedInOneLine) {
     expect_rejected("sweep --example 2 --vary masses.lid=0.3:0.5 --samples " + std::string(n), "--samples: must be");
     expect_rejected(grid + " --threads " + n, "--threads: must be");
   }
+  // Every whole-number option of the other commands, beyond what it holds: one line in its words.
+  for (const std::string& args : {std::string("plot --example 1 --width 1e12 --out ") + (dir_ / "p").string(),
+                                  std::string("animate --example 1 --height -99999999999 --out ") +
+                                      (dir_ / "a.gif").string(),
+                                  std::string("optimize --example 2 --vary masses.lid=0.3:0.5 --minimize lid_open "
+                                              "--max-evals 1e23 --out ") +
+                                      (dir_ / "o.toml").string()}) {
+    const CliResult r = whatnext(args);
+    EXPECT_EQ(r.code, 2) << args << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(": must be a whole number from "), std::string::npos) << r.err;
+  }
   // The largest seed is one.
   EXPECT_EQ(whatnext(lhs + " --seed 18446744073709551615 --out " + (dir_ / "s.csv").string()).code, 0);
 }
