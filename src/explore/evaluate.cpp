@@ -41,8 +41,8 @@ void set_values(Config& cfg, const std::vector<std::string>& keys, const double*
 //    those sweeps now take 2.4 times as long.
 // With these, 5,000 random machines of each of fifteen families (examples 1-4 varied, the laws,
 // a heavy seesaw, damping, drag, the radio, the built machine, friction, the stretchy rope) are
-// within 0.66 of the accuracy for three seeds (docs/performance.md, "Issue 23, sixth round";
-// scripts/check-sweep-accuracy.py).
+// within 0.66 of the accuracy for three seeds (scripts/check-sweep-accuracy.py reproduces it;
+// docs/performance.md).
 constexpr double kUncertaintyTrigger = 0.3;
 constexpr double kUncertaintyTarget = 0.2;
 constexpr double kAgreement = 0.5;
