@@ -4,6 +4,9 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <charconv>
+#include <cstdint>
+#include <limits>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -140,11 +143,17 @@ LoadedInput load_input(const InputOptions& opts) {
 
 CLI::Validator number_text(bool whole, double lo, double hi) {
   const std::string what = whole ? "a whole number" : "a number";
-  std::string range;
-  if (std::isfinite(lo) && std::isfinite(hi))
-    range = fmt::format(" from {} to {}", shortest(lo), shortest(hi));
+  // Shown in --help ("INT:from 1 to 100") when the option has a range of its own.
+  const std::string help =
+      std::isfinite(lo) && std::isfinite(hi) ? fmt::format("from {} to {}", shortest(lo), shortest(hi)) : "";
+  // A whole number goes into an int unless a range is given: beyond it CLI11 would say "Could not
+  // convert" in its own words.
+  std::string range = help.empty() ? "" : " " + help;
+  if (whole && !std::isfinite(lo)) lo = std::numeric_limits<int>::min();
+  if (whole && !std::isfinite(hi)) hi = std::numeric_limits<int>::max();
+  const std::string int_range = fmt::format(" from {} to {}", shortest(lo), shortest(hi));
   return CLI::Validator(
-      [what, range, whole, lo, hi](std::string& text) -> std::string {
+      [what, range, int_range, whole, lo, hi](std::string& text) -> std::string {
         const std::string shown = printable(text, 40);
         const char* begin = text.c_str();
         char* end = nullptr;
@@ -152,14 +161,30 @@ CLI::Validator number_text(bool whole, double lo, double hi) {
         const double v = std::strtod(begin, &end);
         const bool number =
             end != begin && *end == '\0' && !std::isspace(static_cast<unsigned char>(text[0]));
-        if (!number || (whole && !(std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 1e15)) ||
-            !(v >= lo && v <= hi)) {
-          return fmt::format("must be {}{} (given '{}')", what, range, shown);
+        const bool whole_number = number && std::isfinite(v) && v == std::floor(v);
+        if (!number || (whole && !(whole_number && std::fabs(v) < 1e15)) || !(v >= lo && v <= hi)) {
+          // An int's range is named only to a whole number beyond it.
+          const bool beyond_int = range.empty() && whole && whole_number;
+          return fmt::format("must be {}{} (given '{}')", what, beyond_int ? int_range : range, shown);
         }
         if (whole) text = fmt::format("{:.0f}", v);  // "1e3" -> "1000", which CLI11 converts
         return std::string();
       },
-      range.empty() ? std::string() : range.substr(1));  // shown in --help: "INT:from 1 to 100"
+      help);
+}
+
+CLI::Validator seed_text() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::uint64_t v = 0;
+        const char* end = text.data() + text.size();
+        const auto [ptr, ec] = std::from_chars(text.data(), end, v);
+        if (text.empty() || ptr != end || ec != std::errc())
+          return fmt::format("must be a whole number from 0 to {} (given '{}')",
+                             std::numeric_limits<std::uint64_t>::max(), printable(text, 40));
+        return std::string();
+      },
+      "from 0 to 2^64-1");
 }
 
 bool given(const CLI::App& cmd, const std::string& option) { return cmd.count(option) > 0; }

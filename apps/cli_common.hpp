@@ -55,8 +55,14 @@ void check_leftovers(const CLI::App& cmd);
 
 // For a numeric option: the text must be one number, a whole one if `whole` ("1e3" is read as
 // 1000), within [lo, hi] if those are given; otherwise "--grid: must be a whole number from 2 to
-// 100000 (given 'abc')" instead of CLI11's "Could not convert" or "Value abc not in range".
+// 100000 (given 'abc')" instead of CLI11's "Could not convert" or "Value abc not in range". A whole
+// number without a range is one an int holds.
 CLI::Validator number_text(bool whole, double lo = -HUGE_VAL, double hi = HUGE_VAL);
+
+// For an option that takes a seed: the text must be a whole number from 0 to 2^64 - 1, written
+// out in digits (as Python's seed=); "-1", "2^64" and "1e23" are refused in one line instead of
+// wrapping around or rounding to another seed.
+CLI::Validator seed_text();
 
 // True when the option was given on the command line (even as an empty string).
 bool given(const CLI::App& cmd, const std::string& option);
@@ -98,6 +104,10 @@ void prepare_picture_dir(const std::string& dir, const std::string& option);
 #endif
 // Removes the directories prepare_picture_dir created, if they are still empty.
 void remove_empty_picture_dirs();
+
+// A sweep's interrupts from the process's start on: one that lands before the sweep can stop
+// (cmd_sweep.cpp) is held, and the sweep then ends at once with 128 + its number.
+void hold_early_interrupts();
 
 // Each subcommand registers itself and sets `exit_code` when it runs.
 void register_run(CLI::App& app, int& exit_code);       // cmd_run.cpp

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <csignal>
+#include <pthread.h>
 #include <system_error>
 #include <vector>
 
@@ -176,6 +178,15 @@ std::vector<std::string> command_names() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Interrupts are caught first thing: one that lands while the command line is read ends the
+  // command as any later one does (a sweep with 128 + its number), never half-way by default.
+  whatnext::install_interrupt_cleanup();
+  if (argc > 1 && std::string_view(argv[1]) == "sweep") whatnext::cli::hold_early_interrupts();
+  // Started with them blocked (a parent's mask is inherited), one pending lands now, handled.
+  sigset_t interrupts;
+  sigemptyset(&interrupts);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&interrupts, sig);
+  pthread_sigmask(SIG_UNBLOCK, &interrupts, nullptr);
   CLI::App app{"whatnext: Kermit's What-Happens-Next machine, simulated event by event", "whatnext"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("whatnext ") + WHATNEXT_VERSION);
@@ -204,7 +215,6 @@ int main(int argc, char** argv) {
     return 2;
   }
   whatnext::cli::keep_command_line(argc, argv);
-  whatnext::install_interrupt_cleanup();
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

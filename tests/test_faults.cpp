@@ -174,6 +174,7 @@ TEST_F(Faults, AFullDiskNeverDamagesAFile) {
         EXPECT_EQ(refs_[job.name][3].at("s.csv").compare(0, part.size(), part), 0) << trace;
         EXPECT_NE(r.code, 0) << trace;
         fs::remove(d / "s.csv.part");
+        fs::remove(d / "s.csv.part.id");  // the .part file's identity goes with it
       }
       if (room == 0 || r.code != 0) {  // with no room at all nothing can be written
         EXPECT_EQ(r.code, 1) << trace;

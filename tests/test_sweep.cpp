@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -306,16 +307,181 @@ TEST_F(SweepCli, ResumeRefusesAnotherSweepsFile) {
   refused("sweep --example 2 --vary geometry.rope_length=0.64:0.8:7 --vary masses.sandbag=0.3:0.5:3",
           "other columns");
   refused("sweep --example 2 --vary geometry.rope_length=0.64:0.8:8 --vary masses.lid=0.3:0.5:3",
-          "other values");
-  refused(base + " --accuracy 1e-4", "gives another row");
+          "(values of geometry.rope_length: 8 from 0.64 to 0.8 (digest");
+  refused(base + " --accuracy 1e-4", "(accuracy: 0.0001 here, 1e-08 in the file)");
   refused("sweep --example 1 --vary geometry.rope_length=0.64:0.8:7 --vary masses.lid=0.3:0.5:3",
-          "gives another row");
+          "was written by another sweep (");
   refused(base + " --heatmap " + (dir_ / "h.png").string(), "--resume");
   const CliResult ok = whatnext(base + " --resume --out " + csv.string());
   EXPECT_EQ(ok.code, 0) << ok.err;
   // With nothing to resume, --resume runs the whole sweep.
   ASSERT_EQ(whatnext(base + " --resume --out " + (dir_ / "new.csv").string()).code, 0);
   EXPECT_EQ(slurp(dir_ / "new.csv"), slurp(csv));
+}
+
+// The sweep S: a resumed file is this sweep's row by row, or it is refused.
+class SweepResume : public SweepCli {
+ protected:
+  const std::string s_ =
+      "sweep --example 2 --vary geometry.rope_length=0.62:1.0:30 --vary masses.sandbag=0.2:2.0:30";
+  std::string ref_, id_;
+  void SetUp() override {
+    SweepCli::SetUp();
+    const fs::path ref = dir_ / "ref.csv";
+    ASSERT_EQ(whatnext(s_ + " --out " + ref.string()).code, 0);
+    ref_ = slurp(ref);
+    id_ = slurp(dir_ / "ref.csv.id");
+  }
+  // The first n lines of the reference (the header and n - 1 rows).
+  std::string head(int n) const {
+    std::size_t at = 0;
+    for (int i = 0; i < n; ++i) at = ref_.find('\n', at) + 1;
+    return ref_.substr(0, at);
+  }
+  void put(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name, std::ios::binary | std::ios::trunc) << text;
+  }
+  // Refused in one line naming `mention`, with every file left as it was.
+  void refused(const std::string& args, const std::string& csv, const std::string& mention) {
+    const auto before = listing();
+    const CliResult r = whatnext(args + " --resume --out " + (dir_ / csv).string());
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(mention), std::string::npos) << r.err;
+    EXPECT_EQ(listing(), before) << args;
+  }
+  std::map<std::string, std::string> listing() const {
+    std::map<std::string, std::string> out;
+    for (const auto& e : fs::directory_iterator(dir_)) {
+      if (e.path().extension() != ".txt") out[e.path().filename().string()] = slurp(e.path());
+    }
+    return out;
+  }
+};
+
+TEST_F(SweepResume, AnotherMachineIsRefusedWhereTheKeptRowsAreAlike) {
+  // run.t_max = 3 leaves the first and last kept rows as they are, and changes row 30.
+  put("s.csv.part", head(42));
+  put("s.csv.part.id", id_);
+  refused(s_ + " --set run.t_max=3", "s.csv", "(run.t_max: 3 here, 2 in the file)");
+}
+
+TEST_F(SweepResume, AFinishedFileIsRefusedOrKeptWhole) {
+  put("s.csv", ref_);
+  refused(s_ + " --set run.t_max=3", "s.csv", "s.csv.id, which says what sweep wrote it, is missing");
+  put("s.csv.id", id_);
+  refused(s_ + " --set run.t_max=3", "s.csv", "(run.t_max: 3 here, 2 in the file)");
+  refused(s_ + " --accuracy 1e-7", "s.csv", "(accuracy: 1e-07 here, 1e-08 in the file)");
+  const CliResult r = whatnext(s_ + " --resume --out " + (dir_ / "s.csv").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("(900 rows kept from the interrupted sweep)"), std::string::npos) << r.out;
+  EXPECT_EQ(slurp(dir_ / "s.csv"), ref_);
+}
+
+TEST_F(SweepResume, TheFirstDamagedRowAndAllAfterItRunAgain) {
+  // Each damage in row 9 (line 11): what comes before is kept, the rest runs again.
+  const std::string part = head(60);
+  const std::size_t row = part.find("\n9,") + 1, end = part.find('\n', row) + 1;
+  const std::string line = part.substr(row, end - row);
+  const std::size_t outcome = line.find(",lid_open,");
+  ASSERT_NE(outcome, std::string::npos) << line;
+  for (const std::string& damaged :
+       {line.substr(0, outcome) + ",lid_op\n",                                       // cut, renamed
+        line.substr(0, outcome) + ",lid_opens" + line.substr(outcome + 9),             // renamed outcome
+        line.substr(0, line.size() - 1) + ",extra\n",                                  // extra column
+        line.substr(0, outcome + 10) + "nan" + line.substr(line.find(',', outcome + 10)),  // no time
+        line.substr(0, outcome + 10) + "2.50" + line.substr(line.find(',', outcome + 10)),  // not as written
+        "9,0.62,0.82" + line.substr(line.find(",lid_open,")),                           // other values
+        std::string(line.size(), '\0')}) {                                              // a power cut
+    put("d.csv.part", part.substr(0, row) + damaged + part.substr(end));
+    put("d.csv.part.id", id_);
+    const CliResult r = whatnext(s_ + " --resume --out " + (dir_ / "d.csv").string());
+    ASSERT_EQ(r.code, 0) << damaged << r.err;
+    EXPECT_NE(r.out.find("(9 rows kept from the interrupted sweep)"), std::string::npos) << damaged << r.out;
+    EXPECT_EQ(slurp(dir_ / "d.csv"), ref_) << damaged;
+  }
+}
+
+TEST_F(SweepResume, TheIdentityFollowsItsFile) {
+  // A .part file is proven by NAME.part.id, and only by it; the finished file gets it as NAME.id.
+  put("p.csv.part", head(42));
+  put("p.csv.id", id_);
+  refused(s_, "p.csv", "p.csv.part.id, which says what sweep wrote it, is missing");
+  put("p.csv.part.id", id_);
+  ASSERT_EQ(whatnext(s_ + " --resume --out " + (dir_ / "p.csv").string()).code, 0);
+  EXPECT_EQ(slurp(dir_ / "p.csv"), ref_);
+  EXPECT_EQ(slurp(dir_ / "p.csv.id"), id_);
+  EXPECT_FALSE(fs::exists(dir_ / "p.csv.part.id"));
+  // A new sweep that fails to start leaves the old file and its identity as they were.
+  const CliResult r = whatnext(s_ + " --set run.t_max=3 --out " + (dir_ / "p.csv").string() + " --heatmap /no/such.png");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(slurp(dir_ / "p.csv.id"), id_);
+}
+
+TEST_F(SweepResume, ACrLfFileIsRefusedSayingSo) {
+  std::string crlf;
+  for (char c : head(20)) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  put("c.csv.part", crlf);
+  put("c.csv.part.id", id_);
+  refused(s_, "c.csv", "its lines end in CR LF");
+}
+
+TEST_F(SweepCli, IntegerOptionsOutOfRangeAreRefusedInOneLine) {
+  const std::string grid = "sweep --example 2 --vary masses.lid=0.3:0.5:3";
+  const std::string lhs = "sweep --example 2 --vary masses.lid=0.3:0.5 --samples 4";
+  for (const char* seed : {"-1", "18446744073709551616", "1e23", "1.5", "0x10", ""}) {
+    expect_rejected(lhs + " --seed '" + seed + "'", "--seed: must be a whole number from 0 to 18446744073709551615");
+  }
+  for (const char* n : {"-1", "0", "1e23", "20000001", "9223372036854775808", "2.5"}) {
+    expect_rejected("sweep --example 2 --vary masses.lid=0.3:0.5 --samples " + std::string(n), "--samples: must be");
+    expect_rejected(grid + " --threads " + n, "--threads: must be");
+  }
+  // Every whole-number option of the other commands, beyond what it holds: one line in its words.
+  for (const std::string& args : {std::string("plot --example 1 --width 1e12 --out ") + (dir_ / "p").string(),
+                                  std::string("animate --example 1 --height -99999999999 --out ") +
+                                      (dir_ / "a.gif").string(),
+                                  std::string("optimize --example 2 --vary masses.lid=0.3:0.5 --minimize lid_open "
+                                              "--max-evals 1e23 --out ") +
+                                      (dir_ / "o.toml").string()}) {
+    const CliResult r = whatnext(args);
+    EXPECT_EQ(r.code, 2) << args << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(": must be a whole number from "), std::string::npos) << r.err;
+  }
+  // The largest seed is one.
+  EXPECT_EQ(whatnext(lhs + " --seed 18446744073709551615 --out " + (dir_ / "s.csv").string()).code, 0);
+}
+
+// An interrupt that lands before whatnext could install its handlers (here: sent while blocked,
+// before exec) ends a sweep with 128 + its number, as any later one does, never by the signal.
+TEST_F(SweepCli, AnInterruptBeforeTheHandlersEndsTheSweepWith128PlusIt) {
+  for (const int sig : {SIGINT, SIGHUP, SIGTERM}) {
+    const std::string csv = (dir_ / "s.csv").string();
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      sigset_t set;
+      sigemptyset(&set);
+      sigaddset(&set, sig);
+      sigprocmask(SIG_BLOCK, &set, nullptr);
+      raise(sig);  // pending until whatnext lets it in
+      const int devnull = open("/dev/null", O_RDWR);
+      dup2(devnull, 1), dup2(devnull, 2);
+      execl(WHATNEXT_CLI, WHATNEXT_CLI, "sweep", "--example", "2", "--vary", "masses.lid=0.3:0.5:3", "--out",
+            csv.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status)) << "ended by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+    EXPECT_EQ(WEXITSTATUS(status), 128 + sig);
+    EXPECT_FALSE(fs::exists(csv + ".part"));
+  }
+}
+
+TEST_F(SweepCli, ARepeatedSpreadKeyIsNamedAsSpread) {
+  expect_rejected("sweep --example 2 --spread masses.lid=+-0.01 --spread masses.lid=+-0.02 --samples 5",
+                  "--spread: each key may be spread once (masses.lid is given twice)");
 }
 
 // Two sweeps never write one file at once: while one runs, a second (resumed or not) is refused

@@ -9,15 +9,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <cstdint>
-#include <functional>
-#include <iterator>
 #include <limits>
-#include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -25,8 +20,8 @@
 #include "whatnext/units.hpp"
 #include "whatnext/columns.hpp"
 #include "whatnext/config.hpp"
-#include "whatnext/explore/sweep.hpp"
-#include "whatnext/explore/sweep_file.hpp"
+#include "whatnext/explore/pool.hpp"
+#include "whatnext/explore/sweep_job.hpp"
 #include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
 
@@ -359,185 +354,124 @@ py::dict run_machine(const MachineHandle& m, bool samples) {
 }
 
 // --- sweeps -------------------------------------------------------------------------------------
+// Every sweep here is the library's (explore/sweep_job.hpp): its machines, its worker pool, its
+// rows and, written to a file, its resumable job. This only turns arrays into machines and rows
+// into arrays.
 
-// The values of machine i, one per key, written to out.
-using PointFn = std::function<void(std::int64_t, double*)>;
+using Axis = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// Every key must be one the inputs hold as a single number (set_number's rule, as the CLI's
-// --vary): one line naming the key otherwise.
+// Every key must be one the inputs hold as a single number (the CLI's --vary rule).
 void check_sweep_keys(const std::vector<std::string>& keys) {
   if (keys.empty()) throw InputError("sweep: give at least one key to vary");
-  for (const std::string& k : keys) {
-    if (!find_key(k)) {
-      const std::string near = nearest_key(k);
-      throw InputError(near.empty()
-                           ? fmt::format("sweep: unknown key '{}'", printable(k))
-                           : fmt::format("sweep: unknown key '{}' (did you mean '{}'?)", printable(k), near));
-    }
-    try {
-      Config probe;
-      set_number(probe, k, 0.0);
-    } catch (const InputError&) {
-      throw InputError(fmt::format("sweep: {} is not a single number and cannot be varied", k));
-    }
-  }
+  for (const std::string& k : keys) explore::check_numeric_key(k, "sweep");
 }
 
-// Runs machines first..first+n-1 on `threads` threads with explore::evaluate, the GIL released;
-// Ctrl-C (checked twenty times a second on the calling thread) stops the workers after the
-// machines they are running and raises KeyboardInterrupt. Rows land in their own slots, so they do
-// not depend on the thread count. Each machine runs to the event-time accuracy given
-// (explore::apply_accuracy; none: the machine's own run settings).
-std::vector<explore::Outcome> run_points(const MachineHandle& m, const std::vector<std::string>& keys,
-                                         std::int64_t first, std::int64_t n, const PointFn& point,
-                                         int threads, std::optional<double> accuracy_given) {
-  if (accuracy_given) explore::check_accuracy(*accuracy_given, "sweep: accuracy");
-  const double accuracy = accuracy_given.value_or(0.0);
-  std::vector<explore::Outcome> rows(static_cast<std::size_t>(n));
-  if (n == 0) return rows;
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  threads = static_cast<int>(std::max<std::int64_t>(1, std::min<std::int64_t>(threads, n)));
-  std::atomic<std::int64_t> next{0};
-  std::atomic<bool> stop{false};
+double accuracy_of(std::optional<double> given) {
+  if (given) explore::check_accuracy(*given, "sweep: accuracy");
+  return given.value_or(0.0);  // none: the machine's own run settings
+}
+
+// The machines of a grid (values per key; the last key varies fastest) or of points (a row of
+// values per machine, numbered from `first`).
+explore::Machines grid_machines(const std::vector<std::string>& keys, const std::vector<Axis>& axes) {
+  check_sweep_keys(keys);
+  if (axes.size() != keys.size()) throw std::invalid_argument("sweep: one array of values per key");
+  std::vector<std::vector<double>> values;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    if (axes[k].ndim() != 1 || axes[k].size() == 0) {
+      throw InputError(
+          fmt::format("sweep: {} needs a one-dimensional sequence of at least one value", keys[k]));
+    }
+    values.emplace_back(axes[k].data(), axes[k].data() + axes[k].size());
+  }
+  return explore::Machines::grid_of(keys, std::move(values));
+}
+
+explore::Machines point_machines(const std::vector<std::string>& keys, const Points& points, std::int64_t first) {
+  check_sweep_keys(keys);
+  if (points.ndim() != 2 || points.shape(1) != static_cast<py::ssize_t>(keys.size()))
+    throw std::invalid_argument("sweep: points need one column per key");
+  return explore::Machines::points_from(keys, std::vector<double>(points.data(), points.data() + points.size()),
+                                        first);
+}
+
+int threads_of(int threads) { return threads > 0 ? threads : explore::all_cores(); }
+
+// Ctrl-C, checked on the calling thread ten times a second: Python's signal handlers run with
+// the GIL; a KeyboardInterrupt they raise stays set for the caller to raise.
+struct PythonInterrupts {
   bool interrupted = false;
-  {
-    py::gil_scoped_release nogil;
-    std::mutex mu;
-    std::condition_variable cv;
-    int running = threads;
-    auto worker = [&] {
-      std::vector<double> values(keys.size());
-      for (std::int64_t i = next.fetch_add(1); i < n && !stop.load(std::memory_order_relaxed);
-           i = next.fetch_add(1)) {
-        point(first + i, values.data());
-        rows[static_cast<std::size_t>(i)] = explore::evaluate(m.config, keys, values.data(), accuracy);
-      }
-      std::lock_guard<std::mutex> lock(mu);
-      --running;
-      cv.notify_all();
-    };
-    std::vector<std::thread> pool;
-    for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
-    std::unique_lock<std::mutex> lock(mu);
-    while (running > 0) {
-      if (cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return running == 0; })) break;
-      if (!interrupted) {
-        lock.unlock();
-        {
-          py::gil_scoped_acquire gil;
-          interrupted = PyErr_CheckSignals() != 0;  // keeps the exception set for below
-        }
-        if (interrupted) stop.store(true);
-        lock.lock();
-      }
-    }
-    lock.unlock();
-    for (std::thread& t : pool) t.join();
+  bool check() {
+    if (interrupted) return true;
+    py::gil_scoped_acquire gil;
+    interrupted = PyErr_CheckSignals() != 0;
+    return interrupted;
   }
-  if (interrupted) throw py::error_already_set();
-  return rows;
-}
+};
 
-// The sweep CSV's columns (explore::write_csv) as numpy arrays: index, the varied keys, outcome,
-// outcome_t, final_r, final_phi_l_deg, an event column per event type (first time, NaN if none)
-// and error. An invalid machine has outcome "invalid", a run that failed "failed" (as in the CSV),
-// NaN times and its one-line reason.
-py::dict sweep_columns(const std::vector<std::string>& keys, std::int64_t first, std::int64_t n,
-                       const PointFn& point, const std::vector<explore::Outcome>& rows) {
+// A sweep's columns (explore::columns_of) as numpy arrays, named as the CSV's columns.
+py::dict to_numpy(const std::vector<std::string>& keys, explore::Columns c) {
   const auto& types = explore::event_types();
-  const auto un = static_cast<std::size_t>(n);
-  std::vector<std::int64_t> index(un);
-  std::vector<std::vector<double>> values(keys.size(), std::vector<double>(un));
-  std::vector<std::string_view> outcome(un);
-  std::vector<double> outcome_t(un), final_r(un), final_phi(un);
-  std::vector<std::vector<double>> first_t(types.size(), std::vector<double>(un));
-  std::vector<std::string> error(un);
-  std::vector<double> v(keys.size());
-  for (std::size_t i = 0; i < un; ++i) {
-    const explore::Outcome& o = rows[i];
-    index[i] = first + static_cast<std::int64_t>(i);
-    point(index[i], v.data());
-    for (std::size_t k = 0; k < keys.size(); ++k) values[k][i] = v[k];
-    outcome[i] = o.valid ? to_string(o.outcome) : std::string_view(o.failed ? "failed" : "invalid");
-    outcome_t[i] = o.valid ? o.outcome_t : kNaN;
-    final_r[i] = o.valid ? o.final_r : kNaN;
-    final_phi[i] = o.valid ? o.final_phi_l_deg : kNaN;
-    for (std::size_t e = 0; e < types.size(); ++e) first_t[e][i] = o.valid ? o.first[e] : kNaN;
-    error[i] = o.error;
-  }
   py::dict out;
-  out["index"] = adopt(std::move(index), py::dtype::of<std::int64_t>());
+  out["index"] = adopt(std::move(c.index), py::dtype::of<std::int64_t>());
   for (std::size_t k = 0; k < keys.size(); ++k)
-    out[py::str(keys[k])] = adopt(std::move(values[k]), py::dtype::of<double>());
-  out["outcome"] = name_array(outcome);
-  out["outcome_t"] = adopt(std::move(outcome_t), py::dtype::of<double>());
-  out["final_r"] = adopt(std::move(final_r), py::dtype::of<double>());
-  out["final_phi_l_deg"] = adopt(std::move(final_phi), py::dtype::of<double>());
-  for (std::size_t e = 0; e < types.size(); ++e) {
-    out[py::str(std::string(to_string(types[e])))] = adopt(std::move(first_t[e]), py::dtype::of<double>());
-  }
-  out["error"] = text_array(error);
+    out[py::str(keys[k])] = adopt(std::move(c.values[k]), py::dtype::of<double>());
+  out["outcome"] = name_array(c.outcome);
+  out["outcome_t"] = adopt(std::move(c.outcome_t), py::dtype::of<double>());
+  out["final_r"] = adopt(std::move(c.final_r), py::dtype::of<double>());
+  out["final_phi_l_deg"] = adopt(std::move(c.final_phi_l_deg), py::dtype::of<double>());
+  for (std::size_t e = 0; e < types.size(); ++e)
+    out[py::str(std::string(to_string(types[e])))] = adopt(std::move(c.first[e]), py::dtype::of<double>());
+  out["error"] = text_array(c.error);
   return out;
 }
 
-using Axis = py::array_t<double, py::array::c_style | py::array::forcecast>;
+// Machines begin..end-1 of `machines` on `threads` threads (explore::run_chunk), the GIL released;
+// Ctrl-C stops the workers after the machines they are running and raises KeyboardInterrupt.
+py::dict run_machines(const MachineHandle& m, const explore::Machines& machines, std::int64_t begin,
+                      std::int64_t end, int threads, double accuracy) {
+  explore::RunOptions ro;
+  ro.threads = threads_of(threads);
+  ro.accuracy = accuracy;
+  std::atomic<bool> stop{false};
+  ro.stop = &stop;
+  PythonInterrupts interrupts;
+  ro.progress = [&](std::int64_t, std::int64_t) {
+    if (interrupts.check()) stop.store(true);
+  };
+  std::vector<explore::Outcome> rows;
+  {
+    py::gil_scoped_release nogil;
+    rows = explore::run_chunk(m.config, machines, begin, end, ro);
+  }
+  if (interrupts.interrupted) throw py::error_already_set();
+  return to_numpy(machines.plan().keys(), explore::columns_of(machines, begin, rows));
+}
 
 // The full grid over explicit values per key; the last key varies fastest (as the CLI's grid).
 // Only machines start..stop-1 of it run (stop < 0: to the end): a chunk of a distributed sweep.
 py::dict sweep_grid(const MachineHandle& m, const std::vector<std::string>& keys,
                     const std::vector<Axis>& axes, int threads, std::optional<double> accuracy,
                     std::int64_t start, std::int64_t stop) {
-  check_sweep_keys(keys);
-  if (axes.size() != keys.size()) throw std::invalid_argument("sweep: one array of values per key");
-  std::vector<std::vector<double>> grid(keys.size());
-  std::int64_t n = 1;
-  for (std::size_t k = 0; k < keys.size(); ++k) {
-    if (axes[k].ndim() != 1 || axes[k].size() == 0) {
-      throw InputError(
-          fmt::format("sweep: {} needs a one-dimensional sequence of at least one value", keys[k]));
-    }
-    grid[k].assign(axes[k].data(), axes[k].data() + axes[k].size());
-    const auto size = static_cast<std::int64_t>(grid[k].size());
-    if (n > explore::kMaxMachines / size) {
-      throw InputError(
-          fmt::format("sweep: the grid has more than {} machines; use fewer values", explore::kMaxMachines));
-    }
-    n *= size;
-  }
+  const explore::Machines machines = grid_machines(keys, axes);
+  const double acc = accuracy_of(accuracy);
+  const std::int64_t n = machines.size();
   if (stop < 0) stop = n;
   if (start < 0 || start > stop || stop > n) {
     throw std::invalid_argument(
         fmt::format("sweep: machines {}..{} are not within the grid's {}", start, stop, n));
   }
-  const PointFn point = [&grid](std::int64_t i, double* out) {
-    for (std::size_t d = grid.size(); d-- > 0;) {
-      const auto size = static_cast<std::int64_t>(grid[d].size());
-      out[d] = grid[d][static_cast<std::size_t>(i % size)];
-      i /= size;
-    }
-  };
-  const auto rows = run_points(m, keys, start, stop - start, point, threads, accuracy);
-  return sweep_columns(keys, start, stop - start, point, rows);
+  return run_machines(m, machines, start, stop, threads, acc);
 }
-
-using Points = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // Machines given by their values, a row of `points` each (one column per key), numbered from
 // `first`: the Latin hypercube's machines, or a chunk of them.
 py::dict sweep_points(const MachineHandle& m, const std::vector<std::string>& keys, const Points& points,
                       std::int64_t first, int threads, std::optional<double> accuracy) {
-  check_sweep_keys(keys);
-  if (points.ndim() != 2 || points.shape(1) != static_cast<py::ssize_t>(keys.size())) {
-    throw std::invalid_argument("sweep: points need one column per key");
-  }
-  const std::int64_t n = points.shape(0);
-  const double* data = points.data();
-  const std::size_t k = keys.size();
-  const PointFn point = [data, first, k](std::int64_t i, double* out) {
-    std::copy_n(data + static_cast<std::size_t>(i - first) * k, k, out);
-  };
-  const auto rows = run_points(m, keys, first, n, point, threads, accuracy);
-  return sweep_columns(keys, first, n, point, rows);
+  const explore::Machines machines = point_machines(keys, points, first);
+  const double acc = accuracy_of(accuracy);
+  return run_machines(m, machines, first, first + machines.size(), threads, acc);
 }
 
 // The machines of a Latin hypercube over [lo, hi] per key (the CLI's --samples N --seed S), as an
@@ -576,11 +510,9 @@ py::bytes sweep_csv(const std::vector<std::string>& keys, const py::dict& column
   for (EventType t : types) first.push_back(numbers(std::string(to_string(t))));
   const py::list outcome = column("outcome").attr("tolist")();
   const py::list error = column("error").attr("tolist")();
-  std::string text = "index";
-  for (const std::string& k : keys) text += "," + k;
-  text += ",outcome,outcome_t,final_r,final_phi_l_deg";
-  for (EventType t : types) text += "," + std::string(to_string(t));
-  text += ",error\n";
+  explore::Plan plan;
+  for (const std::string& k : keys) plan.ranges.push_back(explore::Range{k, 0.0, 0.0, 0});
+  std::string text = explore::csv_header(plan);
   explore::Outcome o;
   std::vector<double> v(keys.size());
   for (std::int64_t i = 0; i < n; ++i) {
@@ -603,173 +535,38 @@ py::bytes sweep_csv(const std::vector<std::string>& keys, const py::dict& column
   return py::bytes(text);
 }
 
-// --- sweeps written to a file, resumably ---------------------------------------------------------
-
-// One row of a sweep's CSV (explore::csv_row's layout, with its newline) read back; false when the
-// line is not one. Numbers are written in the shortest form that reads back as the same double,
-// so strtod gives the outcome's own numbers; the caller checks that csv_row gives the line again.
-bool parse_row(std::string_view line, std::size_t n_keys, explore::Outcome& o) {
-  const auto& types = explore::event_types();
-  if (line.empty() || line.back() != '\n') return false;
-  line.remove_suffix(1);
-  const std::size_t fields = 1 + n_keys + 4 + types.size();  // before the error
-  std::vector<std::string_view> cell;
-  std::size_t pos = 0;
-  for (std::size_t k = 0; k < fields; ++k) {
-    const auto comma = line.find(',', pos);
-    if (comma == std::string_view::npos) return false;
-    cell.push_back(line.substr(pos, comma - pos));
-    pos = comma + 1;
-  }
-  std::string_view error = line.substr(pos);
-  const auto number = [](std::string_view text) {
-    if (text.empty()) return kNaN;
-    const std::string t(text);
-    char* end = nullptr;
-    const double v = std::strtod(t.c_str(), &end);
-    return end == t.c_str() + t.size() ? v : kNaN;
-  };
-  o = explore::Outcome{};
-  o.first.assign(types.size(), kNaN);
-  const std::string_view name = cell[1 + n_keys];
-  o.failed = name == "failed";
-  o.valid = !o.failed && name != "invalid";
-  if (o.valid) {
-    const auto it = std::find_if(types.begin(), types.end(), [&](EventType t) { return to_string(t) == name; });
-    if (it == types.end()) return false;
-    o.outcome = *it;
-    o.outcome_t = number(cell[2 + n_keys]);
-    o.final_r = number(cell[3 + n_keys]);
-    o.final_phi_l_deg = number(cell[4 + n_keys]);
-    for (std::size_t e = 0; e < types.size(); ++e) o.first[e] = number(cell[5 + n_keys + e]);
-  } else {
-    std::string text;
-    if (error.size() >= 2 && error.front() == '"' && error.back() == '"') {
-      error = error.substr(1, error.size() - 2);
-      for (std::size_t i = 0; i < error.size(); ++i) {
-        text += error[i];
-        if (error[i] == '"' && i + 1 < error.size() && error[i + 1] == '"') ++i;
-      }
-    } else {
-      text = std::string(error);
-    }
-    o.error = std::move(text);
-  }
-  return true;
-}
-
-// A sweep written to the CSV file `path` while it runs, as `whatnext sweep --out` writes it and
-// through the same code (explore::run, explore::SweepFile): the same bytes, rows synced about once
-// a second to PATH.part, renamed over PATH at the end. With resume, what an interrupted sweep left
-// (PATH.part, else PATH) is checked to be this sweep's and kept; only the other machines run.
-// Ctrl-C stops the workers, gives the file its name with the rows done (as the command does) and
-// raises KeyboardInterrupt. Returns every machine's columns, the kept ones read back from the file.
+// A sweep written to the CSV file `path` while it runs: the command's job (explore::SweepJob) in
+// Python's words, so the same bytes, synced about once a second to PATH.part and renamed over
+// PATH at the end; with resume, what an interrupted sweep left is checked and kept. Ctrl-C stops
+// the workers, gives the file its name with the rows done (as the command does) and raises
+// KeyboardInterrupt. Returns every machine's columns, the kept ones read back from the file.
 py::dict sweep_to_file(const MachineHandle& m, const std::vector<std::string>& keys,
                        const std::optional<std::vector<Axis>>& axes, const std::optional<Points>& points,
                        int threads, std::optional<double> accuracy_given, const std::string& path, bool resume) {
-  check_sweep_keys(keys);
-  if (accuracy_given) explore::check_accuracy(*accuracy_given, "sweep: accuracy");
-  const double accuracy = accuracy_given.value_or(0.0);
-  std::optional<explore::Machines> made;
-  if (axes) {
-    std::vector<std::vector<double>> values;
-    for (const Axis& a : *axes) {
-      if (a.ndim() != 1) throw std::invalid_argument("sweep: one-dimensional values per key");
-      values.emplace_back(a.data(), a.data() + a.size());
-    }
-    made = explore::Machines::grid_of(keys, std::move(values));
-  } else if (points) {
-    if (points->ndim() != 2 || points->shape(1) != static_cast<py::ssize_t>(keys.size()))
-      throw std::invalid_argument("sweep: points need one column per key");
-    made = explore::Machines::points_of(keys, std::vector<double>(points->data(), points->data() + points->size()));
-  } else {
-    throw std::invalid_argument("sweep: axes or points");
-  }
-  const explore::Machines& machines = *made;
+  if (!axes && !points) throw std::invalid_argument("sweep: axes or points");
+  const explore::Machines machines = axes ? grid_machines(keys, *axes) : point_machines(keys, *points, 0);
+  explore::SweepJob job(m.config, machines, accuracy_of(accuracy_given));
   const std::string option = "sweep: csv";
-  explore::SweepFile file(regular_output_target(path, option), path, option);
-  explore::Resumable kept;
-  std::string text;
-  if (resume) {
-    text = file.previous();
-    explore::ResumeWords words;
-    words.remedy = "give another csv= or resume=False";
-    words.plan = "other values, samples or seed";
-    words.machine = "another machine or accuracy";
-    kept = explore::read_resumable(text, machines, m.config, accuracy,
-                                   fmt::format("sweep: resume {}", printable(file.source(), 96)), words);
-  }
-  const std::int64_t n = machines.size();
-  // The kept rows, read back: the Sweep holds every machine, as an uninterrupted sweep's does.
-  std::vector<explore::Outcome> rows(static_cast<std::size_t>(n));
-  std::vector<char> from_file(static_cast<std::size_t>(n), 0);
-  {
-    std::vector<double> values(keys.size());
-    const auto read_back = [&](std::int64_t index, std::string_view line) {
-      explore::Outcome& o = rows[static_cast<std::size_t>(index)];
-      machines.point(index, values.data());
-      if (!parse_row(line, keys.size(), o) || explore::csv_row(index, values, o) != line) {
-        throw InputError(fmt::format("sweep: resume {}: the row of machine {} cannot be read back; {}",
-                                     printable(file.source(), 96), index, "give another csv= or resume=False"));
-      }
-      from_file[static_cast<std::size_t>(index)] = 1;
-    };
-    std::size_t at = text.find('\n') + 1;
-    for (std::int64_t i = 0; i < kept.prefix_rows; ++i) {
-      const std::size_t end = text.find('\n', at) + 1;
-      read_back(i, std::string_view(text).substr(at, end - at));
-      at = end;
-    }
-    for (const auto& [index, line] : kept.later) read_back(index, line);
-  }
-  file.start(std::string_view(text).substr(0, kept.prefix_bytes));
-  std::string().swap(text);
-
-  explore::RunOptions ro;
-  ro.threads = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  ro.accuracy = accuracy;
-  std::atomic<bool> stop{false};
-  ro.stop = &stop;
-  ro.csv = &file.stream();
-  ro.keep_rows = true;
-  ro.header_written = kept.header;
-  ro.rows_written = kept.prefix_rows;
-  ro.known = std::move(kept.later);
-  std::exception_ptr write_failure;
-  ro.checkpoint = [&] {
-    try {
-      file.sync();
-    } catch (...) {  // thrown here it would end the sweep's threads: they stop, it is thrown below
-      if (!write_failure) write_failure = std::current_exception();
-      stop.store(true);
-    }
-  };
-  bool interrupted = false;
-  ro.progress = [&](std::int64_t, std::int64_t) {  // on the calling thread, ten times a second
-    if (interrupted) return;
-    py::gil_scoped_acquire gil;
-    interrupted = PyErr_CheckSignals() != 0;  // keeps the exception set for below
-    if (interrupted) stop.store(true);
-  };
+  explore::ResumeWords words;
+  words.remedy = "give another csv= or resume=False";
+  words.plan = "other values, samples or seed";
+  words.machine = "another machine or accuracy";
+  job.to_file(regular_output_target(path, option), path, option, resume, "sweep: resume", words);
+  job.start();
+  explore::JobSettings settings;
+  settings.threads = threads_of(threads);
+  PythonInterrupts interrupts;
+  settings.interrupted = [&interrupts] { return interrupts.check(); };
   explore::SweepResult result;
   {
     py::gil_scoped_release nogil;
-    result = explore::run(m.config, machines, ro);
+    result = job.run(settings);  // a failed write is thrown here, before the KeyboardInterrupt
   }
-  if (interrupted) {
-    py::error_already_set pending;  // the KeyboardInterrupt, taken aside: a failed write is raised instead
-    if (write_failure) std::rethrow_exception(write_failure);
-    file.commit();  // the rows done, under the file's name, as the command does when stopped
-    throw pending;
-  }
-  if (write_failure) std::rethrow_exception(write_failure);
-  file.commit();
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto slot = static_cast<std::size_t>(i);
-    if (!from_file[slot]) rows[slot] = std::move(result.rows[slot]);
-  }
-  const PointFn point = [&machines](std::int64_t i, double* out) { machines.point(i, out); };
-  return sweep_columns(keys, 0, n, point, rows);
+  job.commit();  // after Ctrl-C: the rows done, under the file's name, as the command does
+  if (interrupts.interrupted) throw py::error_already_set();
+  // The kept rows read back: the Sweep holds every machine, as an uninterrupted sweep's does.
+  for (explore::Row& row : job.kept_rows()) result.rows[static_cast<std::size_t>(row.index)] = std::move(row.outcome);
+  return to_numpy(keys, explore::columns_of(machines, 0, result.rows));
 }
 
 // The n values of the CLI's --vary KEY=a:b:n grid, computed by the library (the same doubles).

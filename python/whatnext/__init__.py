@@ -743,6 +743,8 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
         if csv is not None:
             raise TypeError("sweep: csv= writes a sweep on this computer; on a Dask cluster write the "
                             "result with to_csv(path)")
+        if not callable(getattr(client, "submit", None)):
+            raise TypeError(f"sweep: client is a dask.distributed.Client, not {type(client).__name__} {client!r:.60}")
         if store is not None:
             from . import dataset as _dataset
             return _dataset.study(plan, client, store, samples=plan.samples, seed=plan.seed, chunk=chunk,

@@ -40,7 +40,7 @@ def _run_chunk(plan: _Plan, start: int, stop: int, threads: int) -> Dict[str, np
 
 def chunk_size(machines: int, worker_threads: int) -> int:
     """The default chunk: about eight chunks per worker thread (so that a slow chunk or a lost
-    worker delays the end by little), at least 200 machines (a task's own cost, a few milliseconds,
+    worker delays the end by little), at least 2,000 machines (a task's own cost, a few milliseconds,
     stays below a tenth of its run) and at most 50,000 (about 10 MB of results per task)."""
     return int(min(50_000, max(2_000, math.ceil(machines / (8 * max(1, worker_threads))))))
 

@@ -13,7 +13,7 @@
 #include <fmt/format.h>
 
 #include "whatnext/config.hpp"
-#include "whatnext/output.hpp"
+#include "whatnext/atomic_file.hpp"
 
 namespace whatnext::explore {
 

@@ -22,7 +22,8 @@
 
 #include "interrupts.hpp"
 #include "whatnext/config.hpp"
-#include "whatnext/output.hpp"
+#include "whatnext/atomic_file.hpp"
+#include "whatnext/interrupts.hpp"
 
 namespace whatnext {
 

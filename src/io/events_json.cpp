@@ -5,7 +5,7 @@
 
 #include "finite.hpp"
 #include "whatnext/columns.hpp"
-#include "whatnext/output.hpp"
+#include "whatnext/writers.hpp"
 
 namespace whatnext {
 

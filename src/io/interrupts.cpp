@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "interrupts.hpp"
-#include "whatnext/output.hpp"
+#include "whatnext/interrupts.hpp"
 
 namespace whatnext {
 

@@ -14,7 +14,7 @@
 #include <system_error>
 #include <thread>
 
-#include "whatnext/output.hpp"
+#include "whatnext/writers.hpp"
 
 #if defined(__linux__) && !defined(__EMSCRIPTEN__)
 #include <sched.h>

@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "finite.hpp"
-#include "whatnext/output.hpp"
+#include "whatnext/writers.hpp"
 
 namespace whatnext {
 

@@ -494,7 +494,7 @@ def test_resume_refuses_another_sweeps_file(tmp_path):
         (m, {"geometry.rope_length": whatnext.grid(0.64, 0.8, 8), "masses.lid": values["masses.lid"]}, {},
          "the file is another sweep's (other values, samples or seed): give another csv= or resume=False"),
         (m, values, {"accuracy": 1e-4}, "(another machine or accuracy): give another csv= or resume=False"),
-        (whatnext.example(1), values, {}, "gives another row now than in the file"),
+        (whatnext.example(1), values, {}, "was written by another sweep ("),
     ]:
         with pytest.raises(whatnext.InputError) as err:
             whatnext.sweep(machine, other, csv=csv, resume=True, **kwargs)
@@ -570,3 +570,35 @@ def test_a_lost_worker_s_chunks_run_again(dask_client):
     assert killed and killed[0] < 12_000  # the kill came while chunks were still to run
     assert victim not in dask_client.run(os_.getpid).values()
     assert remote.to_csv() == whatnext.sweep(m, values).to_csv()
+
+
+def test_a_resumed_file_needs_its_identity_and_keeps_it(tmp_path):
+    """The identity beside the CSV (NAME.id) proves the rows this sweep's; without it they are refused."""
+    m = whatnext.example(2)
+    values = {"geometry.rope_length": whatnext.grid(0.64, 0.8, 7)}
+    csv = tmp_path / "s.csv"
+    want = whatnext.sweep(m, values, csv=csv).to_csv().encode()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.csv", "s.csv.id"]
+    assert whatnext.sweep(m, values, csv=csv, resume=True).to_csv().encode() == want
+    (tmp_path / "s.csv.id").unlink()
+    with pytest.raises(whatnext.InputError, match=r"^sweep: resume .*s\.csv\.id, which says what sweep wrote it, is missing"):
+        whatnext.sweep(m, values, csv=csv, resume=True)
+
+
+@pytest.mark.parametrize("seed", [-1, 2**64, -2**63])
+def test_seeds_out_of_range_are_value_errors(seed):
+    values = {"masses.lid": (0.3, 0.5)}
+    with pytest.raises(ValueError, match=r"^sweep: seed must be from 0 to 18446744073709551615"):
+        whatnext.sweep(whatnext.example(2), values, samples=4, seed=seed)
+    assert whatnext.sweep(whatnext.example(2), values, samples=2, seed=2**64 - 1).columns["index"].size == 2
+
+
+def test_a_client_that_is_not_one_is_named():
+    with pytest.raises(TypeError, match=r"^sweep: client is a dask.distributed.Client"):
+        whatnext.sweep(whatnext.example(2), {"masses.lid": [0.3]}, client=5)
+
+
+def test_the_dask_chunk_docstring_says_what_the_code_does():
+    from whatnext import dask as wdask
+    assert "at least 2,000 machines" in wdask.chunk_size.__doc__
+    assert wdask.chunk_size(1, 1) == 2000

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "whatnext/output.hpp"
+#include "whatnext/atomic_file.hpp"
 
 namespace whatnext::explore {
 
@@ -52,7 +52,7 @@ class SweepFile {
   int fd_ = -1;
   bool created_ = false;  // TARGET.part did not exist before: removed again if never started
   bool started_ = false, from_part_ = false;
-  std::unique_ptr<FdStreamBuf> buf_;  // output.hpp
+  std::unique_ptr<FdStreamBuf> buf_;  // atomic_file.hpp
   std::unique_ptr<std::ostream> out_;
   [[noreturn]] void fail(const std::string& why, bool output) const;
 };
