@@ -73,12 +73,12 @@ void set_values(Config& cfg, const std::vector<std::string>& keys, const double*
 
 // An event's reported time uncertainty is the integrator's local error carried to the event
 // (Crossing::uncertainty). Measured against runs at tolerance 1e-14 on random machines, the error
-// can be several times that: 1.4 times on the issue's grid, 5 times where an uncertain rope_slack
+// can be several times that: 1.4 times on docs/performance.md's grid, 5 times where an uncertain rope_slack
 // moved the lid's opening after it, and far more where the seesaw has mass or the hinges damp,
 // since errors then travel along long pieces and through later impacts (250 times after 1.1 s of
 // a heavy seesaw holding the lid; a heavy seesaw's sandbag that grazes the pivot reaches it or
 // not by the last digits). An impact also multiplies the error of its own time: located to
-// accuracy/100, a rope_taut moved a lid's opening by 0.75 of the accuracy (apply_accuracy now
+// accuracy/100, a rope_taut moved a lid's opening by 0.75 of the accuracy (apply_accuracy
 // locates events to accuracy/1000, which costs 1 %). So, besides the tolerance of accuracy/15:
 //  * a machine whose reported times are uncertain beyond kUncertaintyTrigger of the accuracy is
 //    run again, as tightly as brings the uncertainty to kUncertaintyTarget of it;
@@ -87,11 +87,10 @@ void set_values(Config& cfg, const std::vector<std::string>& keys, const double*
 //    accuracy (the last run's error is then about a hundredth of their difference, whatever the
 //    estimate says). With drag the estimate fell 7-fold short once (a lid_open 1.56 times the
 //    accuracy off, reported at 0.22: the ex1-hinge-drag family, seed 7, 3,000 machines, 118);
-//    those sweeps now take 2.4 times as long.
-// With these, 5,000 random machines of each of fifteen families (examples 1-4 varied, the laws,
-// a heavy seesaw, damping, drag, the radio, the built machine, friction, the stretchy rope) are
-// within 0.66 of the accuracy for three seeds (docs/performance.md, "Issue 23, sixth round";
-// scripts/check-sweep-accuracy.py).
+//    those sweeps take 2.4 times as long.
+// With these, random machines of seventeen families (examples 1-4 varied, the laws, a heavy
+// seesaw, damping, drag, the radio, the built machine, friction, the stretchy rope) are within
+// 0.31 of the accuracy (docs/performance.md, "Sweeps"; scripts/check-sweep-accuracy.py).
 constexpr double kUncertaintyTrigger = 0.3;
 constexpr double kUncertaintyTarget = 0.2;
 constexpr double kAgreement = 0.5;
@@ -112,7 +111,7 @@ constexpr double kRerunLocating = 1e-5;
 // sets the radio's time. A later event alone at its instant is left out: a contact that closes
 // grazing (the rope tightening again at a few mm/s, its time uncertain by 1e-7 s and more) changes
 // the motion after it only at second order in that time, since the closing takes only the
-// velocity along the contact's normal, which is about zero. On the issue's grid that leaves 402
+// velocity along the contact's normal, which is about zero. On docs/performance.md's grid that leaves 402
 // machines instead of 1,038 to run again, with the same worst error (docs/performance.md). An
 // event limit is a chatter's count, not a time to get right.
 double reported_uncertainty(const Result& res, double accuracy) {
@@ -959,7 +958,7 @@ Resumable read_resumable(std::string_view text, const Machines& machines, const 
 
 std::string csv_row(std::int64_t index, const std::vector<double>& values, const Outcome& o) {
   // Compiled formats: the row is formatted for every machine, and the format strings' parsing
-  // took as long as the formatting (callgrind, issue 9).
+  // took as long as the formatting (callgrind).
   fmt::memory_buffer line;
   auto put = [&line](std::string_view text) { line.append(text.data(), text.data() + text.size()); };
   fmt::format_to(std::back_inserter(line), FMT_COMPILE("{}"), index);
