@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Is `whatnext sweep` as accurate as its --accuracy says, beyond the issue's grid?
+"""Is `whatnext sweep` as accurate as its --accuracy says, beyond docs/performance.md's grid?
 
 For each family of random machines (a Latin hypercube around one of the paper's examples, with
 an extension or an impact law switched on), the same machines are swept at the default accuracy
@@ -56,7 +56,7 @@ FAMILIES = {
     "ex4": ["--example", "4", "--vary", "masses.sandbag=0.3:1.0", "--vary", "start.sandbag_x=-0.5:-0.1"],
     "ex4-heavy": ["--example", "4", "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.6",
                   "--vary", "seesaw.mass=0.05:1.0", "--vary", "start.sandbag_x=-0.5:-0.1"],
-    # The machine students build (issue 19) and what came with it (issue 20).
+    # The machine students build, and what came with it (restitution, friction, the stretchy rope).
     "konstanz": ["--example", "konstanz", "--vary", "start.sandbag_height=0.6:1.4",
                  "--vary", "geometry.rope_length=0.36:0.46", "--vary", "seesaw.mass=0.1:0.6"],
     "konstanz-bounce": ["--example", "konstanz", "--set", "floor.restitution=0.4", "--set", "restitution.stop=0.3",

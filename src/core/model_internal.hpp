@@ -8,7 +8,7 @@
 
 // A stage of a hot function (guards(), flow(), kinematics()) called once from it, in the same file:
 // a function of its own for reading, inlined for speed (split apart, the guards and the flow cost
-// the paper's machine 3 % more instructions: docs/performance.md, "Issue 18").
+// the paper's machine 3 % more instructions).
 #if defined(__GNUC__) || defined(__clang__)
 #define WHATNEXT_STAGE [[gnu::always_inline]] inline
 #else

@@ -1,6 +1,6 @@
 // The library runs here, in a Web Worker, so that a long run never freezes the page: the page
 // sends {id, fn, input} and gets {id, result} back; while a run is under way the worker posts
-// {progress: t} now and then, and the page stops a run by ending the worker (issue 22).
+// {progress: t} now and then, and the page stops a run by ending the worker.
 // Served, the module is whatnext.js next to this file; in the single-file page (whatnext.html)
 // both come inlined in one blob, createWhatnext already defined.
 'use strict';

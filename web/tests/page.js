@@ -515,7 +515,7 @@ const checks = {
     });
   },
 
-  // The built machine (issue 19), the konstanz preset: the command line's timeline and outcome
+  // The built machine, the konstanz preset: the command line's timeline and outcome
   // (the radio comes on); the floor across the picture with the ground below it and nothing of
   // the machine drawn under it, at the start (the seesaw's right end on the floor), at each event
   // and at the end (the seesaw's left end and the sandbag on the floor); the end stop drawn at the
@@ -721,7 +721,7 @@ const checks = {
     });
   },
 
-  // Issue 20: a rope that stretches compared with the one that does not, and friction with none;
+  // A rope that stretches compared with the one that does not, and friction with none;
   // each run's outcome is the command line's, and the link holds the comparison.
   async stretch_friction() {
     await withPage(async (page, { open }) => {
@@ -1028,7 +1028,7 @@ const checks = {
     }
   },
 
-  // The library runs in a worker (issue 22): a link of a 10^7-step Euler run (the most a
+  // The library runs in a worker: a link of a 10^7-step Euler run (the most a
   // fixed-step run may take) asks before it starts; run anyway, it shows its progress while the page still answers, and Stop
   // ends it; the page then shows the link's machine without its changes and says why. Declined,
   // the same.
@@ -1578,7 +1578,7 @@ const checks = {
     }, { locale: 'de-DE', viewport: { width: 1366, height: 768 } });
   },
 
-  // German numbers in the panel (issue 21): every field, placeholder and slider value with a
+  // German numbers in the panel: every field, placeholder and slider value with a
   // decimal comma; what the page sends and keeps (the library's input, the link, the TOML) with a
   // point; the switch to English shows the point again.
   async decimal_comma() {
@@ -1650,7 +1650,7 @@ const checks = {
     }, { locale: 'de-DE', viewport: { width: 1366, height: 768 } });
   },
 
-  // German: the library's rarer messages too (issue 21). First every message the command line
+  // German: the library's rarer messages too. First every message the command line
   // gives for a list of bad inputs (values out of range, rules between keys, words where numbers
   // belong, unknown keys and sections, files that are not TOML or not a whatnext.inp) and every
   // reason a run can fail for (as src/core writes them), put into the page's words: no English
@@ -1674,13 +1674,13 @@ const checks = {
       ['damping.lid_hinge=100', 'run.integrator=euler'], ['radio.string_length=0.1'], ['radio.enabled=false', 'radio.string_length=2'],
       ['balloon.rubber_mass=1'], ['balloon.rubber_mass=-1'], ['balloon.drag=false', 'balloon.drag_coefficient=0.5'],
       ['balloon.drag_coefficient=100'], ['run.vertical_margin=inf'], ['run.gravity=-1'], ['masses.sandbag=1e-9'],
-      // The built machine's (issue 19).
+      // The built machine's.
       ['seesaw.end_stop=true'], ['floor.enabled=true'], ['seesaw.left_arm=1.2', 'floor.enabled=true', 'geometry.hinge_angle=-60'],
       ['seesaw.left_arm=1.2', 'floor.enabled=true', 'start.seesaw_angle=60', 'geometry.rope_length=1.4'],
       ['seesaw.left_arm=1.2', 'floor.enabled=true', 'start.seesaw_angle=30', 'start.sandbag_x=-1.5', 'start.sandbag_height=-0.8',
        'geometry.rope_length=1.4'],
       ['floor.restitution=2'], ['floor.enabled=false', 'floor.restitution=0.5'], ['radio.switch_force=-1'], ['seesaw.end_stop=maybe'],
-      // Restitution on the paper's contacts (issue 20).
+      // Restitution on the paper's contacts.
       ['restitution.stop=0.5'], ['restitution.rope=0.5', 'run.impact_law=kinetic-energy'], ['restitution.lid=1.5'],
     ];
     const files = {
