@@ -24,7 +24,7 @@ void set_values(Config& cfg, const std::vector<std::string>& keys, const double*
 
 // An event's reported time uncertainty is the integrator's local error carried to the event
 // (Crossing::uncertainty). Measured against runs at tolerance 1e-14 on random machines, the error
-// can be several times that: 1.4 times on the grid, 5 times where an uncertain rope_slack
+// can be several times that: 1.4 times on docs/performance.md's 10^4 grid, 5 times where an uncertain rope_slack
 // moved the lid's opening after it, and far more where the seesaw has mass or the hinges damp,
 // since errors then travel along long pieces and through later impacts (250 times after 1.1 s of
 // a heavy seesaw holding the lid; a heavy seesaw's sandbag that grazes the pivot reaches it or
@@ -63,7 +63,7 @@ constexpr double kRerunLocating = 1e-5;
 // sets the radio's time. A later event alone at its instant is left out: a contact that closes
 // grazing (the rope tightening again at a few mm/s, its time uncertain by 1e-7 s and more) changes
 // the motion after it only at second order in that time, since the closing takes only the
-// velocity along the contact's normal, which is about zero. On the grid that leaves 402
+// velocity along the contact's normal, which is about zero. On that grid it leaves 402
 // machines instead of 1,038 to run again, with the same worst error (docs/performance.md). An
 // event limit is a chatter's count, not a time to get right.
 double reported_uncertainty(const Result& res, double accuracy) {
