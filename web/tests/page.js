@@ -516,7 +516,7 @@ const checks = {
   },
 
   // The built machine (issue 19), the konstanz preset: the command line's timeline and outcome
-  // (the radio comes on); the floor across the picture with the ground below it and nothing of
+  // (a real party balloon: the radio stays off); the floor across the picture with the ground below it and nothing of
   // the machine drawn under it, at the start (the seesaw's right end on the floor), at each event
   // and at the end (the seesaw's left end and the sandbag on the floor); the end stop drawn at the
   // left arm's end, and not once it is switched off. Each new key set in the panel gives the
@@ -526,7 +526,7 @@ const checks = {
     const expected = cli('run', ...base);
     assert.equal(expected.status, 0);
     const { rows, outcome } = cliTimeline(expected.stdout);
-    assert.match(outcome, /^Outcome: radio on at t = /);
+    assert.match(outcome, /the radio stays off\.$/);
     const times = [0, ...new Set(cliEvents(base).events.map((e) => e.t))];
     assert.ok(rows.some((r) => r[1] === 'seesaw_on_floor') && rows.some((r) => r[1] === 'sandbag_at_stop'), 'the floor and the stop act');
     // A contact's impulse that is rounding noise (1e-16 N s in WebAssembly where the native build
@@ -621,10 +621,11 @@ const checks = {
     // In German: the new events, the impulses of the stop and the floor, the outcome.
     await withPage(async (p) => {
       page = p;
-      const radioOn = cliOutcome(['--example', 'konstanz']).match(/t = ([\d.]+) s/)[1].replace('.', ',');
-      assert.equal(await outcomeText(page), `Ergebnis: Radio an bei t = ${radioOn} s.`);
+      const straight = cliOutcome(['--example', 'konstanz']).match(/straight at ([\d.]+) s/)[1].replace('.', ',');
+      assert.equal(await outcomeText(page),
+                   `Ergebnis: die Ballonschnur ist bei ${straight} s gestreckt, zieht aber schwächer als radio.switch_force: das Radio bleibt aus.`);
       const names = await page.$$eval('#timeline tbody tr.event td:nth-child(2)', (cells) => cells.map((c) => c.textContent));
-      for (const name of ['Wippe hebt ab', 'Wippe auf dem Boden', 'Sandsack am Anschlag', 'Ballon entweicht', 'Radio an']) assert.ok(names.includes(name), `${name} in ${names}`);
+      for (const name of ['Wippe hebt ab', 'Wippe auf dem Boden', 'Sandsack am Anschlag', 'Ballon entweicht', 'Schalter bleibt aus']) assert.ok(names.includes(name), `${name} in ${names}`);
       const notes = (await page.$$eval('#timeline tbody tr.note', (r) => r.map((x) => x.textContent))).join(' | ');
       // ... with the decimal comma of the German page.
       assert.match(notes, /Kraftstoß Sandsack 0,5479 N s, Boden auf Wippe 0,6474 N s/);
@@ -633,15 +634,16 @@ const checks = {
       for (const name of names) assert.deepEqual(englishIn(name), [], name);
       assert.deepEqual(englishIn(notes.replace(/\d,\d+ N s|N s|J/g, '')), [], notes);
       await page.click('details.group:last-of-type > summary');
-      await setFieldAndRun(page, 'radio.switch_force', '0,1');
-      assert.equal(await outcomeText(page),
-                   `Ergebnis: die Ballonschnur ist bei ${radioOn} s gestreckt, zieht aber schwächer als radio.switch_force: das Radio bleibt aus.`);
+      // A switch the balloon can flip: the radio comes on when the string is straight.
+      await setFieldAndRun(page, 'radio.switch_force', '0,01');
+      const radioOn = cliOutcome(['--example', 'konstanz', '--set', 'radio.switch_force=0.01']).match(/t = ([\d.]+) s/)[1].replace('.', ',');
+      assert.equal(await outcomeText(page), `Ergebnis: Radio an bei t = ${radioOn} s.`);
       const labels = await page.$$eval(['seesaw.end_stop', 'floor.enabled', 'floor.restitution', 'radio.switch_force']
         .map((k) => `[data-key="${k}"] .name`).join(','), (e) => e.map((x) => x.textContent));
       assert.deepEqual(labels, ['Schaltkraft', 'Anschlag', 'Boden', 'Stoßzahl']);
     }, { hash: '#machine=konstanz', locale: 'de-DE', viewport: { width: 1366, height: 768 } });
 
-    // On the projector (1280x720) at the end, the radio on: the machine, from the seesaw's left end
+    // On the projector (1280x720) at the end, the string straight: the machine, from the seesaw's left end
     // at the start to the radio's switch, spans most of the drawing (it frames the machine);
     // writes web-konstanz.png.
     fs.mkdirSync(outDir, { recursive: true });
