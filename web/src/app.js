@@ -717,6 +717,7 @@
     impulse_sandbag: 'impulse of the arm on the sandbag', impulse_rope_on_sandbag: 'impulse of the rope on the sandbag',
     impulse_rope_on_lid: 'impulse of the rope on the lid', impulse_stop: 'impulse of the stop', impulse_floor_seesaw: 'impulse of the floor on the seesaw',
     impulse_floor_sandbag: 'impulse of the floor on the sandbag',
+    impulse_latch_on_lid: 'impulse of the latch on the lid (at its edge)', impulse_box_on_lid: 'impulse of the box on the lid (at its edge)',
   };
 
   // Each event as playback reaches it, said to screen readers (aria-live) in the page's language.

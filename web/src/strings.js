@@ -259,6 +259,8 @@
     'impulse of the arm on the sandbag': 'Kraftstoß des Arms auf den Sandsack', 'impulse of the rope on the sandbag': 'Kraftstoß des Seils auf den Sandsack',
     'impulse of the rope on the lid': 'Kraftstoß des Seils auf den Deckel', 'impulse of the stop': 'Kraftstoß des Anschlags',
     'impulse of the floor on the seesaw': 'Kraftstoß des Bodens auf die Wippe', 'impulse of the floor on the sandbag': 'Kraftstoß des Bodens auf den Sandsack',
+    "impulse of the latch on the lid (at its edge)": 'Kraftstoß der Raste auf den Deckel (an seiner Kante)',
+    "impulse of the box on the lid (at its edge)": 'Kraftstoß der Kiste auf den Deckel (an seiner Kante)',
     'sandbag, kinetic': 'Sandsack, kinetisch', 'sandbag, potential': 'Sandsack, potentiell', 'lid, kinetic': 'Deckel, kinetisch',
     'lid, potential': 'Deckel, potentiell', 'seesaw, kinetic': 'Wippe, kinetisch', 'seesaw, potential': 'Wippe, potentiell',
     'rope, spring': 'Seil, Feder', 'balloon, kinetic and lift': 'Ballon, kinetisch und Auftrieb', 'lost in impacts': 'bei Stößen verloren',

@@ -1200,6 +1200,50 @@ const checks = {
     }
   },
 
+  // Konstanz's latch is an impact: at lid_open the timeline's row has the command line's energy
+  // line (the lid's angular impulse in N m s), the energy it takes is what the ledger's
+  // lost_impacts gains there, the rope's release follows at the same instant, and reaching it
+  // plays the impact's click, says it to screen readers and flashes the latch's impulse: the
+  // lid's angular impulse about its hinge as an impulse at its edge, 2 r_L from it.
+  async latch() {
+    const base = ['--example', 'konstanz'];
+    const expected = cliTimeline(cli('run', ...base).stdout).rows;
+    const cliRow = expected.find((r) => r[1] === 'lid_open');
+    assert.ok(cliRow && cliRow.length > 6 && cliRow[6] === 'energy', `the command line's latch: ${cliRow}`);
+    const events = cliEvents(base).events;
+    const k = events.findIndex((e) => e.type === 'lid_open');
+    const latch = events[k];
+    assert.equal(events[k + 1].type, 'rope_slack');
+    assert.equal(events[k + 1].t, latch.t);
+    assert.ok(Math.abs((latch.energy_before - latch.energy_after) - (latch.ledger.lost_impacts - events[k - 1].ledger.lost_impacts)) < 1e-9,
+              'the latch names the energy the ledger loses there');
+    await withPage(async (page) => {
+      const row = (await pageTimeline(page)).find((r) => r[1] === 'lid_open');
+      assert.deepEqual(row, cliRow, 'the latch\'s row and its energy line as the command line prints them');
+      const shown = await page.evaluate(() => window.whatnext.run.events.find((e) => e.type === 'lid_open'));
+      assert.equal(shown.impact, true);
+      assert.ok(Math.abs(shown.energy_after - latch.energy_after) < 1e-9 && Math.abs(shown.impulses.lid_N_m_s - latch.impulses.lid_N_m_s) < 1e-9);
+      // ] from just before it: a key is a gesture, so the click plays.
+      // (WebAssembly's times agree with the native build's to rounding, not to the bit.)
+      await page.evaluate((t) => window.whatnext.seek(t - 0.005), shown.t);
+      await page.keyboard.press('v');
+      await page.keyboard.press(']');
+      assert.equal(await page.evaluate(() => window.whatnext.time), shown.t);
+      const heard = await page.evaluate(() => window.whatnext.sounds.map((x) => `${x.kind}: ${x.what}`));
+      assert.equal(heard[heard.length - 1], 'impact: played', heard.join('; '));
+      assert.match(await page.textContent('#announce'), /lid open \(impact, 3\.21 J -> -0\.68 J\) \+ rope slack/);
+      const flash = await page.evaluate(() => window.whatnext.forces);
+      const m = await page.evaluate(() => window.whatnext.run.machine);
+      const arrow = flash.arrows.find((a) => a.what === 'impulse_latch_on_lid');
+      assert.ok(arrow && arrow.unit === 'N s', `the latch's impulse flashes: ${JSON.stringify(flash.arrows)}`);
+      const atEdge = latch.impulses.lid_N_m_s / (2 * m.lid_half_length);
+      assert.ok(Math.abs(arrow.value - atEdge) <= 1e-9 * atEdge, `${arrow.value} N s, not ${atEdge}`);
+      assert.match(await page.textContent('#force-scale'), /impulse of the latch on the lid \(at its edge\)/);
+      fs.mkdirSync(outDir, { recursive: true });
+      await page.screenshot({ path: path.join(outDir, 'web-latch.png') });
+    }, { hash: '#machine=konstanz', viewport: { width: 1400, height: 900 } });
+  },
+
   // Sound: nothing before the user's first gesture (a play started by the page's own code is
   // silent), then a click at each impact and the tune when the radio comes on; muted, nothing.
   async sound() {
