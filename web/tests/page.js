@@ -90,6 +90,7 @@ async function withPage(fn, options = {}) {
     executablePath: chromiumPath, headless: true, args: kChromiumFlags, acceptDownloads: true,
     viewport: options.viewport || { width: 1400, height: 900 }, deviceScaleFactor: options.scale || 1,
     locale: options.locale || 'en-GB', hasTouch: Boolean(options.touch), isMobile: Boolean(options.touch),
+    reducedMotion: options.reducedMotion || 'no-preference',
   });
   if (options.clipboard) await context.grantPermissions(['clipboard-read', 'clipboard-write']);
   const problems = [];
@@ -1242,6 +1243,38 @@ const checks = {
       fs.mkdirSync(outDir, { recursive: true });
       await page.screenshot({ path: path.join(outDir, 'web-latch.png') });
     }, { hash: '#machine=konstanz', viewport: { width: 1400, height: 900 } });
+  },
+
+  // prefers-reduced-motion: the page knows it, plays nothing by itself, holds each event's frame
+  // twice as long (2 s, not 1 s) and scrolls to the "why" at once, not smoothly.
+  async reduced_motion() {
+    await withPage(async (page) => {
+      assert.equal(await page.evaluate(() => matchMedia('(prefers-reduced-motion: reduce)').matches), true);
+      await page.waitForTimeout(500);
+      assert.equal(await page.evaluate(() => window.whatnext.time), 0, 'nothing plays by itself');
+      const first = await page.evaluate(() => window.whatnext.run.groups[0].t);
+      // How long playback stays on the first event's frame (measured at each animation frame).
+      const held = await page.evaluate((t) => new Promise((done) => {
+        let since = null;
+        const look = (now) => {
+          const at = window.whatnext.time;
+          if (since === null && at === t) since = now;
+          if (since !== null && at !== t) return done(now - since);
+          requestAnimationFrame(look);
+        };
+        window.whatnext.seek(t - 0.002);
+        window.whatnext.play();
+        requestAnimationFrame(look);
+      }), first);
+      assert.ok(held >= 1900, `the event's frame held ${held} ms`);
+      // "Why?" in the timeline: the page is at the "why" as soon as it is asked, and stays there.
+      const tops = await page.evaluate(() => new Promise((done) => {
+        document.querySelector('#timeline .why-link').click();
+        const now = document.getElementById('why').getBoundingClientRect().top;
+        setTimeout(() => done([now, document.getElementById('why').getBoundingClientRect().top]), 800);
+      }));
+      assert.ok(Math.abs(tops[0] - tops[1]) < 1, `the "why" at ${tops[0]} px, then at ${tops[1]} px: scrolled smoothly`);
+    }, { hash: '#machine=example1', reducedMotion: 'reduce' });
   },
 
   // Sound: nothing before the user's first gesture (a play started by the page's own code is
