@@ -1583,6 +1583,17 @@ const checks = {
       await page.click('#timeline tr.note .why-link');
       assert.ok(await page.evaluate(() => document.getElementById('why').open));
       await page.screenshot({ path: path.join(outDir, 'web-why.png'), fullPage: true });
+      // Konstanz's "what makes it work" loads that build, and its radio comes on as on the
+      // command line (the realistic konstanz keeps it off).
+      const fixed = ['--example', 'konstanz', ...sets(['balloon.radius=0.11', 'radio.switch_force=0.01'])];
+      assert.match(cliOutcome(['--example', 'konstanz']), /the radio stays off$/);
+      // (A link's machine is loaded afresh: the page reloads.)
+      await Promise.all([page.waitForEvent('load'), page.click('#konstanz-fix')]);
+      await page.waitForSelector('body[data-ready]', { timeout: 30000 });
+      await idle(page);
+      assert.equal(await page.textContent('#cli-command'), `$ whatnext run ${fixed.join(' ')}`);
+      assert.equal(await outcomeText(page), `Outcome: ${cliOutcome(fixed)}.`);
+      assert.match(await outcomeText(page), /radio on at t = /);
     });
   },
 
