@@ -589,8 +589,9 @@
   }
 
   function build(section) {
-    const keySelect = (axis) => {
-      const s = el('select', { id: `map-${axis}-key` });
+    // Named by its axis's legend (axe: a select needs an accessible name).
+    const keySelect = (axis, label) => {
+      const s = el('select', { id: `map-${axis}-key`, 'aria-label': label });
       // The key's name in the page's language (the key itself in English), the key as its title.
       for (const key of numericKeys()) {
         const o = new Option(S.keyName(key, key), key);
@@ -600,7 +601,7 @@
       return s;
     };
     const axisRow = (axis, label) => el('fieldset', { class: 'map-axis' },
-      el('legend', {}, label), keySelect(axis),
+      el('legend', {}, label), keySelect(axis, label),
       el('label', {}, T('from'), ' ', el('input', { id: `map-${axis}-lo`, type: 'text', inputmode: 'decimal', size: '7' })),
       el('label', {}, T('to'), ' ', el('input', { id: `map-${axis}-hi`, type: 'text', inputmode: 'decimal', size: '7' })),
       el('label', {}, T('steps'), ' ', el('input', { id: `map-${axis}-n`, type: 'text', inputmode: 'numeric', size: '4', value: '100' })));
