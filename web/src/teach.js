@@ -16,20 +16,29 @@
   // ---- the energy bars --------------------------------------------------------------------------
   // The ledger of docs/extensions.md: initial = now + lost + dissipated − the lid's work on the
   // balloon. Each row a sum of sample columns (json keys of columns.hpp, and the bindings' own).
+  // A body's rows have its colour in the drawing (the library's, machine.js), its potential energy
+  // a lighter shade of it; the other rows their own.
   const kRows = [
-    { name: 'sandbag, kinetic', colour: '#cc7f00', keys: ['sandbag_kinetic'] },
-    { name: 'sandbag, potential', colour: '#e8b05c', keys: ['sandbag_potential'] },
-    { name: 'lid, kinetic', colour: '#335599', keys: ['lid_kinetic'] },
-    { name: 'lid, potential', colour: '#7f9ad0', keys: ['lid_potential'] },
-    { name: 'seesaw, kinetic', colour: '#995533', keys: ['seesaw_kinetic'] },
-    { name: 'seesaw, potential', colour: '#c49478', keys: ['seesaw_potential'] },
+    { name: 'sandbag, kinetic', part: 'sandbag', keys: ['sandbag_kinetic'] },
+    { name: 'sandbag, potential', part: 'sandbag', light: true, keys: ['sandbag_potential'] },
+    { name: 'lid, kinetic', part: 'lid', keys: ['lid_kinetic'] },
+    { name: 'lid, potential', part: 'lid', light: true, keys: ['lid_potential'] },
+    { name: 'seesaw, kinetic', part: 'seesaw', keys: ['seesaw_kinetic'] },
+    { name: 'seesaw, potential', part: 'seesaw', light: true, keys: ['seesaw_potential'] },
     { name: 'rope, spring', colour: '#6a3d9a', keys: ['rope_potential'] },
-    { name: 'balloon, kinetic and lift', colour: '#e0202a', keys: ['balloon_kinetic', 'balloon_potential'] },
+    { name: 'balloon, kinetic and lift', part: 'balloon', keys: ['balloon_kinetic', 'balloon_potential'] },
     { name: 'lost in impacts', colour: '#8a1c1c', keys: ['lost_impacts', 'lost_balloon_catch'] },
     { name: 'friction heat', colour: '#a15c00', keys: ['dissipated_friction'] },
     { name: 'damping', colour: '#5f6368', keys: ['dissipated_pivot', 'dissipated_lid_hinge', 'dissipated_drag', 'dissipated_rope'] },
     { name: 'lid\'s work on the balloon', colour: '#999999', keys: ['lid_push_on_balloon'], sign: -1 },
   ];
+  const colourOf = (row) => {
+    if (!row.part) return row.colour;
+    const c = window.whatnextMachine.colour[row.part];
+    if (!row.light) return c;
+    const [r, g, b] = c.match(/\d+/g).map(Number);
+    return `rgb(${[r, g, b].map((x) => Math.round((x + 255) / 2)).join(',')})`;
+  };
   const prepared = new WeakMap();
   function rowsOf(run) {
     let p = prepared.get(run);
@@ -50,7 +59,7 @@
       name.textContent = T(row.name);
       const track = document.createElement('span');
       track.className = 'bar-track';
-      track.innerHTML = `<span class="bar-zero" style="left: ${(100 * -lo) / (hi - lo || 1)}%"></span><span class="bar-fill" style="background: ${row.colour}"></span>`;
+      track.innerHTML = `<span class="bar-zero" style="left: ${(100 * -lo) / (hi - lo || 1)}%"></span><span class="bar-fill" style="background: ${colourOf(row)}"></span>`;
       const out = document.createElement('span');
       out.className = 'bar-value';
       box.append(name, track, out);
