@@ -1180,7 +1180,7 @@ const checks = {
     }
     const bad = spawnSync('/usr/bin/python3', [path.join(sourceDir, 'web/serve.py'), webDir, '--lna'], { encoding: 'utf8' });
     assert.notEqual(bad.status, 0);
-    assert.match(bad.stderr, /takes --lan and --port N .*not '--lna'/);
+    assert.match(bad.stderr, /takes --lan and --port N\b.*not '--lna'/);
     const lan = await start(['--lan']);
     try {
       const m = lan.out().match(/served to the local network at (http:\/\/[\d.]+:\d+\/)/);
