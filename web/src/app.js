@@ -126,7 +126,7 @@
     example3: 'sandbag on the level seesaw: the lid never opens',
     example4: 'a hard hit throws the lid up; it never opens',
     radio: 'the balloon switches the radio on',
-    konstanz: "floor, end stop, the rope at the lid's middle: the radio comes on",
+    konstanz: 'built with a real party balloon: the radio stays off',
   };  // the command line reads machine files of at most 1 MiB  // an event's frame stays this long when playing
   const icon = (d) => `<svg viewBox="0 0 24 24" aria-hidden="true"><path d="${d}"/></svg>`;
   const kPlayIcon = `${icon('M7 4v16l13-8z')} ${T('Play')}`, kPauseIcon = `${icon('M6 4h4v16H6zM14 4h4v16h-4z')} ${T('Pause')}`;
@@ -717,6 +717,7 @@
     impulse_sandbag: 'impulse of the arm on the sandbag', impulse_rope_on_sandbag: 'impulse of the rope on the sandbag',
     impulse_rope_on_lid: 'impulse of the rope on the lid', impulse_stop: 'impulse of the stop', impulse_floor_seesaw: 'impulse of the floor on the seesaw',
     impulse_floor_sandbag: 'impulse of the floor on the sandbag',
+    impulse_latch_on_lid: 'impulse of the latch on the lid (at its edge)', impulse_box_on_lid: 'impulse of the box on the lid (at its edge)',
   };
 
   // Each event as playback reaches it, said to screen readers (aria-live) in the page's language.

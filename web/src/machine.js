@@ -515,7 +515,8 @@
       const m = run.machine, s = run.samples, areaH = v.height - v.top;
       let speed = 0, impulse = 0;
       for (let i = 0; i < s.t.length; ++i) speed = Math.max(speed, Math.hypot(s.vx[i], s.vh[i]));
-      for (const e of run.events) if (e.impulses) for (const [key, j] of Object.entries(e.impulses)) if (!/lid/.test(key)) impulse = Math.max(impulse, Math.abs(j));
+      // The lid's angular impulse is drawn at its edge, 2 r_L from the hinge (the library's forces).
+      for (const e of run.events) if (e.impulses) for (const [key, j] of Object.entries(e.impulses)) impulse = Math.max(impulse, Math.abs(/lid/.test(key) ? j / (2 * m.lid_half_length) : j));
       const nice = (x) => { const p = Math.pow(10, Math.floor(Math.log10(x))); return [1, 2, 5, 10].map((f) => f * p).find((y) => y >= x * 0.999); };
       const weight = m.sandbag_mass * m.gravity;
       k = { height: v.height, force: 0.1 * areaH / weight, velocity: speed > 0 ? 0.25 * areaH / speed : 0,

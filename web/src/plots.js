@@ -6,20 +6,21 @@
 
   const deg = 180 / Math.PI;
   const S = window.whatnextStrings;
-  // Each plot: its figure, the y axis and its curves (value of row i of a run's samples).
+  // Each plot: its figure, the y axis and its curves (value of row i of a run's samples). A curve
+  // of a part has the part's colour in the drawing (the library's, machine.js); the others their own.
   const kPlots = [
     {
       id: 'plot-angles', axis: S.t('angle [°]'), guide: 90,
       curves: [
-        { label: S.t('φS seesaw'), stroke: '#995533', value: (s, i) => s.phi_s[i] * deg },
-        { label: S.t('φL lid'), stroke: '#335599', value: (s, i) => s.phi_l[i] * deg },
+        { label: S.t('φS seesaw'), part: 'seesaw', value: (s, i) => s.phi_s[i] * deg },
+        { label: S.t('φL lid'), part: 'lid', value: (s, i) => s.phi_l[i] * deg },
       ],
     },
     {
       id: 'plot-heights', axis: S.t('height [m]'),
       curves: [
-        { label: S.t('sandbag'), stroke: '#cc7f00', value: (s, i) => s.h[i] },
-        { label: S.t('balloon centre'), stroke: '#e0202a', value: (s, i, m) => m.hinge.h + s.balloon_h[i] },
+        { label: S.t('sandbag'), part: 'sandbag', value: (s, i) => s.h[i] },
+        { label: S.t('balloon centre'), part: 'balloon', value: (s, i, m) => m.hinge.h + s.balloon_h[i] },
         { label: S.t('lid limit'), stroke: '#f29a9e', dash: [5, 4], value: (s, i, m) => m.hinge.h + s.balloon_limit[i] },
       ],
     },
@@ -36,6 +37,8 @@
       curves: [{ label: S.t('rope tension'), stroke: '#6a3d9a', value: (s, i) => s.tension[i] }],
     },
   ];
+
+  const strokeOf = (c) => (c.part ? window.whatnextMachine.colour[c.part] : c.stroke);
 
   // What the machine (sandbag, seesaw, lid) has lost so far: impacts and its damped joints.
   function losses(s, i) {
@@ -104,13 +107,13 @@
         return format(null);
       };
       for (const c of plot.curves) {
-        series.push({ label: c.label, stroke: c.stroke, width: 2, dash: c.dash, value, spanGaps: true, points: { show: false } });
+        series.push({ label: c.label, stroke: strokeOf(c), width: 2, dash: c.dash, value, spanGaps: true, points: { show: false } });
       }
       // Each other run: its curves dashed in their colours (with several runs, in the run's
       // colour and dash, so that the laws can be told apart).
       for (const o of others) {
         for (const c of plot.curves) {
-          series.push({ label: `${c.label}, ${o.label}`, stroke: others.length > 1 ? o.colour : c.stroke, width: 1.5,
+          series.push({ label: `${c.label}, ${o.label}`, stroke: others.length > 1 ? o.colour : strokeOf(c), width: 1.5,
                         dash: o.dash, alpha: 0.8, value, spanGaps: true, points: { show: false } });
         }
       }

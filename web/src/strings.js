@@ -176,7 +176,7 @@
     'a hard hit throws the lid up; it never opens': 'ein harter Schlag wirft den Deckel hoch; er öffnet nie',
     'the balloon switches the radio on': 'der Ballon schaltet das Radio ein',
     "The students' machine (Konstanz)": 'Die Maschine der Studierenden (Konstanz)',
-    "floor, end stop, the rope at the lid's middle: the radio comes on": 'Boden, Anschlag, das Seil in der Deckelmitte: das Radio geht an',
+    'built with a real party balloon: the radio stays off': 'gebaut mit einem echten Partyballon: das Radio bleibt aus',
     'Energy from the pivot\'s height: below it, potential energy is negative.': 'Energie ab der Höhe der Wippenachse: darunter ist die Lageenergie negativ.',
 
     // panel.js
@@ -259,6 +259,8 @@
     'impulse of the arm on the sandbag': 'Kraftstoß des Arms auf den Sandsack', 'impulse of the rope on the sandbag': 'Kraftstoß des Seils auf den Sandsack',
     'impulse of the rope on the lid': 'Kraftstoß des Seils auf den Deckel', 'impulse of the stop': 'Kraftstoß des Anschlags',
     'impulse of the floor on the seesaw': 'Kraftstoß des Bodens auf die Wippe', 'impulse of the floor on the sandbag': 'Kraftstoß des Bodens auf den Sandsack',
+    "impulse of the latch on the lid (at its edge)": 'Kraftstoß der Raste auf den Deckel (an seiner Kante)',
+    "impulse of the box on the lid (at its edge)": 'Kraftstoß der Kiste auf den Deckel (an seiner Kante)',
     'sandbag, kinetic': 'Sandsack, kinetisch', 'sandbag, potential': 'Sandsack, potentiell', 'lid, kinetic': 'Deckel, kinetisch',
     'lid, potential': 'Deckel, potentiell', 'seesaw, kinetic': 'Wippe, kinetisch', 'seesaw, potential': 'Wippe, potentiell',
     'rope, spring': 'Seil, Feder', 'balloon, kinetic and lift': 'Ballon, kinetisch und Auftrieb', 'lost in impacts': 'bei Stößen verloren',
@@ -290,8 +292,14 @@
     "lid's speed after the jerk [°/s]": 'Deckel nach dem Ruck [°/s]',
     'no jerk': 'kein Ruck',
     'Why the lid latches (the radio machines)': 'Warum der Deckel einrastet (die Maschinen mit Radio)',
-    "With a radio, the lid latches open at the angle where it counts as open and the rope is let go: the latch catches the lid, and the lid's kinetic energy goes into the latch (counted with the impacts' losses in the energy bars). In the built machine (Konstanz) the seesaw then lands on the floor and the sandbag slides to the end stop: those impacts lose energy too, and the floor and the stop hold them (their reactions in the forces).":
-      'Mit Radio rastet der Deckel bei dem Winkel ein, bei dem er als offen gilt, und das Seil wird losgelassen: die Raste fängt den Deckel, und seine kinetische Energie geht in die Raste (in den Energiebalken bei den Stoßverlusten gezählt). In der gebauten Maschine (Konstanz) landet die Wippe dann auf dem Boden und der Sandsack rutscht an den Anschlag: auch diese Stöße verlieren Energie, und Boden und Anschlag halten sie (ihre Gegenkräfte bei den Kräften).',
+    "With a radio, the lid latches open at the angle where it counts as open and the rope is let go. The latch is an impact: it stops the lid at once, and the lid's kinetic energy goes into the latch. The timeline shows the energy before and after it and the latch's impulse on the lid, and the energy bars count it with the impacts' losses. In the built machine (Konstanz) the seesaw then lands on the floor and the sandbag slides to the end stop: those impacts lose energy too, and the floor and the stop hold them (their reactions in the forces).":
+      'Mit Radio rastet der Deckel bei dem Winkel ein, bei dem er als offen gilt, und das Seil wird losgelassen. Das Einrasten ist ein Stoß: es hält den Deckel sofort an, und seine kinetische Energie geht in die Raste. Die Zeitleiste zeigt die Energie davor und danach und den Kraftstoß der Raste auf den Deckel, und die Energiebalken zählen sie bei den Stoßverlusten. In der gebauten Maschine (Konstanz) landet die Wippe dann auf dem Boden und der Sandsack rutscht an den Anschlag: auch diese Stöße verlieren Energie, und Boden und Anschlag halten sie (ihre Gegenkräfte bei den Kräften).',
+    "Would the students' machine switch the radio on? (Konstanz)": 'Würde die Maschine der Studierenden das Radio einschalten? (Konstanz)',
+    "No. The machine students build opens its lid, but its balloon is a real party balloon: its rubber skin and ribbon weigh about 2 g, and the air drags on it. Its lift is small and the skin takes more than half of it: when the string is straight it pulls about 0.02 N, and the switch needs 0.03 N. So the radio stays off. The paper's sketch jokes that the machine may not do its job; with a real balloon it does not. The paper's balloon has no skin and no drag: that idealised machine is examples/konstanz-ideal.toml (load it with Open file…), and there the radio comes on.":
+      'Nein. Die Maschine der Studierenden öffnet ihren Deckel, aber ihr Ballon ist ein echter Partyballon: seine Gummihaut und das Band wiegen etwa 2 g, und die Luft bremst ihn. Sein Auftrieb ist klein, und die Haut nimmt mehr als die Hälfte davon: Wenn die Schnur gestreckt ist, zieht sie mit etwa 0,02 N, und der Schalter braucht 0,03 N. Also bleibt das Radio aus. Die Skizze im Artikel scherzt, dass die Maschine ihre Aufgabe vielleicht nicht erfüllt; mit einem echten Ballon erfüllt sie sie nicht. Der Ballon des Artikels hat keine Haut und keinen Luftwiderstand: Diese idealisierte Maschine ist examples/konstanz-ideal.toml (mit „Datei öffnen…“ laden), und dort geht das Radio an.',
+    'What makes it work: a bigger balloon and a lighter switch. A balloon of 0.11 m radius (filled to 22 cm, it still fits the box) and a switch of 0.01 N (a foil flap a third as stiff) switch the radio on in 99.5 % of builds (docs/extensions.md).':
+      'Was sie zum Laufen bringt: ein größerer Ballon und ein leichterer Schalter. Ein Ballon mit 0,11 m Radius (auf 22 cm aufgeblasen passt er noch in die Kiste) und ein Schalter mit 0,01 N (eine Folienklappe, ein Drittel so steif) schalten das Radio in 99,5 % der Aufbauten ein (docs/extensions.md).',
+    'Try it: the build that works': 'Ausprobieren: der Aufbau, der funktioniert',
     'Why energies can be negative': 'Warum Energien negativ sein können',
     "Potential energy is measured from a chosen zero: here the pivot's height (the lid: lying flat). A sandbag below the pivot has negative potential energy, so the machine's energy E can be below zero. Only differences matter: what is lost at an impact is the same whatever the zero.":
       'Potentielle Energie wird von einem gewählten Nullpunkt aus gemessen: hier die Höhe der Achse (beim Deckel: flach liegend). Ein Sandsack unter der Achse hat negative potentielle Energie, also kann die Energie E der Maschine unter null liegen. Nur Differenzen zählen: was bei einem Stoß verloren geht, ist bei jedem Nullpunkt gleich.',

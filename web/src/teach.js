@@ -16,20 +16,29 @@
   // ---- the energy bars --------------------------------------------------------------------------
   // The ledger of docs/extensions.md: initial = now + lost + dissipated − the lid's work on the
   // balloon. Each row a sum of sample columns (json keys of columns.hpp, and the bindings' own).
+  // A body's rows have its colour in the drawing (the library's, machine.js), its potential energy
+  // a lighter shade of it; the other rows their own.
   const kRows = [
-    { name: 'sandbag, kinetic', colour: '#cc7f00', keys: ['sandbag_kinetic'] },
-    { name: 'sandbag, potential', colour: '#e8b05c', keys: ['sandbag_potential'] },
-    { name: 'lid, kinetic', colour: '#335599', keys: ['lid_kinetic'] },
-    { name: 'lid, potential', colour: '#7f9ad0', keys: ['lid_potential'] },
-    { name: 'seesaw, kinetic', colour: '#995533', keys: ['seesaw_kinetic'] },
-    { name: 'seesaw, potential', colour: '#c49478', keys: ['seesaw_potential'] },
+    { name: 'sandbag, kinetic', part: 'sandbag', keys: ['sandbag_kinetic'] },
+    { name: 'sandbag, potential', part: 'sandbag', light: true, keys: ['sandbag_potential'] },
+    { name: 'lid, kinetic', part: 'lid', keys: ['lid_kinetic'] },
+    { name: 'lid, potential', part: 'lid', light: true, keys: ['lid_potential'] },
+    { name: 'seesaw, kinetic', part: 'seesaw', keys: ['seesaw_kinetic'] },
+    { name: 'seesaw, potential', part: 'seesaw', light: true, keys: ['seesaw_potential'] },
     { name: 'rope, spring', colour: '#6a3d9a', keys: ['rope_potential'] },
-    { name: 'balloon, kinetic and lift', colour: '#e0202a', keys: ['balloon_kinetic', 'balloon_potential'] },
+    { name: 'balloon, kinetic and lift', part: 'balloon', keys: ['balloon_kinetic', 'balloon_potential'] },
     { name: 'lost in impacts', colour: '#8a1c1c', keys: ['lost_impacts', 'lost_balloon_catch'] },
     { name: 'friction heat', colour: '#a15c00', keys: ['dissipated_friction'] },
     { name: 'damping', colour: '#5f6368', keys: ['dissipated_pivot', 'dissipated_lid_hinge', 'dissipated_drag', 'dissipated_rope'] },
     { name: 'lid\'s work on the balloon', colour: '#999999', keys: ['lid_push_on_balloon'], sign: -1 },
   ];
+  const colourOf = (row) => {
+    if (!row.part) return row.colour;
+    const c = window.whatnextMachine.colour[row.part];
+    if (!row.light) return c;
+    const [r, g, b] = c.match(/\d+/g).map(Number);
+    return `rgb(${[r, g, b].map((x) => Math.round((x + 255) / 2)).join(',')})`;
+  };
   const prepared = new WeakMap();
   function rowsOf(run) {
     let p = prepared.get(run);
@@ -50,7 +59,7 @@
       name.textContent = T(row.name);
       const track = document.createElement('span');
       track.className = 'bar-track';
-      track.innerHTML = `<span class="bar-zero" style="left: ${(100 * -lo) / (hi - lo || 1)}%"></span><span class="bar-fill" style="background: ${row.colour}"></span>`;
+      track.innerHTML = `<span class="bar-zero" style="left: ${(100 * -lo) / (hi - lo || 1)}%"></span><span class="bar-fill" style="background: ${colourOf(row)}"></span>`;
       const out = document.createElement('span');
       out.className = 'bar-value';
       box.append(name, track, out);
@@ -157,7 +166,15 @@
     box.append(table);
     paragraph(box, T('The lid\'s speed right after the first jerk, from runs of this machine by the library: under each law, and under the rope law with the rebound e(ζ) (restitution.rope).'), 'p').className = 'note';
     paragraph(box, T('Why the lid latches (the radio machines)'), 'h3');
-    paragraph(box, T('With a radio, the lid latches open at the angle where it counts as open and the rope is let go: the latch catches the lid, and the lid\'s kinetic energy goes into the latch (counted with the impacts\' losses in the energy bars). In the built machine (Konstanz) the seesaw then lands on the floor and the sandbag slides to the end stop: those impacts lose energy too, and the floor and the stop hold them (their reactions in the forces).'));
+    paragraph(box, T('With a radio, the lid latches open at the angle where it counts as open and the rope is let go. The latch is an impact: it stops the lid at once, and the lid\'s kinetic energy goes into the latch. The timeline shows the energy before and after it and the latch\'s impulse on the lid, and the energy bars count it with the impacts\' losses. In the built machine (Konstanz) the seesaw then lands on the floor and the sandbag slides to the end stop: those impacts lose energy too, and the floor and the stop hold them (their reactions in the forces).'));
+    paragraph(box, T('Would the students\' machine switch the radio on? (Konstanz)'), 'h3');
+    paragraph(box, T('No. The machine students build opens its lid, but its balloon is a real party balloon: its rubber skin and ribbon weigh about 2 g, and the air drags on it. Its lift is small and the skin takes more than half of it: when the string is straight it pulls about 0.02 N, and the switch needs 0.03 N. So the radio stays off. The paper\'s sketch jokes that the machine may not do its job; with a real balloon it does not. The paper\'s balloon has no skin and no drag: that idealised machine is examples/konstanz-ideal.toml (load it with Open file…), and there the radio comes on.'));
+    const fix = paragraph(box, T('What makes it work: a bigger balloon and a lighter switch. A balloon of 0.11 m radius (filled to 22 cm, it still fits the box) and a switch of 0.01 N (a foil flap a third as stiff) switch the radio on in 99.5 % of builds (docs/extensions.md).'));
+    const tryIt = document.createElement('a');
+    tryIt.id = 'konstanz-fix';
+    tryIt.href = '#machine=konstanz&balloon.radius=0.11&radio.switch_force=0.01';
+    tryIt.textContent = T('Try it: the build that works');
+    fix.append(' ', tryIt);
     paragraph(box, T('Why energies can be negative'), 'h3');
     paragraph(box, T('Potential energy is measured from a chosen zero: here the pivot\'s height (the lid: lying flat). A sandbag below the pivot has negative potential energy, so the machine\'s energy E can be below zero. Only differences matter: what is lost at an impact is the same whatever the zero.'));
 

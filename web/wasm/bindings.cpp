@@ -493,6 +493,11 @@ val forces(val input, val state, double arm, double stop_height, val release, va
     const Vec2 normal{-along.h, along.x};
     const Vec2 up{0, 1};
     const Vec2 grounded_end = mp.arm_left.h < mp.arm_right.h ? mp.arm_left : mp.arm_right;
+    // The lid's edge moves across the lid at dphi_l times this (m per rad): the derivative of the
+    // scene's lid_end along phi_l.
+    const double d = 1e-6;
+    const Vec2 e1 = viz::scene::lid_end(m, s.phi_l + d), e0 = viz::scene::lid_end(m, s.phi_l - d);
+    const Vec2 edge_per_rad{(e1.x - e0.x) / (2 * d), (e1.h - e0.h) / (2 * d)};
     if (!impulses.isUndefined() && !impulses.isNull()) {
       auto imp = [&](const char* k) { return impulses[k].isNumber() ? impulses[k].as<double>() : 0.0; };
       arrow("impulse_sandbag", mp.sandbag, scaled(normal, imp("sandbag_N_s")), "N s");
@@ -501,6 +506,14 @@ val forces(val input, val state, double arm, double stop_height, val release, va
       arrow("impulse_stop", mp.sandbag, scaled(along, imp("stop_N_s")), "N s");
       arrow("impulse_floor_seesaw", grounded_end, scaled(up, imp("floor_seesaw_N_s")), "N s");
       arrow("impulse_floor_sandbag", mp.sandbag, scaled(up, imp("floor_sandbag_N_s")), "N s");
+      // The lid's angular impulse about its hinge (N m s) as the impulse at its edge that has the
+      // same moment: the latch's against the opening (at the latch's instant), the box's along it.
+      const double lever = std::hypot(mp.lid_end.x - mp.hinge.x, mp.lid_end.h - mp.hinge.h);
+      const Vec2 opening = unit(edge_per_rad);
+      const bool latch = s.t >= r.latch;
+      if (lever > 0)
+        arrow(latch ? "impulse_latch_on_lid" : "impulse_box_on_lid", mp.lid_end,
+              scaled(opening, (latch ? -1.0 : 1.0) * imp("lid_N_m_s") / lever), "N s");
     } else {
       const double g = m.gravity;
       arrow("weight_sandbag", mp.sandbag, {0, -m.sandbag_mass * g}, "N");
@@ -516,11 +529,7 @@ val forces(val input, val state, double arm, double stop_height, val release, va
       arrow("floor_on_seesaw", grounded_end, scaled(up, get("floor_reaction")), "N");
       arrow("floor_on_sandbag", mp.sandbag, scaled(up, get("bag_floor_reaction")), "N");
       arrow("velocity_sandbag", mp.sandbag, {get("vx"), get("vh")}, "m/s");
-      // The lid's edge moves across the lid at dphi_l times its length: the derivative of the
-      // scene's lid_end along phi_l.
-      const double d = 1e-6, w = get("dphi_l");
-      const Vec2 e1 = viz::scene::lid_end(m, s.phi_l + d), e0 = viz::scene::lid_end(m, s.phi_l - d);
-      arrow("velocity_lid_edge", mp.lid_end, {(e1.x - e0.x) / (2 * d) * w, (e1.h - e0.h) / (2 * d) * w}, "m/s");
+      arrow("velocity_lid_edge", mp.lid_end, scaled(edge_per_rad, get("dphi_l")), "m/s");
     }
     val v = val::object();
     v.set("ok", true);
