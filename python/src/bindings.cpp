@@ -540,6 +540,16 @@ py::bytes sweep_csv(const std::vector<std::string>& keys, const py::dict& column
 // PATH at the end; with resume, what an interrupted sweep left is checked and kept. Ctrl-C stops
 // the workers, gives the file its name with the rows done (as the command does) and raises
 // KeyboardInterrupt. Returns every machine's columns, the kept ones read back from the file.
+// The sweep's identity (explore::sweep_identity, the lines of a CSV's NAME.id): what a Zarr store
+// of a study holds to prove it is this study's.
+std::string sweep_identity_of(const MachineHandle& m, const std::vector<std::string>& keys,
+                              const std::optional<std::vector<Axis>>& axes, const std::optional<Points>& points,
+                              std::optional<double> accuracy_given) {
+  if (!axes && !points) throw std::invalid_argument("sweep: axes or points");
+  const explore::Machines machines = axes ? grid_machines(keys, *axes) : point_machines(keys, *points, 0);
+  return explore::sweep_identity(m.config, machines, accuracy_of(accuracy_given));
+}
+
 py::dict sweep_to_file(const MachineHandle& m, const std::vector<std::string>& keys,
                        const std::optional<std::vector<Axis>>& axes, const std::optional<Points>& points,
                        int threads, std::optional<double> accuracy_given, const std::string& path, bool resume) {
@@ -637,6 +647,9 @@ PYBIND11_MODULE(_core, mod) {
   mod.def("sweep_csv", &sweep_csv, py::arg("keys"), py::arg("columns"));
   mod.def("sweep_to_file", &sweep_to_file, py::arg("machine"), py::arg("keys"), py::arg("axes"), py::arg("points"),
           py::arg("threads"), py::arg("accuracy"), py::arg("path"), py::arg("resume"));
+  mod.def("sweep_identity", &sweep_identity_of, py::arg("machine"), py::arg("keys"), py::arg("axes"),
+          py::arg("points"), py::arg("accuracy"));
+  mod.attr("VERSION") = explore::kProgramVersion;
   mod.attr("DEFAULT_ACCURACY") = explore::kDefaultAccuracy;
   mod.attr("MAX_MACHINES") = explore::kMaxMachines;
   mod.def("grid_values", &grid_values, py::arg("a"), py::arg("b"), py::arg("n"));

@@ -10,8 +10,6 @@ the accuracy and the program's version, so that a file says which study it is.
 Uses Debian's ``python3-xarray`` and, for stores, ``python3-zarr``; both are imported only here.
 """
 
-import hashlib
-import json
 import math
 import os
 import pathlib
@@ -44,7 +42,7 @@ _MACHINE_DIM = "machine"
 
 
 def _version() -> str:
-    return str(getattr(_core, "VERSION", getattr(_core, "__version__", "unknown")))
+    return str(_core.VERSION)
 
 
 def _column_attrs(name: str) -> Dict[str, str]:
@@ -171,30 +169,22 @@ def _region(shape: Tuple[int, ...], a: int, b: int) -> Tuple[slice, ...]:
     return tuple(region)
 
 
-def _identity(plan: "_Plan", samples: Optional[int], seed: Optional[int], chunks: Tuple[int, ...]) -> Dict[str, Any]:
-    """Everything that changes a value of the study, so that a store is continued only by its own study."""
-    values = hashlib.sha256()
-    if plan.axes is not None:
-        for k in plan.keys:
-            values.update(k.encode() + b"\0" + np.ascontiguousarray(plan.axes[k], dtype="<f8").tobytes())
-    return {
-        "machine_sha256": hashlib.sha256(plan.machine.to_toml().encode()).hexdigest(),
-        "varied": list(plan.keys),
-        "values_sha256": values.hexdigest() if plan.axes is not None else None,
-        "samples": samples,
-        "seed": seed,
-        "accuracy": plan.accuracy,
-        "version": _version(),
-        "machines": plan.size,
-        "chunks": list(chunks),
-    }
+def _identity(plan: "_Plan", chunks: Tuple[int, ...]) -> str:
+    """Everything that changes a value of the study, as the lines of a resumable CSV's NAME.id
+    (the program's version, the accuracy, every value of the machine, the varied values or the
+    drawn machines), and the store's chunks: a store is continued only by its own study."""
+    axes = list(plan.axes.values()) if plan.axes is not None else None
+    text = _core.sweep_identity(plan.machine._handle, plan.keys, axes, plan.points, plan.accuracy)
+    return text + f"chunks = {','.join(map(str, chunks))}\n"
 
 
-def _differences(old: Dict[str, Any], new: Dict[str, Any]) -> List[str]:
-    names = {"machine_sha256": "the machine", "varied": "the varied keys", "values_sha256": "the values",
-             "samples": "samples", "seed": "seed", "accuracy": "accuracy", "version": "the program's version",
-             "machines": "the number of machines", "chunks": "chunk"}
-    return [names.get(k, k) for k in new if old.get(k) != new[k]]
+def _differences(old: str, new: str) -> List[str]:
+    """The names of the identity's lines that differ (in the new one's order)."""
+    def lines(text: str) -> Dict[str, str]:
+        pairs = (line.split(" = ", 1) for line in text.splitlines() if " = " in line)
+        return {k: v for k, v in pairs}
+    was, now = lines(old), lines(new)
+    return [k for k in now if was.get(k) != now[k]] + [k for k in was if k not in now]
 
 
 def _write_chunk(store: str, plan: "_Plan", shape: Tuple[int, ...], a: int, b: int, threads: int) -> int:
@@ -226,7 +216,7 @@ def _write_chunk(store: str, plan: "_Plan", shape: Tuple[int, ...], a: int, b: i
 
 def _create(store: str, plan: "_Plan", dims: Tuple[str, ...], shape: Tuple[int, ...], chunks: Tuple[int, ...],
             coords: Dict[str, Tuple[Any, ...]], names: List[str], attrs: Dict[str, Any],
-            identity: Dict[str, Any]) -> None:
+            identity: str) -> None:
     """The store's layout (xarray's Zarr convention): coordinates written, variables empty."""
     import numcodecs
     import zarr
@@ -249,7 +239,7 @@ def _create(store: str, plan: "_Plan", dims: Tuple[str, ...], shape: Tuple[int, 
         else:
             z = group.create_dataset(name, shape=shape, chunks=chunks, dtype="<f8", fill_value=np.nan)
         z.attrs.update({"_ARRAY_DIMENSIONS": list(dims), **_column_attrs(name)})
-    group.attrs.update({**attrs, "whatnext_identity": json.dumps(identity, sort_keys=True)})
+    group.attrs.update({**attrs, "whatnext_identity": identity})
     zarr.consolidate_metadata(store)
     (pathlib.Path(store) / _DONE).mkdir()
 
@@ -271,12 +261,12 @@ def study(plan: "_Plan", client: Any, store: Union[str, "os.PathLike[str]"], *, 
     worker_threads = sum(client.nthreads().values())
     target = chunk_size(plan.size, worker_threads) if chunk is None else _whole("sweep: chunk", chunk, 1, plan.size)
     chunks = _chunking(shape, target)
-    identity = _identity(plan, samples, seed, chunks)
+    identity = _identity(plan, chunks)
     marker = pathlib.Path(path) / _DONE
     if marker.is_dir():
         import zarr
         try:
-            old = json.loads(zarr.open_group(path, mode="r").attrs["whatnext_identity"])
+            old = str(zarr.open_group(path, mode="r").attrs["whatnext_identity"])
         except Exception:  # noqa: BLE001 (any damage: the store cannot be proven to be this study's)
             raise InputError(f"sweep: store {path} is not a whatnext study that can be continued; "
                              f"remove it or choose another folder") from None
@@ -287,7 +277,7 @@ def study(plan: "_Plan", client: Any, store: Union[str, "os.PathLike[str]"], *, 
     elif pathlib.Path(path).exists():
         raise InputError(f"sweep: store {path} exists and is not a whatnext study; remove it or choose another folder")
     else:
-        names = [n for n in plan.run(0, 0, 1) if n not in plan.keys]  # the columns, from no machine
+        names = [n for n in plan.run(0, 1, 1) if n not in plan.keys]  # the columns, from machine 0
         _create(path, plan, dims, shape, chunks, coords, names, _attrs(plan.machine.to_toml(), plan.keys,
                                                                          plan.accuracy, samples, seed), identity)
     per_chunk = 1 if threads is None else _whole("sweep: threads", threads, 1, 4096)
