@@ -302,8 +302,7 @@ class DensePiece {
     start(y, t);
     for (bool first = true;; first = false) {
       in_first_ = first;
-      Crossing stop;
-      if (!take_step(y, t, stop)) return stop;
+      if (!take_step(y, t)) return stop_;
       const Hit hit = look_at_guards();
       if (hit.guard >= 0 && hit.t <= t_end) return stop_at_event(hit, y, t);
       emit_samples(std::fmin(tb_, t_end));
@@ -357,14 +356,14 @@ class DensePiece {
     return false;
   }
 
-  // One step and the guards at its end; false (with the piece's end in stop) where the motion is
+  // One step and the guards at its end; false (with the piece's end in stop_) where the motion is
   // not finite or the steps are used up.
-  bool take_step(state_type& y, double& t, Crossing& stop) {
+  bool take_step(state_type& y, double& t) {
     std::pair<double, double> interval;
     try {
       interval = stepper_.do_step(std::cref(sys_));
     } catch (const std::exception&) {  // the step size could not be controlled: a non-finite flow
-      stop = {Crossing::non_finite, -1, stepper_.current_time()};
+      stop_ = {Crossing::non_finite, -1, stepper_.current_time()};
       return false;
     }
     ++stats_.steps;
@@ -373,13 +372,13 @@ class DensePiece {
     ta_ = interval.first, tb_ = interval.second;
     y1_ = stepper_.current_state();
     if (!finite(y1_)) {
-      stop = {Crossing::non_finite, -1, ta_};
+      stop_ = {Crossing::non_finite, -1, ta_};
       return false;
     }
     if (++steps_ > set_.max_steps) {
       stepper_.calc_state(ta_, y);
       t = ta_;
-      stop = {Crossing::step_limit, -1, ta_};
+      stop_ = {Crossing::step_limit, -1, ta_};
       return false;
     }
     sys_.guards(y1_, g1_, &d1_);
@@ -398,7 +397,9 @@ class DensePiece {
         touch(i, hit);
       }
     }
-    for (std::size_t i = 0; i < kGuards && tb_ > ta_; ++i) crossing(i, hit);
+    if (tb_ > ta_) {
+      for (std::size_t i = 0; i < kGuards; ++i) crossing(i, hit);
+    }
     return hit;
   }
 
@@ -412,31 +413,33 @@ class DensePiece {
   // A guard that started the piece at zero and has not yet clearly opened: it is disarmed once it
   // has, or its closing again is located (g1 is then set so that it is no ordinary crossing).
   void released_guard(std::size_t i, Hit& hit) {
+    const double ta = ta_, tb = tb_;  // (held here: the guard calls below could change members)
+    const bool first = in_first_;
     own_from_[i] = steps_;
     // Within rounding of the start only the guard's rate can tell (its value is as expanded).
-    const bool noise = in_first_ && order_[i] > 0 && tb_ - t0_ < noise_time_[i];
+    const bool noise = first && order_[i] > 0 && tb - t0_ < noise_time_[i];
     if (!noise && g1_[i] < -floor_[i]) {
       armed_[i] = false;  // clearly open: an ordinary guard from here on
       return;
     }
     // Still zero within rounding, or closed again before it ever opened beyond it.
     const double g_seen = noise ? 0.0 : g1_[i];
-    const double closes = closes_again(order_[i], lead_[i], tb_ - t0_, g_seen, floor_[i], d1_[i]);
+    const double closes = closes_again(order_[i], lead_[i], tb - t0_, g_seen, floor_[i], d1_[i]);
     if (closes > 0.0) {
-      double t_close = std::fmax(ta_, t0_ + closes), rate_close = std::numeric_limits<double>::infinity();
+      double t_close = std::fmax(ta, t0_ + closes), rate_close = std::numeric_limits<double>::infinity();
       double g_close = std::numeric_limits<double>::quiet_NaN();
       // The expansion only points at the closing (its cubic is off by the next term, microseconds
       // a hundred microseconds out): where the guard's own values bracket it, it is located on
       // the dense output like any crossing, from the gap's deepest point (2/3 of the way for the
       // cubic) to the step's end, so its time does not depend on where the step happened to end.
-      const double lo = std::fmax(ta_, t0_ + (2.0 / 3.0) * closes);
-      if (!noise && g1_[i] >= 0.0 && lo < tb_) {
+      const double lo = std::fmax(ta, t0_ + (2.0 / 3.0) * closes);
+      if (!noise && g1_[i] >= 0.0 && lo < tb) {
         const double g_lo = guard_at(i, lo);
         if (g_lo < 0.0) {
-          const auto end = fired_end([&](double t2) { return guard_at(i, t2); }, lo, tb_, g_lo, g1_[i],
+          const auto end = fired_end([&](double t2) { return guard_at(i, t2); }, lo, tb, g_lo, g1_[i],
                                      set_.time_tolerance);
           if (std::fabs(end.first - t_close) <= 0.5 * closes) {
-            t_close = end.first, rate_close = (g1_[i] - g_lo) / (tb_ - lo), g_close = end.second;
+            t_close = end.first, rate_close = (g1_[i] - g_lo) / (tb - lo), g_close = end.second;
           }
         }
       }
@@ -450,8 +453,10 @@ class DensePiece {
   // Negative at both ends: a touch in between? Peak of the Hermite cubic on [ta, tb] (not in the
   // first step of a guard that started at zero: its g0 is the scaled lead, not a value).
   void touch(std::size_t i, Hit& hit) {
-    if (!(g0_[i] < 0.0 && g1_[i] < 0.0) || !(tb_ > ta_) || (in_first_ && order_[i] > 0)) return;
-    const double h = tb_ - ta_;
+    const double ta = ta_, tb = tb_;  // (held here: the guard calls below could change members)
+    const bool first = in_first_;
+    if (!(g0_[i] < 0.0 && g1_[i] < 0.0) || !(tb > ta) || (first && order_[i] > 0)) return;
+    const double h = tb - ta;
     double r0 = d0_[i], r1 = d1_[i];
     if ((std::isnan(r0) || std::isnan(r1)) && !rates_from_values(i, r0, r1)) return;
     const double s_peak = hermite_peak(g0_[i], g1_[i], h, r0, r1);
@@ -459,12 +464,12 @@ class DensePiece {
     // Look at the real guard around the predicted peak; if it is >= 0 there, the touch is
     // located between ta and that point like any crossing.
     for (double frac : {s_peak, 0.5 * s_peak, 0.5 * (1.0 + s_peak)}) {
-      const double tt = ta_ + frac * h;
+      const double tt = ta + frac * h;
       const double gv = guard_at(i, tt);
       if (gv >= 0.0) {
         const auto end =
-            fired_end([&](double t2) { return guard_at(i, t2); }, ta_, tt, g0_[i], gv, set_.time_tolerance);
-        hit.offer(static_cast<int>(i), end.first, (gv - g0_[i]) / (tt - ta_), end.second);
+            fired_end([&](double t2) { return guard_at(i, t2); }, ta, tt, g0_[i], gv, set_.time_tolerance);
+        hit.offer(static_cast<int>(i), end.first, (gv - g0_[i]) / (tt - ta), end.second);
         return;
       }
     }
@@ -524,18 +529,20 @@ class DensePiece {
   // A sign change over [ta, tb], located on the dense output (in the first step, a guard that
   // started at zero as g / (t - t0)^order).
   void crossing(std::size_t i, Hit& hit) {
+    const double ta = ta_, tb = tb_;  // (held here: the guard calls below could change members)
+    const bool first = in_first_;
     if (!(g0_[i] < 0.0 && g1_[i] >= 0.0)) return;
-    const int p = in_first_ ? order_[i] : 0;
-    const double scale_b = p > 0 ? power(tb_ - t0_, p) : 1.0;
+    const int p = first ? order_[i] : 0;
+    const double scale_b = p > 0 ? power(tb - t0_, p) : 1.0;
     auto f = [&](double tt) {
       if (p > 0 && tt - t0_ < noise_time_[i]) return g0_[i];
       const double gi = guard_at(i, tt);
       return p > 0 ? gi / power(tt - t0_, p) : gi;
     };
-    const auto end = fired_end(f, ta_, tb_, g0_[i], g1_[i] / scale_b, set_.time_tolerance);
+    const auto end = fired_end(f, ta, tb, g0_[i], g1_[i] / scale_b, set_.time_tolerance);
     // (g scaled where p > 0, where the rate and so the uncertainty are not known)
     hit.offer(static_cast<int>(i), end.first,
-              p > 0 ? std::numeric_limits<double>::infinity() : (g1_[i] - g0_[i]) / (tb_ - ta_), end.second);
+              p > 0 ? std::numeric_limits<double>::infinity() : (g1_[i] - g0_[i]) / (tb - ta), end.second);
   }
 
   void emit_samples(double t_hi) {
@@ -567,14 +574,17 @@ class DensePiece {
   OutputGrid& grid_;
   Sample& sample_;
   StepStats& stats_;
+  Crossing stop_;  // where take_step ended the piece
   double t0_ = 0.0, natural_ = 0.0;
   bool released_ = false, in_first_ = true;
   std::int64_t steps_ = 0;
   // The step [ta, tb] just taken, its end state, and the start of the one before.
   double ta_ = 0.0, tb_ = 0.0, t_prev_ = 0.0;
-  state_type y1_{};
+  // (Not cleared: every piece writes them before it reads them, and a piece is often short.)
+  state_type y1_;
   // The guards and their rates at ta and tb, and at t_prev for those whose rates are not known.
-  guard_type g0_{}, g1_{}, d0_{}, d1_{}, g_prev_{};
+  guard_type g0_, g1_, d0_, d1_;
+  guard_type g_prev_{};
   std::array<int, kGuards> order_{};
   std::array<double, kGuards> floor_{}, noise_time_{}, lead_{};
   std::array<bool, kGuards> armed_{};
