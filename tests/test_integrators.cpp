@@ -234,6 +234,11 @@ struct PieceEnd {
   std::vector<wn::State> samples;
 };
 
+// The run's settings for a piece (at most 0.1 s a step, a million steps).
+wn::DenseSettings run_settings(const wn::Scenario& sc) {
+  return {sc.run.tolerance, 0.1, sc.run.event_time_tolerance, 1'000'000};
+}
+
 template <class Stepper>
 PieceEnd integrate_piece(Stepper& stepper, const wn::Scenario& sc, const PieceSystem& sys, wn::State y) {
   PieceEnd e;
@@ -244,8 +249,7 @@ PieceEnd integrate_piece(Stepper& stepper, const wn::Scenario& sc, const PieceSy
     e.sample_times.push_back(t);
     e.samples.push_back(s);
   };
-  e.c = wn::integrate_dense(stepper, sys, y, e.t, sc.run.t_max, sc.run.tolerance, 0.1,
-                            sc.run.event_time_tolerance, 1'000'000, grid, sample, stats);
+  e.c = wn::integrate_dense(stepper, sys, y, e.t, sc.run.t_max, run_settings(sc), grid, sample, stats);
   e.y = y;
   return e;
 }
@@ -275,9 +279,9 @@ TEST(BallisticPieces, AgreeWithATightDormandPrinceOnTheWholeState) {
     for (const wn::HybridState& hs : {start, thrown}) {
       const PieceSystem sys{&model, hs.d};
       ASSERT_TRUE(wn::BallisticStepper::applies(model, sc, hs.d, hs.y)) << ex;
-      auto dopri = wn::make_dopri5<wn::State>(1e-14, 0.1);
+      auto dopri = wn::make_dopri5<wn::State>(wn::DenseSettings{1e-14, 0.1});
       const PieceEnd whole = integrate_piece(dopri, sc, sys, hs.y);
-      wn::BallisticStepper ballistic(model, hs.d, hs.y, sc.machine.gravity, sc.run.tolerance, 0.1);
+      wn::BallisticStepper ballistic(model, hs.d, hs.y, sc.machine.gravity, run_settings(sc));
       const PieceEnd exact = integrate_piece(ballistic, sc, sys, hs.y);
       ASSERT_EQ(whole.c.kind, wn::Crossing::event) << ex;
       ASSERT_EQ(exact.c.kind, whole.c.kind) << ex;
@@ -312,7 +316,7 @@ TEST(BallisticPieces, ALidWhoseSeriesOverflowsIsANonFiniteMotion) {
   hs.y[wn::slot::dphi_l] = 1e200;  // its square, in the series' second coefficient on, is not finite
   const PieceSystem sys{&model, hs.d};
   ASSERT_TRUE(wn::BallisticStepper::applies(model, sc, hs.d, hs.y));
-  wn::BallisticStepper ballistic(model, hs.d, hs.y, sc.machine.gravity, sc.run.tolerance, 0.1);
+  wn::BallisticStepper ballistic(model, hs.d, hs.y, sc.machine.gravity, run_settings(sc));
   const PieceEnd end = integrate_piece(ballistic, sc, sys, hs.y);
   EXPECT_EQ(end.c.kind, wn::Crossing::non_finite);
 }

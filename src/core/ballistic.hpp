@@ -57,16 +57,16 @@ class BallisticStepper {
   }
 
   // y: the piece's start, where the model's flow tells which parts move and how (closed_forms).
-  BallisticStepper(const Model& model, const Discrete& d, const State& y, double gravity, double tolerance,
-                   double max_dt)
+  BallisticStepper(const Model& model, const Discrete& d, const State& y, double gravity,
+                   const DenseSettings& set)
       : model_(&model),
         d_(&d),
         g_(gravity),
         // The series' own error, far below the integrator's (the other pieces'), and not below rounding.
-        series_error_(std::fmax(1e-3 * tolerance, 1e-16)),
-        lid_arc_(kLidArc * std::fmin(1.0, std::pow(tolerance / kLidArcTolerance, 0.2))),
-        growth_(max_dt),
-        inner_(make_dopri5<Moving>(tolerance, max_dt)) {
+        series_error_(std::fmax(1e-3 * set.tolerance, 1e-16)),
+        lid_arc_(kLidArc * std::fmin(1.0, std::pow(set.tolerance / kLidArcTolerance, 0.2))),
+        growth_(set.max_dt),
+        inner_(make_dopri5<Moving>(set)) {
     exact_ = closed_forms(y);
   }
   BallisticStepper(const BallisticStepper&) = delete;  // flow_ points at this one

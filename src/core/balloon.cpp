@@ -15,6 +15,31 @@ using namespace model_detail;
 namespace {
 // A push that is zero within rounding (the wall's under a level lid) is no release.
 double slack(double a_b, double g) { return 1e-9 * (std::fabs(a_b) + g); }
+
+// A free balloon of radius r at p, moving at v, that meets a wall of the box (x = r), the wall's top
+// (h = 0) or the far wall's top edge (lid, 0) from beside: its velocity after, without the part into
+// it (inelastic, without friction). tol: what is still at the near wall.
+Vec2 off_the_box(Vec2 p, Vec2 v, double r, double lid, double tol) {
+  if (p.x - r <= tol) {
+    v.x = std::fmax(v.x, 0.0);
+  } else if (p.h <= 0.0) {
+    v.x = std::fmin(v.x, 0.0);
+  } else {
+    const Vec2 m = (1.0 / norm(p - Vec2{lid, 0.0})) * (p - Vec2{lid, 0.0});
+    const double into = dot(v, m);
+    if (into < 0.0) v = v - into * m;
+  }
+  return v;
+}
+
+// The same where it meets the lid's free edge e, moving at ve, from beside: it loses its velocity
+// into e relative to e's own.
+Vec2 off_the_edge(Vec2 p, Vec2 v, Vec2 e, Vec2 ve) {
+  const Vec2 m = (1.0 / norm(p - e)) * (p - e);
+  const double into = dot(v - ve, m);
+  if (into < 0.0) v = v - into * m;
+  return v;
+}
 }  // namespace
 
 Vec2 Model::small_balloon_force(const Kinematics& k) const {
@@ -247,18 +272,8 @@ void Model::small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k
   if (fired == kGuardBalloonCorner && !d.balloon_stuck) {
     // A free balloon meets a wall or the wall's top: it loses its velocity into it (inelastic,
     // without friction) and goes on free.
-    const Vec2 p{k0.balloon_x, k0.balloon_h};
-    Vec2 v{k0.balloon_vx, k0.balloon_v};
-    const double r = sb_.radius;
-    if (p.x - r <= 1e-9 * length_scale_) {
-      v.x = std::fmax(v.x, 0.0);
-    } else if (p.h <= 0.0) {
-      v.x = std::fmin(v.x, 0.0);
-    } else {
-      const Vec2 m = (1.0 / norm(p - Vec2{sb_.lid, 0.0})) * (p - Vec2{sb_.lid, 0.0});
-      const double into = dot(v, m);
-      if (into < 0.0) v = v - into * m;
-    }
+    const Vec2 v = off_the_box({k0.balloon_x, k0.balloon_h}, {k0.balloon_vx, k0.balloon_v}, sb_.radius,
+                               sb_.lid, 1e-9 * length_scale_);
     hs.y[slot::balloon_vx] = v.x;
     hs.y[slot::balloon_v] = v.h;
     book(hs);
@@ -268,12 +283,9 @@ void Model::small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k
       k0.balloon_x * k0.cos_l + k0.balloon_h * k0.sin_l > sb_.lid) {
     // It meets the lid's free edge E from beside: it loses its velocity into E relative to E's
     // own (inelastic, without friction) and goes on free.
-    const Vec2 p{k0.balloon_x, k0.balloon_h}, e{sb_.lid * k0.cos_l, sb_.lid * k0.sin_l};
-    const Vec2 ve{-e.h * k0.dphi_l, e.x * k0.dphi_l};
-    const Vec2 m = (1.0 / norm(p - e)) * (p - e);
-    Vec2 v{k0.balloon_vx, k0.balloon_v};
-    const double into = dot(v - ve, m);
-    if (into < 0.0) v = v - into * m;
+    const Vec2 e{sb_.lid * k0.cos_l, sb_.lid * k0.sin_l};
+    const Vec2 v = off_the_edge({k0.balloon_x, k0.balloon_h}, {k0.balloon_vx, k0.balloon_v}, e,
+                                {-e.h * k0.dphi_l, e.x * k0.dphi_l});
     hs.y[slot::balloon_vx] = v.x;
     hs.y[slot::balloon_v] = v.h;
     book(hs);

@@ -263,25 +263,93 @@ Impact solve_impact(const System& sys, Set touching, const Choice& choice, const
   return best;
 }
 
+namespace {
+// The open friction contacts that act in set s: slip[f] the sign of the velocity of those slipping;
+// those at rest among the candidates (sticking, or just stopped) are returned, to take the sign the
+// motion gives them.
+Set acting_open_friction(const System& sys, Set s, Set candidates, const Choice& choice,
+                         std::array<int, kMaxContacts>& slip) {
+  Set open_free = 0;
+  for (int f = 0; f < sys.contacts; ++f) {
+    if (sys.friction[f] == 0 || has(s, f) || !friction_acts(sys, s, f)) continue;
+    const double v = sys.rate(f, sys.velocity);
+    if (has(candidates, f) && std::fabs(v) <= choice.rate_tol) {
+      open_free |= 1u << f;
+    } else {
+      slip[f] = v > 0.0 ? 1 : (v < 0.0 ? -1 : 0);
+    }
+  }
+  return open_free;
+}
+
+// Whether a sticking Coulomb torque of s should give way to an idle one before it: two such torques
+// holding one degree of freedom stick as one, as the first of them (the same choice at every
+// tolerance, not the one rounding happens to favour). The first is idle here only because the
+// second sticks if it could stick in its place.
+bool sticks_in_place_of_first(const System& sys, Set s, Set idle_fixed,
+                              const std::array<int, kMaxContacts>& slip) {
+  for (int i = 0; i < sys.contacts; ++i) {
+    if (!has(s, i) || sys.friction[i] != kFixedBound) continue;
+    for (int f = 0; f < i; ++f) {
+      if (!has(idle_fixed, f)) continue;
+      PerContact m;
+      Coords a;
+      if (solve_set(sys, (s & ~(1u << i)) | (1u << f), false, slip, m, a)) return true;
+    }
+  }
+  return false;
+}
+
+// The complementarity of the motion cand solved with active set s and slip signs: closed contacts
+// push and stick within their friction bound (a fixed bound helped by the idle torques in
+// idle_fixed), open ones do not close, those free to slip slip the way they were given.
+bool complementary(const System& sys, Set s, Set candidates, const Choice& choice, Set open_free,
+                   Set idle_fixed, const std::array<int, kMaxContacts>& signs, Motion& cand) {
+  auto idle_share = [&](int i) {  // what the idle torques can take off stuck contact i's load
+    double share = 0.0;
+    for (int f = 0; f < sys.contacts; ++f) {
+      if (!has(idle_fixed, f)) continue;
+      std::array<int, kMaxContacts> pushed = signs;
+      pushed[f] = -1;  // its full bound along its coordinate
+      PerContact m;
+      Coords a;
+      if (solve_set(sys, s, false, pushed, m, a)) share += std::fabs(m[i] - cand.force[i]);
+    }
+    return share;
+  };
+  for (int i = 0; i < sys.contacts; ++i) {
+    if (!has(candidates, i) || !choice.present(s, i)) continue;
+    if (sys.friction[i] != 0) {
+      if (has(s, i)) {
+        double bound = friction_bound(sys, i, cand.force);
+        if (std::fabs(cand.force[i]) > bound + choice.friction_tol && sys.friction[i] == kFixedBound)
+          bound += idle_share(i);
+        if (std::fabs(cand.force[i]) > bound + choice.friction_tol) return false;
+        continue;
+      }
+      cand.gap_acceleration[i] = sys.rate(i, cand.acceleration) + sys.curvature[i];
+      if (has(open_free, i) && signs[i] * cand.gap_acceleration[i] < -choice.accel_tol) return false;
+      continue;
+    }
+    if (has(s, i)) {
+      if (cand.force[i] < -choice.force_tol) return false;
+      continue;
+    }
+    cand.gap_acceleration[i] = sys.rate(i, cand.acceleration) + sys.curvature[i];
+    if (cand.gap_acceleration[i] < -choice.accel_tol) return false;
+  }
+  return true;
+}
+}  // namespace
+
 Motion solve_motion(const System& sys, Set candidates, const Choice& choice) {
   Motion best;
   in_order_of_preference(candidates, choice, sys.contacts, [&](Set s) {
     if (!choice.consistent(s)) return false;
     for (int f = 0; f < sys.contacts; ++f)
       if (has(s, f) && sys.friction[f] != 0 && !friction_acts(sys, s, f)) return false;
-    // Open friction contacts that act: slipping with their velocity's sign, or where it is zero
-    // (a candidate: it was sticking or has just stopped) with the sign the motion takes.
     std::array<int, kMaxContacts> slip{};
-    Set open_free = 0;
-    for (int f = 0; f < sys.contacts; ++f) {
-      if (sys.friction[f] == 0 || has(s, f) || !friction_acts(sys, s, f)) continue;
-      const double v = sys.rate(f, sys.velocity);
-      if (has(candidates, f) && std::fabs(v) <= choice.rate_tol) {
-        open_free |= 1u << f;
-      } else {
-        slip[f] = v > 0.0 ? 1 : (v < 0.0 ? -1 : 0);
-      }
-    }
+    Set open_free = acting_open_friction(sys, s, candidates, choice, slip);
     const Set free_before = open_free;
     open_free = without_idle(sys, s, open_free, false, slip);
     // Idle Coulomb torques held by a sticking one (the taut rope couples pivot and hinge): they can
@@ -289,54 +357,11 @@ Motion solve_motion(const System& sys, Set candidates, const Choice& choice) {
     Set idle_fixed = 0;
     for (int f = 0; f < sys.contacts; ++f)
       if (has(free_before & ~open_free, f) && sys.friction[f] == kFixedBound) idle_fixed |= 1u << f;
-    // Two such torques holding one degree of freedom stick as one: as the first of them (the same
-    // choice at every tolerance, not the one rounding happens to favour). The first is idle here
-    // only because the second sticks if it could stick in its place.
-    for (int i = 0; i < sys.contacts; ++i) {
-      if (!has(s, i) || sys.friction[i] != kFixedBound) continue;
-      for (int f = 0; f < i; ++f) {
-        if (!has(idle_fixed, f)) continue;
-        PerContact m;
-        Coords a;
-        if (solve_set(sys, (s & ~(1u << i)) | (1u << f), false, slip, m, a)) return false;
-      }
-    }
+    if (sticks_in_place_of_first(sys, s, idle_fixed, slip)) return false;
     return over_slip_signs(sys, open_free, slip, [&](const std::array<int, kMaxContacts>& signs) {
       Motion cand;
       if (!solve_set(sys, s, false, signs, cand.force, cand.acceleration)) return false;
-      auto idle_share = [&](int i) {  // what the idle torques can take off stuck contact i's load
-        double share = 0.0;
-        for (int f = 0; f < sys.contacts; ++f) {
-          if (!has(idle_fixed, f)) continue;
-          std::array<int, kMaxContacts> pushed = signs;
-          pushed[f] = -1;  // its full bound along its coordinate
-          PerContact m;
-          Coords a;
-          if (solve_set(sys, s, false, pushed, m, a)) share += std::fabs(m[i] - cand.force[i]);
-        }
-        return share;
-      };
-      for (int i = 0; i < sys.contacts; ++i) {
-        if (!has(candidates, i) || !choice.present(s, i)) continue;
-        if (sys.friction[i] != 0) {
-          if (has(s, i)) {
-            double bound = friction_bound(sys, i, cand.force);
-            if (std::fabs(cand.force[i]) > bound + choice.friction_tol && sys.friction[i] == kFixedBound)
-              bound += idle_share(i);
-            if (std::fabs(cand.force[i]) > bound + choice.friction_tol) return false;
-            continue;
-          }
-          cand.gap_acceleration[i] = sys.rate(i, cand.acceleration) + sys.curvature[i];
-          if (has(open_free, i) && signs[i] * cand.gap_acceleration[i] < -choice.accel_tol) return false;
-          continue;
-        }
-        if (has(s, i)) {
-          if (cand.force[i] < -choice.force_tol) return false;
-          continue;
-        }
-        cand.gap_acceleration[i] = sys.rate(i, cand.acceleration) + sys.curvature[i];
-        if (cand.gap_acceleration[i] < -choice.accel_tol) return false;
-      }
+      if (!complementary(sys, s, candidates, choice, open_free, idle_fixed, signs, cand)) return false;
       cand.ok = true;
       cand.active = s;
       cand.slip = signs;

@@ -33,8 +33,9 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
-#include <tuple>
 #include <limits>
+#include <tuple>
+#include <type_traits>
 #include <utility>
 
 #include <boost/math/tools/toms748_solve.hpp>
@@ -251,265 +252,369 @@ using Dopri5Dense =
                                                       boost::numeric::odeint::default_operations>,
         detail::StepGrowth, boost::numeric::odeint::initially_resizer,
         boost::numeric::odeint::explicit_error_stepper_fsal_tag>>;
+
+// How a dense piece is integrated: one set, given to the stepper's factory and to integrate_dense
+// (as Odeint's steppers keep theirs).
+struct DenseSettings {
+  double tolerance = 0.0;       // the step control's, absolute and relative per component
+  double max_dt = 0.0;          // the longest step (keeps brief guard excursions visible)
+  double time_tolerance = 0.0;  // an event's time is located to this [s]
+  std::int64_t max_steps = 0;   // steps after which the piece gives up (Crossing::step_limit)
+};
+
 template <class State>
-Dopri5Dense<State> make_dopri5(double tolerance, double max_dt) {
+Dopri5Dense<State> make_dopri5(const DenseSettings& set) {
   using controlled = typename Dopri5Dense<State>::controlled_stepper_type;
-  return Dopri5Dense<State>(
-      controlled(typename controlled::error_checker_type(tolerance, tolerance), detail::StepGrowth(max_dt)));
+  return Dopri5Dense<State>(controlled(typename controlled::error_checker_type(set.tolerance, set.tolerance),
+                                       detail::StepGrowth(set.max_dt)));
 }
+
+namespace detail {
+// The earliest guard found to fire in a step so far: where, how fast it passed zero, and its value
+// there (NaN where not known).
+struct Hit {
+  int guard = -1;
+  double t = 0.0, rate = std::numeric_limits<double>::infinity();
+  double g = std::numeric_limits<double>::quiet_NaN();
+  void offer(int i, double ti, double rate_i, double g_i) {
+    if (guard < 0 || ti < t) guard = i, t = ti, rate = rate_i, g = g_i;
+  }
+};
+
+// One piece of integrate_dense, in its stages: start (the guards' starts and the first step),
+// then per step take_step, look_at_guards (released_guard, touch, crossing for each guard),
+// and either stop at the earliest event, or emit the samples and go on. The state the stages
+// share is the stepper's dense output and the guards' values at the step's ends.
+template <class Stepper, class System, class Sample>
+class DensePiece {
+  using state_type = typename System::state_type;
+  using guard_type = typename System::guard_type;
+  static constexpr std::size_t kGuards = std::tuple_size<guard_type>::value;
+  // Where a contact was just released, the first step is this short (see start).
+  static constexpr double kReleasedStep = 1e-6;
+
+ public:
+  DensePiece(Stepper& stepper, const System& sys, const DenseSettings& set, OutputGrid& grid, Sample& sample,
+             StepStats& stats)
+      : stepper_(stepper), sys_(sys), set_(set), grid_(grid), sample_(sample), stats_(stats) {}
+
+  Crossing run(state_type& y, double& t, double t_end) {
+    start(y, t);
+    for (bool first = true;; first = false) {
+      in_first_ = first;
+      if (!take_step(y, t)) return stop_;
+      const Hit hit = look_at_guards();
+      if (hit.guard >= 0 && hit.t <= t_end) return stop_at_event(hit, y, t);
+      emit_samples(std::fmin(tb_, t_end));
+      g_prev_ = g0_;
+      t_prev_ = ta_;
+      g0_ = g1_;
+      d0_ = d1_;
+      if (tb_ >= t_end) return stop_at_end(y, t, t_end);
+      if (released_) {
+        released_ = any_armed();
+        if (!released_ && natural_ > 10.0 * (tb_ - ta_)) stepper_.initialize(y1_, tb_, natural_);
+      }
+    }
+  }
+
+ private:
+  // The guards' starts (a guard at zero is searched as g / (t - t0)^order, see the top) and the
+  // stepper's first step.
+  void start(const state_type& y, double t) {
+    t0_ = t_prev_ = t;
+    sys_.guards(y, g0_, &d0_);
+    for (std::size_t i = 0; i < kGuards; ++i) {
+      const auto s = sys_.guard_start(static_cast<int>(i));
+      order_[i] = s.order;
+      floor_[i] = s.floor;
+      lead_[i] = s.lead;
+      armed_[i] = s.order > 0;
+      if (s.order > 0) {
+        g0_[i] = s.lead;  // the limit of g / (t - t0)^order at t0
+        noise_time_[i] = std::pow(1e-3 * s.floor / std::fabs(s.lead), 1.0 / s.order);
+      }
+    }
+    // The whole state's, unless the stepper has its own (ballistic.hpp).
+    if constexpr (requires { stepper_.starting_step(sys_, y, t, set_.tolerance, set_.max_dt); }) {
+      natural_ = stepper_.starting_step(sys_, y, t, set_.tolerance, set_.max_dt);
+    } else {
+      natural_ = starting_step(sys_, y, t, set_.tolerance, set_.max_dt);
+    }
+    // Where a contact was just released, the first step is short: its gap may close again within
+    // what would be the first step, by less than the dense output's error over so long a step.
+    // The steps grow from there while it is still within rounding of zero (what tells a gap that
+    // closes again holds for such short times only), and once every released contact is clearly
+    // open the stepper starts again there with the motion's own step (run).
+    released_ = any_armed();
+    stepper_.initialize(y, t, released_ ? std::fmin(natural_, kReleasedStep) : natural_);
+  }
+
+  bool any_armed() const {
+    for (bool a : armed_)
+      if (a) return true;
+    return false;
+  }
+
+  // One step and the guards at its end; false (with the piece's end in stop_) where the motion is
+  // not finite or the steps are used up.
+  bool take_step(state_type& y, double& t) {
+    std::pair<double, double> interval;
+    try {
+      interval = stepper_.do_step(std::cref(sys_));
+    } catch (const std::exception&) {  // the step size could not be controlled: a non-finite flow
+      stop_ = {Crossing::non_finite, -1, stepper_.current_time()};
+      return false;
+    }
+    ++stats_.steps;
+    // The guards are looked at over the whole step, wherever t_end cuts it: an event's time is the
+    // motion's, not the run's length's (one after t_end is no event of this run).
+    ta_ = interval.first, tb_ = interval.second;
+    y1_ = stepper_.current_state();
+    if (!finite(y1_)) {
+      stop_ = {Crossing::non_finite, -1, ta_};
+      return false;
+    }
+    if (++steps_ > set_.max_steps) {
+      stepper_.calc_state(ta_, y);
+      t = ta_;
+      stop_ = {Crossing::step_limit, -1, ta_};
+      return false;
+    }
+    sys_.guards(y1_, g1_, &d1_);
+    return true;
+  }
+
+  // The earliest guard that fired over [ta, tb]: a released contact closing again, a touch of zero
+  // between two negative ends, or a sign change.
+  Hit look_at_guards() {
+    Hit hit;
+    hit.t = tb_;
+    for (std::size_t i = 0; i < kGuards; ++i) {
+      if (armed_[i]) {
+        released_guard(i, hit);
+      } else {
+        touch(i, hit);
+      }
+    }
+    if (tb_ > ta_) {
+      for (std::size_t i = 0; i < kGuards; ++i) crossing(i, hit);
+    }
+    return hit;
+  }
+
+  double guard_at(std::size_t i, double tt) {
+    state_type yy;
+    stepper_.calc_state(tt, yy);
+    ++stats_.root_evaluations;
+    return sys_.guard(yy, static_cast<int>(i));
+  }
+
+  // A guard that started the piece at zero and has not yet clearly opened: it is disarmed once it
+  // has, or its closing again is located (g1 is then set so that it is no ordinary crossing).
+  void released_guard(std::size_t i, Hit& hit) {
+    const double ta = ta_, tb = tb_;  // (held here: the guard calls below could change members)
+    const bool first = in_first_;
+    own_from_[i] = steps_;
+    // Within rounding of the start only the guard's rate can tell (its value is as expanded).
+    const bool noise = first && order_[i] > 0 && tb - t0_ < noise_time_[i];
+    if (!noise && g1_[i] < -floor_[i]) {
+      armed_[i] = false;  // clearly open: an ordinary guard from here on
+      return;
+    }
+    // Still zero within rounding, or closed again before it ever opened beyond it.
+    const double g_seen = noise ? 0.0 : g1_[i];
+    const double closes = closes_again(order_[i], lead_[i], tb - t0_, g_seen, floor_[i], d1_[i]);
+    if (closes > 0.0) {
+      double t_close = std::fmax(ta, t0_ + closes), rate_close = std::numeric_limits<double>::infinity();
+      double g_close = std::numeric_limits<double>::quiet_NaN();
+      // The expansion only points at the closing (its cubic is off by the next term, microseconds
+      // a hundred microseconds out): where the guard's own values bracket it, it is located on
+      // the dense output like any crossing, from the gap's deepest point (2/3 of the way for the
+      // cubic) to the step's end, so its time does not depend on where the step happened to end.
+      const double lo = std::fmax(ta, t0_ + (2.0 / 3.0) * closes);
+      if (!noise && g1_[i] >= 0.0 && lo < tb) {
+        const double g_lo = guard_at(i, lo);
+        if (g_lo < 0.0) {
+          const auto end = fired_end([&](double t2) { return guard_at(i, t2); }, lo, tb, g_lo, g1_[i],
+                                     set_.time_tolerance);
+          if (std::fabs(end.first - t_close) <= 0.5 * closes) {
+            t_close = end.first, rate_close = (g1_[i] - g_lo) / (tb - lo), g_close = end.second;
+          }
+        }
+      }
+      hit.offer(static_cast<int>(i), t_close, rate_close, g_close);
+      g1_[i] = -std::numeric_limits<double>::min();  // found: not an ordinary crossing
+    } else if (noise || g1_[i] <= floor_[i]) {
+      g1_[i] = -std::numeric_limits<double>::min();  // still zero: not a crossing
+    }
+  }
+
+  // Negative at both ends: a touch in between? Peak of the Hermite cubic on [ta, tb] (not in the
+  // first step of a guard that started at zero: its g0 is the scaled lead, not a value).
+  void touch(std::size_t i, Hit& hit) {
+    const double ta = ta_, tb = tb_;  // (held here: the guard calls below could change members)
+    const bool first = in_first_;
+    if (!(g0_[i] < 0.0 && g1_[i] < 0.0) || !(tb > ta) || (first && order_[i] > 0)) return;
+    const double h = tb - ta;
+    double r0 = d0_[i], r1 = d1_[i];
+    if ((std::isnan(r0) || std::isnan(r1)) && !rates_from_values(i, r0, r1)) return;
+    const double s_peak = hermite_peak(g0_[i], g1_[i], h, r0, r1);
+    if (!(s_peak > 0.0 && s_peak < 1.0)) return;
+    // Look at the real guard around the predicted peak; if it is >= 0 there, the touch is
+    // located between ta and that point like any crossing.
+    for (double frac : {s_peak, 0.5 * s_peak, 0.5 * (1.0 + s_peak)}) {
+      const double tt = ta + frac * h;
+      const double gv = guard_at(i, tt);
+      if (gv >= 0.0) {
+        const auto end =
+            fired_end([&](double t2) { return guard_at(i, t2); }, ta, tt, g0_[i], gv, set_.time_tolerance);
+        hit.offer(static_cast<int>(i), end.first, (gv - g0_[i]) / (tt - ta), end.second);
+        return;
+      }
+    }
+  }
+
+  // No rate: the slopes at ta and tb of the parabola through the last three values, p(t) = g_prev
+  // + s1 (t - t_prev) + k (t - t_prev)(t - ta); false where none is needed or none can be had.
+  bool rates_from_values(std::size_t i, double& r0, double& r1) const {
+    const double h = tb_ - ta_, h1 = ta_ - t_prev_;
+    if (steps_ - own_from_[i] < 3 || g1_[i] == g0_[i] || !(h1 > 0.0))
+      return false;  // (equal: not in use, or still)
+    const double hi = g0_[i] > g1_[i] ? g0_[i] : g1_[i], lo = g0_[i] > g1_[i] ? g1_[i] : g0_[i];
+    // Over [ta, tb] the parabola exceeds the chord by at most |k| h^2 / 4, and |k| (h1 + h) is at
+    // most |g1 - g0| / h + |g0 - g_prev| / h1: where even that stays below half the guard's way to
+    // zero (the test below), no peak can come near it (NaN: a value that is not finite).
+    const double room =
+        4.0 * h1 * (hi - 0.5 * lo) + h1 * std::fabs(g1_[i] - g0_[i]) + h * std::fabs(g0_[i] - g_prev_[i]);
+    if (!(room >= 0.0)) return false;
+    const double s1 = (g0_[i] - g_prev_[i]) / h1, k = ((g1_[i] - g0_[i]) / h - s1) / (h1 + h);
+    r0 = s1 + k * h1;
+    r1 = s1 + k * (h1 + 2.0 * h);
+    return true;
+  }
+
+  // Where the cubic Hermite interpolant of values g0, g1 and rates r0, r1 over a step h peaks, as a
+  // fraction of the step, if it comes near zero there (else -1).
+  static double hermite_peak(double g0, double g1, double h, double r0, double r1) {
+    const double hi = g0 > g1 ? g0 : g1, lo = g0 > g1 ? g1 : g0;
+    // The cubic is at most the larger end value plus (4/27) h (|r0| + |r1|) (the largest the
+    // slopes' basis functions get): where that stays below half of both ends, so does any peak,
+    // and the test below would pass it by without its square root and divisions (0.16 for 4/27
+    // and the factor on the right leave room for rounding).
+    if (hi + 0.16 * h * (std::fabs(r0) + std::fabs(r1)) < 0.5 * (1.0 + 1e-9) * lo) return -1.0;
+    const double a = 6.0 * (g0 - g1) + 3.0 * h * (r0 + r1);  // p'(s) = a s^2 + b s + c
+    const double b = 6.0 * (g1 - g0) - 2.0 * h * (2.0 * r0 + r1);
+    const double c = h * r0;
+    double s_peak = -1.0;
+    if (std::fabs(a) < 1e-300) {
+      if (b < 0.0) s_peak = -c / b;
+    } else {
+      const double disc = b * b - 4.0 * a * c;
+      if (disc >= 0.0) {
+        const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+        for (double root : {q / a, q != 0.0 ? c / q : -1.0}) {
+          if (root > 0.0 && root < 1.0 && 2.0 * a * root + b < 0.0) s_peak = root;  // a maximum
+        }
+      }
+    }
+    if (!(s_peak > 0.0 && s_peak < 1.0)) return -1.0;
+    const double s2 = s_peak * s_peak, s3 = s2 * s_peak;
+    const double peak = (2 * s3 - 3 * s2 + 1) * g0 + (s3 - 2 * s2 + s_peak) * h * r0 +
+                        (-2 * s3 + 3 * s2) * g1 + (s3 - s2) * h * r1;
+    if (peak < 0.5 * g0 && peak < 0.5 * g1) return -1.0;  // not even close to zero
+    return s_peak;
+  }
+
+  // A sign change over [ta, tb], located on the dense output (in the first step, a guard that
+  // started at zero as g / (t - t0)^order).
+  void crossing(std::size_t i, Hit& hit) {
+    const double ta = ta_, tb = tb_;  // (held here: the guard calls below could change members)
+    const bool first = in_first_;
+    if (!(g0_[i] < 0.0 && g1_[i] >= 0.0)) return;
+    const int p = first ? order_[i] : 0;
+    const double scale_b = p > 0 ? power(tb - t0_, p) : 1.0;
+    auto f = [&](double tt) {
+      if (p > 0 && tt - t0_ < noise_time_[i]) return g0_[i];
+      const double gi = guard_at(i, tt);
+      return p > 0 ? gi / power(tt - t0_, p) : gi;
+    };
+    const auto end = fired_end(f, ta, tb, g0_[i], g1_[i] / scale_b, set_.time_tolerance);
+    // (g scaled where p > 0, where the rate and so the uncertainty are not known)
+    hit.offer(static_cast<int>(i), end.first,
+              p > 0 ? std::numeric_limits<double>::infinity() : (g1_[i] - g0_[i]) / (tb - ta), end.second);
+  }
+
+  void emit_samples(double t_hi) {
+    sample_until<System>(
+        grid_, t_hi, [this](double tt, state_type& out) { stepper_.calc_state(tt, out); }, sample_);
+  }
+
+  Crossing stop_at_event(const Hit& hit, state_type& y, double& t) {
+    emit_samples(hit.t);
+    stepper_.calc_state(hit.t, y);
+    t = hit.t;
+    return {Crossing::event, hit.guard, hit.t, hit.rate,
+            time_uncertainty(sys_, y, hit.guard, set_.tolerance, hit.rate, hit.g)};
+  }
+
+  Crossing stop_at_end(state_type& y, double& t, double t_end) {
+    if (tb_ > t_end) {
+      stepper_.calc_state(t_end, y);
+    } else {
+      y = y1_;
+    }
+    t = t_end;
+    return {Crossing::end, -1, t_end};
+  }
+
+  Stepper& stepper_;
+  const System& sys_;
+  const DenseSettings& set_;
+  OutputGrid& grid_;
+  Sample& sample_;
+  StepStats& stats_;
+  Crossing stop_;  // where take_step ended the piece
+  double t0_ = 0.0, natural_ = 0.0;
+  bool released_ = false, in_first_ = true;
+  std::int64_t steps_ = 0;
+  // The step [ta, tb] just taken, its end state, and the start of the one before.
+  double ta_ = 0.0, tb_ = 0.0, t_prev_ = 0.0;
+  // (Not cleared: every piece writes them before it reads them, and a piece is often short.)
+  state_type y1_;
+  // The guards and their rates at ta and tb, and at t_prev for those whose rates are not known.
+  guard_type g0_, g1_, d0_, d1_;
+  guard_type g_prev_{};
+  std::array<int, kGuards> order_{};
+  std::array<double, kGuards> floor_{}, noise_time_{}, lead_{};
+  std::array<bool, kGuards> armed_{};
+  // The step from whose end on the guard's values are its own (not an armed guard's lead, nor its
+  // rounding written as zero): the parabola in rates_from_values needs three of them.
+  std::array<std::int64_t, kGuards> own_from_{};
+};
+}  // namespace detail
 
 // A piece with a dense-output stepper: Dormand-Prince on the whole state (integrate_adaptive), or
 // one that knows part of the motion in closed form (simulate.cpp). The stepper has Boost.Odeint's
 // dense-output interface: initialize(y, t, dt), do_step(system) -> (t_old, t_new) (throws where
 // the step size cannot be controlled), calc_state(t, y), current_state(), current_time(). Guards
 // are checked at every step end; a sign change is located on the dense output with TOMS 748 to
-// time_tolerance, and the state is returned at the end of the bracket where the guard has fired.
-// Longer than the rest (about 170 lines) on purpose: one loop whose step, guard scan, peak test and
-// root bracket share the stepper's dense-output state; cut into functions they would pass a dozen
-// references to each other, and this is the hot loop the benchmarks time.
+// set.time_tolerance, and the state is returned at the end of the bracket where the guard has fired.
 template <class Stepper, class System, class Sample>
 Crossing integrate_dense(Stepper& stepper, const System& sys, typename System::state_type& y, double& t,
-                         double t_end, double tolerance, double max_dt, double time_tolerance,
-                         std::int64_t max_steps, OutputGrid& grid, Sample&& sample, StepStats& stats) {
-  using state_type = typename System::state_type;
-  using guard_type = typename System::guard_type;
-  const double t0 = t;
-  auto eval = [&](double tt, state_type& out) { stepper.calc_state(tt, out); };
-
-  guard_type g0, g1, d0, d1;
-  sys.guards(y, g0, &d0);
-  // The guards at the end of the step before the last, for those whose rates are not known.
-  guard_type g_prev{};
-  double t_prev = t;
-  constexpr std::size_t kGuards = std::tuple_size<guard_type>::value;
-  std::array<int, kGuards> order{};
-  std::array<double, kGuards> floor{}, noise_time{}, lead{};
-  std::array<bool, kGuards> armed{};
-  // The step from whose end on the guard's values are its own (not an armed guard's lead, nor its
-  // rounding written as zero): the parabola below needs three of them.
-  std::array<std::int64_t, kGuards> own_from{};
-  for (std::size_t i = 0; i < g0.size(); ++i) {
-    const auto s = sys.guard_start(static_cast<int>(i));
-    order[i] = s.order;
-    floor[i] = s.floor;
-    lead[i] = s.lead;
-    armed[i] = s.order > 0;
-    if (s.order > 0) {
-      g0[i] = s.lead;  // the limit of g / (t - t0)^order at t0
-      noise_time[i] = std::pow(1e-3 * s.floor / std::fabs(s.lead), 1.0 / s.order);
-    }
-  }
-  // The whole state's, unless the stepper has its own (ballistic.hpp).
-  double natural;
-  if constexpr (requires { stepper.starting_step(sys, y, t, tolerance, max_dt); }) {
-    natural = stepper.starting_step(sys, y, t, tolerance, max_dt);
-  } else {
-    natural = detail::starting_step(sys, y, t, tolerance, max_dt);
-  }
-  // Where a contact was just released, the first step is short: its gap may close again within
-  // what would be the first step, by less than the dense output's error over so long a step.
-  // The steps grow from there while it is still within rounding of zero (what tells a gap that
-  // closes again holds for such short times only), and once every released contact is clearly
-  // open the stepper starts again there with the motion's own step.
-  auto any_armed = [&armed] {
-    for (bool a : armed)
-      if (a) return true;
-    return false;
-  };
-  bool released = any_armed();
-  constexpr double kReleasedStep = 1e-6;
-  stepper.initialize(y, t, released ? std::fmin(natural, kReleasedStep) : natural);
-  state_type y1;
-  std::int64_t steps = 0;
-  bool first = true;
-  for (;;) {
-    const bool in_first = first;
-    first = false;
-    std::pair<double, double> interval;
-    try {
-      interval = stepper.do_step(std::cref(sys));
-    } catch (const std::exception&) {  // the step size could not be controlled: a non-finite flow
-      return {Crossing::non_finite, -1, stepper.current_time()};
-    }
-    ++stats.steps;
-    // The guards are looked at over the whole step, wherever t_end cuts it: an event's time is the
-    // motion's, not the run's length's (one after t_end is no event of this run).
-    const double ta = interval.first, tb = interval.second;
-    y1 = stepper.current_state();
-    if (!detail::finite(y1)) return {Crossing::non_finite, -1, ta};
-    if (++steps > max_steps) {
-      stepper.calc_state(ta, y);
-      t = ta;
-      return {Crossing::step_limit, -1, ta};
-    }
-    sys.guards(y1, g1, &d1);
-    int hit = -1;
-    double t_hit = tb, rate_hit = std::numeric_limits<double>::infinity();
-    double g_hit = std::numeric_limits<double>::quiet_NaN();  // the guard's value at t_hit, if known
-    auto guard_at = [&](std::size_t i, double tt) {
-      state_type yy;
-      stepper.calc_state(tt, yy);
-      ++stats.root_evaluations;
-      return sys.guard(yy, static_cast<int>(i));
-    };
-    for (std::size_t i = 0; i < g0.size(); ++i) {
-      if (armed[i]) {
-        own_from[i] = steps;
-        // Within rounding of the start only the guard's rate can tell (its value is as expanded).
-        const bool noise = in_first && order[i] > 0 && tb - t0 < noise_time[i];
-        if (!noise && g1[i] < -floor[i]) {
-          armed[i] = false;  // clearly open: an ordinary guard from here on
-          continue;
-        }
-        // Still zero within rounding, or closed again before it ever opened beyond it.
-        const double g_seen = noise ? 0.0 : g1[i];
-        const double closes = detail::closes_again(order[i], lead[i], tb - t0, g_seen, floor[i], d1[i]);
-        if (closes > 0.0) {
-          double t_close = std::fmax(ta, t0 + closes), rate_close = std::numeric_limits<double>::infinity();
-          double g_close = std::numeric_limits<double>::quiet_NaN();
-          // The expansion only points at the closing (its cubic is off by the next term, microseconds
-          // a hundred microseconds out): where the guard's own values bracket it, it is located on
-          // the dense output like any crossing, from the gap's deepest point (2/3 of the way for the
-          // cubic) to the step's end, so its time does not depend on where the step happened to end.
-          const double lo = std::fmax(ta, t0 + (2.0 / 3.0) * closes);
-          if (!noise && g1[i] >= 0.0 && lo < tb) {
-            const double g_lo = guard_at(i, lo);
-            if (g_lo < 0.0) {
-              const auto end = detail::fired_end([&](double t2) { return guard_at(i, t2); }, lo, tb, g_lo,
-                                                 g1[i], time_tolerance);
-              if (std::fabs(end.first - t_close) <= 0.5 * closes) {
-                t_close = end.first, rate_close = (g1[i] - g_lo) / (tb - lo), g_close = end.second;
-              }
-            }
-          }
-          if (hit < 0 || t_close < t_hit) {
-            hit = static_cast<int>(i), t_hit = t_close, rate_hit = rate_close, g_hit = g_close;
-          }
-          g1[i] = -std::numeric_limits<double>::min();  // found: not an ordinary crossing
-        } else if (noise || g1[i] <= floor[i]) {
-          g1[i] = -std::numeric_limits<double>::min();  // still zero: not a crossing
-        }
-        continue;
-      }
-      // Negative at both ends: a touch in between? Peak of the Hermite cubic on [ta, tb] (not in
-      // the first step of a guard that started at zero: its g0 is the scaled lead, not a value).
-      if (!(g0[i] < 0.0 && g1[i] < 0.0) || !(tb > ta) || (in_first && order[i] > 0)) continue;
-      const double h = tb - ta;
-      double r0 = d0[i], r1 = d1[i];
-      const bool rated = !(std::isnan(r0) || std::isnan(r1));
-      const double h1 = ta - t_prev;  // (without a rate: the step before)
-      if (!rated && (steps - own_from[i] < 3 || g1[i] == g0[i] || !(h1 > 0.0)))
-        continue;  // (equal: not in use, or still)
-      const double hi = g0[i] > g1[i] ? g0[i] : g1[i], lo = g0[i] > g1[i] ? g1[i] : g0[i];
-      if (!rated) {
-        // No rate: the slopes of the parabola through the last three values, p(t) = g_prev +
-        // s1 (t - t_prev) + k (t - t_prev)(t - ta). Over [ta, tb] the parabola exceeds the chord
-        // by at most |k| h^2 / 4, and |k| (h1 + h) is at most |g1 - g0| / h + |g0 - g_prev| / h1:
-        // where even that stays below half the guard's way to zero (the test below), no peak can
-        // come near it (NaN: a value that is not finite).
-        const double room =
-            4.0 * h1 * (hi - 0.5 * lo) + h1 * std::fabs(g1[i] - g0[i]) + h * std::fabs(g0[i] - g_prev[i]);
-        if (!(room >= 0.0)) continue;
-        const double s1 = (g0[i] - g_prev[i]) / h1, k = ((g1[i] - g0[i]) / h - s1) / (h1 + h);
-        r0 = s1 + k * h1;
-        r1 = s1 + k * (h1 + 2.0 * h);
-      }
-      // The cubic is at most the larger end value plus (4/27) h (|r0| + |r1|) (the largest the
-      // slopes' basis functions get): where that stays below half of both ends, so does any peak,
-      // and the test below would pass it by without its square root and divisions (0.16 for 4/27
-      // and the factor on the right leave room for rounding).
-      if (hi + 0.16 * h * (std::fabs(r0) + std::fabs(r1)) < 0.5 * (1.0 + 1e-9) * lo) continue;
-      const double a = 6.0 * (g0[i] - g1[i]) + 3.0 * h * (r0 + r1);  // p'(s) = a s^2 + b s + c
-      const double b = 6.0 * (g1[i] - g0[i]) - 2.0 * h * (2.0 * r0 + r1);
-      const double c = h * r0;
-      double s_peak = -1.0;
-      if (std::fabs(a) < 1e-300) {
-        if (b < 0.0) s_peak = -c / b;
-      } else {
-        const double disc = b * b - 4.0 * a * c;
-        if (disc >= 0.0) {
-          const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
-          for (double root : {q / a, q != 0.0 ? c / q : -1.0}) {
-            if (root > 0.0 && root < 1.0 && 2.0 * a * root + b < 0.0) s_peak = root;  // a maximum
-          }
-        }
-      }
-      if (!(s_peak > 0.0 && s_peak < 1.0)) continue;
-      const double s2 = s_peak * s_peak, s3 = s2 * s_peak;
-      const double peak = (2 * s3 - 3 * s2 + 1) * g0[i] + (s3 - 2 * s2 + s_peak) * h * r0 +
-                          (-2 * s3 + 3 * s2) * g1[i] + (s3 - s2) * h * r1;
-      if (peak < 0.5 * g0[i] && peak < 0.5 * g1[i]) continue;  // not even close to zero
-      // Look at the real guard around the predicted peak; if it is >= 0 there, the touch is
-      // located between ta and that point like any crossing.
-      for (double frac : {s_peak, 0.5 * s_peak, 0.5 * (1.0 + s_peak)}) {
-        const double tt = ta + frac * h;
-        const double gv = guard_at(i, tt);
-        if (gv >= 0.0) {
-          const auto end = detail::fired_end([&](double t2) { return guard_at(i, t2); }, ta, tt, g0[i], gv,
-                                             time_tolerance);
-          if (hit < 0 || end.first < t_hit) {
-            hit = static_cast<int>(i), t_hit = end.first, rate_hit = (gv - g0[i]) / (tt - ta);
-            g_hit = end.second;
-          }
-          break;
-        }
-      }
-    }
-    for (std::size_t i = 0; i < g0.size() && tb > ta; ++i) {
-      if (!(g0[i] < 0.0 && g1[i] >= 0.0)) continue;
-      const int p = in_first ? order[i] : 0;
-      const double scale_b = p > 0 ? detail::power(tb - t0, p) : 1.0;
-      auto f = [&](double tt) {
-        if (p > 0 && tt - t0 < noise_time[i]) return g0[i];
-        state_type yy;
-        stepper.calc_state(tt, yy);
-        ++stats.root_evaluations;
-        const double gi = sys.guard(yy, static_cast<int>(i));
-        return p > 0 ? gi / detail::power(tt - t0, p) : gi;
-      };
-      const auto end = detail::fired_end(f, ta, tb, g0[i], g1[i] / scale_b, time_tolerance);
-      if (hit < 0 || end.first < t_hit) {
-        hit = static_cast<int>(i), t_hit = end.first;
-        rate_hit = p > 0 ? std::numeric_limits<double>::infinity() : (g1[i] - g0[i]) / (tb - ta);
-        g_hit = end.second;  // (scaled where p > 0, where the rate and so the uncertainty are not known)
-      }
-    }
-    if (hit >= 0 && t_hit <= t_end) {
-      detail::sample_until<System>(grid, t_hit, eval, sample);
-      stepper.calc_state(t_hit, y);
-      t = t_hit;
-      return {Crossing::event, hit, t_hit, rate_hit,
-              detail::time_uncertainty(sys, y, hit, tolerance, rate_hit, g_hit)};
-    }
-    detail::sample_until<System>(grid, std::fmin(tb, t_end), eval, sample);
-    g_prev = g0;
-    t_prev = ta;
-    g0 = g1;
-    d0 = d1;
-    if (tb >= t_end) {
-      if (tb > t_end) {
-        stepper.calc_state(t_end, y);
-      } else {
-        y = y1;
-      }
-      t = t_end;
-      return {Crossing::end, -1, t_end};
-    }
-    if (released) {
-      released = any_armed();
-      if (!released && natural > 10.0 * (tb - ta)) stepper.initialize(y1, tb, natural);
-    }
-  }
+                         double t_end, const DenseSettings& set, OutputGrid& grid, Sample&& sample,
+                         StepStats& stats) {
+  detail::DensePiece<Stepper, System, std::remove_reference_t<Sample>> piece(stepper, sys, set, grid, sample,
+                                                                             stats);
+  return piece.run(y, t, t_end);
 }
 
 // Dormand-Prince on the whole state; see integrate_dense.
 template <class System, class Sample>
 Crossing integrate_adaptive(const System& sys, typename System::state_type& y, double& t, double t_end,
-                            double tolerance, double max_dt, double time_tolerance, std::int64_t max_steps,
-                            OutputGrid& grid, Sample&& sample, StepStats& stats) {
-  auto stepper = make_dopri5<typename System::state_type>(tolerance, max_dt);
-  return integrate_dense(stepper, sys, y, t, t_end, tolerance, max_dt, time_tolerance, max_steps, grid,
-                         std::forward<Sample>(sample), stats);
+                            const DenseSettings& set, OutputGrid& grid, Sample&& sample, StepStats& stats) {
+  auto stepper = make_dopri5<typename System::state_type>(set);
+  return integrate_dense(stepper, sys, y, t, t_end, set, grid, std::forward<Sample>(sample), stats);
 }
 
 // Fixed-step explicit Euler (the paper's method) or classical RK4. An event is found in the step

@@ -6,6 +6,7 @@
 #include "whatnext/events.hpp"
 #include "whatnext/params.hpp"
 #include "whatnext/state.hpp"
+#include "whatnext/units.hpp"
 
 namespace whatnext {
 
@@ -124,7 +125,7 @@ double inertia_density(const Machine& m, double rubber) {
 }  // namespace
 
 double Machine::balloon_volume() const {
-  return 4.0 / 3.0 * 3.14159265358979323846 * balloon_radius * balloon_radius * balloon_radius;
+  return 4.0 / 3.0 * units::kPi * balloon_radius * balloon_radius * balloon_radius;
 }
 
 double Machine::balloon_acceleration() const {
@@ -142,7 +143,7 @@ double Machine::balloon_inertia() const {
 
 double Machine::balloon_drag_rate() const {
   // F = 1/2 rho_air Cd pi r_B^2 v|v|.
-  return 0.5 * air_density * balloon_drag_coefficient * 3.14159265358979323846 * balloon_radius *
+  return 0.5 * air_density * balloon_drag_coefficient * units::kPi * balloon_radius *
          balloon_radius / balloon_inertia();
 }
 

@@ -148,19 +148,17 @@ class Runner {
     t_ = hs_.t;
     const RunSettings& run = sc_.run;
     switch (run.integrator) {
-      case IntegratorKind::adaptive:
+      case IntegratorKind::adaptive: {
+        const DenseSettings dense{run.tolerance, kMaxAdaptiveStep, run.event_time_tolerance,
+                                  kMaxAdaptiveSteps - res_.stats.steps};
         if (BallisticStepper::applies(model_, sc_, hs_.d, hs_.y)) {  // the sandbag's parabola in closed form
-          BallisticStepper stepper(model_, hs_.d, hs_.y, sc_.machine.gravity, run.tolerance,
-                                   kMaxAdaptiveStep);
-          c = integrate_dense(stepper, sys, hs_.y, t_, run.t_max, run.tolerance, kMaxAdaptiveStep,
-                              run.event_time_tolerance, kMaxAdaptiveSteps - res_.stats.steps, grid_, sample,
-                              res_.stats);
+          BallisticStepper stepper(model_, hs_.d, hs_.y, sc_.machine.gravity, dense);
+          c = integrate_dense(stepper, sys, hs_.y, t_, run.t_max, dense, grid_, sample, res_.stats);
         } else {
-          c = integrate_adaptive(sys, hs_.y, t_, run.t_max, run.tolerance, kMaxAdaptiveStep,
-                                 run.event_time_tolerance, kMaxAdaptiveSteps - res_.stats.steps, grid_, sample,
-                                 res_.stats);
+          c = integrate_adaptive(sys, hs_.y, t_, run.t_max, dense, grid_, sample, res_.stats);
         }
         break;
+      }
       case IntegratorKind::euler:
         c = integrate_fixed<odeint::euler<State>>(sys, hs_.y, t_, run.t_max, run.step, grid_, sample, res_.stats);
         break;

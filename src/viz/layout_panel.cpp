@@ -10,6 +10,7 @@
 
 #include "figure.hpp"
 #include "placement.hpp"
+#include "whatnext/units.hpp"
 
 namespace whatnext::viz::figure {
 
@@ -271,7 +272,7 @@ void place_marks(PanelGeometry& g, const Panel& p, const std::vector<Polyline>& 
       const double d = 0.5 * ch + (ring - 1) * 1.1 * ch;
       for (int k = 0; k < 16 && !placed; ++k) {
         if (ring == 1 && k % 2) continue;  // the first ring: 8 directions
-        const double a = k * 3.14159265358979323846 / 8.0;
+        const double a = k * units::kPi / 8.0;
         const double ux = std::cos(a), uy = std::sin(a);
         const double cx = at.first + ux * (d + 0.5 * w), cy = at.second + uy * (d + 0.6 * mark_h);
         Text t = make_text(PlacedText::event_number, s, cx, cy + 0.15 * mark_h, 0.5, mark_h);

@@ -112,13 +112,11 @@ Vec2 balloon_centre(const Machine& m, const Snapshot& s) {
 Vec2 seesaw_end(const Machine& m, double phi_s) { return RopeGeometry(m).seesaw_end(phi_s); }
 Vec2 lid_end(const Machine& m, double phi_l) { return m.hinge + polar(2.0 * m.lid_half_length, phi_l); }
 
-double ground_level(const Machine& m) { return m.hinge.h - 2.0 * m.lid_half_length; }
-
 // The rope let go at the seesaw's end: hanging from the lid's edge e straight down into the open
 // box (the radio's latch holds the lid short of 90 deg, so e is above the box); what reaches the
 // floor lies on it, folded between the walls. Beside the box it would lie on the ground, away from it.
 std::vector<Vec2> hanging_rope(const Machine& m, Vec2 e, double length) {
-  const double floor = ground_level(m);
+  const double floor = m.floor_height();
   const double drop = std::clamp(e.h - floor, 0.0, length);
   std::vector<Vec2> pts{e, {e.x, e.h - drop}};
   double rest = length - drop;
@@ -140,7 +138,7 @@ std::vector<Vec2> hanging_rope(const Machine& m, Vec2 e, double length) {
 
 RadioBox radio_box(const Machine& m) {
   const double w = 0.36 * std::max(0.5, 2.0 * m.lid_half_length);
-  const double g = ground_level(m);
+  const double g = m.floor_height();
   const double top = m.radio_switch.h - 0.03;
   const double bottom = top - g > 0.08 ? g : top - 0.25 * w * 2.0;
   return {m.radio_switch.x - 0.5 * w, m.radio_switch.x + 0.5 * w, bottom, top};
@@ -193,7 +191,7 @@ bool beyond_rope(const RopeGeometry& geo, const Snapshot& s) {
 
 StillParts still_parts(const Machine& m) {
   StillParts p;
-  const double g = ground_level(m), rl = m.lid_half_length;
+  const double g = m.floor_height(), rl = m.lid_half_length;
   const Vec2 hinge = m.hinge;
   const RadioBox radio = radio_box(m);
   p.ground = g;

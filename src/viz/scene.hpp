@@ -47,8 +47,6 @@ constexpr double kSandbagRadius = 0.05;
 // the span to rounding, and the slack rope drawn straight is then no visible bit longer.
 constexpr double kSpanTolerance = 1.0 + 1e-9;
 
-// The box's bottom, where the floor pieces (and the built machine's floor) are.
-double ground_level(const Machine& m);
 // Where the model has the balloon's centre: the box's centre for the paper's balloon, anywhere in
 // the plane for one smaller than the box (docs/extensions.md "A balloon smaller than the box").
 Vec2 balloon_centre(const Machine& m, const Snapshot& s);

@@ -11,7 +11,6 @@ namespace whatnext::viz {
 namespace {
 
 using scene::balloon_centre;
-using scene::ground_level;
 using scene::radio_box;
 using scene::RadioBox;
 using scene::string_path;
@@ -33,7 +32,7 @@ struct Bounds {
 // The machine's parts that never move, and room for the notes of a radio that comes on.
 void add_still(Bounds& box, const Recording& rec) {
   const Machine& m = rec.scenario.machine;
-  const double g = ground_level(m), rl = m.lid_half_length;
+  const double g = m.floor_height(), rl = m.lid_half_length;
   box.add({0.0, 0.0});
   box.add({-0.15, g});
   box.add({0.15, g});
