@@ -166,9 +166,9 @@ TEST_F(Docs, UserPagesCiteNoMissingSpecification) {
 }
 
 // The texts that speak of the project as it is: what changed and when belongs in CHANGELOG.md and
-// the commits, not in a reference. A file or a folder (searched through) per entry; src/ joins
-// them once its comments no longer cite issues.
-const char* const kPresentTense[] = {"README.md", "CONTRIBUTING.md", "docs"};
+// the commits, not in a reference, nor in the code's comments. A file or a folder (searched
+// through) per entry.
+const char* const kPresentTense[] = {"README.md", "CONTRIBUTING.md", "docs", "src", "include", "apps"};
 
 std::vector<fs::path> texts_under(const fs::path& root) {
   if (!fs::is_directory(root)) return {root};
