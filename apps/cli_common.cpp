@@ -61,7 +61,9 @@ void hand_over_to_full() {
 
 void add_input_options(CLI::App& cmd, InputOptions& opts) {
   cmd.add_option("FILE", opts.file, "machine as TOML or the paper's whatnext.inp")->type_name("");
-  cmd.add_option("--example", opts.example, "the paper's example N (1-4), or konstanz (the students' machine), instead of FILE")->type_name("N");
+  cmd.add_option("--example", opts.example,
+                 "the paper's example N (1-4), or konstanz (the students' machine), instead of FILE")
+      ->type_name("N");
   cmd.add_option("--set", opts.sets, "override an input key, e.g. --set geometry.rope_length=0.9")
       ->type_name("KEY=VALUE")
       ->take_all()
@@ -107,8 +109,8 @@ int example_number(const std::string& text) {
   if (text.size() == 1 && text[0] >= '1' && text[0] <= '4') return text[0] - '0';
   for (std::string_view name : kNamedExamples)
     if (text == name) return 0;
-  throw InputError(
-      fmt::format("--example: the examples are 1 to 4 (the paper's) and konstanz (given '{}')", printable(text)));
+  throw InputError(fmt::format("--example: the examples are 1 to 4 (the paper's) and konstanz (given '{}')",
+                               printable(text)));
 }
 }  // namespace
 

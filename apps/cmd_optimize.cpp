@@ -35,7 +35,8 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& o) {
                             "value to minimise: an event name (its first time, e.g. lid_open), outcome_t, "
                             "final_r or final_phi_l_deg")
                  ->type_name("VALUE");
-  auto* mx = cmd.add_option("--maximize", o.maximize, "value to maximise (as --minimize)")->type_name("VALUE");
+  auto* mx =
+      cmd.add_option("--maximize", o.maximize, "value to maximise (as --minimize)")->type_name("VALUE");
   mn->excludes(mx);
   cmd.add_option("--out", o.out, "write the best machine to this TOML file ('-': standard output)")
       ->required()
@@ -46,7 +47,8 @@ void add_optimize_options(CLI::App& cmd, OptimizeCliOptions& o) {
       ->transform(number_text(true, 2, 100000));
   cmd.add_option("--starts", o.starts, "local searches from the best grid points")
       ->transform(number_text(true, 1, 100));
-  cmd.add_option("--max-evals", o.max_evals, "machines per local search")->transform(number_text(true, 1, 1000000));
+  cmd.add_option("--max-evals", o.max_evals, "machines per local search")
+      ->transform(number_text(true, 1, 1000000));
 }
 
 #if WHATNEXT_FULL
@@ -68,7 +70,8 @@ explore::OptimizeOptions search_of(const OptimizeCliOptions& opts, const LoadedI
                       printable(v)));
     }
   }
-  o.threads = opts.threads > 0 ? opts.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  o.threads =
+      opts.threads > 0 ? opts.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   o.grid_points = opts.grid;
   o.starts = opts.starts;
   o.max_evaluations = opts.max_evals;
@@ -86,8 +89,9 @@ explore::OptimizeOptions search_of(const OptimizeCliOptions& opts, const LoadedI
 
 // The file is only useful if it is the optimum: run it again from its own text, as the search
 // ran it (at the sweep's accuracy where the input gave no run.tolerance; to_toml writes one).
-void check_written(const std::string& toml, const Config& best, const Scenario& sc, const explore::OptimizeOptions& o,
-                   const explore::OptimizeResult& r, const std::string& out) {
+void check_written(const std::string& toml, const Config& best, const Scenario& sc,
+                   const explore::OptimizeOptions& o, const explore::OptimizeResult& r,
+                   const std::string& out) {
   Config written = parse_toml(toml, out);
   if (!best.has("run.tolerance")) written.values.erase("run.tolerance");
   const double v = explore::value_of(explore::evaluate(written, {}, nullptr), o.value);
@@ -121,8 +125,10 @@ int run_optimize(const CLI::App& cmd, const OptimizeCliOptions& opts) {
   std::FILE* text = outputs.any_to_stdout() ? stderr : stdout;
   const explore::OptimizeResult r = explore::optimize(in.config, o);
   if (!r.found) {
-    fmt::print(stderr, "whatnext: optimize: {} never happens within the bounds ({} machines tried); no file written\n",
-               o.value, r.evaluations);
+    fmt::print(
+        stderr,
+        "whatnext: optimize: {} never happens within the bounds ({} machines tried); no file written\n",
+        o.value, r.evaluations);
     return 1;
   }
   Config best = in.config;
@@ -141,13 +147,13 @@ int run_optimize(const CLI::App& cmd, const OptimizeCliOptions& opts) {
   }
   const std::string toml = to_toml(sc, &best);  // the hinge in the form the input gave it
   out->stream() << fmt::format("# whatnext optimize: {} {} over {} ({} machines): {}; {} = {}\n",
-                               o.maximize ? "maximise" : "minimise", o.value, in.source, r.evaluations, values,
-                               o.value, shortest(r.value))
+                               o.maximize ? "maximise" : "minimise", o.value, in.source, r.evaluations,
+                               values, o.value, shortest(r.value))
                 << toml;
   outputs.commit_all();
   check_written(toml, best, sc, o, r, opts.out);
-  fmt::print(text, "best: {}\n{} = {}; outcome {} at {:.6f} s ({} machines tried)\nwritten to {}\n", values, o.value,
-             shortest(r.value), to_string(r.outcome.outcome), r.outcome.outcome_t, r.evaluations,
+  fmt::print(text, "best: {}\n{} = {}; outcome {} at {:.6f} s ({} machines tried)\nwritten to {}\n", values,
+             o.value, shortest(r.value), to_string(r.outcome.outcome), r.outcome.outcome_t, r.evaluations,
              printable(opts.out, 96));
   return 0;
 }

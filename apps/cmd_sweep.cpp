@@ -116,9 +116,10 @@ void add_sweep_options(CLI::App& cmd, SweepOptions& o) {
                  "KEY=A:B:N: N values of KEY from A to B (KEY=A:B with --samples); repeat for more keys")
       ->take_all()
       ->allow_extra_args(false);
-  cmd.add_option("--spread", o.spread,
-                 "KEY=±X (or KEY=+-X): a Monte Carlo around the machine, KEY off by a random amount of spread "
-                 "X in its unit; repeat for more keys")
+  cmd.add_option(
+         "--spread", o.spread,
+         "KEY=±X (or KEY=+-X): a Monte Carlo around the machine, KEY off by a random amount of spread "
+         "X in its unit; repeat for more keys")
       ->take_all()
       ->allow_extra_args(false);
   cmd.add_option("--spread-dist", o.spread_dist,
@@ -129,9 +130,11 @@ void add_sweep_options(CLI::App& cmd, SweepOptions& o) {
                  "a Latin hypercube of this many machines instead of the grid; with --spread, the machines "
                  "drawn (default 1000)")
       ->transform(number_text(true, 1, static_cast<double>(explore::kMaxMachines)));
-  cmd.add_option("--seed", o.seed, "seed of the Latin hypercube or the --spread draws (same seed, same machines)")
+  cmd.add_option("--seed", o.seed,
+                 "seed of the Latin hypercube or the --spread draws (same seed, same machines)")
       ->transform(seed_text());
-  cmd.add_option("--threads", o.threads, "worker threads (default: all cores)")->transform(number_text(true, 1, 1024));
+  cmd.add_option("--threads", o.threads, "worker threads (default: all cores)")
+      ->transform(number_text(true, 1, 1024));
   cmd.add_option("--accuracy", o.accuracy,
                  fmt::format("event times to this many seconds (default {:g}); sets the integrator's "
                              "tolerance unless run.tolerance is given",
@@ -144,7 +147,8 @@ void add_sweep_options(CLI::App& cmd, SweepOptions& o) {
   cmd.add_flag("--resume", o.resume,
                "continue the sweep an interrupted run left in --out (its .part file or the CSV itself); the "
                "file ends the same as an uninterrupted run's");
-  cmd.add_flag("--force-large", o.force_large, fmt::format("run sweeps of more than {} machines", kLargeSweep));
+  cmd.add_flag("--force-large", o.force_large,
+               fmt::format("run sweeps of more than {} machines", kLargeSweep));
 }
 
 // Which options go together: a grid (--vary) or a Monte Carlo (--spread), and what each takes.
@@ -156,13 +160,15 @@ void check_option_mix(const CLI::App& cmd, const SweepOptions& o) {
     throw InputError("sweep: --vary and --spread do not mix: a grid, or a Monte Carlo around one machine");
   if (!monte_carlo) {
     for (const char* opt : {"--spread-dist", "--histogram"}) {
-      if (given(cmd, opt)) throw InputError(fmt::format("{}: goes with --spread KEY=±X (a Monte Carlo)", opt));
+      if (given(cmd, opt))
+        throw InputError(fmt::format("{}: goes with --spread KEY=±X (a Monte Carlo)", opt));
     }
     if (!given(cmd, "--out")) throw InputError("--out: give the CSV file to write ('-': standard output)");
   } else {
     for (const char* opt : {"--heatmap", "--heatmap-value", "--resume"}) {
       if (given(cmd, opt))
-        throw InputError(fmt::format("{}: goes with a grid (--vary), not with a Monte Carlo (--spread)", opt));
+        throw InputError(
+            fmt::format("{}: goes with a grid (--vary), not with a Monte Carlo (--spread)", opt));
     }
     if (given(cmd, "--histogram")) check_png("--histogram", o.histogram, "histogram");
   }
@@ -175,9 +181,10 @@ void check_option_mix(const CLI::App& cmd, const SweepOptions& o) {
 
 void check_large(std::int64_t n, const SweepOptions& o) {
   if (n > kLargeSweep && !o.force_large) {
-    throw InputError(fmt::format(
-        "sweep: {} machines would hold about {:.1f} GB in memory and write as much; use fewer, or give --force-large",
-        n, static_cast<double>(n) * kSweepRowBytes / 1e9));
+    throw InputError(
+        fmt::format("sweep: {} machines would hold about {:.1f} GB in memory and write as much; use fewer, "
+                    "or give --force-large",
+                    n, static_cast<double>(n) * kSweepRowBytes / 1e9));
   }
 }
 
@@ -209,7 +216,8 @@ explore::Plan make_plan(const SweepOptions& o, const LoadedInput* in) {
   return plan;
 }
 
-void check_heatmap(const CLI::App& cmd, const SweepOptions& o, const explore::Plan& plan, const LoadedInput& in) {
+void check_heatmap(const CLI::App& cmd, const SweepOptions& o, const explore::Plan& plan,
+                   const LoadedInput& in) {
   if (given(cmd, "--heatmap")) {
 #if WHATNEXT_FULL
     viz::check_heatmap_plan(plan, "--heatmap");
@@ -249,8 +257,8 @@ void open_outputs(const CLI::App& cmd, const SweepOptions& o, explore::SweepJob&
   out.heat = out.outputs.add(cmd, "--heatmap", o.heatmap);
   out.hist = out.outputs.add(cmd, "--histogram", o.histogram);
   out.outputs.check_distinct();
-  for (const auto& [file, option, name] : {std::tuple{out.hist, "--histogram", &o.histogram},
-                                            std::tuple{out.heat, "--heatmap", &o.heatmap}}) {
+  for (const auto& [file, option, name] :
+       {std::tuple{out.hist, "--histogram", &o.histogram}, std::tuple{out.heat, "--heatmap", &o.heatmap}}) {
     if (file && file->temp_path().empty())
       throw InputError(fmt::format("{} {}: must be a regular file", option, printable(*name, 96)));
   }
@@ -274,8 +282,9 @@ std::string monte_carlo_report(const SweepOptions& o, const LoadedInput& in, con
   for (const explore::Range& r : plan.ranges) centre.push_back(r.lo);
   const explore::Outcome own = explore::evaluate(in.config, plan.keys(), centre.data(), o.accuracy);
   const std::size_t keys = plan.ranges.size();
-  std::string summary = fmt::format("monte carlo: {} machines around {}, {} key{} off by {} spreads (seed {})\n",
-                                    result.completed, in.source, keys, keys == 1 ? "" : "s", o.spread_dist, o.seed);
+  std::string summary =
+      fmt::format("monte carlo: {} machines around {}, {} key{} off by {} spreads (seed {})\n",
+                  result.completed, in.source, keys, keys == 1 ? "" : "s", o.spread_dist, o.seed);
   summary += fmt::format("  the machine as given: {}\n",
                          own.valid ? fmt::format("{} at {:.4f} s", to_string(own.outcome), own.outcome_t)
                                    : fmt::format("{} ({})", own.failed ? "failed" : "invalid", own.error));
@@ -287,9 +296,10 @@ std::string monte_carlo_report(const SweepOptions& o, const LoadedInput& in, con
                            100.0 * static_cast<double>(d.happened) / n);
     if (d.happened > 0) {
       summary += fmt::format(
-          "; {} [s]: 5 % {:.4f}, 25 % {:.4f}, median {:.4f}, 75 % {:.4f}, 95 % {:.4f} (min {:.4f}, max {:.4f})", name,
-          d.quantile(0.05), d.quantile(0.25), d.quantile(0.5), d.quantile(0.75), d.quantile(0.95), d.values.front(),
-          d.values.back());
+          "; {} [s]: 5 % {:.4f}, 25 % {:.4f}, median {:.4f}, 75 % {:.4f}, 95 % {:.4f} (min {:.4f}, max "
+          "{:.4f})",
+          name, d.quantile(0.05), d.quantile(0.25), d.quantile(0.5), d.quantile(0.75), d.quantile(0.95),
+          d.values.front(), d.values.back());
     }
     summary += "\n";
     dist = d;
@@ -306,8 +316,9 @@ std::string monte_carlo_report(const SweepOptions& o, const LoadedInput& in, con
     t.title = fmt::format("{}: {} machines around {}", value, result.completed, printable(in.source, 60));
     t.x_label = value + " [s]";
     const std::int64_t never = result.completed - dist.happened;
-    t.note = fmt::format("{} of {} machines{}; red line: the machine as given", dist.happened, result.completed,
-                         never > 0 ? fmt::format(" ({} invalid or without {})", never, value) : std::string());
+    t.note =
+        fmt::format("{} of {} machines{}; red line: the machine as given", dist.happened, result.completed,
+                    never > 0 ? fmt::format(" ({} invalid or without {})", never, value) : std::string());
     viz::draw_histogram(hist->temp_path(), dist.values, explore::value_of(own, value), t);
   }
 #else
@@ -327,8 +338,9 @@ std::string done_line(const SweepOptions& o, const explore::SweepJob& job, const
                                                               : printable(o.histogram, 96));
   }
   const explore::Resumable& kept = job.kept();
-  return fmt::format("sweep: {} machines ({} with invalid inputs, {} failed runs) written to {}{}{}\n", machines,
-                     result.invalid + kept.invalid, result.failed + kept.failed, printable(o.out, 96),
+  return fmt::format("sweep: {} machines ({} with invalid inputs, {} failed runs) written to {}{}{}\n",
+                     machines, result.invalid + kept.invalid, result.failed + kept.failed,
+                     printable(o.out, 96),
                      out.heat ? fmt::format(", heat map {}", printable(o.heatmap, 96)) : "",
                      o.resume ? fmt::format(" ({} rows kept from the interrupted sweep)", kept.kept) : "");
 }
@@ -389,7 +401,8 @@ void hold_early_interrupts() {
 
 void register_sweep(CLI::App& app, int& exit_code) {
   auto opts = std::make_shared<SweepOptions>();
-  CLI::App* cmd = app.add_subcommand("sweep", "run many machines over a grid of input values, one CSV row each");
+  CLI::App* cmd =
+      app.add_subcommand("sweep", "run many machines over a grid of input values, one CSV row each");
   add_sweep_options(*cmd, *opts);
   cmd->callback([opts, cmd, &exit_code] {
 #if !WHATNEXT_FULL

@@ -56,19 +56,20 @@ int finish_stdout(CLI::App& app, const CLI::Error& e) {
 // `whatnext examples [N]`: the shipped examples, or one of them as TOML to copy.
 void register_examples(CLI::App& app) {
   auto n = std::make_shared<std::string>();
-  CLI::App* cmd = app.add_subcommand("examples", "list the shipped examples, or print example N (1-4, konstanz) as TOML");
+  CLI::App* cmd =
+      app.add_subcommand("examples", "list the shipped examples, or print example N (1-4, konstanz) as TOML");
   cmd->add_option("N", *n, "print this example's TOML (to copy and change)");
   cmd->callback([n, cmd] {
     cli::check_leftovers(*cmd);
     auto toml_of = [](const std::string& id) {
       return id.size() == 1 && id[0] >= '1' && id[0] <= '4' ? example_toml(id[0] - '0')
-                                                             : example_toml(std::string_view(id));
+                                                            : example_toml(std::string_view(id));
     };
     if (!n->empty()) {
       const std::string_view text = toml_of(*n);
       if (text.empty()) {
-        throw InputError(fmt::format("examples: the examples are 1 to 4 (the paper's) and konstanz (given '{}')",
-                                     printable(*n)));
+        throw InputError(fmt::format(
+            "examples: the examples are 1 to 4 (the paper's) and konstanz (given '{}')", printable(*n)));
       }
       fmt::print("{}", text);
       return;

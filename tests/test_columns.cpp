@@ -77,7 +77,8 @@ TEST(Columns, JsonKeysDropOnlyAnSiUnit) {
   EXPECT_EQ(key("dphi_l_deg_per_s"), "dphi_l_deg_per_s");
   EXPECT_EQ(find_state_column("phi_s"), nullptr);
   std::set<std::string> keys;
-  for (const StateColumn& c : state_columns()) EXPECT_TRUE(keys.insert(std::string(json_key(c))).second) << c.name;
+  for (const StateColumn& c : state_columns())
+    EXPECT_TRUE(keys.insert(std::string(json_key(c))).second) << c.name;
 }
 
 TEST(Units, DegreesAndRadiansAreInverse) {

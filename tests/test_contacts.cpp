@@ -225,7 +225,8 @@ void check_invariants(const Machine& m, const wn::Scenario& sc, const wn::Record
     if (s.t > latched_at) break;
     check(s, "sample");
     // Friction never does positive work: its heat only grows.
-    if (s.dissipated_friction < heat - 1e-12) out.fail(m, "friction gives back heat at t=" + std::to_string(s.t));
+    if (s.dissipated_friction < heat - 1e-12)
+      out.fail(m, "friction gives back heat at t=" + std::to_string(s.t));
     heat = s.dissipated_friction;
     // phiL is continuous: between samples it moves no further than its rate allows (an impact
     // in between changes the rate, so such intervals are left out).
@@ -356,62 +357,65 @@ void for_machines(bool heavy, std::uint64_t seed, int count, bool built, bool fr
 
 void run_machines(bool heavy, std::uint64_t seed, int count, bool built = false, bool friction = false,
                   bool stretchy = false) {
-  for_machines(heavy, seed, count, built, friction, stretchy, "failing machines",
-               [&](const Machine& m, Checked& checked) {
-    // The invariants at the default tolerance; the story at 1e-10 and 1e-14.
-    wn::Scenario s = m.scenario, a = m.scenario, b = m.scenario;
-    s.run.output_step = 1e-3;
-    a.run.tolerance = 1e-10;
-    b.run.tolerance = 1e-14;
-    wn::Recorder rec;
-    wn::Result ra, rb;
-    if (std::getenv("WHATNEXT_CONTACT_STATS")) std::fprintf(stderr, "%s\n", m.describe().c_str());
-    try {
-      wn::simulate(s, &rec);
-      ra = wn::simulate(a);
-      rb = wn::simulate(b);
-    } catch (const wn::SimulationError& e) {
-      // The one case the rope that stretches does not cover, refused by name (docs/impact.md).
-      if (stretchy && std::string(e.what()).find("would pull the sandbag off") != std::string::npos) return;
-      checked.fail(m, std::string("simulation error: ") + e.what());
-      return;
-    }
-    check_invariants(m, s, rec, checked);
-    if (std::getenv("WHATNEXT_CONTACT_STATS")) {
-      std::printf("%s|%s\n", wn::to_string(ra.outcome().type).data(), story(ra).c_str());
-    }
-    // The same story at a much tighter tolerance, every event within a microsecond. The laws the
-    // paper offers only for comparison (angular-momentum-sum, linear-momentum) can multiply the
-    // energy many times over; after such an impact 1e-5 s is asked.
-    const wn::ImpactLaw law = m.scenario.run.impact_law;
-    // A slip that creeps to a stop (1e-4 m/s decelerating at 0.07 m/s^2 after a second of near
-    // balance, 1 machine in 400) is found on a velocity that small: 1e-5 s is asked there too.
-    const bool creeps = m.scenario.machine.has_friction();
-    const double dt =
-        (law == wn::ImpactLaw::rope || law == wn::ImpactLaw::kinetic_energy) && !creeps ? 1e-6 : 1e-5;
-    // A lid and a rope that bounce (restitution on the paper's contacts) make a chaotic chatter:
-    // each impact multiplies a difference of the state, so after many of them (a second) the two
-    // tolerances' stories part; up to then they must agree.
-    const wn::Machine::Restitution& e = m.scenario.machine.restitution;
-    // With friction as well (which slows some bounces and not others) the chatter parts sooner.
-    const bool bounces = e.sandbag > 0.0 || e.rope > 0.0 || e.lid > 0.0;
-    // A rope that stretches bounces by itself (undamped, elastically): its chatter parts the two
-    // tolerances' stories like restitution's; its own tests compare stories on the examples.
-    const double until =
-        stretchy ? -1.0 : bounces ? (m.scenario.machine.has_friction() ? 0.5 : 1.0) : 1e300;
-    auto story_until = [&](const wn::Result& r) {
-      std::vector<wn::Event> out;
-      for (const wn::Event& ev : r.events)
-        if (ev.t <= until) out.push_back(ev);
-      return out;
-    };
-    const std::vector<wn::Event> sa = story_until(ra), sb = story_until(rb);
-    bool same = sa.size() == sb.size();
-    for (std::size_t i = 0; same && i < sa.size(); ++i) {
-      same = sa[i].type == sb[i].type && std::fabs(sa[i].t - sb[i].t) <= dt;
-    }
-    if (!same) checked.fail(m, "tolerance 1e-10: " + story(ra) + "\n    tolerance 1e-14: " + story(rb));
-  });
+  for_machines(
+      heavy, seed, count, built, friction, stretchy, "failing machines",
+      [&](const Machine& m, Checked& checked) {
+        // The invariants at the default tolerance; the story at 1e-10 and 1e-14.
+        wn::Scenario s = m.scenario, a = m.scenario, b = m.scenario;
+        s.run.output_step = 1e-3;
+        a.run.tolerance = 1e-10;
+        b.run.tolerance = 1e-14;
+        wn::Recorder rec;
+        wn::Result ra, rb;
+        if (std::getenv("WHATNEXT_CONTACT_STATS")) std::fprintf(stderr, "%s\n", m.describe().c_str());
+        try {
+          wn::simulate(s, &rec);
+          ra = wn::simulate(a);
+          rb = wn::simulate(b);
+        } catch (const wn::SimulationError& e) {
+          // The one case the rope that stretches does not cover, refused by name (docs/impact.md).
+          if (stretchy && std::string(e.what()).find("would pull the sandbag off") != std::string::npos)
+            return;
+          checked.fail(m, std::string("simulation error: ") + e.what());
+          return;
+        }
+        check_invariants(m, s, rec, checked);
+        if (std::getenv("WHATNEXT_CONTACT_STATS")) {
+          std::printf("%s|%s\n", wn::to_string(ra.outcome().type).data(), story(ra).c_str());
+        }
+        // The same story at a much tighter tolerance, every event within a microsecond. The laws the
+        // paper offers only for comparison (angular-momentum-sum, linear-momentum) can multiply the
+        // energy many times over; after such an impact 1e-5 s is asked.
+        const wn::ImpactLaw law = m.scenario.run.impact_law;
+        // A slip that creeps to a stop (1e-4 m/s decelerating at 0.07 m/s^2 after a second of near
+        // balance, 1 machine in 400) is found on a velocity that small: 1e-5 s is asked there too.
+        const bool creeps = m.scenario.machine.has_friction();
+        const double dt =
+            (law == wn::ImpactLaw::rope || law == wn::ImpactLaw::kinetic_energy) && !creeps ? 1e-6 : 1e-5;
+        // A lid and a rope that bounce (restitution on the paper's contacts) make a chaotic chatter:
+        // each impact multiplies a difference of the state, so after many of them (a second) the two
+        // tolerances' stories part; up to then they must agree.
+        const wn::Machine::Restitution& e = m.scenario.machine.restitution;
+        // With friction as well (which slows some bounces and not others) the chatter parts sooner.
+        const bool bounces = e.sandbag > 0.0 || e.rope > 0.0 || e.lid > 0.0;
+        // A rope that stretches bounces by itself (undamped, elastically): its chatter parts the two
+        // tolerances' stories like restitution's; its own tests compare stories on the examples.
+        const double until = stretchy  ? -1.0
+                             : bounces ? (m.scenario.machine.has_friction() ? 0.5 : 1.0)
+                                       : 1e300;
+        auto story_until = [&](const wn::Result& r) {
+          std::vector<wn::Event> out;
+          for (const wn::Event& ev : r.events)
+            if (ev.t <= until) out.push_back(ev);
+          return out;
+        };
+        const std::vector<wn::Event> sa = story_until(ra), sb = story_until(rb);
+        bool same = sa.size() == sb.size();
+        for (std::size_t i = 0; same && i < sa.size(); ++i) {
+          same = sa[i].type == sb[i].type && std::fabs(sa[i].t - sb[i].t) <= dt;
+        }
+        if (!same) checked.fail(m, "tolerance 1e-10: " + story(ra) + "\n    tolerance 1e-14: " + story(rb));
+      });
 }
 
 }  // namespace
@@ -451,7 +455,6 @@ TEST(RandomMachines, StretchyRopeWithFrictionInvariantsAndToleranceIndependence)
   run_machines(true, 20261202, machine_count(200), true, true, true);
 }
 
-
 namespace {
 
 // Metamorphic cuts: a run cut 2 ms after each of its first events (run.t_max), with samples asked
@@ -462,55 +465,55 @@ namespace {
 void cut_machines(bool heavy, std::uint64_t seed, int count, bool built, bool friction, bool stretchy) {
   for_machines(heavy, seed, count, built, friction, stretchy, "machines whose events move with run.t_max",
                [&](const Machine& m, Checked& checked) {
-    wn::Result whole;
-    try {
-      whole = wn::simulate(m.scenario);
-    } catch (const wn::SimulationError&) {
-      return;  // (the invariants' tests report those)
-    }
-    std::vector<double> cuts;
-    for (const wn::Event& e : whole.events) {
-      if (wn::is_stop(e.type) || cuts.size() == 4) break;
-      if (cuts.empty() || e.t > cuts.back()) cuts.push_back(e.t);
-    }
-    for (std::size_t c = 0; c < cuts.size(); ++c) {
-      wn::Scenario sc = m.scenario;
-      sc.run.t_max = cuts[c] + 2e-3;
-      if (c % 2 == 1) sc.run.output_step = 1e-4;
-      wn::Recorder rec;
-      wn::Result part;
-      try {
-        part = wn::simulate(sc, c % 2 == 1 ? &rec : nullptr);
-      } catch (const wn::SimulationError& e) {
-        checked.fail(m, "cut at " + std::to_string(sc.run.t_max) + ": " + e.what());
-        break;
-      }
-      // Events well before the cut: the cut run ends with timeout at t_max (or its own stop).
-      auto before_cut = [&](const wn::Result& r) {
-        std::vector<wn::Event> out;
-        for (const wn::Event& e : r.events)
-          if (e.t < sc.run.t_max - 1e-6 && e.type != wn::EventType::timeout) out.push_back(e);
-        return out;
-      };
-      const std::vector<wn::Event> a = before_cut(whole), b = before_cut(part);
-      bool same = a.size() == b.size();
-      for (std::size_t i = 0; same && i < a.size(); ++i)
-        same = a[i].type == b[i].type && std::fabs(a[i].t - b[i].t) <= 1e-9;
-      if (!same) {
-        std::ostringstream o;
-        o.precision(12);
-        o << "cut at t_max=" << sc.run.t_max << ":";
-        for (std::size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
-          o << "\n      ";
-          if (i < a.size()) o << wn::to_string(a[i].type) << " " << a[i].t;
-          o << "  |  ";
-          if (i < b.size()) o << wn::to_string(b[i].type) << " " << b[i].t;
-        }
-        checked.fail(m, o.str());
-        break;
-      }
-    }
-  });
+                 wn::Result whole;
+                 try {
+                   whole = wn::simulate(m.scenario);
+                 } catch (const wn::SimulationError&) {
+                   return;  // (the invariants' tests report those)
+                 }
+                 std::vector<double> cuts;
+                 for (const wn::Event& e : whole.events) {
+                   if (wn::is_stop(e.type) || cuts.size() == 4) break;
+                   if (cuts.empty() || e.t > cuts.back()) cuts.push_back(e.t);
+                 }
+                 for (std::size_t c = 0; c < cuts.size(); ++c) {
+                   wn::Scenario sc = m.scenario;
+                   sc.run.t_max = cuts[c] + 2e-3;
+                   if (c % 2 == 1) sc.run.output_step = 1e-4;
+                   wn::Recorder rec;
+                   wn::Result part;
+                   try {
+                     part = wn::simulate(sc, c % 2 == 1 ? &rec : nullptr);
+                   } catch (const wn::SimulationError& e) {
+                     checked.fail(m, "cut at " + std::to_string(sc.run.t_max) + ": " + e.what());
+                     break;
+                   }
+                   // Events well before the cut: the cut run ends with timeout at t_max (or its own stop).
+                   auto before_cut = [&](const wn::Result& r) {
+                     std::vector<wn::Event> out;
+                     for (const wn::Event& e : r.events)
+                       if (e.t < sc.run.t_max - 1e-6 && e.type != wn::EventType::timeout) out.push_back(e);
+                     return out;
+                   };
+                   const std::vector<wn::Event> a = before_cut(whole), b = before_cut(part);
+                   bool same = a.size() == b.size();
+                   for (std::size_t i = 0; same && i < a.size(); ++i)
+                     same = a[i].type == b[i].type && std::fabs(a[i].t - b[i].t) <= 1e-9;
+                   if (!same) {
+                     std::ostringstream o;
+                     o.precision(12);
+                     o << "cut at t_max=" << sc.run.t_max << ":";
+                     for (std::size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
+                       o << "\n      ";
+                       if (i < a.size()) o << wn::to_string(a[i].type) << " " << a[i].t;
+                       o << "  |  ";
+                       if (i < b.size()) o << wn::to_string(b[i].type) << " " << b[i].t;
+                     }
+                     checked.fail(m, o.str());
+                     break;
+                   }
+                 }
+               });
 }
 
 }  // namespace
@@ -713,7 +716,8 @@ void expect_taut_again_within(const std::vector<std::string>& sets, double first
       if (e.type != wn::EventType::rope_slack || e.t >= until) continue;
       const wn::Event* again = first_event(r, wn::EventType::rope_taut, e.t);
       ASSERT_NE(again, nullptr) << tol;
-      EXPECT_LE(again->t - e.t, 2e-6) << "tolerance " << tol << ": slack at " << e.t << " taut at " << again->t;
+      EXPECT_LE(again->t - e.t, 2e-6)
+          << "tolerance " << tol << ": slack at " << e.t << " taut at " << again->t;
       EXPECT_GT(again->t, e.t) << tol;
     }
   }
@@ -757,8 +761,8 @@ TEST(Reproducers, AGapClosingWithinRoundingIsPlacedByItsExpansion) {
   EXPECT_NEAR(wn::detail::closes_again(2, L, tau, 0.0, 1e-12, rate), 5e-8, 1e-20);
   const double later = 1e-5, g_later = L * later * later + C * later * later * later;  // clearly closed
   EXPECT_NEAR(wn::detail::closes_again(2, L, later, g_later, 1e-16, 0.0), 5e-8, 1e-12);
-  EXPECT_LT(wn::detail::closes_again(2, L, tau, g, 1e-12, -1.0), 0.0);  // opening: not closing
-  EXPECT_LT(wn::detail::closes_again(1, L, tau, 0.0, 1e-12, rate), 0.0);   // only order 2 is expanded
+  EXPECT_LT(wn::detail::closes_again(2, L, tau, g, 1e-12, -1.0), 0.0);          // opening: not closing
+  EXPECT_LT(wn::detail::closes_again(1, L, tau, 0.0, 1e-12, rate), 0.0);        // only order 2 is expanded
   EXPECT_LT(wn::detail::closes_again(2, -1e-300, tau, 0.0, 1e-12, rate), 0.0);  // a lead not known
 }
 
@@ -864,7 +868,8 @@ TEST(ContactSolver, RestitutionIsNewtonsLawOnTheContactsRate) {
   after[0] = -e * came;
   const c::Impact imp = c::solve_impact(sys, 1u, ch, &after);
   ASSERT_TRUE(imp.ok);
-  const double p = m1 * v1 + m2 * v2, u1 = (p + m2 * e * (v2 - v1)) / (m1 + m2), u2 = (p - m1 * e * (v2 - v1)) / (m1 + m2);
+  const double p = m1 * v1 + m2 * v2, u1 = (p + m2 * e * (v2 - v1)) / (m1 + m2),
+               u2 = (p - m1 * e * (v2 - v1)) / (m1 + m2);
   EXPECT_NEAR(imp.velocity[0], u1, 1e-14);
   EXPECT_NEAR(imp.velocity[1], u2, 1e-14);
   EXPECT_NEAR(imp.rate[0], e * 4.0, 1e-14);

@@ -495,6 +495,7 @@ TEST(Radio, TheLatchIsAnImpactThatNamesItsLossAndTheRopesRelease) {
   ASSERT_GT(rate, 0.0);
   // (The sample is up to 1e-5 s before the latch: the rate moves by less than 1 % meanwhile.)
   EXPECT_NEAR(latch.impulse[2], i_l * rate, 0.01 * i_l * rate);
-  EXPECT_NEAR(latch.energy_before - latch.energy_after, 0.5 * i_l * rate * rate, 0.02 * 0.5 * i_l * rate * rate);
+  EXPECT_NEAR(latch.energy_before - latch.energy_after, 0.5 * i_l * rate * rate,
+              0.02 * 0.5 * i_l * rate * rate);
   EXPECT_DOUBLE_EQ(latch.after.dphi_l, 0.0);
 }

@@ -72,7 +72,8 @@ TEST(FrictionSolver, ASlidingBlockIsSlowedByMuTimesTheNormalForceEitherWay) {
   const ct::Motion up = ct::solve_motion(incline(theta, mu, 2.0), 0b01u, tolerances());
   ASSERT_TRUE(up.ok);
   EXPECT_EQ(up.slip[1], 1);
-  EXPECT_NEAR(along(incline(theta, mu), up.acceleration), -kG * (std::sin(theta) + mu * std::cos(theta)), 1e-12);
+  EXPECT_NEAR(along(incline(theta, mu), up.acceleration), -kG * (std::sin(theta) + mu * std::cos(theta)),
+              1e-12);
   const ct::Motion down = ct::solve_motion(incline(theta, mu, -2.0), 0b01u, tolerances());
   ASSERT_TRUE(down.ok);
   EXPECT_EQ(down.slip[1], -1);
@@ -98,7 +99,8 @@ TEST(FrictionSolver, AnImpactWithFrictionKeepsTheSlipOrStopsItAndNeverGainsEnerg
     EXPECT_NEAR(s.rate(0, imp.velocity), 0.0, 1e-12);
     EXPECT_EQ(ct::has(imp.impulsive, 1), stop) << vt;
     const double before = 0.5 * kMass * (vt * vt + vn * vn);
-    const double after = 0.5 * kMass * (s.rate(0, imp.velocity) * s.rate(0, imp.velocity) + vt_after * vt_after);
+    const double after =
+        0.5 * kMass * (s.rate(0, imp.velocity) * s.rate(0, imp.velocity) + vt_after * vt_after);
     EXPECT_LE(after, before + 1e-12);
     // The friction impulse opposes the slip it acts on: no positive work.
     EXPECT_LE(imp.impulse[1] * vt, 1e-12);
@@ -252,8 +254,8 @@ TEST(FrictionOnTheArm, DroppedOnTheInclineItLandsWithCoulombsImpulseThenSlidesOr
   // normal speed; friction's impulse, at most mu m v cos 30, takes the rest or all of the slip.
   const double r1 = 0.4, drop = 0.25, v = std::sqrt(2.0 * kG * drop);
   for (double mu : {0.1, 0.3, 0.45, 0.7, 1.2}) {
-    const wn::Result r = wn::simulate(
-        standing(mu, {"start.sandbag_x=" + num(-r1 * kC30), "start.sandbag_height=" + num(-r1 * kS30 + drop)}));
+    const wn::Result r = wn::simulate(standing(
+        mu, {"start.sandbag_x=" + num(-r1 * kC30), "start.sandbag_height=" + num(-r1 * kS30 + drop)}));
     const wn::Event* lands = find(r.events, wn::EventType::sandbag_lands);
     ASSERT_NE(lands, nullptr) << mu;
     EXPECT_NEAR(lands->t, std::sqrt(2.0 * drop / kG), 1e-9);
@@ -312,7 +314,8 @@ TEST(FrictionOnTheArm, TheSameEventsAtTolerances1e10And1e14) {
   for (const char* example : {"konstanz", "2"}) {
     std::vector<std::vector<wn::Event>> runs;
     for (const char* tol : {"1e-10", "1e-14"}) {
-      const std::string_view text = std::string(example) == "2" ? wn::example_toml(2) : wn::example_toml(example);
+      const std::string_view text =
+          std::string(example) == "2" ? wn::example_toml(2) : wn::example_toml(example);
       wn::Config cfg = wn::parse_toml(std::string(text), "example.toml");
       wn::apply_set(cfg, "friction.sandbag=0.35");
       wn::apply_set(cfg, std::string("run.tolerance=") + tol);
@@ -380,10 +383,11 @@ TEST(CoulombTorques, ThePivotHoldsTheSeesawUntilTheSlidingSandbagsTorqueExceedsI
   const double phi = 20.0 * M_PI / 180.0, r0 = 0.1, torque = 1.0, mass = 0.7;
   wn::Config cfg = wn::parse_toml(std::string(wn::example_toml(1)), "example1.toml");
   for (const std::string& s :
-       {std::string("seesaw.left_arm=2.0"), std::string("seesaw.mass=0.5"), std::string("seesaw.inertia=0.05"),
-        std::string("seesaw.com_offset=0"), "masses.sandbag=" + num(mass), std::string("start.seesaw_angle=20"),
-        "start.sandbag_x=" + num(-r0 * std::cos(phi)), "start.sandbag_height=" + num(-r0 * std::sin(phi)),
-        std::string("geometry.rope_length=1.4"), "friction.pivot=" + num(torque)})
+       {std::string("seesaw.left_arm=2.0"), std::string("seesaw.mass=0.5"),
+        std::string("seesaw.inertia=0.05"), std::string("seesaw.com_offset=0"), "masses.sandbag=" + num(mass),
+        std::string("start.seesaw_angle=20"), "start.sandbag_x=" + num(-r0 * std::cos(phi)),
+        "start.sandbag_height=" + num(-r0 * std::sin(phi)), std::string("geometry.rope_length=1.4"),
+        "friction.pivot=" + num(torque)})
     wn::apply_set(cfg, s);
   const wn::Scenario sc = wn::build_scenario(cfg);
   const wn::Result r = wn::simulate(sc);

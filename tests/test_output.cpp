@@ -298,7 +298,8 @@ TEST(Samples, PositionsAreTheFullSamplesPositionsBitForBit) {
                                          {"phi_l", a.phi_l, c.phi_l},
                                          {"balloon_h", a.balloon_h, c.balloon_h},
                                          {"balloon_limit", a.balloon_limit, c.balloon_limit}}) {
-          ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0) << where << ": Positions' " << name << " " << x << " vs " << y;
+          ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0)
+              << where << ": Positions' " << name << " " << x << " vs " << y;
         }
         ++modes[static_cast<int>(a.mode)];
       }

@@ -137,12 +137,15 @@ TEST_F(Abuse, TheBuiltMachinesRulesAreNamed) {
   expect_rejected("run --example 1 --set floor.enabled=true", "floor.enabled needs seesaw.left_arm");
   expect_rejected("run --example 1 --set seesaw.left_arm=1 --set floor.restitution=1.5",
                   "floor.restitution must be in [0, 1] (given 1.5)");
-  expect_rejected("run --example 1 --set seesaw.left_arm=1 --set floor.enabled=false --set floor.restitution=0.2",
-                  "floor.enabled is false but floor.restitution is given");
-  expect_rejected("run --example 1 --set seesaw.left_arm=1 --set floor.enabled=true --set start.seesaw_angle=60 "
-                  "--set geometry.rope_length=1.3",
-                  "start.seesaw_angle puts the seesaw's left end 0.1028 m below the floor");
-  expect_rejected("run --example 1 --set radio.switch_force=-1", "radio.switch_force must be in [0, 10000] N (given -1)");
+  expect_rejected(
+      "run --example 1 --set seesaw.left_arm=1 --set floor.enabled=false --set floor.restitution=0.2",
+      "floor.enabled is false but floor.restitution is given");
+  expect_rejected(
+      "run --example 1 --set seesaw.left_arm=1 --set floor.enabled=true --set start.seesaw_angle=60 "
+      "--set geometry.rope_length=1.3",
+      "start.seesaw_angle puts the seesaw's left end 0.1028 m below the floor");
+  expect_rejected("run --example 1 --set radio.switch_force=-1",
+                  "radio.switch_force must be in [0, 10000] N (given -1)");
   expect_rejected("run --example 1 --set radio.switch_force=abc", "radio.switch_force");
   expect_rejected("run --example konstanz --set floor.restitution=nan", "floor.restitution");
 }

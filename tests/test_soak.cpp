@@ -503,7 +503,8 @@ RandomMachine in_range_machine(Draw& draw, int index) {
   if (d.chance(0.1)) set("run.t_max", d.scale(1e-2, 1e4));
   if (d.chance(0.1)) set("run.tolerance", d.scale(1e-15, 1e-3));
   if (d.chance(0.1)) set("run.gravity", d.scale(1e-2, 1e3));
-  if (d.chance(0.2)) pick("run.impact_law", {"rope", "angular-momentum-sum", "kinetic-energy", "linear-momentum"});
+  if (d.chance(0.2))
+    pick("run.impact_law", {"rope", "angular-momentum-sum", "kinetic-energy", "linear-momentum"});
   if (d.chance(0.1)) set("run.vertical_margin", d.linear(0.0, 10.0));
   if (d.chance(0.1)) {
     pick("run.integrator", {"euler", "rk4"});
@@ -534,7 +535,8 @@ TEST(SoakInRange, EveryMachineInsideTheRangesEndsWithinTenSeconds) {
     } catch (const InputError& e) {
       ++refused;
       const std::string what = e.what();
-      if (what.empty() || what.find('\n') != std::string::npos) failures.add("a refusal is not one line", m, what);
+      if (what.empty() || what.find('\n') != std::string::npos)
+        failures.add("a refusal is not one line", m, what);
       continue;
     }
     if (std::getenv("WHATNEXT_SOAK_TRACE")) std::fprintf(stderr, "%d: %s\n", i, m.command().c_str());
@@ -546,15 +548,16 @@ TEST(SoakInRange, EveryMachineInsideTheRangesEndsWithinTenSeconds) {
       failures.add("a run crashes", m, "");
     } else if (rep.outcome == "failed") {
       ++failed;
-      if (failed <= 3) std::printf("soak in range: fails (exit 3) after %.2f s: %s\n", rep.cpu, m.command().c_str());
+      if (failed <= 3)
+        std::printf("soak in range: fails (exit 3) after %.2f s: %s\n", rep.cpu, m.command().c_str());
     } else {
       ++ran;
     }
     slowest.emplace_back(rep.cpu, m);
   }
   std::sort(slowest.begin(), slowest.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  std::printf("soak in range: %d machines, %d ran to their outcome, %d refused, %d failed; slowest:\n",
-              count, ran, refused, failed);
+  std::printf("soak in range: %d machines, %d ran to their outcome, %d refused, %d failed; slowest:\n", count,
+              ran, refused, failed);
   for (std::size_t k = 0; k < std::min<std::size_t>(3, slowest.size()); ++k) {
     std::printf("  %.2f s  %s\n", slowest[k].first, slowest[k].second.command().c_str());
   }

@@ -298,7 +298,7 @@ TEST(StretchyRope, TheBuiltMachineAndTheRadioKeepTheirBooks) {
     wn::Config cfg = wn::parse_toml(std::string(wn::example_toml("konstanz")), "konstanz.toml");
     wn::apply_set(cfg, std::string("rope.stiffness=") + k);
     wn::apply_set(cfg, "rope.damping=1");
-    wn::apply_set(cfg, "balloon.radius=0.11");  // the build whose balloon flips its switch
+    wn::apply_set(cfg, "balloon.radius=0.11");      // the build whose balloon flips its switch
     wn::apply_set(cfg, "radio.switch_force=0.01");  // (docs/extensions.md)
     const wn::Scenario sc = wn::build_scenario(cfg);
     const wn::Result r = wn::simulate(sc);
@@ -324,11 +324,11 @@ TEST(StretchyRope, TheBuiltMachineAndTheRadioKeepTheirBooks) {
 // lid's share of s' at once (the pull would be -1175 N). The rope goes slack at that instant, not a
 // microsecond later, and nothing after depends on the tolerance.
 TEST(StretchyRope, ADampedRopeLetsGoAtTheImpactThatWouldMakeItPush) {
-  const std::vector<std::string> sets = {
-      "rope.stiffness=10920.0",     "rope.damping=809.4",      "seesaw.mass=0.1932",
-      "seesaw.left_arm=0.7314",     "start.seesaw_angle=-10.348", "start.sandbag_x=-0.363",
-      "start.sandbag_height=0.304", "masses.sandbag=0.369",     "masses.lid=0.781",
-      "run.t_max=1.5"};
+  const std::vector<std::string> sets = {"rope.stiffness=10920.0",     "rope.damping=809.4",
+                                         "seesaw.mass=0.1932",         "seesaw.left_arm=0.7314",
+                                         "start.seesaw_angle=-10.348", "start.sandbag_x=-0.363",
+                                         "start.sandbag_height=0.304", "masses.sandbag=0.369",
+                                         "masses.lid=0.781",           "run.t_max=1.5"};
   std::vector<double> final_phi_s;
   for (const char* tol : {"run.tolerance=1e-9", "run.tolerance=1e-12", "run.tolerance=1e-14"}) {
     std::vector<std::string> s = sets;

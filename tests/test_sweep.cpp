@@ -386,13 +386,13 @@ TEST_F(SweepResume, TheFirstDamagedRowAndAllAfterItRunAgain) {
   const std::size_t outcome = line.find(",lid_open,");
   ASSERT_NE(outcome, std::string::npos) << line;
   for (const std::string& damaged :
-       {line.substr(0, outcome) + ",lid_op\n",                                       // cut, renamed
-        line.substr(0, outcome) + ",lid_opens" + line.substr(outcome + 9),             // renamed outcome
-        line.substr(0, line.size() - 1) + ",extra\n",                                  // extra column
-        line.substr(0, outcome + 10) + "nan" + line.substr(line.find(',', outcome + 10)),  // no time
+       {line.substr(0, outcome) + ",lid_op\n",                                              // cut, renamed
+        line.substr(0, outcome) + ",lid_opens" + line.substr(outcome + 9),                  // renamed outcome
+        line.substr(0, line.size() - 1) + ",extra\n",                                       // extra column
+        line.substr(0, outcome + 10) + "nan" + line.substr(line.find(',', outcome + 10)),   // no time
         line.substr(0, outcome + 10) + "2.50" + line.substr(line.find(',', outcome + 10)),  // not as written
-        "9,0.62,0.82" + line.substr(line.find(",lid_open,")),                           // other values
-        std::string(line.size(), '\0')}) {                                              // a power cut
+        "9,0.62,0.82" + line.substr(line.find(",lid_open,")),                               // other values
+        std::string(line.size(), '\0')}) {                                                  // a power cut
     put("d.csv.part", part.substr(0, row) + damaged + part.substr(end));
     put("d.csv.part.id", id_);
     const CliResult r = whatnext(s_ + " --resume --out " + (dir_ / "d.csv").string());
@@ -413,7 +413,8 @@ TEST_F(SweepResume, TheIdentityFollowsItsFile) {
   EXPECT_EQ(slurp(dir_ / "p.csv.id"), id_);
   EXPECT_FALSE(fs::exists(dir_ / "p.csv.part.id"));
   // A new sweep that fails to start leaves the old file and its identity as they were.
-  const CliResult r = whatnext(s_ + " --set run.t_max=3 --out " + (dir_ / "p.csv").string() + " --heatmap /no/such.png");
+  const CliResult r =
+      whatnext(s_ + " --set run.t_max=3 --out " + (dir_ / "p.csv").string() + " --heatmap /no/such.png");
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_EQ(slurp(dir_ / "p.csv.id"), id_);
 }
@@ -430,19 +431,21 @@ TEST_F(SweepCli, IntegerOptionsOutOfRangeAreRefusedInOneLine) {
   const std::string grid = "sweep --example 2 --vary masses.lid=0.3:0.5:3";
   const std::string lhs = "sweep --example 2 --vary masses.lid=0.3:0.5 --samples 4";
   for (const char* seed : {"-1", "18446744073709551616", "1e23", "1.5", "0x10", ""}) {
-    expect_rejected(lhs + " --seed '" + seed + "'", "--seed: must be a whole number from 0 to 18446744073709551615");
+    expect_rejected(lhs + " --seed '" + seed + "'",
+                    "--seed: must be a whole number from 0 to 18446744073709551615");
   }
   for (const char* n : {"-1", "0", "1e23", "20000001", "9223372036854775808", "2.5"}) {
-    expect_rejected("sweep --example 2 --vary masses.lid=0.3:0.5 --samples " + std::string(n), "--samples: must be");
+    expect_rejected("sweep --example 2 --vary masses.lid=0.3:0.5 --samples " + std::string(n),
+                    "--samples: must be");
     expect_rejected(grid + " --threads " + n, "--threads: must be");
   }
   // Every whole-number option of the other commands, beyond what it holds: one line in its words.
-  for (const std::string& args : {std::string("plot --example 1 --width 1e12 --out ") + (dir_ / "p").string(),
-                                  std::string("animate --example 1 --height -99999999999 --out ") +
-                                      (dir_ / "a.gif").string(),
-                                  std::string("optimize --example 2 --vary masses.lid=0.3:0.5 --minimize lid_open "
-                                              "--max-evals 1e23 --out ") +
-                                      (dir_ / "o.toml").string()}) {
+  for (const std::string& args :
+       {std::string("plot --example 1 --width 1e12 --out ") + (dir_ / "p").string(),
+        std::string("animate --example 1 --height -99999999999 --out ") + (dir_ / "a.gif").string(),
+        std::string("optimize --example 2 --vary masses.lid=0.3:0.5 --minimize lid_open "
+                    "--max-evals 1e23 --out ") +
+            (dir_ / "o.toml").string()}) {
     const CliResult r = whatnext(args);
     EXPECT_EQ(r.code, 2) << args << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

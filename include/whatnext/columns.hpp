@@ -109,8 +109,8 @@ constexpr std::string_view kLeadingColumns[] = {"t_s", "event", "mode", "rope_ta
 // contacts; the built machine's end stop and floor (docs/extensions.md) add the others, and only
 // its outputs have their columns (impulse_columns).
 inline constexpr std::string_view kImpulseColumns[] = {
-    "impulse_sandbag_N_s", "impulse_rope_N_s",          "impulse_lid_N_m_s",
-    "impulse_stop_N_s",    "impulse_floor_seesaw_N_s",  "impulse_floor_sandbag_N_s"};
+    "impulse_sandbag_N_s", "impulse_rope_N_s",         "impulse_lid_N_m_s",
+    "impulse_stop_N_s",    "impulse_floor_seesaw_N_s", "impulse_floor_sandbag_N_s"};
 constexpr std::size_t kPaperImpulses = 3;
 inline std::size_t impulse_columns(const Machine& m) {
   return m.built_contacts() ? std::size(kImpulseColumns) : kPaperImpulses;

@@ -23,21 +23,21 @@ enum class EventType {
   sandbag_leaves,     // extensions: the arm's normal force on the sandbag reaches zero (heavy seesaw)
   sandbag_at_stop,    // built machine: the sandbag reaches the end stop and rides there
   sandbag_leaves_stop,
-  seesaw_on_floor,    // built machine: an end of the seesaw reaches the floor and stays there
-  seesaw_lifts,       // ... and leaves it
-  sandbag_on_floor,   // built machine: the sandbag lands on the floor
-  sandbag_bounces,    // ... and leaves it again (floor.restitution > 0)
-  sandbag_sticks,     // friction: the sandbag stops sliding on the arm and sticks there
-  sandbag_slips,      // ... and starts sliding again
-  seesaw_sticks,      // friction: the seesaw stops turning and its pivot holds it
-  seesaw_slips,       // ... and turns again
-  lid_sticks,         // friction: the lid stops turning and its hinge holds it
-  lid_slips,          // ... and turns again
+  seesaw_on_floor,   // built machine: an end of the seesaw reaches the floor and stays there
+  seesaw_lifts,      // ... and leaves it
+  sandbag_on_floor,  // built machine: the sandbag lands on the floor
+  sandbag_bounces,   // ... and leaves it again (floor.restitution > 0)
+  sandbag_sticks,    // friction: the sandbag stops sliding on the arm and sticks there
+  sandbag_slips,     // ... and starts sliding again
+  seesaw_sticks,     // friction: the seesaw stops turning and its pivot holds it
+  seesaw_slips,      // ... and turns again
+  lid_sticks,        // friction: the lid stops turning and its hinge holds it
+  lid_slips,         // ... and turns again
   lid_open,
   seesaw_vertical,
   sandbag_at_pivot,
-  rope_locked,  // the lid lies along the rope: the linkage cannot move on (not in the paper)
-  radio_on,     // extensions: the balloon's string is straight and switches the radio on
+  rope_locked,       // the lid lies along the rope: the linkage cannot move on (not in the paper)
+  radio_on,          // extensions: the balloon's string is straight and switches the radio on
   switch_stays_off,  // built machine: the string is straight but pulls less than the switch needs
   timeout,
   event_limit,  // safety stop against endless event chains at one instant

@@ -58,7 +58,9 @@ class RopeGeometry {
 
   // Analytic k = -C_S/C_L and k' by implicit differentiation of C(phiS, phiL) = 0.
   Transfer transfer(Vec2 u_s, Vec2 u_l) const { return transfer_at(seesaw_end(u_s), (2.0 * r_l_) * u_l); }
-  Transfer transfer(double phi_s, double phi_l) const { return transfer(polar(1.0, phi_s), polar(1.0, phi_l)); }
+  Transfer transfer(double phi_s, double phi_l) const {
+    return transfer(polar(1.0, phi_s), polar(1.0, phi_l));
+  }
 
   // The straight rope's linkage at one instant, for the flow's hot path: both angles' cosines and
   // sines and each angle's derivatives along the closure, from the sine and cosine of one angle

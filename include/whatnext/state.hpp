@@ -35,19 +35,19 @@ struct GuardStart {
 constexpr int kGuardSlots = 20;
 
 struct Discrete {
-  bool on_seesaw = false;      // sandbag on the arm (massless seesaw: once landed, for good)
-  bool taut = false;           // rope straight
-  bool lid_resting = true;     // lid lying at its lowest angle phiL0
-  bool balloon_stuck = true;   // balloon pressed against the lid
+  bool on_seesaw = false;     // sandbag on the arm (massless seesaw: once landed, for good)
+  bool taut = false;          // rope straight
+  bool lid_resting = true;    // lid lying at its lowest angle phiL0
+  bool balloon_stuck = true;  // balloon pressed against the lid
   // A balloon smaller than the box (docs/extensions.md): while it touches the lid, held in the
   // corner by the far wall or its top (else sliding along the lid); out of the box for good.
   bool balloon_held = true;
   bool balloon_out = false;
-  int balloon_side = 1;  // held by the far wall (+1) or by the hinge's wall (-1)
+  int balloon_side = 1;       // held by the far wall (+1) or by the hinge's wall (-1)
   bool balloon_edge = false;  // out, rolling round the lid's free edge (its slots: the angle, rate)
-  bool fallen_off = false;     // sandbag slid off the arm's end: it never lands again
-  bool latched = false;        // radio: lid latched open after lid_open, rope slack for good
-  bool heavy = false;          // the seesaw has inertia (copied from the machine at the start)
+  bool fallen_off = false;    // sandbag slid off the arm's end: it never lands again
+  bool latched = false;       // radio: lid latched open after lid_open, rope slack for good
+  bool heavy = false;         // the seesaw has inertia (copied from the machine at the start)
   // The built machine's contacts (docs/extensions.md): the sandbag held at the arm's end by the
   // stop; the seesaw standing on the floor with its left (+1) or right (-1) end; the sandbag on
   // the floor (it never lands on the arm again).
@@ -147,7 +147,7 @@ struct Snapshot {
   double lost_impacts = 0, lost_balloon_catch = 0;                         // booked at jumps
   double dissipated_pivot = 0, dissipated_hinge = 0, dissipated_drag = 0;  // integrated
   double dissipated_friction = 0;  // Coulomb friction's heat, integrated
-  double lid_push_work = 0;  // work done on the balloon by the lid that does not feel it
+  double lid_push_work = 0;        // work done on the balloon by the lid that does not feel it
   double rope_potential = 0, dissipated_rope = 0;  // a rope that stretches: its spring, its damper
   double initial_total = 0;
   // The machine: sandbag, lid and seesaw (the balloon does not act on it).

@@ -49,7 +49,8 @@ class RowText;  // output.cpp
 class CsvWriter : public Observer {
  public:
   // impulses: how many of the impulse columns (columns.hpp impulse_columns(machine)).
-  explicit CsvWriter(std::ostream& out, Writing writing = Writing::at_once, std::size_t impulses = kPaperImpulses);
+  explicit CsvWriter(std::ostream& out, Writing writing = Writing::at_once,
+                     std::size_t impulses = kPaperImpulses);
   ~CsvWriter() override;
   void on_sample(const Snapshot& s) override;
   void on_samples(const SampleBatch& batch) override;

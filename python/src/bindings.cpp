@@ -252,7 +252,9 @@ class ColumnRecorder : public Interruptible {
     for (auto& c : numeric_) c.reserve(rows);
   }
   void on_sample(const Snapshot& s) override { row(s, "", nullptr); }
-  void on_event(const Event& e) override { row(e.after, to_string(e.type), e.impact ? e.impulse.data() : nullptr); }
+  void on_event(const Event& e) override {
+    row(e.after, to_string(e.type), e.impact ? e.impulse.data() : nullptr);
+  }
 
   py::dict take() {
     py::dict out;
@@ -388,12 +390,13 @@ explore::Machines grid_machines(const std::vector<std::string>& keys, const std:
   return explore::Machines::grid_of(keys, std::move(values));
 }
 
-explore::Machines point_machines(const std::vector<std::string>& keys, const Points& points, std::int64_t first) {
+explore::Machines point_machines(const std::vector<std::string>& keys, const Points& points,
+                                 std::int64_t first) {
   check_sweep_keys(keys);
   if (points.ndim() != 2 || points.shape(1) != static_cast<py::ssize_t>(keys.size()))
     throw std::invalid_argument("sweep: points need one column per key");
-  return explore::Machines::points_from(keys, std::vector<double>(points.data(), points.data() + points.size()),
-                                        first);
+  return explore::Machines::points_from(
+      keys, std::vector<double>(points.data(), points.data() + points.size()), first);
 }
 
 int threads_of(int threads) { return threads > 0 ? threads : explore::all_cores(); }
@@ -543,8 +546,8 @@ py::bytes sweep_csv(const std::vector<std::string>& keys, const py::dict& column
 // The sweep's identity (explore::sweep_identity, the lines of a CSV's NAME.id): what a Zarr store
 // of a study holds to prove it is this study's.
 std::string sweep_identity_of(const MachineHandle& m, const std::vector<std::string>& keys,
-                              const std::optional<std::vector<Axis>>& axes, const std::optional<Points>& points,
-                              std::optional<double> accuracy_given) {
+                              const std::optional<std::vector<Axis>>& axes,
+                              const std::optional<Points>& points, std::optional<double> accuracy_given) {
   if (!axes && !points) throw std::invalid_argument("sweep: axes or points");
   const explore::Machines machines = axes ? grid_machines(keys, *axes) : point_machines(keys, *points, 0);
   return explore::sweep_identity(m.config, machines, accuracy_of(accuracy_given));
@@ -552,7 +555,8 @@ std::string sweep_identity_of(const MachineHandle& m, const std::vector<std::str
 
 py::dict sweep_to_file(const MachineHandle& m, const std::vector<std::string>& keys,
                        const std::optional<std::vector<Axis>>& axes, const std::optional<Points>& points,
-                       int threads, std::optional<double> accuracy_given, const std::string& path, bool resume) {
+                       int threads, std::optional<double> accuracy_given, const std::string& path,
+                       bool resume) {
   if (!axes && !points) throw std::invalid_argument("sweep: axes or points");
   const explore::Machines machines = axes ? grid_machines(keys, *axes) : point_machines(keys, *points, 0);
   explore::SweepJob job(m.config, machines, accuracy_of(accuracy_given));
@@ -575,7 +579,8 @@ py::dict sweep_to_file(const MachineHandle& m, const std::vector<std::string>& k
   job.commit();  // after Ctrl-C: the rows done, under the file's name, as the command does
   if (interrupts.interrupted) throw py::error_already_set();
   // The kept rows read back: the Sweep holds every machine, as an uninterrupted sweep's does.
-  for (explore::Row& row : job.kept_rows()) result.rows[static_cast<std::size_t>(row.index)] = std::move(row.outcome);
+  for (explore::Row& row : job.kept_rows())
+    result.rows[static_cast<std::size_t>(row.index)] = std::move(row.outcome);
   return to_numpy(keys, explore::columns_of(machines, 0, result.rows));
 }
 
@@ -645,8 +650,8 @@ PYBIND11_MODULE(_core, mod) {
   mod.def("lhs_points", &lhs_points, py::arg("keys"), py::arg("lo"), py::arg("hi"), py::arg("samples"),
           py::arg("seed"));
   mod.def("sweep_csv", &sweep_csv, py::arg("keys"), py::arg("columns"));
-  mod.def("sweep_to_file", &sweep_to_file, py::arg("machine"), py::arg("keys"), py::arg("axes"), py::arg("points"),
-          py::arg("threads"), py::arg("accuracy"), py::arg("path"), py::arg("resume"));
+  mod.def("sweep_to_file", &sweep_to_file, py::arg("machine"), py::arg("keys"), py::arg("axes"),
+          py::arg("points"), py::arg("threads"), py::arg("accuracy"), py::arg("path"), py::arg("resume"));
   mod.def("sweep_identity", &sweep_identity_of, py::arg("machine"), py::arg("keys"), py::arg("axes"),
           py::arg("points"), py::arg("accuracy"));
   mod.attr("VERSION") = explore::kProgramVersion;

@@ -202,9 +202,9 @@ class BallisticStepper {
 
   // [rad] The longest arc the lid turns through in one step at tolerance kLidArcTolerance (where it
   // was measured: a sweep's default, its accuracy 1e-8 s / 15), shorter with the fifth root of a
-  // tighter one, as Dormand-Prince's steps are (which turned it through about 0.05 rad there). 0.2 finds every event a tight
-  // Dormand-Prince run finds on 40,000 random machines around example 2, and steps beyond about
-  // 1 rad start to miss a rope that tightens again for an instant.
+  // tighter one, as Dormand-Prince's steps are (which turned it through about 0.05 rad there). 0.2 finds
+  // every event a tight Dormand-Prince run finds on 40,000 random machines around example 2, and steps beyond
+  // about 1 rad start to miss a rope that tightens again for an instant.
   static constexpr double kLidArc = 0.2, kLidArcTolerance = 1e-8 / 15.0;
   const Model* model_;
   const Discrete* d_;

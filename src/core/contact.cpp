@@ -235,7 +235,8 @@ Impact solve_impact(const System& sys, Set touching, const Choice& choice, const
     // Open friction contacts whose normal takes an impulse slip with the sign the impact leaves.
     Set open_free = 0;
     for (int f = 0; f < sys.contacts; ++f)
-      if (has(touching, f) && !has(s, f) && sys.friction[f] > 0 && friction_acts(sys, s, f)) open_free |= 1u << f;
+      if (has(touching, f) && !has(s, f) && sys.friction[f] > 0 && friction_acts(sys, s, f))
+        open_free |= 1u << f;
     std::array<int, kMaxContacts> none{};
     open_free = without_idle(sys, s, open_free, true, none);
     return over_slip_signs(sys, open_free, none, [&](const std::array<int, kMaxContacts>& slip) {
@@ -246,12 +247,14 @@ Impact solve_impact(const System& sys, Set touching, const Choice& choice, const
         const bool tangent = sys.friction[i] != 0;
         cand.rate[i] = has(s, i) ? (after && !tangent ? (*after)[i] : 0.0) : sys.rate(i, cand.velocity);
         if (tangent) {
-          if (has(s, i) && std::fabs(cand.impulse[i]) > friction_bound(sys, i, cand.impulse) + choice.impulse_tol)
+          if (has(s, i) &&
+              std::fabs(cand.impulse[i]) > friction_bound(sys, i, cand.impulse) + choice.impulse_tol)
             return false;
           if (has(open_free, i) && slip[i] * cand.rate[i] < -choice.closing_tol) return false;
           continue;
         }
-        if (has(s, i) ? cand.impulse[i] < -choice.impulse_tol : cand.rate[i] < -choice.closing_tol) return false;
+        if (has(s, i) ? cand.impulse[i] < -choice.impulse_tol : cand.rate[i] < -choice.closing_tol)
+          return false;
       }
       cand.ok = true;
       cand.impulsive = s;

@@ -32,12 +32,12 @@ constexpr bool has(Set s, int i) { return (s >> i) & 1u; }
 
 struct System {
   int coords = 0, contacts = 0;
-  Coords mass{};                              // diagonal of the mass matrix; 0: massless
-  Coords force{};                             // generalized forces (gravity, dampers) at this state
-  Coords velocity{};                          // generalized velocities
+  Coords mass{};      // diagonal of the mass matrix; 0: massless
+  Coords force{};     // generalized forces (gravity, dampers) at this state
+  Coords velocity{};  // generalized velocities
   // The first `contacts` entries of these are set (not zeroed beyond: the paper's machine has 3).
   std::array<Coords, kMaxContacts> normal;  // W_i = d gap_i / dq
-  PerContact curvature;  // gap_i'' = W_i . q'' + curvature_i (the velocity-product terms)
+  PerContact curvature;                     // gap_i'' = W_i . q'' + curvature_i (the velocity-product terms)
   // Friction: friction[i] = n + 1 makes contact i the tangent of normal contact n, bounded by
   // bound[i] = mu times n's multiplier; friction[i] = kFixedBound bounds it by the force bound[i]
   // itself (a Coulomb torque, transmitting no impulse); 0: an ordinary unilateral contact.
@@ -79,11 +79,11 @@ struct Choice {
 };
 
 struct Impact {
-  bool ok = false;       // false: no set satisfies the conditions (degenerate geometry)
-  Set impulsive = 0;     // contacts that end the impact closed (zero gap rate)
-  PerContact impulse{};  // >= 0 on impulsive contacts
-  Coords velocity{};     // after the impact
-  PerContact rate{};     // gap rates after the impact, of every touching contact
+  bool ok = false;                       // false: no set satisfies the conditions (degenerate geometry)
+  Set impulsive = 0;                     // contacts that end the impact closed (zero gap rate)
+  PerContact impulse{};                  // >= 0 on impulsive contacts
+  Coords velocity{};                     // after the impact
+  PerContact rate{};                     // gap rates after the impact, of every touching contact
   std::array<int, kMaxContacts> slip{};  // open friction contacts: the sign they slip with
 };
 
@@ -99,7 +99,7 @@ struct Motion {
   Set active = 0;
   PerContact force{};  // multipliers of the active contacts (>= 0)
   Coords acceleration{};
-  PerContact gap_acceleration{};  // of every candidate (0 on active ones)
+  PerContact gap_acceleration{};         // of every candidate (0 on active ones)
   std::array<int, kMaxContacts> slip{};  // open friction contacts: the sign they slip with
 };
 

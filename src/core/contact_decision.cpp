@@ -23,7 +23,8 @@ contact::Set Model::touching(const Discrete& d, const Kinematics& k) const {
     if (std::fabs(height_above_arm(k)) <= kContact && along >= 0.0 && along <= arm_) s |= bit(kBag);
   }
   if (d.latched) return s | touching_built(d, k);  // the rope let go for good, the lid held open
-  if (!d.taut && !spring_rope(d) && std::fabs(rope_.span(k.phi_s, k.phi_l) - rope_.rope_length()) <= kContact &&
+  if (!d.taut && !spring_rope(d) &&
+      std::fabs(rope_.span(k.phi_s, k.phi_l) - rope_.rope_length()) <= kContact &&
       rope_.lid_below_rope(k.phi_s, k.phi_l)) {
     s |= bit(kRope);
   }
@@ -341,7 +342,8 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
   // A stretched rope is a force of one sign, T = k s + c s' >= 0, decided with the contacts: where
   // the impact's velocities would make it push (its damper, s' changed by a jump elsewhere), it lets
   // go now, and the contacts' forces are found without it.
-  if (x.impacted && stretchy_ && held.stretched && spring_rope(held) && !(rope_pull(held, x.k1).tension > 0.0)) {
+  if (x.impacted && stretchy_ && held.stretched && spring_rope(held) &&
+      !(rope_pull(held, x.k1).tension > 0.0)) {
     held.stretched = false;
     x.rope_let_go = true;
   }
@@ -356,7 +358,9 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
       // Friction's guard is minus the slip's speed: it starts at zero where the slip starts from
       // rest, and falls as fast as the slip picks up.
       const double a = std::fabs(x.mot.gap_acceleration[i]);
-      x.released[i] = !has(x.held, i) ? GuardStart{} : (a > x.ch.accel_tol ? GuardStart{1, -a} : GuardStart{2, kUnknownLead});
+      x.released[i] = !has(x.held, i)
+                          ? GuardStart{}
+                          : (a > x.ch.accel_tol ? GuardStart{1, -a} : GuardStart{2, kUnknownLead});
       continue;
     }
     if (!has(x.held, i)) {
@@ -425,7 +429,8 @@ std::array<double, 6> Model::impulses(const Decision& x) const {
   // An impulse that is rounding (within the decision's tolerance) is none: not reported.
   // Friction's impulse along the arm is not one of them: it is in the sandbag's velocity after.
   for (int i = 0; i < contacts_ && i < kBagSlip; ++i) {
-    if (contact::has(x.imp.impulsive, i) && std::fabs(p[i]) > x.ch.impulse_tol) out[i <= kFloorLeft ? i : i - 1] += p[i];
+    if (contact::has(x.imp.impulsive, i) && std::fabs(p[i]) > x.ch.impulse_tol)
+      out[i <= kFloorLeft ? i : i - 1] += p[i];
   }
   return out;
 }

@@ -313,11 +313,15 @@ bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out)
       }
       break;
     case kGuardBagFloor: resolve(hs, k0, kBagFloor, Trend::closing, out); break;
-    case kGuardBagSlip: resolve(hs, k0, kBagSlip, hs.d.bag_stuck ? Trend::releasing : Trend::closing, out); break;
+    case kGuardBagSlip:
+      resolve(hs, k0, kBagSlip, hs.d.bag_stuck ? Trend::releasing : Trend::closing, out);
+      break;
     case kGuardPivotSlip:
       resolve(hs, k0, kPivotSlip, hs.d.seesaw_stuck ? Trend::releasing : Trend::closing, out);
       break;
-    case kGuardHingeSlip: resolve(hs, k0, kHingeSlip, hs.d.lid_stuck ? Trend::releasing : Trend::closing, out); break;
+    case kGuardHingeSlip:
+      resolve(hs, k0, kHingeSlip, hs.d.lid_stuck ? Trend::releasing : Trend::closing, out);
+      break;
     case kGuardArmEnd:  // off the end of a finite arm, velocity kept; it never lands again
       resolve(hs, k0, kBag, Trend::forced_off, out);
       break;

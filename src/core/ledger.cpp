@@ -50,7 +50,8 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
   s.rope_taut = d.taut;
   s.lid_resting = d.lid_resting;
   s.balloon_stuck = d.balloon_stuck;
-  s.at_stop = d.at_stop, s.bag_on_floor = d.bag_on_floor, s.seesaw_on_floor = d.grounded != 0, s.rope_let_go = d.latched;
+  s.at_stop = d.at_stop, s.bag_on_floor = d.bag_on_floor, s.seesaw_on_floor = d.grounded != 0,
+  s.rope_let_go = d.latched;
   s.x = k.x, s.h = k.h, s.vx = k.vx, s.vh = k.vh, s.r = k.r, s.dr = k.dr;
   s.phi_s = k.phi_s, s.dphi_s = k.dphi_s;
   s.phi_l = k.phi_l, s.dphi_l = k.dphi_l, s.ddphi_l = k.ddphi_l;
@@ -100,7 +101,10 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
 Positions Model::positions(double t, const Discrete& d, const State& y) const {
   // snapshot(t, d, y, false, false)'s positions, computed the same way.
   const Kinematics k = kinematics(d, y, false, false);
-  return {t, k.x, k.h, k.phi_s, k.phi_l, balloon_limit_height(k), k.balloon_h, d.mode(), d.taut || d.stretched, k.balloon_x};
+  return {t,           k.x,      k.h,
+          k.phi_s,     k.phi_l,  balloon_limit_height(k),
+          k.balloon_h, d.mode(), d.taut || d.stretched,
+          k.balloon_x};
 }
 
 void Model::open_books(HybridState& hs, const Kinematics& k) const {

@@ -55,8 +55,16 @@ Model::Model(const Scenario& scenario)
       grounded_left_(std::asin(-h_floor_ / arm_)),
       grounded_right_(std::asin(h_floor_ / scenario.machine.seesaw_right_arm)) {
   const Machine& m = scenario.machine;
-  e_ = {m.restitution.sandbag, m.restitution.rope, m.restitution.lid,        m.restitution.stop,
-        m.floor_restitution,   m.floor_restitution, m.floor_restitution, 0.0, 0.0, 0.0};
+  e_ = {m.restitution.sandbag,
+        m.restitution.rope,
+        m.restitution.lid,
+        m.restitution.stop,
+        m.floor_restitution,
+        m.floor_restitution,
+        m.floor_restitution,
+        0.0,
+        0.0,
+        0.0};
   built_ = m.built_contacts();
   mu_ = m.friction.sandbag;
   t_p_ = m.friction.pivot;

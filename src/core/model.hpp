@@ -24,19 +24,19 @@ namespace whatnext {
 // then decided by the contact problem, not by the guard. The order is the priority for events
 // found at the same instant.
 enum Guard : int {
-  kGuardBag,      // sandbag: height above the arm's line, or minus the arm's push on it
-  kGuardRope,     // rope: |R - E| - l_R, or minus its tension
-  kGuardLid,      // lid: phiL0 - phiL, or minus the box's push on it
-  kGuardStop,     // sandbag against the end stop: r - left_arm, or minus the stop's push
-  kGuardFloor,    // seesaw's ends: minus the nearer one's height above the floor, or minus its push
-  kGuardBagFloor, // sandbag off the arm: the floor's height minus its own
+  kGuardBag,       // sandbag: height above the arm's line, or minus the arm's push on it
+  kGuardRope,      // rope: |R - E| - l_R, or minus its tension
+  kGuardLid,       // lid: phiL0 - phiL, or minus the box's push on it
+  kGuardStop,      // sandbag against the end stop: r - left_arm, or minus the stop's push
+  kGuardFloor,     // seesaw's ends: minus the nearer one's height above the floor, or minus its push
+  kGuardBagFloor,  // sandbag off the arm: the floor's height minus its own
   // Coulomb friction on the arm: minus the slip's speed while it slips (it fires when the slip
   // stops), or the friction force's excess over mu times the arm's push while it sticks.
   kGuardBagSlip,
   kGuardPivotSlip,  // the same for the seesaw's pivot (a Coulomb torque) ...
   kGuardHingeSlip,  // ... and the lid's hinge
-  kGuardArmEnd,   // sandbag on a finite arm reaches its end
-  kGuardBalloon,  // free balloon reaches the lid, or the lid pulls away faster than it can follow
+  kGuardArmEnd,     // sandbag on a finite arm reaches its end
+  kGuardBalloon,    // free balloon reaches the lid, or the lid pulls away faster than it can follow
   // A balloon smaller than the box (docs/extensions.md): sliding along the lid it reaches the far
   // wall or its top corner; it gets out of the box.
   kGuardBalloonCorner,
@@ -82,11 +82,11 @@ struct Kinematics {
   double x = 0, h = 0, vx = 0, vh = 0;
   double r = 0, dr = 0, ddr = 0, phi_s = 0, dphi_s = 0, ddphi_s = 0;  // ddr: on the arm only
   double phi_l = 0, dphi_l = 0, ddphi_l = 0;
-  double balloon_h = 0, balloon_v = 0;                // the balloon's centre from the hinge level
+  double balloon_h = 0, balloon_v = 0;  // the balloon's centre from the hinge level
   // A balloon smaller than the box: its centre's x from the hinge and rate; q and q' along the lid
   // while it touches it (geometry.hpp SmallBalloon).
   double balloon_x = 0, balloon_vx = 0, balloon_q = 0, balloon_dq = 0;
-  Transfer transfer;                                  // valid while the rope is taut
+  Transfer transfer;         // valid while the rope is taut
   bool rope_let_go = false;  // the radio's latch let the rope go for good: it stores no energy
   double cos_s = 1, sin_s = 0, cos_l = 1, sin_l = 0;  // of phi_s and phi_l, computed once
 };
@@ -229,7 +229,8 @@ class Model {
   }
   static void lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l, bool seesaw_angle);
   struct KinematicsPass;  // kinematics.cpp: one evaluation, stage by stage
-  Kinematics kinematics_pass(const Discrete& d, const State& y, bool rates, bool memo, bool seesaw_angle) const;
+  Kinematics kinematics_pass(const Discrete& d, const State& y, bool rates, bool memo,
+                             bool seesaw_angle) const;
   // The lid swings on the straight rope, driven through it by something with inertia.
   static bool on_closure(const Discrete& d) {
     return d.taut && !d.lid_held() && !d.latched && (d.on_seesaw || d.heavy) && !d.seesaw_held();
@@ -301,24 +302,24 @@ class Model {
   struct Decision {
     int trigger = -1;
     Trend trend = Trend::closing;
-    contact::Set s0 = 0;              // closed before the event
-    contact::Set touch = 0;           // touching at the event (closed, or open with zero gap)
-    Kinematics k0;                    // the event's state, moved onto the touching contacts
-    contact::System sys;              // the contact problem there
-    contact::Choice ch;               // its preferences and tolerances
-    contact::Impact imp;              // the inelastic impact
-    contact::Coords u{};              // velocities after the impact (by the chosen law)
-    contact::PerContact rate{};       // gap rates after it
-    bool impacted = false;            // some impulse beyond rounding
-    ImpactLaw law = ImpactLaw::rope;  // the law the velocities follow
-    std::string_view law_note;        // why that is not the run's impact_law, where it is not
-    contact::Set bounced = 0;         // the floor's contacts that gave an impulse and bounced off
-    contact::Set held = 0;            // touching with zero gap rate after the impact
-    Kinematics k1;                    // the state with the impact's velocities
-    contact::Motion mot;              // the motion on accelerations
-    contact::Set s2 = 0;              // the contacts that carry the motion on
+    contact::Set s0 = 0;                 // closed before the event
+    contact::Set touch = 0;              // touching at the event (closed, or open with zero gap)
+    Kinematics k0;                       // the event's state, moved onto the touching contacts
+    contact::System sys;                 // the contact problem there
+    contact::Choice ch;                  // its preferences and tolerances
+    contact::Impact imp;                 // the inelastic impact
+    contact::Coords u{};                 // velocities after the impact (by the chosen law)
+    contact::PerContact rate{};          // gap rates after it
+    bool impacted = false;               // some impulse beyond rounding
+    ImpactLaw law = ImpactLaw::rope;     // the law the velocities follow
+    std::string_view law_note;           // why that is not the run's impact_law, where it is not
+    contact::Set bounced = 0;            // the floor's contacts that gave an impulse and bounced off
+    contact::Set held = 0;               // touching with zero gap rate after the impact
+    Kinematics k1;                       // the state with the impact's velocities
+    contact::Motion mot;                 // the motion on accelerations
+    contact::Set s2 = 0;                 // the contacts that carry the motion on
     GuardStart released[kContactCount];  // how each contact's gap opens if it is released
-    Kinematics k2;                    // the state the motion goes on from
+    Kinematics k2;                       // the state the motion goes on from
     // A rope that stretches pulls k s + c s' >= 0: an impact that changes s' so that the pull would
     // be negative lets it go at that instant (its force's side of the complementarity).
     bool rope_let_go = false;
@@ -368,8 +369,7 @@ class Model {
   bool jump_without_contacts(Guard fired, HybridState& hs, const Kinematics& k0, double limit_rate0,
                              Mode before, std::vector<Event>& out) const;
   void release_balloon_if_lid_jumped(HybridState& hs, const Kinematics& k0, double limit_rate_before,
-                                     const Books& opened,
-                                     std::vector<Event>& out) const;
+                                     const Books& opened, std::vector<Event>& out) const;
   void free_balloon(HybridState& hs, const Kinematics& k, double v) const;
   // The balloon guard fired: a stuck balloon left behind, or a free one caught by the lid.
   void balloon_meets_lid(HybridState& hs, const Kinematics& k0, double limit_rate0, Mode before,
@@ -412,7 +412,7 @@ class Model {
   // linkage's k (phiL' = k phiS'): T_p + |k| T_h, or T_h + T_p / |k| (docs/extensions.md).
   double coulomb_hold(const Discrete& d, const Kinematics& k, int i) const;
   double hinge_coulomb(const Discrete& d) const { return -t_h_ * d.lid_slip; }
-  bool restitution_ = false;               // some contact has one
+  bool restitution_ = false;  // some contact has one
   double grounded_angle(int side) const { return side > 0 ? grounded_left_ : grounded_right_; }
   void ground(Kinematics& k, int side, bool carries) const;
 
@@ -452,8 +452,10 @@ class Model {
   void stretchy_force(const Discrete& d, const Kinematics& k, contact::System& s) const;
   double lid_lift(const Kinematics& k, const RopePull& p) const;  // minus the box's push on the lid
   void stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const;
-  bool stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before, std::vector<Event>& out) const;
-  static void stretchy_modes(bool was_stretched, const Discrete& d, std::vector<Event>& out, std::size_t first);
+  bool stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before,
+                     std::vector<Event>& out) const;
+  static void stretchy_modes(bool was_stretched, const Discrete& d, std::vector<Event>& out,
+                             std::size_t first);
   void stretchy_snapshot(const Discrete& d, const Kinematics& k, const State& y, Snapshot& s) const;
 };
 

@@ -143,8 +143,8 @@ double Machine::balloon_inertia() const {
 
 double Machine::balloon_drag_rate() const {
   // F = 1/2 rho_air Cd pi r_B^2 v|v|.
-  return 0.5 * air_density * balloon_drag_coefficient * units::kPi * balloon_radius *
-         balloon_radius / balloon_inertia();
+  return 0.5 * air_density * balloon_drag_coefficient * units::kPi * balloon_radius * balloon_radius /
+         balloon_inertia();
 }
 
 }  // namespace whatnext

@@ -61,7 +61,10 @@ namespace {
 class Runner {
  public:
   Runner(const Scenario& sc, Observer* observer)
-      : sc_(sc), observer_(observer), model_(sc), batch_(model_, observer && observer->sample_detail() == Observer::Detail::full) {}
+      : sc_(sc),
+        observer_(observer),
+        model_(sc),
+        batch_(model_, observer && observer->sample_detail() == Observer::Detail::full) {}
 
   Result run() {
     std::vector<Event> fresh;
@@ -160,7 +163,8 @@ class Runner {
         break;
       }
       case IntegratorKind::euler:
-        c = integrate_fixed<odeint::euler<State>>(sys, hs_.y, t_, run.t_max, run.step, grid_, sample, res_.stats);
+        c = integrate_fixed<odeint::euler<State>>(sys, hs_.y, t_, run.t_max, run.step, grid_, sample,
+                                                  res_.stats);
         break;
       case IntegratorKind::rk4:
         c = integrate_fixed<odeint::runge_kutta4<State>>(sys, hs_.y, t_, run.t_max, run.step, grid_, sample,
@@ -187,9 +191,11 @@ class Runner {
     no_progress_ = t_ > last_t_ ? 0 : no_progress_ + 1;
     last_t_ = t_;
     if (no_progress_ > kMaxPiecesWithoutProgress) {
-      fail("the run stopped advancing (the same instant's contacts decided again and again; a fixed step may be "
-           "too long for this machine)",
-           hs_.t, hs_.d.mode());
+      fail(
+          "the run stopped advancing (the same instant's contacts decided again and again; a fixed step may "
+          "be "
+          "too long for this machine)",
+          hs_.t, hs_.d.mode());
     }
   }
 

@@ -4,11 +4,11 @@
 // once longer than l_R it pulls with
 //     T = k (span - l_R) + c span'
 // until that reaches zero (rope_slack): it never pushes (a rope buckles). The pull acts as a
-// generalised force Q = -T d span/dq on phiS and phiL. The seesaw has no inertia, so the arm's push on the sandbag balances the rope's torque,
-// N r = -Q_S: the seesaw and sandbag swing as a point mass m_S r^2 (docs/extensions.md's J with
-// I_S = 0). "Stretched" is a discrete flag, set and cleared by guards (rope_taut where the span
-// passes l_R, rope_slack where the pull reaches zero), no impact: every smooth piece has a smooth
-// force (with damping T jumps to c span' at the taut instant).
+// generalised force Q = -T d span/dq on phiS and phiL. The seesaw has no inertia, so the arm's push on the
+// sandbag balances the rope's torque, N r = -Q_S: the seesaw and sandbag swing as a point mass m_S r^2
+// (docs/extensions.md's J with I_S = 0). "Stretched" is a discrete flag, set and cleared by guards (rope_taut
+// where the span passes l_R, rope_slack where the pull reaches zero), no impact: every smooth piece has a
+// smooth force (with damping T jumps to c span' at the taut instant).
 //
 // Energy: the spring's (1/2) k (span - l_R)^2 counts in the machine's energy; what the rope turns
 // into heat, (T - k s) s' with s = span - l_R > 0, is integrated in slot::lost_rope. With the
@@ -36,7 +36,7 @@ Model::RopePull Model::rope_pull(const Discrete& d, const Kinematics& k) const {
   const Vec2 dv = r - (rope_.hinge() + el);  // D = R - E
   const double span = norm(dv);
   if (!(span > 0.0)) return p;
-  const Vec2 r_s{-r.h, r.x}, e_l{-el.h, el.x};  // dR/dphiS, dE/dphiL
+  const Vec2 r_s{-r.h, r.x}, e_l{-el.h, el.x};                       // dR/dphiS, dE/dphiL
   const double ds = dot(dv, r_s) / span, dl = -dot(dv, e_l) / span;  // d span / d phiS, d phiL
   p.stretch = span - rope_.rope_length();
   p.rate = ds * k.dphi_s + dl * k.dphi_l;
@@ -115,7 +115,8 @@ void Model::stretchy_force(const Discrete& d, const Kinematics& k, contact::Syst
   s.force[3] += p.q_l;
 }
 
-void Model::stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const {
+void Model::stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues& g,
+                            GuardValues* rates) const {
   if (!spring_rope(d)) return;
   // The rope pulls while k s + c s' > 0 with s = span - l_R: both its ends as guards, in metres
   // (divided by k). Pulling, it goes slack when that pull reaches zero (s = 0 without damping, s > 0
@@ -172,7 +173,8 @@ bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mo
   return false;
 }
 
-void Model::stretchy_modes(bool was_stretched, const Discrete& d, std::vector<Event>& out, std::size_t first) {
+void Model::stretchy_modes(bool was_stretched, const Discrete& d, std::vector<Event>& out,
+                           std::size_t first) {
   // While the spring pulls, M3 (on the arm, the rope's contact open) is M4 or M5: the lid's contact
   // after each event follows from the events in order, and the pull from rope_taut and rope_slack.
   // (Off the seesaw, M1 is M2: a seesaw with inertia stretches the rope whatever it carries.)
@@ -183,8 +185,10 @@ void Model::stretchy_modes(bool was_stretched, const Discrete& d, std::vector<Ev
   bool pulls = was_stretched;
   for (std::size_t i = first; i < out.size(); ++i) {
     Event& e = out[i];
-    const bool rests_before = e.mode_before == Mode::M5 || (i > first ? out[i - 1].mode_after == Mode::M5 : false);
-    const bool rests_after = e.type == EventType::lid_rests || (e.type != EventType::lid_lifts && rests_before);
+    const bool rests_before =
+        e.mode_before == Mode::M5 || (i > first ? out[i - 1].mode_after == Mode::M5 : false);
+    const bool rests_after =
+        e.type == EventType::lid_rests || (e.type != EventType::lid_lifts && rests_before);
     const bool pulls_after =
         e.type == EventType::rope_taut ? true : (e.type == EventType::rope_slack ? false : pulls);
     if (pulls) e.mode_before = named(e.mode_before, rests_before);

@@ -24,8 +24,8 @@ void set_values(Config& cfg, const std::vector<std::string>& keys, const double*
 
 // An event's reported time uncertainty is the integrator's local error carried to the event
 // (Crossing::uncertainty). Measured against runs at tolerance 1e-14 on random machines, the error
-// can be several times that: 1.4 times on docs/performance.md's 10^4 grid, 5 times where an uncertain rope_slack
-// moved the lid's opening after it, and far more where the seesaw has mass or the hinges damp,
+// can be several times that: 1.4 times on docs/performance.md's 10^4 grid, 5 times where an uncertain
+// rope_slack moved the lid's opening after it, and far more where the seesaw has mass or the hinges damp,
 // since errors then travel along long pieces and through later impacts (250 times after 1.1 s of
 // a heavy seesaw holding the lid; a heavy seesaw's sandbag that grazes the pivot reaches it or
 // not by the last digits). An impact also multiplies the error of its own time: located to
@@ -113,7 +113,7 @@ double difference(const Reported& a, const Reported& b) {
 
 // Runs one machine in a scratch config that already holds the base values.
 Outcome run_machine(Config& work, const std::vector<std::string>& keys, const double* values,
-                   double accuracy) {
+                    double accuracy) {
   Outcome o;
   o.first.assign(event_types().size(), kNaN);
   try {
@@ -125,14 +125,14 @@ Outcome run_machine(Config& work, const std::vector<std::string>& keys, const do
     require_finite(res);  // a NaN state is a failed run, not a row of nan
     if (accuracy > 0.0 && !tolerance_given && sc.run.integrator == IntegratorKind::adaptive) {
       const Machine& m = sc.machine;
-      const bool carries_errors = m.seesaw_inertia > 0.0 || m.pivot_damping > 0.0 || m.lid_hinge_damping > 0.0 ||
-                                  m.balloon_drag_rate() > 0.0;
+      const bool carries_errors = m.seesaw_inertia > 0.0 || m.pivot_damping > 0.0 ||
+                                  m.lid_hinge_damping > 0.0 || m.balloon_drag_rate() > 0.0;
       double u = reported_uncertainty(res, accuracy);
       // A run again locates its events for its tighter tolerance: an earlier event placed less
       // exactly than that would move the later ones as much (and see kRerunLocating).
       const auto locate_for_tolerance = [&sc, accuracy] {
-        sc.run.event_time_tolerance =
-            std::fmin(std::fmin(sc.run.event_time_tolerance, sc.run.tolerance / 10.0), kRerunLocating * accuracy);
+        sc.run.event_time_tolerance = std::fmin(
+            std::fmin(sc.run.event_time_tolerance, sc.run.tolerance / 10.0), kRerunLocating * accuracy);
       };
       if (carries_errors) {
         Reported before = reported(res);

@@ -158,7 +158,8 @@ Machines Machines::points_of(std::vector<std::string> keys, std::vector<double> 
   return points_from(std::move(keys), std::move(points), 0);
 }
 
-Machines Machines::points_from(std::vector<std::string> keys, std::vector<double> points, std::int64_t first) {
+Machines Machines::points_from(std::vector<std::string> keys, std::vector<double> points,
+                               std::int64_t first) {
   Machines m = of_keys(std::move(keys));
   const std::size_t dims = m.plan_.ranges.size();
   if (points.empty() || points.size() % dims != 0)

@@ -19,7 +19,10 @@ namespace {
 class Pool {
  public:
   Pool(std::vector<char>& done, const std::function<PointFn()>& make_worker, const PoolHooks& hooks)
-      : done_(done), make_worker_(make_worker), hooks_(hooks), total_(static_cast<std::int64_t>(done.size())) {
+      : done_(done),
+        make_worker_(make_worker),
+        hooks_(hooks),
+        total_(static_cast<std::int64_t>(done.size())) {
     std::int64_t first = 0, already = 0;
     while (first < total_ && done_[static_cast<std::size_t>(first)]) ++first;
     for (char d : done_) already += d != 0;
@@ -46,7 +49,8 @@ class Pool {
   static constexpr std::int64_t kBlock = 8, kWake = 256;
 
   bool stopped() const {
-    return failed_.load(std::memory_order_relaxed) || (hooks_.stop && hooks_.stop->load(std::memory_order_relaxed));
+    return failed_.load(std::memory_order_relaxed) ||
+           (hooks_.stop && hooks_.stop->load(std::memory_order_relaxed));
   }
 
   // A worker's life. An exception in it (out of memory) stops the others and is thrown again by

@@ -19,14 +19,6 @@ namespace whatnext::explore {
 const char* const kProgramVersion = WHATNEXT_VERSION;
 
 namespace {
-// The start of machine i's row: its index and values, and the comma before its outcome.
-std::string row_start(const Machines& machines, std::int64_t i, std::vector<double>& values) {
-  machines.point(i, values.data());
-  std::string out = fmt::format(FMT_COMPILE("{}"), i);
-  for (double v : values) fmt::format_to(std::back_inserter(out), FMT_COMPILE(",{}"), v);
-  return out + ",";
-}
-
 // The varied keys of a header line, for a message: "a, b" of "index,a,b,outcome,...".
 std::string header_keys(std::string_view line) {
   const auto a = line.find(',');
@@ -52,10 +44,12 @@ bool check_header(std::string_view text, const std::string& header, std::string_
     return false;
   }
   const std::string_view first = text.substr(0, eol + 1);
-  if (eol > 0 && text[eol - 1] == '\r' && header.compare(0, header.size() - 1, first.substr(0, eol - 1)) == 0) {
-    throw InputError(fmt::format("{}: its lines end in CR LF (as an editor or a copy from Windows may leave them), "
-                                 "not in the LF whatnext writes; convert them back (dos2unix) or {}",
-                                 what, words.remedy));
+  if (eol > 0 && text[eol - 1] == '\r' &&
+      header.compare(0, header.size() - 1, first.substr(0, eol - 1)) == 0) {
+    throw InputError(
+        fmt::format("{}: its lines end in CR LF (as an editor or a copy from Windows may leave them), "
+                    "not in the LF whatnext writes; convert them back (dos2unix) or {}",
+                    what, words.remedy));
   }
   if (first != header) {
     throw InputError(
@@ -129,12 +123,9 @@ namespace {
 // A value as the identity writes it: numbers in the shortest form that reads back the same.
 std::string value_text(const ConfigValue& v) {
   switch (v.type) {
-    case ConfigValue::Type::text:
-      return fmt::format("'{}'", printable(v.text, 200));
-    case ConfigValue::Type::pair:
-      return fmt::format("[{}, {}]", shortest(v.pair[0]), shortest(v.pair[1]));
-    case ConfigValue::Type::number:
-      break;
+    case ConfigValue::Type::text: return fmt::format("'{}'", printable(v.text, 200));
+    case ConfigValue::Type::pair: return fmt::format("[{}, {}]", shortest(v.pair[0]), shortest(v.pair[1]));
+    case ConfigValue::Type::number: break;
   }
   return shortest(v.number);
 }
@@ -170,16 +161,18 @@ std::vector<std::pair<std::string_view, std::string_view>> identity_lines(std::s
 
 std::string sweep_identity(const Config& base, const Machines& machines, double accuracy) {
   std::string out = fmt::format("whatnext sweep identity 1\nprogram = whatnext {}\n", kProgramVersion);
-  out += fmt::format("accuracy = {}\n", accuracy > 0.0 ? shortest(accuracy) : "the machine's own run settings");
-  for (const auto& [key, value] : base.values) out += fmt::format("machine {} = {}\n", key, value_text(value));
+  out +=
+      fmt::format("accuracy = {}\n", accuracy > 0.0 ? shortest(accuracy) : "the machine's own run settings");
+  for (const auto& [key, value] : base.values)
+    out += fmt::format("machine {} = {}\n", key, value_text(value));
   const Plan& plan = machines.plan();
   if (machines.is_grid()) {
     for (std::size_t d = 0; d < plan.ranges.size(); ++d) {
       const std::vector<double> axis = machines.axis(d);
       Digest digest;
       for (double v : axis) digest.add(v);
-      out += fmt::format("values of {} = {} from {} to {} (digest {:016x})\n", plan.ranges[d].key, axis.size(),
-                         shortest(axis.front()), shortest(axis.back()), digest.h);
+      out += fmt::format("values of {} = {} from {} to {} (digest {:016x})\n", plan.ranges[d].key,
+                         axis.size(), shortest(axis.front()), shortest(axis.back()), digest.h);
     }
     return out;
   }
@@ -195,7 +188,8 @@ std::string sweep_identity(const Config& base, const Machines& machines, double 
   return out;
 }
 
-void check_identity(std::string_view now, std::string_view file, std::string_view what, const ResumeWords& words) {
+void check_identity(std::string_view now, std::string_view file, std::string_view what,
+                    const ResumeWords& words) {
   if (now == file) return;
   const auto here = identity_lines(now), there = identity_lines(file);
   const auto find = [](const auto& lines, std::string_view name) -> const std::string_view* {
@@ -222,10 +216,11 @@ void check_identity(std::string_view now, std::string_view file, std::string_vie
   }
   const bool plan = name.rfind("values of ", 0) == 0 || name.rfind("machines", 0) == 0;
   if (name.rfind("machine ", 0) == 0) name.remove_prefix(8);
-  throw InputError(fmt::format("{}: was written by another sweep ({}: {} here, {} in the file); the file is another "
-                               "sweep's ({}): {}",
-                               what, printable(name, 80), printable(a, 80), printable(b, 80),
-                               plan ? words.plan : words.machine, words.remedy));
+  throw InputError(
+      fmt::format("{}: was written by another sweep ({}: {} here, {} in the file); the file is another "
+                  "sweep's ({}): {}",
+                  what, printable(name, 80), printable(a, 80), printable(b, 80),
+                  plan ? words.plan : words.machine, words.remedy));
 }
 
 }  // namespace whatnext::explore

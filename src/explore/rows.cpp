@@ -132,7 +132,10 @@ std::string read_row(std::string_view line, std::size_t n_keys, Row& row) {
     double* const own[] = {&o.outcome_t, &o.final_r, &o.final_phi_l_deg};
     for (std::size_t k = 0; k < 3; ++k) {
       if (!finite_cell(cell[2 + n_keys + k], *own[k]))
-        return fmt::format("its {} '{}' is not a finite number", k == 0 ? "outcome_t" : k == 1 ? "final_r" : "final_phi_l_deg",
+        return fmt::format("its {} '{}' is not a finite number",
+                           k == 0   ? "outcome_t"
+                           : k == 1 ? "final_r"
+                                    : "final_phi_l_deg",
                            printable(cell[2 + n_keys + k], 24));
     }
     for (std::size_t e = 0; e < types.size(); ++e) {

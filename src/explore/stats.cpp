@@ -14,7 +14,8 @@ double Distribution::quantile(double p) const {
   return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
 }
 
-Distribution distribution(const std::vector<Outcome>& rows, const std::vector<char>& done, std::string_view value) {
+Distribution distribution(const std::vector<Outcome>& rows, const std::vector<char>& done,
+                          std::string_view value) {
   Distribution d;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     if (i >= done.size() || !done[i] || !rows[i].valid) continue;

@@ -87,8 +87,8 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
   return res;
 }
 
-std::vector<Outcome> run_chunk(const Config& base, const Machines& machines, std::int64_t begin, std::int64_t end,
-                               const RunOptions& options, std::vector<char>* done) {
+std::vector<Outcome> run_chunk(const Config& base, const Machines& machines, std::int64_t begin,
+                               std::int64_t end, const RunOptions& options, std::vector<char>* done) {
   std::vector<Outcome> rows(static_cast<std::size_t>(std::max<std::int64_t>(0, end - begin)));
   std::vector<char> own(rows.size(), 0);
   std::vector<char>& ran = done ? *done : own;

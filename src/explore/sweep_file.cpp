@@ -18,7 +18,10 @@
 namespace whatnext::explore {
 
 SweepFile::SweepFile(std::string target, std::string given, std::string option)
-    : target_(std::move(target)), part_(target_ + ".part"), given_(std::move(given)), option_(std::move(option)) {
+    : target_(std::move(target)),
+      part_(target_ + ".part"),
+      given_(std::move(given)),
+      option_(std::move(option)) {
   struct stat st {};
   if (::lstat(part_.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
     throw InputError(fmt::format("{} {}: {}.part is not a regular file", option_, printable(given_, 96),
@@ -36,9 +39,9 @@ SweepFile::SweepFile(std::string target, std::string given, std::string option)
     ::close(fd_);
     fd_ = -1;
     if (err == EWOULDBLOCK) {
-      throw InputError(fmt::format(
-          "{} {}: another sweep is writing {}.part now; wait for it to end, or give another name", option_,
-          printable(given_, 96), printable(given_, 96)));
+      throw InputError(
+          fmt::format("{} {}: another sweep is writing {}.part now; wait for it to end, or give another name",
+                      option_, printable(given_, 96), printable(given_, 96)));
     }
     errno = err;
     fail("cannot lock its .part file", false);
@@ -63,8 +66,8 @@ std::string SweepFile::previous() {
       const ssize_t n = ::pread(fd_, block, sizeof block, at);
       if (n < 0 && errno == EINTR) continue;
       if (n < 0) {
-        throw InputError(fmt::format("{} {}: cannot read it: {}", option_, printable(source(), 96),
-                                     std::strerror(errno)));
+        throw InputError(
+            fmt::format("{} {}: cannot read it: {}", option_, printable(source(), 96), std::strerror(errno)));
       }
       if (n == 0) break;
       text.append(block, static_cast<std::size_t>(n));
@@ -91,10 +94,13 @@ void SweepFile::start(std::string_view kept) {
     ssize_t n = 0;
     do n = ::pread(fd_, head, sizeof head, 0);
     while (n < 0 && errno == EINTR);
-    if (n > 0 && head[0] != '\0' && std::string_view(head, static_cast<std::size_t>(n)) != std::string_view("index,", static_cast<std::size_t>(n))) {
-      throw InputError(fmt::format("{} {}: {}.part exists and is not a sweep's CSV; whatnext does not write over "
-                                   "it (move it away, or give another name)",
-                                   option_, printable(given_, 96), printable(given_, 96)));
+    if (n > 0 && head[0] != '\0' &&
+        std::string_view(head, static_cast<std::size_t>(n)) !=
+            std::string_view("index,", static_cast<std::size_t>(n))) {
+      throw InputError(
+          fmt::format("{} {}: {}.part exists and is not a sweep's CSV; whatnext does not write over "
+                      "it (move it away, or give another name)",
+                      option_, printable(given_, 96), printable(given_, 96)));
     }
   }
   if (::ftruncate(fd_, static_cast<off_t>(in_place ? kept.size() : 0)) != 0)

@@ -40,8 +40,8 @@ SweepJob::SweepJob(const Config& base, const Machines& machines, double accuracy
 
 SweepJob::~SweepJob() = default;
 
-void SweepJob::to_file(const std::string& target, const std::string& given, std::string_view option, bool resume,
-                       std::string_view resume_option, const ResumeWords& words) {
+void SweepJob::to_file(const std::string& target, const std::string& given, std::string_view option,
+                       bool resume, std::string_view resume_option, const ResumeWords& words) {
   file_ = std::make_unique<SweepFile>(target, given, std::string(option));
   identity_path_ = target + ".id";
   part_identity_path_ = target + ".part.id";
@@ -66,9 +66,10 @@ void SweepJob::to_file(const std::string& target, const std::string& given, std:
   const bool part_identity = file_->from_part() || read_identity(part_identity_path_, file_identity);
   const std::string& path = part_identity ? part_identity_path_ : identity_path_;
   if (!read_identity(path, file_identity)) {
-    throw InputError(fmt::format("{}: {}{}.id, which says what sweep wrote it, is missing, so its rows cannot be "
-                                 "proven this sweep's; {}",
-                                 what, printable(given, 96), part_identity ? ".part" : "", words.remedy));
+    throw InputError(
+        fmt::format("{}: {}{}.id, which says what sweep wrote it, is missing, so its rows cannot be "
+                    "proven this sweep's; {}",
+                    what, printable(given, 96), part_identity ? ".part" : "", words.remedy));
   }
   check_identity(identity_, file_identity, what, words);
   kept_ = read_resumable(text_, machines_, base_, accuracy_, what, words);
@@ -155,7 +156,8 @@ void SweepJob::commit() {
   file_->commit();
   // The identity follows its file: the old NAME.id stays until the new NAME is in place.
   if (std::rename(part_identity_path_.c_str(), identity_path_.c_str()) != 0) {
-    throw OutputError(fmt::format("{}: writing failed: {}", printable(identity_path_, 96), std::strerror(errno)));
+    throw OutputError(
+        fmt::format("{}: writing failed: {}", printable(identity_path_, 96), std::strerror(errno)));
   }
 }
 

@@ -101,19 +101,21 @@ void check_rope_pace(const Reader& in, const Machine& m, const RunSettings& run)
   if (radians > kMaxRopeRadians) {
     const double most = mass * std::pow(kMaxRopeRadians / run.t_max, 2);
     in.fail("rope.stiffness",
-            fmt::format("makes the rope ring {:.3g} radians within run.t_max = {} s (sqrt(k / m) with m = {:.3g} kg, "
-                        "the sandbag or a third of the lid), more than the {:.0e} a run can follow in seconds: at "
-                        "most {:.3g} N/m here, or a shorter run.t_max (given {})",
-                        radians, fmt_num(run.t_max), mass, kMaxRopeRadians, most, fmt_num(m.rope_stiffness)));
+            fmt::format(
+                "makes the rope ring {:.3g} radians within run.t_max = {} s (sqrt(k / m) with m = {:.3g} kg, "
+                "the sandbag or a third of the lid), more than the {:.0e} a run can follow in seconds: at "
+                "most {:.3g} N/m here, or a shorter run.t_max (given {})",
+                radians, fmt_num(run.t_max), mass, kMaxRopeRadians, most, fmt_num(m.rope_stiffness)));
   }
   const double decays = m.rope_damping / mass * run.t_max;
   if (decays > kMaxRopeDecays) {
     const double most = mass * kMaxRopeDecays / run.t_max;
     in.fail("rope.damping",
-            fmt::format("makes the rope's damper stop its ends {:.3g} times within run.t_max = {} s (c / m with "
-                        "m = {:.3g} kg, the sandbag or a third of the lid), more than the {:.0e} a run can follow "
-                        "in seconds: at most {:.3g} N s/m here, or a shorter run.t_max (given {})",
-                        decays, fmt_num(run.t_max), mass, kMaxRopeDecays, most, fmt_num(m.rope_damping)));
+            fmt::format(
+                "makes the rope's damper stop its ends {:.3g} times within run.t_max = {} s (c / m with "
+                "m = {:.3g} kg, the sandbag or a third of the lid), more than the {:.0e} a run can follow "
+                "in seconds: at most {:.3g} N s/m here, or a shorter run.t_max (given {})",
+                decays, fmt_num(run.t_max), mass, kMaxRopeDecays, most, fmt_num(m.rope_damping)));
   }
 }
 

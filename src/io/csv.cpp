@@ -85,8 +85,9 @@ void CsvWriter::on_sample(const Snapshot& s) {
 }
 
 void CsvWriter::on_samples(const SampleBatch& batch) {
-  rows_->write(batch.size(),
-               [&](std::size_t i, char* out) { return format_csv(batch.snapshot(i), "", nullptr, impulses_, out); });
+  rows_->write(batch.size(), [&](std::size_t i, char* out) {
+    return format_csv(batch.snapshot(i), "", nullptr, impulses_, out);
+  });
 }
 
 void CsvWriter::on_event(const Event& e) {

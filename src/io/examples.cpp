@@ -15,7 +15,8 @@ Config example_config(int n) {
 Config example_config(std::string_view name) {
   const std::string_view text = example_toml(name);
   if (text.empty()) {
-    throw InputError(fmt::format("--example: the examples are 1 to 4 (the paper's) and konstanz (given '{}')", name));
+    throw InputError(
+        fmt::format("--example: the examples are 1 to 4 (the paper's) and konstanz (given '{}')", name));
   }
   return parse_toml(text, fmt::format("{}.toml", name));
 }

@@ -30,12 +30,12 @@ constexpr double kMinDensity = 1e-3, kMaxDensity = 1e3;  // [kg/m^3]
 constexpr double kMinGravity = 1e-2, kMaxGravity = 1e3;  // [m/s^2]
 constexpr double kMaxTime = 1e4;                         // run.t_max [s]
 constexpr double kMinTolerance = 1e-15, kMaxTolerance = 1e-3;
-constexpr double kMaxBalloonG = 1e3;  // free balloon's acceleration [g]
-constexpr double kMaxDrag = 10.0;     // drag coefficient
-constexpr double kMaxDamping = 1e3;   // [N m s/rad]
+constexpr double kMaxBalloonG = 1e3;       // free balloon's acceleration [g]
+constexpr double kMaxDrag = 10.0;          // drag coefficient
+constexpr double kMaxDamping = 1e3;        // [N m s/rad]
 constexpr double kMaxCoulombTorque = 1e3;  // [N m]: a pivot that holds a tonne at a metre
-constexpr double kMaxInertia = 1e4;   // seesaw [kg m^2]
-constexpr double kMaxForce = 1e4;     // the radio's switch [N]
+constexpr double kMaxInertia = 1e4;        // seesaw [kg m^2]
+constexpr double kMaxForce = 1e4;          // the radio's switch [N]
 
 // --- validation helpers ---------------------------------------------------------------------
 

@@ -31,8 +31,10 @@ void apply_set(Config& cfg, std::string_view assignment) {
   if (!spec) unknown_key("--set", key);
   // A number given as its table's default word ("endless", "inextensible", "bar") is the key left
   // out: how a rope that stretches is set back to the inextensible one (the page compares them).
-  const bool word_default = !spec->default_text.empty() && std::isalpha(static_cast<unsigned char>(spec->default_text[0]));
-  if (word_default && spec->kind != KeyKind::text && spec->kind != KeyKind::flag && value == spec->default_text) {
+  const bool word_default =
+      !spec->default_text.empty() && std::isalpha(static_cast<unsigned char>(spec->default_text[0]));
+  if (word_default && spec->kind != KeyKind::text && spec->kind != KeyKind::flag &&
+      value == spec->default_text) {
     cfg.values.erase(key);
     return;
   }

@@ -27,8 +27,9 @@ std::string outcome_sentence(const Result& result) {
       // With the radio the lid may have opened (and latched) before: say so.
       for (const Event& open : result.events) {
         if (open.type == EventType::lid_open) {
-          return fmt::format("seesaw vertical at {:.3f} s, after the lid opened at {:.3f} s; the radio is not on",
-                             e.t, open.t);
+          return fmt::format(
+              "seesaw vertical at {:.3f} s, after the lid opened at {:.3f} s; the radio is not on", e.t,
+              open.t);
         }
       }
       if (!s.on_seesaw) {  // a seesaw with mass that lost its sandbag (no somersaults, docs/model.md §6)
@@ -76,7 +77,8 @@ std::string outcome_sentence(const Result& result) {
 
 std::string impulse_text(const Event& e) {
   // Each contact's impulse (docs/model.md §7): N s, the lid's a torque's, N m s.
-  static constexpr const char* kName[6] = {"sandbag", "rope", "lid", "stop", "floor on seesaw", "floor on sandbag"};
+  static constexpr const char* kName[6] = {"sandbag",         "rope", "lid", "stop", "floor on seesaw",
+                                           "floor on sandbag"};
   static constexpr const char* kUnit[6] = {"N s", "N s", "N m s", "N s", "N s", "N s"};
   std::string out;
   for (int i = 0; i < 6; ++i) {

@@ -483,8 +483,10 @@ val forces(val input, val state, double arm, double stop_height, val release, va
     if (mp.rope.size() >= 2) {
       const bool bag_first = std::hypot(mp.rope.front().x - mp.sandbag.x, mp.rope.front().h - mp.sandbag.h) <=
                              std::hypot(mp.rope.back().x - mp.sandbag.x, mp.rope.back().h - mp.sandbag.h);
-      const Vec2 a = bag_first ? mp.rope.front() : mp.rope.back(), a1 = bag_first ? mp.rope[1] : mp.rope[mp.rope.size() - 2];
-      const Vec2 b = bag_first ? mp.rope.back() : mp.rope.front(), b1 = bag_first ? mp.rope[mp.rope.size() - 2] : mp.rope[1];
+      const Vec2 a = bag_first ? mp.rope.front() : mp.rope.back(),
+                 a1 = bag_first ? mp.rope[1] : mp.rope[mp.rope.size() - 2];
+      const Vec2 b = bag_first ? mp.rope.back() : mp.rope.front(),
+                 b1 = bag_first ? mp.rope[mp.rope.size() - 2] : mp.rope[1];
       to_rope_bag = unit({a1.x - a.x, a1.h - a.h});
       to_rope_lid = unit({b1.x - b.x, b1.h - b.h});
       knot = b;
@@ -524,7 +526,8 @@ val forces(val input, val state, double arm, double stop_height, val release, va
       const double tension = get("tension");
       arrow("tension_on_sandbag", mp.sandbag, scaled(to_rope_bag, tension), "N");
       arrow("tension_on_lid", knot, scaled(to_rope_lid, tension), "N");
-      if (get("on_seesaw") != 0.0) arrow("arm_on_sandbag", mp.sandbag, scaled(normal, get("normal_force")), "N");
+      if (get("on_seesaw") != 0.0)
+        arrow("arm_on_sandbag", mp.sandbag, scaled(normal, get("normal_force")), "N");
       arrow("stop_on_sandbag", mp.sandbag, scaled(along, get("stop_reaction")), "N");
       arrow("floor_on_seesaw", grounded_end, scaled(up, get("floor_reaction")), "N");
       arrow("floor_on_sandbag", mp.sandbag, scaled(up, get("bag_floor_reaction")), "N");

@@ -184,7 +184,8 @@ class Table : public Observer {
  private:
   void add(const Snapshot& s, std::string event) {
     data_[0].push_back(s.t);
-    for (std::size_t c = 0; c < state_columns().size(); ++c) data_[c + 1].push_back(state_columns()[c].value(s));
+    for (std::size_t c = 0; c < state_columns().size(); ++c)
+      data_[c + 1].push_back(state_columns()[c].value(s));
     event_.push_back(std::move(event));
   }
   long stride_, samples_ = 0;

@@ -18,6 +18,7 @@ struct Distribution {
   double quantile(double p) const;
 };
 // Over the machines i with done[i] (value_of's names).
-Distribution distribution(const std::vector<Outcome>& rows, const std::vector<char>& done, std::string_view value);
+Distribution distribution(const std::vector<Outcome>& rows, const std::vector<char>& done,
+                          std::string_view value);
 
 }  // namespace whatnext::explore

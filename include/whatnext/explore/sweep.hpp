@@ -64,8 +64,9 @@ SweepResult run(const Config& base, const Machines& machines, const RunOptions& 
 // stop leaves the machines not run with a default Outcome, and `done` says which ran): the
 // evaluation of one chunk of a distributed sweep (Python's Dask sweeps). Each row depends only on
 // its machine, so chunks run anywhere give the rows of one sweep.
-std::vector<Outcome> run_chunk(const Config& base, const Machines& machines, std::int64_t begin, std::int64_t end,
-                               const RunOptions& options, std::vector<char>* done = nullptr);
+std::vector<Outcome> run_chunk(const Config& base, const Machines& machines, std::int64_t begin,
+                               std::int64_t end, const RunOptions& options,
+                               std::vector<char>* done = nullptr);
 
 inline Distribution distribution(const SweepResult& result, std::string_view value) {
   return distribution(result.rows, result.done, value);
