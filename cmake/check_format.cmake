@@ -2,7 +2,7 @@
 # and C++ file of the tree, one test. Run as cmake -DSOURCE=<tree> -DCLANG_FORMAT=<program> -P.
 file(GLOB_RECURSE sources LIST_DIRECTORIES false
      ${SOURCE}/src/*.cpp ${SOURCE}/src/*.hpp ${SOURCE}/include/*.hpp ${SOURCE}/apps/*.cpp ${SOURCE}/apps/*.hpp
-     ${SOURCE}/tests/*.cpp ${SOURCE}/tests/*.hpp ${SOURCE}/python/src/*.cpp ${SOURCE}/web/wasm/*.cpp
+     ${SOURCE}/tests/*.cpp ${SOURCE}/tests/*.hpp ${SOURCE}/python/src/*.cpp ${SOURCE}/web/wasm/*.cpp ${SOURCE}/web/wasm/*.hpp
      ${SOURCE}/bench/*.cpp ${SOURCE}/bench/*.c ${SOURCE}/fuzz/*.cpp)
 list(LENGTH sources count)
 if(count LESS 50)

@@ -19,6 +19,7 @@
 #include "whatnext/output.hpp"
 #include "whatnext/simulate.hpp"
 #include "whatnext/viz/recording.hpp"
+#include "page_input.hpp"
 #include "viz/scene.hpp"
 
 namespace whatnext::web {
@@ -41,36 +42,12 @@ struct Input {
 
 Input load(const val& in) {
   Input out;
-  const std::string text = in["toml"].as<std::string>(), source = in["source"].as<std::string>();
-  const bool inp = in["format"].isString() && in["format"].as<std::string>() == "inp";
-  out.config = inp ? parse_inp(text, source) : parse_toml(text, source);
+  out.config = config_of(in);
   const std::vector<std::string> sets = emscripten::vecFromJSArray<std::string>(in["sets"]);
-  for (const std::string& s : sets) apply_set(out.config, s);
   out.scenario = build_scenario(out.config);
   // As the CLI labels its runs, so that timeline and JSON read the same.
   out.label = input_label(in["label"].as<std::string>(), sets);
   return out;
-}
-
-// Runs fn(); a bad input or a failed run becomes {ok: false, kind, message}.
-template <class Fn>
-val guarded(Fn&& fn) {
-  auto failure = [](const char* kind, const char* message) {
-    val r = val::object();
-    r.set("ok", false);
-    r.set("kind", std::string(kind));
-    r.set("message", std::string(message));
-    return r;
-  };
-  try {
-    return fn();
-  } catch (const InputError& e) {
-    return failure("input", e.what());
-  } catch (const SimulationError& e) {
-    return failure("simulation", e.what());
-  } catch (const std::exception& e) {
-    return failure("error", e.what());
-  }
 }
 
 val text_result(const std::string& text) {

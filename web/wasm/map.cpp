@@ -22,43 +22,13 @@
 #include "whatnext/events.hpp"
 #include "whatnext/explore/sweep.hpp"
 #include "whatnext/simulate.hpp"
+#include "page_input.hpp"
 
 namespace whatnext::web {
 
 namespace {
 
 using emscripten::val;
-
-val failure(const char* kind, const char* message) {
-  val r = val::object();
-  r.set("ok", false);
-  r.set("kind", std::string(kind));
-  r.set("message", std::string(message));
-  return r;
-}
-
-template <class Fn>
-val guarded(Fn&& fn) {
-  try {
-    return fn();
-  } catch (const InputError& e) {
-    return failure("input", e.what());
-  } catch (const SimulationError& e) {
-    return failure("simulation", e.what());
-  } catch (const std::exception& e) {
-    return failure("error", e.what());
-  }
-}
-
-// The machine as the page sends it ({toml, source, format, sets}), read as the CLI reads a file
-// and its --set options.
-Config config_of(const val& in) {
-  const std::string text = in["toml"].as<std::string>(), source = in["source"].as<std::string>();
-  const bool inp = in["format"].isString() && in["format"].as<std::string>() == "inp";
-  Config config = inp ? parse_inp(text, source) : parse_toml(text, source);
-  for (const std::string& s : emscripten::vecFromJSArray<std::string>(in["sets"])) apply_set(config, s);
-  return config;
-}
 
 val f64(const std::vector<double>& v) {  // a copy, independent of the wasm memory
   return val::global("Float64Array").new_(emscripten::typed_memory_view(v.size(), v.data()));
