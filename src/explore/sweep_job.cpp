@@ -104,6 +104,9 @@ void SweepJob::start() {
   // An identity beside the .part file says what the .part file holds: from here on, until the
   // new one is written, it holds nothing of the old one's.
   if (!(file_->from_part() && !fresh)) (void)std::remove(part_identity_path_.c_str());
+  // Rows kept from the finished file are copied into the .part file only under their identity: a
+  // kill while they are copied leaves rows that are still provably this sweep's.
+  if (!fresh) write_identity(part_identity_path_, identity_);
   file_->start(fresh ? std::string_view() : std::string_view(text_).substr(0, kept_.prefix_bytes));
   if (fresh) {
     // The file holds its header before the identity is written: a .part file that is empty is
@@ -112,8 +115,8 @@ void SweepJob::start() {
     file_->stream().write(header.data(), static_cast<std::streamsize>(header.size()));
     file_->sync();
     kept_.header = true;
+    write_identity(part_identity_path_, identity_);
   }
-  write_identity(part_identity_path_, identity_);
   stream_ = &file_->stream();
   stream_sync_ = [this] { file_->sync(); };
 }
