@@ -50,6 +50,7 @@ std::atomic<int> early_interrupt{0};
 // Interrupts stop the sweep instead of ending the process while this lives.
 struct InterruptStops {
   explicit InterruptStops(const std::function<void(int)>& stop) {
+    settle_interrupts();  // an interrupt already queued reaches hold_early_interrupts' handler
     set_interrupt_handler(stop);
     if (const int sig = early_interrupt.exchange(0)) stop(sig);
   }

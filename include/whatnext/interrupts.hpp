@@ -29,5 +29,9 @@ void forget_writing_process(int pid);
 // what it has), once; temporaries are then cleaned up by their owners. An empty function:
 // interrupts end the process again.
 void set_interrupt_handler(std::function<void(int)> stop);
+// Returns once every interrupt that landed before the call has reached the handler then set (the
+// signal handler only queues it for the watcher thread): a handler handed over after this misses
+// none of them.
+void settle_interrupts();
 
 }  // namespace whatnext

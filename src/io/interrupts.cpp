@@ -44,6 +44,11 @@ void watch(int pipe_read) {
     if (n <= 0) return;
     Interrupts& in = interrupts();
     std::unique_lock<std::mutex> hold(in.lock);
+    if (sig == 0) {  // settle_interrupts(): every signal before it has been handled
+      ++in.zeros_read;
+      in.settled.notify_all();
+      continue;
+    }
     if (in.stop) {
       if (!in.stopped) in.stop(sig);
       in.stopped = true;
@@ -117,6 +122,19 @@ void forget_writing_process(int pid) {
 
 void remove_on_interrupt(const std::string& path) { add_path(path); }
 void forget_on_interrupt(const std::string& path) { drop_path(path); }
+
+void settle_interrupts() {
+  Interrupts& in = interrupts();
+  if (in.pipe_write < 0) return;
+  std::unique_lock<std::mutex> hold(in.lock);
+  const std::uint64_t want = in.zeros_read + 1;
+  hold.unlock();
+  const unsigned char zero = 0;
+  while (::write(in.pipe_write, &zero, 1) < 0 && errno == EINTR) {
+  }
+  hold.lock();
+  in.settled.wait(hold, [&in, want] { return in.zeros_read >= want; });
+}
 
 void set_interrupt_handler(std::function<void(int)> stop) {
   std::lock_guard<std::mutex> hold(interrupts().lock);

@@ -2,6 +2,8 @@
 // the files that register their temporaries (atomic_file.cpp).
 #pragma once
 
+#include <condition_variable>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <set>
@@ -21,6 +23,9 @@ struct Interrupts {
   std::function<void(int)> stop;
   bool stopped = false;
   int pipe_write = -1;
+  // settle_interrupts(): a zero byte through the pipe, counted when the watcher reads it.
+  std::condition_variable settled;
+  std::uint64_t zeros_read = 0;
 };
 Interrupts& interrupts();
 
