@@ -184,9 +184,14 @@ void Model::stretched_rope_left(HybridState& hs, std::vector<Event>& out) const 
   if (heavy_ || d.on_seesaw || d.taut || d.latched) return;
   const Kinematics k = kinematics(d, hs.y);
   if (!(rope_.span(k.phi_s, k.phi_l) > rope_.rope_length())) return;
+  // The seesaw turns to where the rope is l_R long, the lid stays: the lid has inertia.
   d.stretched = false;
+  d.side = RopeGeometry::side_of(rope_.lid_edge(k.phi_l), rope_.seesaw_end(k.phi_s));
+  double phi_s = k.phi_s;
+  if (!rope_.seesaw_angle_for(k.phi_l, d.side, phi_s)) return;
+  d.parked_seesaw = phi_s;
   const std::size_t first = out.size();
-  resolve(hs, k, kRope, Trend::closing, out);
+  resolve(hs, kinematics(d, hs.y), kRope, Trend::closing, out);
   if (out.size() == first || out[first].type != EventType::rope_taut || !d.taut) {
     throw SimulationError("the rope let go of the unloaded massless seesaw while longer than l_R, which the "
                           "model of a rope that stretches does not cover (docs/impact.md)");
