@@ -181,7 +181,18 @@ void Model::stretched_rope_left(HybridState& hs, std::vector<Event>& out) const 
   // and after) whose loss is the spring's (1/2) k s^2: the contact problem decides whether the
   // rope holds the seesaw to the lid after it.
   Discrete& d = hs.d;
-  if (heavy_ || d.on_seesaw || d.taut || d.latched) return;
+  if (heavy_ || d.latched) return;
+  if (d.on_seesaw && spring_rope(d) && !d.stretched) {
+    // The sandbag has landed on a seesaw that followed the lid (the rope at l_R): where the arm now
+    // drives the rope's ends apart the spring pulls from this instant, not a moment later (a rope
+    // longer than l_R that does not pull would store energy that nothing gave it).
+    const Kinematics k = kinematics(d, hs.y);
+    const RopePull p = rope_pull(d, k);
+    if (p.rate > 0.0 && p.stretch >= 0.0 && p.stretch <= kContact)
+      stretchy_jump(kGuardRope, hs, k, d.mode(), out);
+    return;
+  }
+  if (d.on_seesaw || d.taut) return;
   const Kinematics k = kinematics(d, hs.y);
   if (!(rope_.span(k.phi_s, k.phi_l) > rope_.rope_length())) return;
   // The seesaw turns to where the rope is l_R long, the lid stays: the lid has inertia.
