@@ -204,8 +204,9 @@ void Model::stretched_rope_left(HybridState& hs, std::vector<Event>& out) const 
   const std::size_t first = out.size();
   resolve(hs, kinematics(d, hs.y), kRope, Trend::closing, out);
   if (out.size() == first || out[first].type != EventType::rope_taut || !d.taut) {
-    throw SimulationError("the rope let go of the unloaded massless seesaw while longer than l_R, which the "
-                          "model of a rope that stretches does not cover (docs/impact.md)");
+    throw SimulationError(
+        "the rope let go of the unloaded massless seesaw while longer than l_R, which the "
+        "model of a rope that stretches does not cover (docs/impact.md)");
   }
   // No velocity jumps (the seesaw has no inertia, the lid feels no impulse): the positions do.
   Event& e = out[first];
