@@ -118,7 +118,7 @@ class Generator {
       if (pick(0.3)) out.sets.push_back("balloon.drag=true");
       if (pick(0.2)) out.sets.push_back("radio.enabled=true");
       if (pick(0.2)) out.sets.push_back(pick(0.5) ? "balloon.model=lagrangian" : "balloon.model=added-mass");
-    } else if (pick(0.2)) {
+    } else if (stretchy || pick(0.2)) {  // the sandbag leaves a finite arm with the rope stretched
       set("seesaw.left_arm", left_arm);
     }
     if (friction) {  // Coulomb on the arm, at the hinge and (a seesaw with mass) the pivot (issue 20)
@@ -376,6 +376,12 @@ void run_machines(bool heavy, std::uint64_t seed, int count, bool built = false,
           // The one case the rope that stretches does not cover, refused by name (docs/impact.md).
           if (stretchy && std::string(e.what()).find("would pull the sandbag off") != std::string::npos)
             return;
+          // On the massless seesaw the stretched rope pulls the sandbag through the arm alone: where it
+          // creeps to the pivot (r -> 0) under the pull, the spring's rate sqrt(k / (m r^2)) grows
+          // without bound and the step budget ends the run before sandbag_at_pivot (docs/impact.md).
+          if (stretchy && !heavy && std::string(e.what()).find("budget") != std::string::npos &&
+              !rec.samples.empty() && rec.samples.back().on_seesaw && rec.samples.back().r < 1e-3)
+            return;
           checked.fail(m, std::string("simulation error: ") + e.what());
           return;
         }
@@ -453,6 +459,12 @@ TEST(RandomMachines, StretchyRopeBuiltWithMassInvariantsAndToleranceIndependence
 }
 TEST(RandomMachines, StretchyRopeWithFrictionInvariantsAndToleranceIndependence) {
   run_machines(true, 20261202, machine_count(200), true, true, true);
+}
+// On the paper's massless seesaw with a finite arm: the sandbag lands on a seesaw that follows the
+// lid, is thrown off the arm or falls off its end while the rope is stretched (the rope then takes
+// the unloaded seesaw back to its length, an impact that names the spring's energy).
+TEST(RandomMachines, StretchyRopeMasslessInvariantsAndToleranceIndependence) {
+  run_machines(false, 20261203, machine_count(300), false, false, true);
 }
 
 namespace {

@@ -255,6 +255,7 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
     const std::size_t first = out.size();
     const bool was_stretched = hs.d.stretched;
     const bool end = jump_contacts(fired, hs, out);
+    if (!end) stretched_rope_left(hs, out);
     stretchy_modes(was_stretched, hs.d, out, first);
     return end;
   }

@@ -454,6 +454,9 @@ class Model {
   void stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues& g, GuardValues* rates) const;
   bool stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before,
                      std::vector<Event>& out) const;
+  // The sandbag has left the massless seesaw with the rope longer than l_R: the rope takes the
+  // unloaded seesaw back to l_R at once, an impact that takes the spring's energy.
+  void stretched_rope_left(HybridState& hs, std::vector<Event>& out) const;
   static void stretchy_modes(bool was_stretched, const Discrete& d, std::vector<Event>& out,
                              std::size_t first);
   void stretchy_snapshot(const Discrete& d, const Kinematics& k, const State& y, Snapshot& s) const;

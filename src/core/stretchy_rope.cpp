@@ -173,6 +173,49 @@ bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mo
   return false;
 }
 
+void Model::stretched_rope_left(HybridState& hs, std::vector<Event>& out) const {
+  // Nothing with inertia holds the unloaded massless seesaw's end (a seesaw with mass carries the
+  // spring itself): when the sandbag leaves it (off the arm's end, or lifting off) with the rope
+  // longer than l_R, the spring pulls the seesaw back to l_R in no time. The rope is then the
+  // inextensible contact again, and its closing is an impact (rope_taut, with its energy before
+  // and after) whose loss is the spring's (1/2) k s^2: the contact problem decides whether the
+  // rope holds the seesaw to the lid after it.
+  Discrete& d = hs.d;
+  if (heavy_ || d.latched) return;
+  if (d.on_seesaw && spring_rope(d) && !d.stretched) {
+    // The sandbag has landed on a seesaw that followed the lid (the rope at l_R): where the arm now
+    // drives the rope's ends apart the spring pulls from this instant, not a moment later (a rope
+    // longer than l_R that does not pull would store energy that nothing gave it).
+    const Kinematics k = kinematics(d, hs.y);
+    const RopePull p = rope_pull(d, k);
+    if (p.rate > 0.0 && p.stretch >= 0.0 && p.stretch <= kContact)
+      stretchy_jump(kGuardRope, hs, k, d.mode(), out);
+    return;
+  }
+  if (d.on_seesaw || d.taut) return;
+  const Kinematics k = kinematics(d, hs.y);
+  if (!(rope_.span(k.phi_s, k.phi_l) > rope_.rope_length())) return;
+  // The seesaw turns to where the rope is l_R long, the lid stays: the lid has inertia.
+  d.stretched = false;
+  d.side = RopeGeometry::side_of(rope_.lid_edge(k.phi_l), rope_.seesaw_end(k.phi_s));
+  double phi_s = k.phi_s;
+  if (!rope_.seesaw_angle_for(k.phi_l, d.side, phi_s)) return;
+  d.parked_seesaw = phi_s;
+  const std::size_t first = out.size();
+  resolve(hs, kinematics(d, hs.y), kRope, Trend::closing, out);
+  if (out.size() == first || out[first].type != EventType::rope_taut || !d.taut) {
+    throw SimulationError(
+        "the rope let go of the unloaded massless seesaw while longer than l_R, which the "
+        "model of a rope that stretches does not cover (docs/impact.md)");
+  }
+  // No velocity jumps (the seesaw has no inertia, the lid feels no impulse): the positions do.
+  Event& e = out[first];
+  e.impact = true;
+  e.energy_before = energy(k);
+  e.impulse = {};
+  e.law = ImpactLaw::rope;
+}
+
 void Model::stretchy_modes(bool was_stretched, const Discrete& d, std::vector<Event>& out,
                            std::size_t first) {
   // While the spring pulls, M3 (on the arm, the rope's contact open) is M4 or M5: the lid's contact
