@@ -317,6 +317,24 @@ void Model::apply_impact_law(Decision& x) const {
   x.law_note = note;
 }
 
+bool Model::slip_is_rounding(const Decision& x, int i) const {
+  // A slip is zero where stopping it, with the contacts that hold, changes the machine's motion
+  // by rounding only: its own rate alone cannot tell, since a contact that holds may gear it up
+  // (a pivot that turns a millionth as fast as the lid it drives through a taut rope tied next to
+  // the hinge). Measured as the speed sqrt(2 dE / m) of the kinetic energy dE that stopping it takes.
+  contact::System after = x.sys;  // projected from the velocities after the impact
+  after.velocity = x.u;
+  contact::Coords with{}, without{};
+  if (!contact::constrained_velocity(after, x.held | bit(i), with) ||
+      !contact::constrained_velocity(after, x.held, without))
+    return true;  // the rate's own test stands
+  double twice_energy = 0.0;
+  for (int j = 0; j < x.sys.coords; ++j)
+    twice_energy += after.mass[j] * (with[j] - without[j]) * (with[j] - without[j]);
+  const double mass = m_s_ + m_l_ + sc_.machine.seesaw_mass;
+  return twice_energy <= mass * x.ch.rate_tol * x.ch.rate_tol;
+}
+
 void Model::hold_after_impact(Decision& x) const {
   // Touching contacts with zero gap rate after the impact.
   using contact::has;
@@ -324,7 +342,8 @@ void Model::hold_after_impact(Decision& x) const {
   for (int i = 0; i < contacts_; ++i) {
     if (is_friction(i)) {  // friction: a candidate to stick where it acts and the slip is zero
       const bool acts = i != kBagSlip || has(x.held, kBag);
-      if (has(x.touch, i) && acts && std::fabs(x.sys.rate(i, x.u)) <= x.ch.rate_tol) x.held |= bit(i);
+      if (has(x.touch, i) && acts && std::fabs(x.sys.rate(i, x.u)) <= x.ch.rate_tol && slip_is_rounding(x, i))
+        x.held |= bit(i);
       continue;
     }
     // The lid's gap is an angle: its rate compared as the speed of the lid's far edge.
