@@ -393,12 +393,18 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
 
   // The contacts that hold are left with exactly zero gap rate (they may have had a rate within
   // the rounding band): the same projection as an impact, booked like one.
+  // So are the frictions found at rest that slip on: each slip starts from exactly zero, the sign
+  // the accelerations gave it (its guard, minus the slip's speed, starts at zero and falls), not
+  // from a rounding speed the other way that its guard would find at once, again and again.
+  const Set frictions = bit(kBagSlip) | bit(kPivotSlip) | bit(kHingeSlip);
+  const Set at_rest = x.s2 | (x.held & frictions);
   x.k2 = x.k1;
   contact::Coords u2;
-  if (x.s2 != 0 && contact::constrained_velocity(sys1, x.s2, u2)) x.k2 = with_velocity(x.k1, u2);
+  if (at_rest != 0 && contact::constrained_velocity(sys1, at_rest, u2)) x.k2 = with_velocity(x.k1, u2);
 
-  // A touch that changes nothing (no impulse, the same contacts) leaves the state as it was.
-  if (x.s2 == x.s0 && !x.impacted) x.k2 = x.k0;
+  // A touch that changes nothing (no impulse, the same contacts, no slip brought to rest) leaves
+  // the state as it was.
+  if (x.s2 == x.s0 && !x.impacted && at_rest == x.s2) x.k2 = x.k0;
 }
 
 void Model::enter_contacts(HybridState& hs, const Decision& x) const {
