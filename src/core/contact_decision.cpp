@@ -393,11 +393,13 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
 
   // The contacts that hold are left with exactly zero gap rate (they may have had a rate within
   // the rounding band): the same projection as an impact, booked like one.
-  // So are the frictions found at rest that slip on: each slip starts from exactly zero, the sign
-  // the accelerations gave it (its guard, minus the slip's speed, starts at zero and falls), not
-  // from a rounding speed the other way that its guard would find at once, again and again.
-  const Set frictions = bit(kBagSlip) | bit(kPivotSlip) | bit(kHingeSlip);
-  const Set at_rest = x.s2 | (x.held & frictions);
+  // So is a friction found at rest whose rounding speed points against the slip the accelerations
+  // gave it: it starts from exactly zero (its guard, minus the slip's speed, starts at zero and
+  // falls), not from a speed the other way that its guard would find at once, again and again.
+  Set at_rest = x.s2;
+  for (int i = kBagSlip; i < contacts_; ++i)
+    if (has(x.held, i) && !has(x.s2, i) && x.mot.slip[i] * sys1.rate(i, sys1.velocity) < 0.0)
+      at_rest |= bit(i);
   x.k2 = x.k1;
   contact::Coords u2;
   if (at_rest != 0 && contact::constrained_velocity(sys1, at_rest, u2)) x.k2 = with_velocity(x.k1, u2);
