@@ -195,6 +195,7 @@ TEST(FrictionSolver, InverseDynamicsGivesBackTheForcesOfASlidingBlock) {
 
 // --- the machine's friction: the sandbag on the arm -------------------------------------------
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -403,4 +404,43 @@ TEST(CoulombTorques, ThePivotHoldsTheSeesawUntilTheSlidingSandbagsTorqueExceedsI
   wn::apply_set(cfg, "friction.pivot=" + num(mass * g * 2.0 * std::cos(phi) * 1.01));
   const wn::Result held = wn::simulate(wn::build_scenario(cfg));
   EXPECT_EQ(find(held.events, wn::EventType::seesaw_slips), nullptr);
+}
+
+// A Coulomb torque at the pivot decided at rest within rounding must not leave the seesaw turning
+// the other way at a rounding speed: its guard would fire again after every step, for ever (both
+// machines below once used the whole step budget, about 20 s, without getting anywhere).
+// Bounded by the steps they take, not by seconds.
+TEST(CoulombTorques, APivotStoppedWithinRoundingSlipsOnFromRestInsteadOfChattering) {
+  struct Case {
+    int example;
+    std::vector<std::string> sets;
+  };
+  const std::vector<Case> cases = {
+      // The taut rope tied 1 mm from the hinge: the lid turns 400 times as fast as the seesaw.
+      {4,
+       {"seesaw.left_arm=2", "seesaw.mass=1", "seesaw.end_stop=true", "restitution.sandbag=0.00927065",
+        "geometry.rope_on_lid=0.001", "friction.lid_hinge=3.47087e-05", "friction.pivot=0.000152647",
+        "radio.enabled=true"}},
+      // A long light seesaw bouncing ever lower on the floor.
+      {3,
+       {"seesaw.left_arm=426.55", "seesaw.mass=0.001", "friction.pivot=1.15e-6", "seesaw.end_stop=true",
+        "floor.enabled=true", "floor.restitution=0.591", "run.gravity=0.295"}},
+  };
+  for (const Case& c : cases) {
+    const wn::Scenario sc = wn::testing::example(c.example, c.sets);
+    wn::Result r;
+    ASSERT_NO_THROW(r = wn::simulate(sc)) << "example " << c.example;
+    // It runs to its end (no event chain stopped it) ...
+    EXPECT_EQ(r.outcome().type, wn::EventType::timeout) << "example " << c.example;
+    EXPECT_DOUBLE_EQ(r.outcome().t, sc.run.t_max);
+    // ... in steps for a motion, not for one instant (about 400 each; the budget is 5 million).
+    EXPECT_LT(r.stats.steps, 10'000) << "example " << c.example;
+    // No instant decided over and over: a few events at one instant at most.
+    int same_instant = 0, most = 0;
+    for (std::size_t i = 1; i < r.events.size(); ++i) {
+      same_instant = r.events[i].t == r.events[i - 1].t ? same_instant + 1 : 0;
+      most = std::max(most, same_instant);
+    }
+    EXPECT_LT(most, 8) << "example " << c.example;
+  }
 }

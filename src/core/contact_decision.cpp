@@ -317,6 +317,24 @@ void Model::apply_impact_law(Decision& x) const {
   x.law_note = note;
 }
 
+bool Model::slip_is_rounding(const Decision& x, int i) const {
+  // A slip is zero where stopping it, with the contacts that hold, changes the machine's motion
+  // by rounding only: its own rate alone cannot tell, since a contact that holds may gear it up
+  // (a pivot that turns a millionth as fast as the lid it drives through a taut rope tied next to
+  // the hinge). Measured as the speed sqrt(2 dE / m) of the kinetic energy dE that stopping it takes.
+  contact::System after = x.sys;  // projected from the velocities after the impact
+  after.velocity = x.u;
+  contact::Coords with{}, without{};
+  if (!contact::constrained_velocity(after, x.held | bit(i), with) ||
+      !contact::constrained_velocity(after, x.held, without))
+    return true;  // the rate's own test stands
+  double twice_energy = 0.0;
+  for (int j = 0; j < x.sys.coords; ++j)
+    twice_energy += after.mass[j] * (with[j] - without[j]) * (with[j] - without[j]);
+  const double mass = m_s_ + m_l_ + sc_.machine.seesaw_mass;
+  return twice_energy <= mass * x.ch.rate_tol * x.ch.rate_tol;
+}
+
 void Model::hold_after_impact(Decision& x) const {
   // Touching contacts with zero gap rate after the impact.
   using contact::has;
@@ -324,7 +342,8 @@ void Model::hold_after_impact(Decision& x) const {
   for (int i = 0; i < contacts_; ++i) {
     if (is_friction(i)) {  // friction: a candidate to stick where it acts and the slip is zero
       const bool acts = i != kBagSlip || has(x.held, kBag);
-      if (has(x.touch, i) && acts && std::fabs(x.sys.rate(i, x.u)) <= x.ch.rate_tol) x.held |= bit(i);
+      if (has(x.touch, i) && acts && std::fabs(x.sys.rate(i, x.u)) <= x.ch.rate_tol && slip_is_rounding(x, i))
+        x.held |= bit(i);
       continue;
     }
     // The lid's gap is an angle: its rate compared as the speed of the lid's far edge.
@@ -374,12 +393,20 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
 
   // The contacts that hold are left with exactly zero gap rate (they may have had a rate within
   // the rounding band): the same projection as an impact, booked like one.
+  // So is a friction found at rest whose rounding speed points against the slip the accelerations
+  // gave it: it starts from exactly zero (its guard, minus the slip's speed, starts at zero and
+  // falls), not from a speed the other way that its guard would find at once, again and again.
+  Set at_rest = x.s2;
+  for (int i = kBagSlip; i < contacts_; ++i)
+    if (has(x.held, i) && !has(x.s2, i) && x.mot.slip[i] * sys1.rate(i, sys1.velocity) < 0.0)
+      at_rest |= bit(i);
   x.k2 = x.k1;
   contact::Coords u2;
-  if (x.s2 != 0 && contact::constrained_velocity(sys1, x.s2, u2)) x.k2 = with_velocity(x.k1, u2);
+  if (at_rest != 0 && contact::constrained_velocity(sys1, at_rest, u2)) x.k2 = with_velocity(x.k1, u2);
 
-  // A touch that changes nothing (no impulse, the same contacts) leaves the state as it was.
-  if (x.s2 == x.s0 && !x.impacted) x.k2 = x.k0;
+  // A touch that changes nothing (no impulse, the same contacts, no slip brought to rest) leaves
+  // the state as it was.
+  if (x.s2 == x.s0 && !x.impacted && at_rest == x.s2) x.k2 = x.k0;
 }
 
 void Model::enter_contacts(HybridState& hs, const Decision& x) const {

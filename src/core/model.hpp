@@ -332,6 +332,7 @@ class Model {
   void impact_on_velocities(const Discrete& d, Decision& x, double t) const;
   void apply_impact_law(Decision& x) const;
   void hold_after_impact(Decision& x) const;
+  bool slip_is_rounding(const Decision& x, int i) const;
   void motion_on_accelerations(const Discrete& d, Decision& x, double t) const;
   void enter_contacts(HybridState& hs, const Decision& x) const;
   void report_changes(HybridState& hs, const Decision& x, Mode before, std::vector<Event>& out) const;
