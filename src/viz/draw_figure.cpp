@@ -243,6 +243,14 @@ std::vector<std::string> write_page(const std::string& dir, const Page& page, co
     set_palette();
     plsfam(0, 0, 0);
     plssub(1, 1);
+    // PLplot opens the temporary by name and ends the whole process when it cannot: a folder
+    // removed while the figures are drawn is said here in one line instead (what is left is the
+    // moment between this look and PLplot's own open).
+    std::error_code gone;
+    if (!fs::exists(file->temp_path(), gone)) {
+      throw OutputError(
+          fmt::format("--out {}: its folder was removed while the figures were drawn", printable(path, 96)));
+    }
     opening_by_name([] { plinit(); });
     pladv(0);
     for (std::size_t i = 0; i < page.panels.size(); ++i) draw_panel(page.panels[i], pg.panels[i], pg);
