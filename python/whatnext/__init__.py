@@ -747,8 +747,7 @@ def sweep(machine: Machine, values: Mapping[str, Any], *, samples: Optional[int]
             raise TypeError(f"sweep: client is a dask.distributed.Client, not {type(client).__name__} {client!r:.60}")
         if store is not None:
             from . import dataset as _dataset
-            return _dataset.study(plan, client, store, samples=plan.samples, seed=plan.seed, chunk=chunk,
-                                  threads=threads, progress=progress)
+            return _dataset.study(plan, client, store, chunk=chunk, threads=threads, progress=progress)
         from . import dask as _dask
         return _dask.run(plan, client, chunk=chunk, threads=threads, progress=progress)
     n_threads = 0 if threads is None else _whole("sweep: threads", threads, 1, 4096)

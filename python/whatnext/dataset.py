@@ -10,7 +10,6 @@ the accuracy and the program's version, so that a file says which study it is.
 Uses Debian's ``python3-xarray`` and, for stores, ``python3-zarr``; both are imported only here.
 """
 
-import math
 import os
 import pathlib
 from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Tuple, Union
@@ -63,12 +62,13 @@ def _layout(keys: List[str], axes: Optional[Dict[str, np.ndarray]], size: int) -
     return tuple(keys), tuple(len(axes[k]) for k in keys)
 
 
-def _attrs(machine_toml: str, keys: List[str], accuracy: Optional[float], samples: Optional[int],
-           seed: Optional[int]) -> Dict[str, Any]:
+def _attrs(info: Dict[str, Any], keys: List[str]) -> Dict[str, Any]:
+    """A dataset's attributes from what made the sweep (_Plan.info(), a Sweep's study_info)."""
+    accuracy, samples, seed = info.get("accuracy"), info.get("samples"), info.get("seed")
     attrs: Dict[str, Any] = {
         "title": "whatnext sweep",
         "whatnext_version": _version(),
-        "machine": machine_toml,
+        "machine": info.get("machine", ""),
         "varied": list(keys),
         "accuracy_s": "none (each machine's own run settings)" if accuracy is None else float(accuracy),
         "plan": "grid" if samples is None else "latin hypercube",
@@ -114,8 +114,7 @@ def to_xarray(sweep: "Sweep") -> "xarray.Dataset":
         if values.dtype.kind == "U":
             values = values.astype(object)  # as a Zarr store holds text: any length per machine
         data_vars[name] = (dims, values.reshape(shape), _column_attrs(name))
-    info = sweep.study_info if getattr(sweep, "study_info", None) is not None else {}
-    attrs = _attrs(info.get("machine", ""), keys, info.get("accuracy"), info.get("samples"), info.get("seed"))
+    attrs = _attrs(getattr(sweep, "study_info", None) or {}, keys)
     return xr.Dataset(data_vars, coords=coords, attrs=attrs)
 
 
@@ -214,7 +213,7 @@ def _write_chunk(store: str, plan: "_Plan", shape: Tuple[int, ...], a: int, b: i
     return b - a
 
 
-def _create(store: str, plan: "_Plan", dims: Tuple[str, ...], shape: Tuple[int, ...], chunks: Tuple[int, ...],
+def _create(store: str, dims: Tuple[str, ...], shape: Tuple[int, ...], chunks: Tuple[int, ...],
             coords: Dict[str, Tuple[Any, ...]], names: List[str], attrs: Dict[str, Any],
             identity: str) -> None:
     """The store's layout (xarray's Zarr convention): coordinates written, variables empty."""
@@ -244,8 +243,7 @@ def _create(store: str, plan: "_Plan", dims: Tuple[str, ...], shape: Tuple[int, 
     (pathlib.Path(store) / _DONE).mkdir()
 
 
-def study(plan: "_Plan", client: Any, store: Union[str, "os.PathLike[str]"], *, samples: Optional[int],
-          seed: Optional[int], chunk: Optional[int] = None, threads: Optional[int] = None,
+def study(plan: "_Plan", client: Any, store: Union[str, "os.PathLike[str]"], *, chunk: Optional[int] = None, threads: Optional[int] = None,
           progress: Union[bool, Callable[[int, int], None]] = False) -> "xarray.Dataset":
     """Runs a checked sweep on the client's cluster, each worker writing its chunks into the Zarr
     store ``store``; returns the store opened lazily with xarray. See ``whatnext.sweep(store=...)``."""
@@ -278,8 +276,7 @@ def study(plan: "_Plan", client: Any, store: Union[str, "os.PathLike[str]"], *, 
         raise InputError(f"sweep: store {path} exists and is not a whatnext study; remove it or choose another folder")
     else:
         names = [n for n in plan.run(0, 1, 1) if n not in plan.keys]  # the columns, from machine 0
-        _create(path, plan, dims, shape, chunks, coords, names, _attrs(plan.machine.to_toml(), plan.keys,
-                                                                         plan.accuracy, samples, seed), identity)
+        _create(path, dims, shape, chunks, coords, names, _attrs(plan.info(), plan.keys), identity)
     per_chunk = 1 if threads is None else _whole("sweep: threads", threads, 1, 4096)
     bounds = _task_bounds(shape, chunks)
     finished = {p.name for p in marker.iterdir() if not p.name.startswith(".")}
