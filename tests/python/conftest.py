@@ -10,6 +10,8 @@ import pathlib
 import subprocess
 from typing import List
 
+import pytest
+
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 CLI = os.environ.get("WHATNEXT_CLI", str(ROOT / "build" / "whatnext"))
@@ -29,3 +31,17 @@ def read_csv(path):
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
     return rows[0], rows[1:]
+
+
+@pytest.fixture(scope="module")
+def dask_cluster():
+    """A local Dask cluster and its client: two worker processes of one thread each, as a small
+    cluster would have, so that the machines, the module and the results cross process boundaries
+    by pickle, as over a network."""
+    import logging
+
+    from distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                      silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
+        yield cluster, client

@@ -96,19 +96,8 @@ def test_a_dataset_round_trips_through_zarr(tmp_path):
 
 # --- studies written by the workers -------------------------------------------------------------
 
-@pytest.fixture(scope="module")
-def cluster():
-    import logging
-
-    from distributed import Client, LocalCluster
-
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                      silence_logs=logging.CRITICAL) as c, Client(c) as client:
-        yield c, client
-
-
-def test_a_study_in_a_store_equals_the_local_sweep(cluster, tmp_path):
-    _, client = cluster
+def test_a_study_in_a_store_equals_the_local_sweep(dask_cluster, tmp_path):
+    _, client = dask_cluster
     m = whatnext.example(2)
     big = {"geometry.rope_length": (0.62, 1.0, 13), "masses.sandbag": (0.2, 2.0, 11)}
     for values, kwargs in ((grid_values(big), {}), ({"masses.sandbag": (0.2, 2.0)}, {"samples": 57, "seed": 4})):
@@ -122,8 +111,8 @@ def test_a_study_in_a_store_equals_the_local_sweep(cluster, tmp_path):
         assert_same_values(whatnext.sweep(m, values, client=client, store=store, chunk=20, **kwargs).load(), local)
 
 
-def test_a_store_of_another_study_is_refused_and_left_alone(cluster, tmp_path):
-    _, client = cluster
+def test_a_store_of_another_study_is_refused_and_left_alone(dask_cluster, tmp_path):
+    _, client = dask_cluster
     m = whatnext.example(2)
     store = tmp_path / "s.zarr"
     whatnext.sweep(m, grid_values(), client=client, store=store, chunk=9)
@@ -143,8 +132,8 @@ def test_a_store_of_another_study_is_refused_and_left_alone(cluster, tmp_path):
         whatnext.sweep(m, grid_values(), store=tmp_path / "x.zarr")
 
 
-def test_a_study_goes_on_after_a_worker_is_killed(cluster, tmp_path):
-    _, client = cluster
+def test_a_study_goes_on_after_a_worker_is_killed(dask_cluster, tmp_path):
+    _, client = dask_cluster
     m = whatnext.example(2)
     values = {"geometry.rope_length": whatnext.grid(0.62, 1.0, 60), "masses.sandbag": whatnext.grid(0.2, 2.0, 50)}
     pids = client.run(os.getpid)
@@ -161,10 +150,10 @@ def test_a_study_goes_on_after_a_worker_is_killed(cluster, tmp_path):
     assert_same_values(ds.load(), whatnext.sweep(m, values).to_xarray())
 
 
-def test_a_study_goes_on_after_its_client_is_killed(cluster, tmp_path):
+def test_a_study_goes_on_after_its_client_is_killed(dask_cluster, tmp_path):
     # A second client (another process, as a notebook's kernel would be) starts the study and is
     # killed after some chunks are in the store; the same call from here finishes it.
-    c, client = cluster
+    c, client = dask_cluster
     store = tmp_path / "c.zarr"
     flag = tmp_path / "started"
     script = textwrap.dedent(f"""

@@ -508,19 +508,11 @@ def test_resume_refuses_another_sweeps_file(tmp_path):
         whatnext.sweep(m, values, csv=csv, client=object())
 
 
-# --- on a Dask cluster (issue 23) ------------------------------------------------------------------
+# --- on a Dask cluster ----------------------------------------------------------------------------
 
 @pytest.fixture(scope="module")
-def dask_client():
-    # Two worker processes of one thread each, as a small cluster would have: the machines, the
-    # module and the results cross process boundaries by pickle, as over a network.
-    import logging
-
-    from distributed import Client, LocalCluster
-
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                      silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
-        yield client
+def dask_client(dask_cluster):
+    return dask_cluster[1]
 
 
 def test_a_dask_sweep_equals_the_local_one(dask_client, tmp_path):
