@@ -69,7 +69,9 @@ def _attrs(info: Dict[str, Any], keys: List[str]) -> Dict[str, Any]:
         "title": "whatnext sweep",
         "whatnext_version": _version(),
         "machine": info.get("machine", ""),
-        "varied": list(keys),
+        # The names apart by spaces, as netCDF's own lists of variables (CF's `coordinates`): a list of
+        # one name would come back from a netCDF file as a bare name.
+        "varied": " ".join(keys),
         "accuracy_s": "none (each machine's own run settings)" if accuracy is None else float(accuracy),
         "plan": "grid" if samples is None else "latin hypercube",
     }
