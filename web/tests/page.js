@@ -1352,6 +1352,22 @@ const checks = {
           const preset = await page.locator('#preset').boundingBox();
           assert.ok(header.height <= 56, `${name}: the header is ${header.height} px high (one row)`);
           assert.ok(preset.width >= 0.3 * viewport.width, `${name}: the machine's choice is ${preset.width} px wide`);
+          // What the closed choice shows is whole: the machine's name, or on a phone its short name.
+          for (const locale of ['de', 'en']) {  // English again for what follows
+            await page.selectOption('#lang', locale);
+            await page.waitForFunction((l) => document.documentElement.lang === l && document.body.dataset.ready, locale);
+            const shown = await page.evaluate(() => {
+              const face = document.getElementById('preset-face'), select = document.getElementById('preset');
+              const el = face && getComputedStyle(face).display !== 'none' ? face : select;
+              const text = el === face ? face.textContent : select.selectedOptions[0].text;
+              const g = document.createElement('canvas').getContext('2d');
+              g.font = getComputedStyle(el).font;
+              const room = el === face ? face.clientWidth - parseFloat(getComputedStyle(face).paddingLeft)
+                : select.clientWidth - parseFloat(getComputedStyle(select).paddingLeft) - 24;  // the select's arrow
+              return { text, width: g.measureText(text).width, room };
+            });
+            assert.ok(shown.width <= shown.room, `${name} (${locale}): the machine's choice shows '${shown.text}' in ${shown.room} px, ${shown.width} px wide`);
+          }
           const panel = await top('#panel');
           for (const part of ['#outcome', '#machine', '#timeline', '#plot-angles']) {
             assert.ok(await top(part) < panel, `${name}: ${part} is below the parameters`);
@@ -1589,6 +1605,15 @@ const checks = {
         return words.filter((w) => new RegExp(`(^|[^\\wäöüß.])${w}([^\\wäöüß]|$)`).test(text));
       });
       assert.deepEqual(english, [], 'English words in the German page');
+      // Every parameter's name whole (a long German word wraps at its soft hyphen, never cut).
+      const cutNames = await page.evaluate(() => {
+        const closed = [...document.querySelectorAll('#fields details')].filter((d) => !d.open);
+        for (const d of closed) d.open = true;
+        const cut = [...document.querySelectorAll('.field label')].filter((l) => l.scrollWidth > l.clientWidth + 1).map((l) => l.textContent);
+        for (const d of closed) d.open = false;
+        return cut;
+      });
+      assert.deepEqual(cutNames, [], 'parameter names cut');
       await setFieldAndRun(page, 'geometry.rope_length', '0,9');
       assert.match(await outcomeText(page), /^Ergebnis: Deckel offen bei \d,\d{3} s\.$/);
       await setField(page, 'geometry.rope_length', '-1');
