@@ -1,5 +1,8 @@
 // `whatnext plot`: the paper's figures for one run, or a comparison of impact laws or integrators.
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -18,6 +21,60 @@ struct PlotOptions {
   int width = 1000, height = 650;
   bool quiet = false, force_large = false;
 };
+
+#if WHATNEXT_FULL
+// The figures' format and size, checked, and their title.
+viz::FigureOptions figure_options(const PlotOptions& opts, const std::string& title) {
+  viz::FigureOptions fig;
+  if (!viz::parse_formats(opts.formats, fig.formats)) {
+    throw InputError(
+        fmt::format("--format: must list png, svg or pdf separated by commas, got '{}'", opts.formats));
+  }
+  if (opts.width < 200 || opts.width > 8000) {
+    throw InputError(fmt::format("--width: must be between 200 and 8000 pixels, got {}", opts.width));
+  }
+  if (opts.height < 150 || opts.height > 8000) {
+    throw InputError(fmt::format("--height: must be between 150 and 8000 pixels, got {}", opts.height));
+  }
+  fig.width = opts.width;
+  fig.height = opts.height;
+  fig.title = title;
+  return fig;
+}
+
+// The integrator and step that --compare integrator sets against the adaptive run.
+std::pair<IntegratorKind, double> compared_integrator(const PlotOptions& opts, const CLI::App& cmd,
+                                                      const Scenario& sc) {
+  IntegratorKind kind;
+  if (!parse_integrator(opts.integrator, kind) || kind == IntegratorKind::adaptive) {
+    throw InputError(fmt::format("--integrator: must be euler or rk4, got '{}'", opts.integrator));
+  }
+  const double step = cmd.count("--step") ? opts.step : sc.run.step;
+  if (!(step > 0.0 && step <= 1.0)) {
+    throw InputError(fmt::format("--step: must be > 0 and <= 1 s, got {:g}", step));
+  }
+  return {kind, step};
+}
+
+// The figures --compare asks for (the run's own without it), drawn into --out; the files written.
+std::vector<std::string> draw(const PlotOptions& opts, const CLI::App& cmd, const Scenario& sc,
+                              const viz::FigureOptions& fig) {
+  if (opts.compare.empty()) {
+    if (cmd.count("--integrator") || cmd.count("--step")) {
+      throw InputError(
+          "--integrator/--step: only with --compare integrator (use --set run.integrator=... to plot one "
+          "run)");
+    }
+    return viz::write_run_figures(viz::record(sc), opts.out, fig);
+  }
+  if (opts.compare == "laws") return viz::write_law_comparison(sc, opts.out, fig);
+  if (opts.compare == "integrator") {
+    const auto [kind, step] = compared_integrator(opts, cmd, sc);
+    return viz::write_integrator_comparison(sc, kind, step, opts.out, fig);
+  }
+  throw InputError(fmt::format("--compare: must be laws or integrator, got '{}'", opts.compare));
+}
+#endif
 }  // namespace
 
 void register_plot(CLI::App& app, int& exit_code) {
@@ -56,44 +113,9 @@ void register_plot(CLI::App& app, int& exit_code) {
     check_leftovers(*cmd);
     const LoadedInput in = load_input(opts->input);
     check_size(in.scenario, kStateBytes, "plot", opts->force_large, "hold in memory");
-    viz::FigureOptions fig;
-    if (!viz::parse_formats(opts->formats, fig.formats)) {
-      throw InputError(
-          fmt::format("--format: must list png, svg or pdf separated by commas, got '{}'", opts->formats));
-    }
-    if (opts->width < 200 || opts->width > 8000) {
-      throw InputError(fmt::format("--width: must be between 200 and 8000 pixels, got {}", opts->width));
-    }
-    if (opts->height < 150 || opts->height > 8000) {
-      throw InputError(fmt::format("--height: must be between 150 and 8000 pixels, got {}", opts->height));
-    }
-    fig.width = opts->width;
-    fig.height = opts->height;
-    fig.title = in.source;
+    const viz::FigureOptions fig = figure_options(*opts, in.source);
     prepare_picture_dir(opts->out, "--out");
-    std::vector<std::string> written;
-    if (opts->compare.empty()) {
-      if (cmd->count("--integrator") || cmd->count("--step")) {
-        throw InputError(
-            "--integrator/--step: only with --compare integrator (use --set run.integrator=... to plot one "
-            "run)");
-      }
-      written = viz::write_run_figures(viz::record(in.scenario), opts->out, fig);
-    } else if (opts->compare == "laws") {
-      written = viz::write_law_comparison(in.scenario, opts->out, fig);
-    } else if (opts->compare == "integrator") {
-      IntegratorKind kind;
-      if (!parse_integrator(opts->integrator, kind) || kind == IntegratorKind::adaptive) {
-        throw InputError(fmt::format("--integrator: must be euler or rk4, got '{}'", opts->integrator));
-      }
-      const double step = cmd->count("--step") ? opts->step : in.scenario.run.step;
-      if (!(step > 0.0 && step <= 1.0)) {
-        throw InputError(fmt::format("--step: must be > 0 and <= 1 s, got {:g}", step));
-      }
-      written = viz::write_integrator_comparison(in.scenario, kind, step, opts->out, fig);
-    } else {
-      throw InputError(fmt::format("--compare: must be laws or integrator, got '{}'", opts->compare));
-    }
+    const std::vector<std::string> written = draw(*opts, *cmd, in.scenario, fig);
     if (!opts->quiet) {
       for (const std::string& w : written) fmt::print("{}\n", w);
     }

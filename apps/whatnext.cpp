@@ -176,11 +176,9 @@ std::vector<std::string> command_names() {
   return names;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  // Interrupts are caught first thing: one that lands while the command line is read ends the
-  // command as any later one does (a sweep with 128 + its number), never half-way by default.
+// Interrupts are caught first thing: one that lands while the command line is read ends the
+// command as any later one does (a sweep with 128 + its number), never half-way by default.
+void catch_interrupts(int argc, char** argv) {
   whatnext::install_interrupt_cleanup();
   if (argc > 1 && std::string_view(argv[1]) == "sweep") whatnext::cli::hold_early_interrupts();
   // Started with them blocked (a parent's mask is inherited), one pending lands now, handled.
@@ -188,13 +186,12 @@ int main(int argc, char** argv) {
   sigemptyset(&interrupts);
   for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&interrupts, sig);
   pthread_sigmask(SIG_UNBLOCK, &interrupts, nullptr);
-  CLI::App app{"whatnext: Kermit's What-Happens-Next machine, simulated event by event", "whatnext"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("whatnext ") + WHATNEXT_VERSION);
-  int exit_code = 0;
-  // A command line that names its command needs that command's options only. Making every
-  // command's (CLI11's options, their names and checks) was three quarters of a command's start,
-  // about 0.2 ms; `help` describes them all, and anything else is told about them all.
+}
+
+// A command line that names its command needs that command's options only. Making every
+// command's (CLI11's options, their names and checks) was three quarters of a command's start,
+// about 0.2 ms; `help` describes them all, and anything else is told about them all.
+void add_commands(CLI::App& app, int argc, char** argv, int& exit_code) {
   const Command* named = nullptr;
   for (const Command& c : kCommands) {
     if (argc > 1 && std::string_view(argv[1]) == c.name && std::string_view(c.name) != "help") named = &c;
@@ -202,20 +199,32 @@ int main(int argc, char** argv) {
   for (const Command& c : kCommands) {
     if (!named || &c == named) c.add(app, exit_code);
   }
-  const std::vector<std::string> commands = command_names();
-  if (argc == 1) {
-    print_error(fmt::format("say what to do: {} (see whatnext help)", joined(commands)));
-    return 2;
+}
+
+// The line for a command line CLI11 could not read: a mistyped option rather than a missing one,
+// and an unknown option before the command with a suggestion.
+std::string parse_error_message(const CLI::App& app, const CLI::ParseError& e, const std::string& first) {
+  std::string message = e.what();
+  // A missing required option is often a mistyped one: say that instead, with a suggestion.
+  for (const CLI::App* sub : app.get_subcommands()) {
+    try {
+      whatnext::cli::check_leftovers(*sub);
+    } catch (const whatnext::InputError& leftover) {
+      message = leftover.what();
+    }
   }
+  if (first[0] == '-' && first != "--help" && first != "-h" && first != "--version") {
+    const std::string near = nearest_word(first.substr(0, first.find('=')), {"--help", "--version"});
+    message =
+        fmt::format("unknown option '{}' before the command{}; say what to do: {}", first,
+                    near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), joined(command_names()));
+  }
+  return message;
+}
+
+// The command run, and what each failure means as an exit code (the header's list).
+int run_command(CLI::App& app, int argc, char** argv, int& exit_code) {
   const std::string first = argv[1];
-  if (first[0] != '-' && std::find(commands.begin(), commands.end(), first) == commands.end()) {
-    const std::string near = nearest_word(first, commands);
-    print_error(fmt::format("unknown command '{}'{}; the commands are {}", printable(first),
-                            near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
-                            joined(commands)));
-    return 2;
-  }
-  whatnext::cli::keep_command_line(argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -225,21 +234,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return finish_stdout(app, e);
   } catch (const CLI::ParseError& e) {
-    std::string message = e.what();
-    // A missing required option is often a mistyped one: say that instead, with a suggestion.
-    for (const CLI::App* sub : app.get_subcommands()) {
-      try {
-        whatnext::cli::check_leftovers(*sub);
-      } catch (const whatnext::InputError& leftover) {
-        message = leftover.what();
-      }
-    }
-    if (first[0] == '-' && first != "--help" && first != "-h" && first != "--version") {
-      const std::string near = nearest_word(first.substr(0, first.find('=')), {"--help", "--version"});
-      message = fmt::format("unknown option '{}' before the command{}; say what to do: {}", first,
-                            near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near), joined(commands));
-    }
-    print_error(message);
+    print_error(parse_error_message(app, e, first));
     return 2;
   } catch (const whatnext::InputError& e) {
     whatnext::cli::remove_empty_picture_dirs();
@@ -267,4 +262,30 @@ int main(int argc, char** argv) {
     return 1;
   }
   return finish_stdout(exit_code);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  catch_interrupts(argc, argv);
+  CLI::App app{"whatnext: Kermit's What-Happens-Next machine, simulated event by event", "whatnext"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("whatnext ") + WHATNEXT_VERSION);
+  int exit_code = 0;
+  add_commands(app, argc, argv, exit_code);
+  const std::vector<std::string> commands = command_names();
+  if (argc == 1) {
+    print_error(fmt::format("say what to do: {} (see whatnext help)", joined(commands)));
+    return 2;
+  }
+  const std::string first = argv[1];
+  if (first[0] != '-' && std::find(commands.begin(), commands.end(), first) == commands.end()) {
+    const std::string near = nearest_word(first, commands);
+    print_error(fmt::format("unknown command '{}'{}; the commands are {}", printable(first),
+                            near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                            joined(commands)));
+    return 2;
+  }
+  whatnext::cli::keep_command_line(argc, argv);
+  return run_command(app, argc, argv, exit_code);
 }

@@ -8,6 +8,7 @@
 
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <regex>
 #include <sstream>
 #include <set>
@@ -232,6 +233,39 @@ TEST(DocsPaths, EveryFileThePagesNameExists) {
 }
 
 // inputs.md names every column of the run's CSV and of a sweep's CSV, and every key of the JSON.
+// The inputs page's table of keys is a copy a reader needs: each key's unit and default as the key
+// table (kKeys, which the program, the page and the Python module read) has them, in the page's
+// typography ("—" for none, a minus sign, units with superscripts, words in backticks).
+TEST(DocsKeys, InputsPageGivesEveryKeyTheTablesUnitAndDefault) {
+  const std::string page = slurp(kSource + "/docs/inputs.md");
+  const std::size_t from = page.find("## TOML keys");
+  ASSERT_NE(from, std::string::npos);
+  const std::string section = page.substr(from, page.find("\n## ", from + 1) - from);
+  const auto plain = [](std::string cell) {
+    for (const auto& [typeset, text] : std::vector<std::pair<std::string, std::string>>{
+             {"`", ""}, {"\u2212", "-"}, {"\u2014", "none"}, {"\u00b3", "^3"}, {"\u00b2", "^2"}}) {
+      for (std::size_t at; (at = cell.find(typeset)) != std::string::npos;)
+        cell.replace(at, typeset.size(), text);
+    }
+    const auto first = cell.find_first_not_of(' '), last = cell.find_last_not_of(' ');
+    return first == std::string::npos ? std::string() : cell.substr(first, last - first + 1);
+  };
+  std::map<std::string, std::pair<std::string, std::string>> rows;  // key: unit, default
+  std::istringstream in(section);
+  for (std::string line; std::getline(in, line);) {
+    const auto cells = split(line, '|');  // "", key, unit, default, meaning, ""
+    if (cells.size() < 5 || plain(cells[1]).find('.') == std::string::npos) continue;
+    rows[plain(cells[1])] = {plain(cells[2]), plain(cells[3])};
+  }
+  for (const KeySpec& k : known_keys()) {
+    const auto row = rows.find(std::string(k.key));
+    ASSERT_NE(row, rows.end()) << k.key << " has no row in docs/inputs.md";
+    EXPECT_EQ(row->second.first, k.unit) << k.key;
+    EXPECT_EQ(row->second.second, k.default_text) << k.key;
+  }
+  EXPECT_EQ(rows.size(), known_keys().size());
+}
+
 TEST_F(Docs, InputsPageNamesEveryOutputColumnAndKey) {
   const std::set<std::string> documented = backticked(slurp(kSource + "/docs/inputs.md"));
   const auto header = split(CsvWriter::header(std::size(kImpulseColumns)), ',');

@@ -480,6 +480,18 @@ TEST(Keys, AKeyLeftOutIsTheTablesDefault) {
     ++checked;
   }
   EXPECT_GE(checked, 25);
+  // The text keys too: left out, each is the machine with the table's word given.
+  int texts = 0;
+  for (const wn::KeySpec& k : wn::known_keys()) {
+    if (k.kind != wn::KeyKind::text) continue;
+    wn::Config left = wn::example_config(1);
+    left.values.erase(std::string(k.key));
+    wn::Config given = left;
+    wn::apply_set(given, fmt::format("{}={}", k.key, k.default_text));
+    EXPECT_EQ(wn::to_toml(wn::build_scenario(left)), wn::to_toml(wn::build_scenario(given))) << k.key;
+    ++texts;
+  }
+  EXPECT_EQ(texts, 3);  // balloon.model, run.integrator, run.impact_law
   EXPECT_TRUE(std::isnan(wn::key_default("balloon.radius")));  // r_L: depends on the machine
   EXPECT_EQ(wn::key_default("geometry.seesaw_right_arm"), 0.6);
 }

@@ -860,6 +860,49 @@ TEST(VizAnimation, BeforeTheLatchTheRopeIsAsLongAsItself) {
   }
 }
 
+// The page's icon (web/src/icon.svg) is a small drawing of the machine: each shape names its part
+// (class = a name of scene::kColourNames, the table the animation and the page paint with) and has
+// that part's colour; only the tile behind them has a colour of its own.
+TEST(VizScene, TheIconPaintsEachPartInTheScenesColour) {
+  struct Shapes {
+    std::vector<std::string> errors;
+    std::set<std::string> parts;
+  } shapes;
+  const std::string svg = slurp(fs::path(WHATNEXT_SOURCE_DIR) / "web/src/icon.svg");
+  XML_Parser parser = XML_ParserCreate(nullptr);
+  XML_SetUserData(parser, &shapes);
+  XML_SetStartElementHandler(parser, [](void* u, const XML_Char* name, const XML_Char** attrs) {
+    auto* shapes = static_cast<Shapes*>(u);
+    std::map<std::string, std::string> a;
+    for (int i = 0; attrs[i]; i += 2) a[attrs[i]] = attrs[i + 1];
+    std::vector<std::string> paints;
+    for (const char* paint : {"fill", "stroke"}) {
+      if (a.count(paint) && a[paint] != "none") paints.push_back(a[paint]);
+    }
+    if (paints.empty() || a["class"] == "tile") return;
+    const std::string part = a["class"];
+    const scene::NamedColour* named = nullptr;
+    for (const scene::NamedColour& c : scene::kColourNames) {
+      if (c.name == part) named = &c;
+    }
+    if (!named) {
+      shapes->errors.push_back(
+          fmt::format("<{}> names no part of the scene's colours: class='{}'", name, part));
+      return;
+    }
+    const std::string want = fmt::format("#{:02x}{:02x}{:02x}", named->rgb.r, named->rgb.g, named->rgb.b);
+    for (const std::string& p : paints) {
+      if (p != want)
+        shapes->errors.push_back(fmt::format("{} is painted {}, the scene's {} is {}", part, p, part, want));
+    }
+    shapes->parts.insert(part);
+  });
+  ASSERT_EQ(XML_Parse(parser, svg.data(), static_cast<int>(svg.size()), 1), XML_STATUS_OK);
+  XML_ParserFree(parser);
+  for (const std::string& e : shapes.errors) ADD_FAILURE() << e;
+  EXPECT_TRUE(shapes.parts.count("seesaw") && shapes.parts.count("sandbag") && shapes.parts.count("balloon"));
+}
+
 // Every event tick on the time bar has its name under it (drawn in the events' red).
 // The scene is one table that the animation and the page draw from: its parts must meet where the
 // machine joins them, in every recorded state of machines with and without the radio, the built

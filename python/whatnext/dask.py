@@ -24,13 +24,13 @@ cluster (PYTHONPATH), as docs/explore.md says.
 
 import math
 import sys
-from typing import Any, Callable, Dict, List, Optional, Union
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
 from . import Sweep, _Plan, _whole
 
-__all__ = ["run", "chunk_size"]
+__all__ = ["run", "chunk_size", "run_chunks", "settings"]
 
 
 def _run_chunk(plan: _Plan, start: int, stop: int, threads: int) -> Dict[str, np.ndarray]:
@@ -45,35 +45,51 @@ def chunk_size(machines: int, worker_threads: int) -> int:
     return int(min(50_000, max(2_000, math.ceil(machines / (8 * max(1, worker_threads))))))
 
 
+def settings(client: Any, machines: int, chunk: Optional[int], threads: Optional[int]) -> Tuple[int, int]:
+    """The machines per chunk (``chunk=``, else :func:`chunk_size` for the client's cluster) and the
+    threads per chunk (``threads=``, else one: every worker thread runs a chunk of its own)."""
+    worker_threads = sum(client.nthreads().values())
+    size = chunk_size(machines, worker_threads) if chunk is None else _whole("sweep: chunk", chunk, 1, machines)
+    per_chunk = 1 if threads is None else _whole("sweep: threads", threads, 1, 4096)
+    return size, per_chunk
+
+
+def run_chunks(client: Any, task: Callable[..., Any], chunks: List[Tuple[int, int]],
+               arguments: Callable[[int, int], Tuple[Any, ...]], total: int,
+               progress: Union[bool, Callable[[int, int], None]] = False, done: int = 0) -> List[Any]:
+    """Runs ``task(*arguments(a, b))`` on the cluster for each chunk of machines [a, b), a chunk that
+    raises retried twice; reports ``done`` machines of ``total`` as chunks finish, releases each
+    result as it comes, and returns the results in the chunks' order. Any exception (Ctrl-C, a
+    chunk that failed for good) cancels the chunks still to run before it is raised."""
+    from distributed import as_completed  # only here: Dask is needed only for sweeps on a cluster
+
+    futures = [client.submit(task, *arguments(a, b), pure=False, retries=2) for a, b in chunks]
+    where = {f.key: i for i, f in enumerate(futures)}
+    results: List[Any] = [None] * len(chunks)
+    report = _reporter(progress)
+    try:
+        for future, result in as_completed(futures, with_results=True):
+            i = where[future.key]
+            results[i] = result
+            done += chunks[i][1] - chunks[i][0]
+            report(done, total)
+            future.release()
+    except BaseException:
+        client.cancel(futures)
+        raise
+    return results
+
+
 def run(plan: _Plan, client: Any, *, chunk: Optional[int] = None, threads: Optional[int] = None,
         progress: Union[bool, Callable[[int, int], None]] = False) -> Sweep:
     """Runs a checked sweep (whatnext.sweep's plan) on the client's cluster; see the module's help."""
-    from distributed import as_completed  # only here: Dask is needed only for sweeps on a cluster
-
     n = plan.size
-    worker_threads = sum(client.nthreads().values())
-    size = chunk_size(n, worker_threads) if chunk is None else _whole("sweep: chunk", chunk, 1, n)
-    # Threads per chunk: one by default, as every worker thread runs a chunk of its own.
-    per_chunk = 1 if threads is None else _whole("sweep: threads", threads, 1, 4096)
+    size, per_chunk = settings(client, n, chunk, threads)
     bounds = [(a, min(n, a + size)) for a in range(0, n, size)]
-    futures = [client.submit(_run_chunk, plan.part(a, b), a, b, per_chunk, pure=False, retries=2)
-               for a, b in bounds]
-    where = {f.key: i for i, f in enumerate(futures)}
-    parts: List[Optional[Dict[str, np.ndarray]]] = [None] * len(bounds)
-    done = 0
-    report = _reporter(progress)
-    try:
-        for future, columns in as_completed(futures, with_results=True):
-            i = where[future.key]
-            parts[i] = columns
-            done += bounds[i][1] - bounds[i][0]
-            report(done, n)
-            future.release()
-    except BaseException:
-        client.cancel(futures)  # Ctrl-C or a chunk that failed for good: the others stop too
-        raise
+    parts: List[Dict[str, np.ndarray]] = run_chunks(
+        client, _run_chunk, bounds, lambda a, b: (plan.part(a, b), a, b, per_chunk), n, progress)
     names = list(parts[0]) if parts else []
-    columns = {name: np.concatenate([p[name] for p in parts]) for name in names}  # type: ignore[index]
+    columns = {name: np.concatenate([p[name] for p in parts]) for name in names}
     return Sweep(plan.keys, columns, plan.axes, plan.info())
 
 

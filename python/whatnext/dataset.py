@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any, Callable, Dict, List, Optional, Tuple, Un
 
 import numpy as np
 
-from . import InputError, _core, _whole, input_keys
+from . import InputError, _core, input_keys
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray
@@ -69,7 +69,9 @@ def _attrs(info: Dict[str, Any], keys: List[str]) -> Dict[str, Any]:
         "title": "whatnext sweep",
         "whatnext_version": _version(),
         "machine": info.get("machine", ""),
-        "varied": list(keys),
+        # The names apart by spaces, as netCDF's own lists of variables (CF's `coordinates`): a list of
+        # one name would come back from a netCDF file as a bare name.
+        "varied": " ".join(keys),
         "accuracy_s": "none (each machine's own run settings)" if accuracy is None else float(accuracy),
         "plan": "grid" if samples is None else "latin hypercube",
     }
@@ -248,16 +250,14 @@ def study(plan: "_Plan", client: Any, store: Union[str, "os.PathLike[str]"], *, 
     """Runs a checked sweep on the client's cluster, each worker writing its chunks into the Zarr
     store ``store``; returns the store opened lazily with xarray. See ``whatnext.sweep(store=...)``."""
     import xarray as xr
-    from distributed import as_completed
 
-    from .dask import _reporter, chunk_size
+    from .dask import run_chunks, settings
 
     path = os.fspath(store)
     if not isinstance(path, str):
         raise TypeError(f"sweep: store is a folder name as text, not {type(path).__name__} {path!r}")
     dims, shape, coords = _skeleton(plan.keys, plan.axes, plan.points, 0, plan.size)
-    worker_threads = sum(client.nthreads().values())
-    target = chunk_size(plan.size, worker_threads) if chunk is None else _whole("sweep: chunk", chunk, 1, plan.size)
+    target, per_chunk = settings(client, plan.size, chunk, threads)
     chunks = _chunking(shape, target)
     identity = _identity(plan, chunks)
     marker = pathlib.Path(path) / _DONE
@@ -277,22 +277,11 @@ def study(plan: "_Plan", client: Any, store: Union[str, "os.PathLike[str]"], *, 
     else:
         names = [n for n in plan.run(0, 1, 1) if n not in plan.keys]  # the columns, from machine 0
         _create(path, dims, shape, chunks, coords, names, _attrs(plan.info(), plan.keys), identity)
-    per_chunk = 1 if threads is None else _whole("sweep: threads", threads, 1, 4096)
     bounds = _task_bounds(shape, chunks)
     finished = {p.name for p in marker.iterdir() if not p.name.startswith(".")}
     todo = [(a, b) for a, b in bounds if f"{a}-{b}" not in finished]
-    report = _reporter(progress)
-    done = plan.size - sum(b - a for a, b in todo)
-    futures = [client.submit(_write_chunk, path, plan.part(a, b), shape, a, b, per_chunk, pure=False, retries=2)
-               for a, b in todo]
-    try:
-        for future, machines in as_completed(futures, with_results=True):
-            done += machines
-            report(done, plan.size)
-            future.release()
-    except BaseException:
-        client.cancel(futures)
-        raise
+    run_chunks(client, _write_chunk, todo, lambda a, b: (path, plan.part(a, b), shape, a, b, per_chunk),
+               plan.size, progress, done=plan.size - sum(b - a for a, b in todo))
     return xr.open_zarr(path)
 
 

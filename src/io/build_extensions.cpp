@@ -146,7 +146,7 @@ void build_balloon_extensions(const Reader& in, Machine& m) {
 
 // A seesaw with an arm's end and mass: its centre of mass and inertia, a uniform bar's unless given.
 void build_heavy_seesaw(const Reader& in, Machine& m) {
-  if (in.find("seesaw.left_arm")) m.seesaw_left_arm = in.length("seesaw.left_arm", 1.0);
+  if (in.find("seesaw.left_arm")) m.seesaw_left_arm = in.length("seesaw.left_arm");
   m.seesaw_mass = in.number("seesaw.mass");
   if (!(m.seesaw_mass >= 0.0)) {
     in.fail("seesaw.mass", fmt::format("must be >= 0 kg (given {})", fmt_num(m.seesaw_mass)));

@@ -61,7 +61,7 @@ void read_bodies(const Reader& in, Machine& m) {
                         fmt_num(m.air_density), fmt_num(m.helium_density)));
   }
   m.balloon_radius = in.length("balloon.radius", m.lid_half_length);
-  const std::string bmodel = in.text("balloon.model", "program");
+  const std::string bmodel = in.text("balloon.model");
   if (!parse_balloon_model(bmodel, m.balloon_model)) {
     in.fail("balloon.model",
             fmt::format("must be program, lagrangian or added-mass (given '{}')", printable(bmodel)));
@@ -129,11 +129,11 @@ void read_run(const Reader& in, const Machine& m, RunSettings& run) {
   // looser than 1e-3 events are located on a state that is wrong in the third digit.
   run.tolerance = in.in_range("run.tolerance", kMinTolerance, true, kMaxTolerance, true);
   run.vertical_margin = in.in_range("run.vertical_margin", 0.0, true, 90.0, false) * units::kRadiansPerDegree;
-  const std::string integ = in.text("run.integrator", "adaptive");
+  const std::string integ = in.text("run.integrator");
   if (!parse_integrator(integ, run.integrator)) {
     in.fail("run.integrator", fmt::format("must be adaptive, euler or rk4 (given '{}')", printable(integ)));
   }
-  const std::string law = in.text("run.impact_law", "rope");
+  const std::string law = in.text("run.impact_law");
   if (!parse_impact_law(law, run.impact_law)) {
     in.fail("run.impact_law",
             fmt::format("must be rope, angular-momentum-sum, kinetic-energy or linear-momentum (given '{}')",

@@ -141,9 +141,10 @@ class Reader {
     }
     return {v.pair[0], v.pair[1]};
   }
-  std::string text(Key key, const std::string& fallback) const {
+  // A text key: as given, else the key table's default.
+  std::string text(Key key) const {
     const ConfigValue* v = find(key);
-    return v ? v->text : fallback;
+    return v ? v->text : std::string(key.spec().default_text);
   }
 
  private:

@@ -17,7 +17,8 @@
 namespace whatnext::viz::scene {
 
 // The parts' colours, all on the GIF's palette (the sandbag's and the balloon's are public:
-// animation.hpp). The page paints with the same ones, by the names of kColourNames.
+// animation.hpp). The page paints with the same ones, by the names of kColourNames, and its icon
+// (web/src/icon.svg) names its shapes by them too (test_viz checks its colours).
 constexpr Rgb kWhite{255, 255, 255}, kBlack{0, 0, 0}, kDark{51, 42, 51}, kGrey{96, 96, 96},
     kMidGrey{160, 160, 160}, kLightGrey{224, 224, 224}, kSeesaw{153, 85, 51}, kBoxWall{153, 127, 51},
     kBoxInside{255, 255, 204}, kLid{51, 85, 153}, kRadio{51, 42, 102}, kDial{204, 212, 255},

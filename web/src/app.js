@@ -127,7 +127,8 @@
     example4: 'a hard hit throws the lid up; it never opens',
     radio: 'the balloon switches the radio on',
     konstanz: 'built with a real party balloon: the radio stays off',
-  };  // the command line reads machine files of at most 1 MiB  // an event's frame stays this long when playing
+  };
+  const kPresetShort = { radio: 'Example 1 + radio', konstanz: 'Konstanz (built)' };  // the others: their title  // the command line reads machine files of at most 1 MiB  // an event's frame stays this long when playing
   const icon = (d) => `<svg viewBox="0 0 24 24" aria-hidden="true"><path d="${d}"/></svg>`;
   const kPlayIcon = `${icon('M7 4v16l13-8z')} ${T('Play')}`, kPauseIcon = `${icon('M6 4h4v16H6zM14 4h4v16h-4z')} ${T('Pause')}`;
 
@@ -841,6 +842,12 @@
     for (const p of presets) select.append(new Option(kPresetWhat[p.id] ? `${T(p.title)}: ${T(kPresetWhat[p.id])}` : T(p.title), p.id));
     if (st.base.id === 'file') select.append(new Option(T('file: {name}', { name: st.base.title }), 'file'));
     select.value = st.base.id;
+    showPresetFace();
+  }
+  // The short name a phone shows on the closed choice (style.css: .preset-face).
+  function showPresetFace() {
+    const select = $('preset'), p = presets.find((x) => x.id === select.value);
+    $('preset-face').textContent = p ? T(kPresetShort[p.id] || p.title) : select.selectedOptions[0]?.text || '';
   }
 
   function fileBase(name, text) {
@@ -991,6 +998,7 @@
   // ---- wiring -----------------------------------------------------------------------------------
 
   $('preset').addEventListener('change', (e) => {
+    showPresetFace();
     const p = presets.find((x) => x.id === e.target.value);
     if (p) choose(p, []);
   });

@@ -169,6 +169,7 @@
       'Diese CSV hätte {rows} Zeilen: zu viele für einen Browser. run.output_step erhöhen oder die Kommandozeile nehmen (siehe „Derselbe Lauf auf der Kommandozeile“).',
     'Example 1': 'Beispiel 1', 'Example 2': 'Beispiel 2', 'Example 3': 'Beispiel 3', 'Example 4': 'Beispiel 4',
     'Example 1 with the radio': 'Beispiel 1 mit dem Radio',
+    'Example 1 + radio': 'Beispiel 1 + Radio', 'Konstanz (built)': 'Konstanz (gebaut)',
     'file: {name}': 'Datei: {name}',
     'one hard pull of the rope opens the lid': 'ein harter Ruck am Seil öffnet den Deckel',
     'the taut rope pulls the lid open': 'das straffe Seil zieht den Deckel auf',
@@ -322,7 +323,7 @@
     'balloon.model': ['Ballonmodell', 'program (a = g (rho_Luft − rho_He) / rho_Luft), lagrangian (/ rho_He) oder added-mass (/ (rho_He + rho_Luft / 2))'],
     'balloon.rubber_mass': ['Gummimasse', 'das Gummi des Ballons: Gewicht und Trägheit'],
     'balloon.drag': ['Luftwiderstand', 'an: quadratischer Luftwiderstand 1/2 rho_Luft Cd pi r_B² v|v|'],
-    'balloon.drag_coefficient': ['Widerstandsbeiwert', 'Cd des Luftwiderstands (eine Kugel); ihn anzugeben schaltet den Widerstand ein'],
+    'balloon.drag_coefficient': ['Widerstands\u00adbeiwert', 'Cd des Luftwiderstands (eine Kugel); ihn anzugeben schaltet den Widerstand ein'],
     'radio.enabled': ['Radio', 'an: nach lid_open weiterrechnen, bis die Ballonschnur das Radio einschaltet'],
     'radio.switch_offset': ['Lage des Schalters', '[dx, dh]: der Schalter des Radios dx rechts und dh über der oberen rechten Ecke der Kiste'],
     'radio.string_length': ['Schnurlänge', 'die Ballonschnur, Mitte bis Schalter'],
@@ -356,7 +357,7 @@
     'run.tolerance': ['Toleranz', 'adaptive: Fehlertoleranz pro Schritt (abs. und rel.), 1e-15 bis 1e-3'],
     'run.impact_law': ['Stoßgesetz', 'rope, angular-momentum-sum, kinetic-energy oder linear-momentum'],
     'run.vertical_margin': ['Abstand zur Senkrechten', 'so weit vor 90° anhalten'],
-    'run.gravity': ['Schwerebeschleunigung', 'g'],
+    'run.gravity': ['Schwere\u00adbeschleunigung', 'g'],
   };
 
   // The library's sentences with numbers: the outcome, the events, the modes and the messages.

@@ -4,44 +4,22 @@
 // without a frame while the map ran (how responsive it stayed). docs/performance.md, "The map in
 // the page".
 //   node web/tests/map-bench.js [RUNS]      (from the source folder, after a WHATNEXT_WEB build)
-// Settings from the environment as web/tests/map.js takes them.
+// Settings from the environment as web/tests/browser.js takes them.
 'use strict';
 const fs = require('fs');
-const http = require('http');
 const os = require('os');
 const path = require('path');
 const { spawnSync } = require('child_process');
 
-const env = (name, fallback) => process.env[name] || fallback;
-const sourceDir = path.resolve(env('WHATNEXT_SOURCE_DIR', '.'));
-const webDir = path.resolve(env('WHATNEXT_WEB_DIR', path.join(sourceDir, 'build/web')));
-const cliPath = path.resolve(env('WHATNEXT_CLI', path.join(sourceDir, 'build/whatnext')));
-const { chromium } = require(require.resolve('playwright-core', {
-  paths: [...(process.env.NODE_PATH || '').split(':').filter(Boolean), path.join(sourceDir, 'build/web-npm/node_modules')],
-}));
+const { cliPath, withPage } = require('./browser');
 const runs = Number(process.argv[2] || 7);
 const grid = [['geometry.rope_length', '0.64', '0.80', 100], ['start.sandbag_height', '0.3', '1.2', 100]];
 
-const server = http.createServer((req, res) => {
-  const file = path.join(webDir, new URL(req.url, 'http://x').pathname.replace(/\/$/, '/index.html'));
-  if (!fs.existsSync(file)) { res.writeHead(404); res.end(); return; }
-  res.writeHead(200, { 'Content-Type': file.endsWith('.js') ? 'text/javascript' : file.endsWith('.css') ? 'text/css' : 'text/html' });
-  fs.createReadStream(file).pipe(res);
-});
 const median = (a) => [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)];
 
-(async () => {
-  await new Promise((r) => server.listen(0, '127.0.0.1', r));
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-bench-'));
-  const out = path.join(profile, 'native.csv');
-  const context = await chromium.launchPersistentContext(profile, {
-    executablePath: env('WHATNEXT_CHROMIUM', '/usr/bin/chromium'), headless: true,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking'],
-    viewport: { width: 1400, height: 900 },
-  });
-  const page = await context.newPage();
-  await page.goto(`http://127.0.0.1:${server.address().port}/#machine=example2`);
-  await page.waitForSelector('body[data-ready]', { timeout: 60000 });
+const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-bench-'));
+const out = path.join(dir, 'native.csv');
+withPage(async (page) => {
   for (const [i, [key, lo, hi, n]] of grid.entries()) {
     const axis = i === 0 ? 'x' : 'y';
     await page.selectOption(`#map-${axis}-key`, key);
@@ -85,8 +63,7 @@ const median = (a) => [...a].sort((x, y) => x - y)[Math.floor(a.length / 2)];
   console.log(`native whatnext sweep (whole process): median ${nm.toFixed(0)} ms (runs ${native.map((x) => x.toFixed(0)).join(' ')})`);
   console.log(`ratio page / native: ${(pm / nm).toFixed(2)}; longest frame while the map ran: median ${median(frames).toFixed(0)} ms, worst ${Math.max(...frames).toFixed(0)} ms`);
   console.log(`rows of the page's CSV the same bytes as the native file's: ${same} of ${nativeRows.length - 1} (the header among them)`);
-  await context.close();
-  server.close();
-  fs.rmSync(profile, { recursive: true, force: true });
+}, { hash: '#machine=example2' }).then(() => {
+  fs.rmSync(dir, { recursive: true, force: true });
   process.exit(0);
-})().catch((e) => { console.error(e); process.exit(1); });
+}).catch((e) => { console.error(e); process.exit(1); });

@@ -1,65 +1,16 @@
 // The page's map and phase plots in Chromium (playwright-core), checked against the whatnext
 // command line run by the test itself.
 //   node web/tests/map.js CHECK     (CHECK: one of the names in `checks` below)
-// Settings from the environment, as web/tests/page.js takes them: WHATNEXT_WEB_DIR, WHATNEXT_CLI,
+// Settings from the environment, as web/tests/browser.js takes them: WHATNEXT_WEB_DIR, WHATNEXT_CLI,
 // WHATNEXT_SOURCE_DIR, WHATNEXT_CHROMIUM.
 'use strict';
 const assert = require('assert/strict');
 const fs = require('fs');
-const http = require('http');
 const os = require('os');
 const path = require('path');
 const { spawnSync } = require('child_process');
 
-const env = (name, fallback) => process.env[name] || fallback;
-const sourceDir = path.resolve(env('WHATNEXT_SOURCE_DIR', '.'));
-const webDir = path.resolve(env('WHATNEXT_WEB_DIR', path.join(sourceDir, 'build/web')));
-const cliPath = path.resolve(env('WHATNEXT_CLI', path.join(sourceDir, 'build/whatnext')));
-const chromiumPath = env('WHATNEXT_CHROMIUM', '/usr/bin/chromium');
-const { chromium } = require(require.resolve('playwright-core', {
-  paths: [...(process.env.NODE_PATH || '').split(':').filter(Boolean), path.join(sourceDir, 'build/web-npm/node_modules')],
-}));
-const kChromiumFlags = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-                        '--disable-background-networking', '--disable-component-update', '--disable-sync'];
-
-function serve(dir) {
-  const types = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.svg': 'image/svg+xml' };
-  const server = http.createServer((req, res) => {
-    const file = path.join(dir, decodeURIComponent(new URL(req.url, 'http://x').pathname).replace(/\/$/, '/index.html'));
-    if (!file.startsWith(dir) || !fs.existsSync(file)) { res.writeHead(404); res.end(); return; }
-    res.writeHead(200, { 'Content-Type': types[path.extname(file)] || 'application/octet-stream' });
-    fs.createReadStream(file).pipe(res);
-  });
-  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => {
-    resolve({ url: `http://127.0.0.1:${server.address().port}/`, close: () => server.close() });
-  }));
-}
-
-// The page in a fresh browser; any console error, page error or failed request fails the check.
-async function withPage(fn, options = {}) {
-  const server = await serve(webDir);
-  const base = options.base || server.url;
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-chromium-'));
-  const context = await chromium.launchPersistentContext(profile, {
-    executablePath: chromiumPath, headless: true, args: kChromiumFlags, acceptDownloads: true,
-    viewport: options.viewport || { width: 1400, height: 900 }, locale: options.locale || 'en-GB',
-  });
-  const problems = [];
-  const page = await context.newPage();
-  page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });
-  page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
-  page.on('requestfailed', (r) => problems.push(`request failed: ${r.url()}`));
-  try {
-    await page.goto(base + (options.hash || ''));
-    await page.waitForSelector('body[data-ready]', { timeout: 60000 });
-    await fn(page);
-    assert.deepEqual(problems, [], 'the browser reported problems');
-  } finally {
-    await context.close();
-    server.close();
-    fs.rmSync(profile, { recursive: true, force: true });
-  }
-}
+const { webDir, cliPath, withPage } = require('./browser');
 
 // Fills the map's form and draws; returns when it is done (or stopped).
 async function drawMap(page, x, y, value = 'outcome', stopAfter = null) {

@@ -7,25 +7,12 @@
 'use strict';
 const assert = require('assert/strict');
 const fs = require('fs');
-const http = require('http');
 const os = require('os');
 const path = require('path');
 const { spawnSync } = require('child_process');
 
-const env = (name, fallback) => process.env[name] || fallback;
-const sourceDir = path.resolve(env('WHATNEXT_SOURCE_DIR', '.'));
-const webDir = path.resolve(env('WHATNEXT_WEB_DIR', path.join(sourceDir, 'build/web')));
-const cliPath = path.resolve(env('WHATNEXT_CLI', path.join(sourceDir, 'build/whatnext')));
-const chromiumPath = env('WHATNEXT_CHROMIUM', '/usr/bin/chromium');
+const { env, sourceDir, webDir, cliPath, withPage } = require('./browser');
 const outDir = path.resolve(env('WHATNEXT_TEST_OUT', path.join(sourceDir, 'build/web-test')));
-const { chromium } = require(require.resolve('playwright-core', {
-  paths: [...(process.env.NODE_PATH || '').split(':').filter(Boolean), path.join(sourceDir, 'build/web-npm/node_modules')],
-}));
-
-// Chromium as root in a container on a closed network: no sandbox, no GPU, and none of its own
-// connections (they would be refused); a fresh profile every time.
-const kChromiumFlags = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-                        '--disable-background-networking', '--disable-component-update', '--disable-sync'];
 const kSandbagColour = [204, 127, 0];  // web/src/machine.js, as the animation draws it
 const kSeesawColour = [153, 85, 51], kGroundColour = [224, 224, 224];  // the same
 
@@ -59,67 +46,6 @@ function cliError(args) {
 }
 
 // ---- the page ----------------------------------------------------------------------------------
-
-function serve(dir) {
-  const types = { '.html': 'text/html', '.js': 'text/javascript', '.css': 'text/css', '.svg': 'image/svg+xml',
-                  '.txt': 'text/plain' };
-  const server = http.createServer((req, res) => {
-    const file = path.join(dir, decodeURIComponent(new URL(req.url, 'http://x').pathname).replace(/\/$/, '/index.html'));
-    if (!file.startsWith(dir) || !fs.existsSync(file)) {
-      res.writeHead(404);
-      res.end();
-      return;
-    }
-    res.writeHead(200, { 'Content-Type': types[path.extname(file)] || 'application/octet-stream' });
-    fs.createReadStream(file).pipe(res);
-  });
-  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => {
-    resolve({ url: `http://127.0.0.1:${server.address().port}/`, close: () => server.close() });
-  }));
-}
-
-// Opens the page in a fresh browser and runs fn(page, tools); fails on any console error, page
-// error, failed request or request that leaves the local server.
-async function withPage(fn, options = {}) {
-  const server = await serve(webDir);
-  // The page from another place: the single file from the disk, or another server's address.
-  const base = options.base || server.url;
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-chromium-'));
-  const downloads = fs.mkdtempSync(path.join(os.tmpdir(), 'whatnext-downloads-'));
-  const context = await chromium.launchPersistentContext(profile, {
-    executablePath: chromiumPath, headless: true, args: kChromiumFlags, acceptDownloads: true,
-    viewport: options.viewport || { width: 1400, height: 900 }, deviceScaleFactor: options.scale || 1,
-    locale: options.locale || 'en-GB', hasTouch: Boolean(options.touch), isMobile: Boolean(options.touch),
-    reducedMotion: options.reducedMotion || 'no-preference',
-  });
-  if (options.clipboard) await context.grantPermissions(['clipboard-read', 'clipboard-write']);
-  const problems = [];
-  const watch = (page) => {
-    page.on('console', (m) => { if (m.type() === 'error') problems.push(`console error: ${m.text()}`); });
-    page.on('pageerror', (e) => problems.push(`page error: ${e.message}`));
-    page.on('requestfailed', (r) => problems.push(`request failed: ${r.url()}`));
-    page.on('request', (r) => {
-      if (!r.url().startsWith(base) && !/^(data|blob):/.test(r.url())) problems.push(`network: ${r.url()}`);
-    });
-  };
-  context.on('page', watch);
-  const open = async (hash = '', waitFor = 'body[data-ready]') => {
-    const page = await context.newPage();
-    await page.goto(base + hash);
-    await page.waitForSelector(waitFor, { timeout: 30000 });
-    return page;
-  };
-  try {
-    const page = await open(options.hash, options.ready);
-    await fn(page, { open, downloads, server, context });
-    assert.deepEqual(problems, [], 'the browser reported problems');
-  } finally {
-    await context.close();
-    server.close();
-    fs.rmSync(profile, { recursive: true, force: true });
-    fs.rmSync(downloads, { recursive: true, force: true });
-  }
-}
 
 const runs = (page) => page.evaluate(() => Number(document.body.dataset.runs));
 // The library runs in a worker: after a change, wait until nothing is running or waiting.
@@ -1426,6 +1352,22 @@ const checks = {
           const preset = await page.locator('#preset').boundingBox();
           assert.ok(header.height <= 56, `${name}: the header is ${header.height} px high (one row)`);
           assert.ok(preset.width >= 0.3 * viewport.width, `${name}: the machine's choice is ${preset.width} px wide`);
+          // What the closed choice shows is whole: the machine's name, or on a phone its short name.
+          for (const locale of ['de', 'en']) {  // English again for what follows
+            await page.selectOption('#lang', locale);
+            await page.waitForFunction((l) => document.documentElement.lang === l && document.body.dataset.ready, locale);
+            const shown = await page.evaluate(() => {
+              const face = document.getElementById('preset-face'), select = document.getElementById('preset');
+              const el = face && getComputedStyle(face).display !== 'none' ? face : select;
+              const text = el === face ? face.textContent : select.selectedOptions[0].text;
+              const g = document.createElement('canvas').getContext('2d');
+              g.font = getComputedStyle(el).font;
+              const room = el === face ? face.clientWidth - parseFloat(getComputedStyle(face).paddingLeft)
+                : select.clientWidth - parseFloat(getComputedStyle(select).paddingLeft) - 24;  // the select's arrow
+              return { text, width: g.measureText(text).width, room };
+            });
+            assert.ok(shown.width <= shown.room, `${name} (${locale}): the machine's choice shows '${shown.text}' in ${shown.room} px, ${shown.width} px wide`);
+          }
           const panel = await top('#panel');
           for (const part of ['#outcome', '#machine', '#timeline', '#plot-angles']) {
             assert.ok(await top(part) < panel, `${name}: ${part} is below the parameters`);
@@ -1663,6 +1605,15 @@ const checks = {
         return words.filter((w) => new RegExp(`(^|[^\\wäöüß.])${w}([^\\wäöüß]|$)`).test(text));
       });
       assert.deepEqual(english, [], 'English words in the German page');
+      // Every parameter's name whole (a long German word wraps at its soft hyphen, never cut).
+      const cutNames = await page.evaluate(() => {
+        const closed = [...document.querySelectorAll('#fields details')].filter((d) => !d.open);
+        for (const d of closed) d.open = true;
+        const cut = [...document.querySelectorAll('.field label')].filter((l) => l.scrollWidth > l.clientWidth + 1).map((l) => l.textContent);
+        for (const d of closed) d.open = false;
+        return cut;
+      });
+      assert.deepEqual(cutNames, [], 'parameter names cut');
       await setFieldAndRun(page, 'geometry.rope_length', '0,9');
       assert.match(await outcomeText(page), /^Ergebnis: Deckel offen bei \d,\d{3} s\.$/);
       await setField(page, 'geometry.rope_length', '-1');
