@@ -53,8 +53,8 @@ withPage(async (page) => {
     page_.push(m.ms);
     frames.push(m.worst);
   }
-  // The rows that are the native file's byte for byte (the others differ in the last digits of a
-  // number: the two builds' maths libraries, web/tests/map.js).
+  // The rows that are the native file's byte for byte: all of them, the two builds sharing one
+  // maths library (cmake/maths.cmake; web/tests/map.js requires it).
   const pageRows = (await page.evaluate(() => window.whatnextMap.csv())).split('\n'), nativeRows = fs.readFileSync(out, 'utf8').split('\n');
   const same = nativeRows.filter((row, i) => row === pageRows[i]).length - 1;  // not the empty last
   const pm = median(page_), nm = median(native);
