@@ -35,24 +35,24 @@ const Value& remember(Memo& m, int flags, double a, double b, double c, double d
 }
 }  // namespace
 
-Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s, double q_s,
-                          double q_l) const {
+Swing Model::swing(Workspace& ws, bool on, bool taut, double r, double phi_s, double dr, double dphi_s,
+                   double q_s, double q_l) const {
   const int flags = (on ? 1 : 0) | (taut ? 2 : 0);
-  if (recall(swing_memo_, flags, r, phi_s, dr, dphi_s, q_s, q_l)) return swing_memo_.value;
-  return remember(swing_memo_, flags, r, phi_s, dr, dphi_s, q_s, q_l,
+  if (recall(ws.swing, flags, r, phi_s, dr, dphi_s, q_s, q_l)) return ws.swing.value;
+  return remember(ws.swing, flags, r, phi_s, dr, dphi_s, q_s, q_l,
                   compute_swing(on, taut, r, phi_s, dr, dphi_s, q_s, q_l));
 }
 
-Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side,
-                                    double q_s, double q_l) const {
+LidSwing Model::swing_by_lid(Workspace& ws, bool on, double r, double phi_l, double dr, double dphi_l,
+                             int side, double q_s, double q_l) const {
   const int flags = (on ? 1 : 0) | (side > 0 ? 2 : 0);
-  if (recall(lid_swing_memo_, flags, r, phi_l, dr, dphi_l, q_s, q_l)) return lid_swing_memo_.value;
-  return remember(lid_swing_memo_, flags, r, phi_l, dr, dphi_l, q_s, q_l,
+  if (recall(ws.lid_swing, flags, r, phi_l, dr, dphi_l, q_s, q_l)) return ws.lid_swing.value;
+  return remember(ws.lid_swing, flags, r, phi_l, dr, dphi_l, q_s, q_l,
                   compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side, q_s, q_l));
 }
 
-Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s,
-                                  double q_s, double q_l) const {
+Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s, double q_s,
+                           double q_l) const {
   // J phiS'' = Q with J = I_S + [on] m_S r^2 + [taut] I_L k^2. With I_S = 0, no seesaw weight and no
   // damping (docs/model.md §1) the extra terms are exact zeros and this is eqs. (3) and (4) of the paper.
   // This is the flow's hot path: one sincos of phiS serves the weights and the whole linkage.
@@ -80,8 +80,8 @@ Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, do
   return p;
 }
 
-Model::LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l,
-                                            int side, double q_s_coulomb, double q_l_coulomb) const {
+LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side,
+                                     double q_s_coulomb, double q_l_coulomb) const {
   // Along the closure phiS = S(phiL): multiply the seesaw's equation by S' and add the lid's, and
   // the rope's force drops out (its gradient is normal to the closure). With phiS' = S' phiL' and
   // phiS'' = S' phiL'' + S'' phiL'^2:
@@ -104,7 +104,7 @@ Model::LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, dou
   return p;
 }
 
-WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& dy) const {
+WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const {
   // The sandbag on the arm (r, phiS): the seesaw's swing with it, or the arm held still.
   dy[slot::r] = y[slot::dr];
   dy[slot::phi_s] = y[slot::dphi_s];
@@ -117,7 +117,7 @@ WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& 
     if (d.bag_slip != 0) dy[slot::dr] += bag_friction(d.bag_slip, r, dr, std::cos(y[slot::phi_s]), 0.0, 0.0);
   } else if (d.lid_chart && d.taut) {  // M4 near the lid's dead centre: the lid's angle integrated
     const double dphi_l = y[slot::dphi_s];
-    const LidSwing p = swing_by_lid(true, r, y[slot::phi_s], dr, dphi_l, d.side, q_s, q_l);
+    const LidSwing p = swing_by_lid(ws, true, r, y[slot::phi_s], dr, dphi_l, d.side, q_s, q_l);
     dy[slot::dr] = p.ddr;
     dy[slot::dphi_s] = p.ddphi_l;
     if (d.bag_slip != 0) {  // phiS' = S' phiL', phiS'' = S' phiL'' + S'' phiL'^2
@@ -125,7 +125,7 @@ WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& 
                                    p.lk.ds * p.ddphi_l + p.lk.dds * dphi_l * dphi_l);
     }
   } else {  // M4, or a heavy seesaw carrying the sandbag
-    const Swing p = swing(true, d.taut, r, y[slot::phi_s], dr, y[slot::dphi_s], q_s, q_l);
+    const Swing p = swing(ws, true, d.taut, r, y[slot::phi_s], dr, y[slot::dphi_s], q_s, q_l);
     dy[slot::dr] = p.ddr;
     dy[slot::dphi_s] = p.ddphi_s;
     if (d.bag_slip != 0)
@@ -138,7 +138,7 @@ WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& 
   }
 }
 
-WHATNEXT_STAGE void Model::cartesian_flow(const Discrete& d, const State& y, State& dy) const {
+WHATNEXT_STAGE void Model::cartesian_flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const {
   // Sandbag in free fall. On the seesaw with the rope slack (M3) this is the paper's polar free
   // fall written in Cartesian form: the same motion, regular at r = 0, and exact for any RK method.
   dy[slot::x] = y[slot::vx];
@@ -157,30 +157,35 @@ WHATNEXT_STAGE void Model::cartesian_flow(const Discrete& d, const State& y, Sta
     dy[slot::seesaw_phi] = y[slot::seesaw_dphi];
     dy[slot::seesaw_dphi] =
         d.lid_chart && d.taut
-            ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side, q_s, q_l)
+            ? swing_by_lid(ws, false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side, q_s, q_l)
                   .ddphi_l
-            : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], q_s, q_l).ddphi_s;
+            : swing(ws, false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], q_s, q_l).ddphi_s;
   }
 }
 
 void Model::flow(const Discrete& d, const State& y, State& dy) const {
+  Workspace fresh;
+  flow(d, y, dy, fresh);
+}
+
+void Model::flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const {
   // Each layout's motion, then the balloon's, then the losses the ledger integrates.
   dy.fill(0.0);
   if (d.polar()) {
-    polar_flow(d, y, dy);
+    polar_flow(d, y, dy, ws);
   } else {
-    cartesian_flow(d, y, dy);
+    cartesian_flow(d, y, dy, ws);
   }
   if (small_) {
     if (!d.balloon_stuck) {  // free in the plane: lift and drag
-      const Kinematics k = kinematics(d, y);
+      const Kinematics k = kinematics(d, y, true, &ws);
       const Vec2 f = small_balloon_force(k);
       dy[slot::balloon_x] = y[slot::balloon_vx];
       dy[slot::balloon_vx] = f.x;
       dy[slot::balloon_h] = y[slot::balloon_v];
       dy[slot::balloon_v] = f.h;
     } else if (!d.balloon_held) {  // sliding along the lid, or rolling round its free edge
-      const Kinematics k = kinematics(d, y);
+      const Kinematics k = kinematics(d, y, true, &ws);
       dy[slot::balloon_h] = y[slot::balloon_v];
       dy[slot::balloon_v] =
           d.balloon_edge ? small_balloon_roll(k, y[slot::balloon_h]) : small_balloon_slide(k);
@@ -189,8 +194,8 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     dy[slot::balloon_h] = y[slot::balloon_v];
     dy[slot::balloon_v] = balloon_acceleration(y[slot::balloon_v]);
   }
-  if (c_p_ > 0.0 || c_l_ > 0.0 || drag_ > 0.0 || friction_) dissipation(d, kinematics(d, y), dy);
-  if (stretchy_) stretchy_flow(d, y, dy);
+  if (c_p_ > 0.0 || c_l_ > 0.0 || drag_ > 0.0 || friction_) dissipation(d, kinematics(d, y, true, &ws), dy);
+  if (stretchy_) stretchy_flow(d, y, dy, &ws);
 }
 
 void Model::dissipation(const Discrete& d, const Kinematics& k, State& dy) const {

@@ -11,10 +11,11 @@ using namespace model_detail;
 
 // --- guards ------------------------------------------------------------------------------------
 
-void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates, int only) const {
+void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates, int only,
+                   Workspace* ws) const {
   g.fill(kInactive);
   if (rates) rates->fill(std::numeric_limits<double>::quiet_NaN());
-  const Kinematics k = guard_kinematics(d, y);
+  const Kinematics k = guard_kinematics(d, y, ws);
   balloon_guards(d, y, k, g, rates);
   // The radio's wait: only the balloon matters now; the built machine's seesaw and sandbag still
   // move on its stop and floor. A seesaw with inertia swings on, and must not swing round

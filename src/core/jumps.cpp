@@ -250,22 +250,22 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   }
 }
 
-bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
+bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out, Workspace* ws) const {
   if (stretchy_) {  // the contact decision names modes by its contacts: add the stretched rope
     const std::size_t first = out.size();
     const bool was_stretched = hs.d.stretched;
-    const bool end = jump_contacts(fired, hs, out);
+    const bool end = jump_contacts(fired, hs, out, ws);
     if (!end) stretched_rope_left(hs, out);
     stretchy_modes(was_stretched, hs.d, out, first);
     return end;
   }
-  return jump_contacts(fired, hs, out);
+  return jump_contacts(fired, hs, out, ws);
 }
 
-bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out) const {
+bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out, Workspace* ws) const {
   hs.d.armed = {};
   const Mode before = hs.d.mode();
-  const Kinematics k0 = kinematics(hs.d, hs.y);
+  const Kinematics k0 = kinematics(hs.d, hs.y, true, ws);
   const double limit_rate0 = limit_.rate(k0.phi_l, k0.dphi_l);
   open_books(hs, k0);
   const Books opened = hs.d.books;
@@ -338,7 +338,7 @@ bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out)
     case kGuardCount: break;
   }
   release_balloon_if_lid_jumped(hs, k0, limit_rate0, opened, out);
-  book(hs);  // a jump may end with a change that no event reports
+  book(hs, ws);  // a jump may end with a change that no event reports
   return false;
 }
 

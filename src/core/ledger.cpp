@@ -41,8 +41,8 @@ double Model::lid_push_now(const Discrete& d, const Kinematics& k, const State& 
   return b.lid_push + (balloon_energy(k) - b.balloon_e_mark) + (y[slot::lost_drag] - b.drag_mark);
 }
 
-Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full, bool memo) const {
-  const Kinematics k = kinematics(d, y, full, memo);
+Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full, Workspace* ws) const {
+  const Kinematics k = kinematics(d, y, full, ws);
   Snapshot s;
   s.t = t;
   s.mode = d.mode();
@@ -100,7 +100,7 @@ Snapshot Model::snapshot(double t, const Discrete& d, const State& y, bool full,
 
 Positions Model::positions(double t, const Discrete& d, const State& y) const {
   // snapshot(t, d, y, false, false)'s positions, computed the same way.
-  const Kinematics k = kinematics(d, y, false, false);
+  const Kinematics k = kinematics(d, y, false);
   return {t,           k.x,      k.h,
           k.phi_s,     k.phi_l,  balloon_limit_height(k),
           k.balloon_h, d.mode(), d.taut || d.stretched,
@@ -117,11 +117,11 @@ void Model::open_books(HybridState& hs, const Kinematics& k) const {
   b.drag_mark = hs.y[slot::lost_drag];
 }
 
-void Model::book(HybridState& hs) const {
+void Model::book(HybridState& hs, Workspace* ws) const {
   // What the jump changed: the machine's energy drop is an impact loss; a forced change of the
   // balloon's velocity from v to V (the lid's) loses (1/2) m (V - v)^2 and the lid's impulse
   // m (V - v) does the work m (V - v) V.
-  const Kinematics k = kinematics(hs.d, hs.y);
+  const Kinematics k = kinematics(hs.d, hs.y, true, ws);
   Books& b = hs.d.books;
   const double e = energy(k);
   b.impacts += b.machine_mark - e;

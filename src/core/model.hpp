@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "contact.hpp"
+#include "workspace.hpp"
 #include "whatnext/events.hpp"
 #include "whatnext/geometry.hpp"
 #include "whatnext/params.hpp"
@@ -103,19 +104,21 @@ class Model {
   // sandbag that touches but lets go at once is reported in out (at t = 0).
   HybridState initial(std::vector<Event>& out) const;
 
-  // Flow: dy/dt in the discrete state d.
+  // Flow: dy/dt in the discrete state d. ws: the integration's workspace (workspace.hpp); without
+  // one, a fresh one: the same numbers.
+  void flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const;
   void flow(const Discrete& d, const State& y, State& dy) const;
   // Guard values in the discrete state d, and, if asked, their rates where they are gaps of open
   // contacts (NaN elsewhere: not known). With only >= 0, g[only] is all the caller reads (root
   // finding), and what no other guard needs is skipped.
-  void guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates = nullptr,
-              int only = -1) const;
+  void guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates = nullptr, int only = -1,
+              Workspace* ws = nullptr) const;
   // Jump for the guard that fired at hs.t; every resulting event is appended to out in the order
   // it happens (all at hs.t). Returns true when the run ends. The events' after, energy_after
   // and (unless an impact) energy_before are the state the motion goes on with once every event
-  // of the instant is decided: simulate() fills them in then, once for all of them.
-  bool jump(Guard fired, HybridState& hs, std::vector<Event>& out) const;
-  bool jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out) const;
+  // of the instant is decided: simulate() fills them in then, once for all of them. ws: as in kinematics().
+  bool jump(Guard fired, HybridState& hs, std::vector<Event>& out, Workspace* ws = nullptr) const;
+  bool jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out, Workspace* ws = nullptr) const;
   // The run ends at t_max.
   void timeout(HybridState& hs, std::vector<Event>& out) const;
   // The rounding band of a guard in d (see GuardStart): values within it count as zero.
@@ -125,13 +128,12 @@ class Model {
 
   // rates = false: where everything is (x, h, r, phiS, phiL with their cos and sin, the balloon's
   // height), the same numbers, without the rates, accelerations and the linkage's k (all zero).
-  // memo = false: without the memos of the flow's last swing (below), so that other threads may
-  // call it while this model integrates; the same numbers.
-  Kinematics kinematics(const Discrete& d, const State& y, bool rates = true, bool memo = true) const;
+  // ws: the integration's workspace, or null (computed afresh): the same numbers.
+  Kinematics kinematics(const Discrete& d, const State& y, bool rates = true, Workspace* ws = nullptr) const;
   // What the guards read: kinematics() with rates, but phiS left NaN where only its cos and sin
   // follow from the state (the sandbag's fall, the lid's chart): no guard reads the angle itself,
   // and its atan2 was 4 % of a sweep.
-  Kinematics guard_kinematics(const Discrete& d, const State& y) const;
+  Kinematics guard_kinematics(const Discrete& d, const State& y, Workspace* ws) const;
   // How the continuous state is laid out, decided by the contacts alone (kinematics.cpp):
   // polar (r, phiS) while the sandbag rides the seesaw with something to carry it, else Cartesian.
   enum class Layout {
@@ -147,8 +149,11 @@ class Model {
   };
   static Layout layout(const Discrete& d);
   // full = false: positions only (Observer::Detail::positions), no rates, forces nor energies.
-  Snapshot snapshot(double t, const Discrete& d, const State& y, bool full = true, bool memo = true) const;
-  Snapshot snapshot(const HybridState& hs) const { return snapshot(hs.t, hs.d, hs.y); }
+  Snapshot snapshot(double t, const Discrete& d, const State& y, bool full = true,
+                    Workspace* ws = nullptr) const;
+  Snapshot snapshot(const HybridState& hs, Workspace* ws = nullptr) const {
+    return snapshot(hs.t, hs.d, hs.y, true, ws);
+  }
   // A snapshot's positions alone (Observer::Detail::positions), the same bits, for writers that
   // read nothing else: no Snapshot of 50 numbers made and copied per sample.
   Positions positions(double t, const Discrete& d, const State& y) const;
@@ -180,56 +185,19 @@ class Model {
   bool small_balloon() const { return small_; }
 
  private:
-  // The seesaw's angular acceleration with whatever it carries (J phiS'' = Q, docs/extensions.md),
-  // and the lid's angle on the rope's closure when the rope is taut.
-  struct Swing {
-    double ddr, ddphi_s;
-    RopeGeometry::Linkage lk;  // the seesaw's cos and sin always; the rest while taut
-  };
+  // The seesaw's swing (workspace.hpp Swing), from ws's memo where it holds these arguments.
   // q_s, q_l: the slipping pivot's and hinge's Coulomb torques (0 without friction).
-  Swing swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s, double q_s = 0.0,
-              double q_l = 0.0) const;
-  // The same motion on the rope's closure in the lid chart: phiL integrated, phiS = S(phiL).
-  struct LidSwing {
-    double ddr, ddphi_l;
-    RopeGeometry::Linkage lk;
-  };
-  LidSwing swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side, double q_s = 0.0,
-                        double q_l = 0.0) const;
+  Swing swing(Workspace& ws, bool on, bool taut, double r, double phi_s, double dr, double dphi_s,
+              double q_s = 0.0, double q_l = 0.0) const;
+  LidSwing swing_by_lid(Workspace& ws, bool on, double r, double phi_l, double dr, double dphi_l, int side,
+                        double q_s = 0.0, double q_l = 0.0) const;
   Swing compute_swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s, double q_s = 0.0,
                       double q_l = 0.0) const;
   LidSwing compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side,
                                 double q_s = 0.0, double q_l = 0.0) const;
-  // The flow's last stage (FSAL) and the guards at the step's end ask for the swing of the same
-  // state: the last one computed is kept and handed out again for identical arguments. A Model
-  // belongs to one simulate() call, hence to one thread (kinematics(memo = false) leaves them be).
-  template <class Result>
-  struct Memo {
-    bool valid = false;
-    int flags = 0;
-    double args[6] = {0, 0, 0, 0, 0, 0};
-    Result value{};
-  };
-  mutable Memo<Swing> swing_memo_;
-  mutable Memo<LidSwing> lid_swing_memo_;
-  // cos and sin of an angle that stays put for a while (a resting lid, a parked seesaw: every guard
-  // evaluation of the sandbag's fall took a sincos of each): the last angle's are kept, and handed
-  // out again for the same angle. Like the memos above, for one thread's integration only.
-  struct Trig {
-    double angle = std::numeric_limits<double>::quiet_NaN(), cos = 1.0, sin = 0.0;
-  };
-  mutable Trig seesaw_trig_, lid_trig_;
-  static void trig(Trig& last, double angle, double& c, double& s, bool memo) {
-    if (!memo) {
-      c = std::cos(angle), s = std::sin(angle);
-      return;
-    }
-    if (!(last.angle == angle)) last.angle = angle, last.cos = std::cos(angle), last.sin = std::sin(angle);
-    c = last.cos, s = last.sin;
-  }
   static void lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l, bool seesaw_angle);
   struct KinematicsPass;  // kinematics.cpp: one evaluation, stage by stage
-  Kinematics kinematics_pass(const Discrete& d, const State& y, bool rates, bool memo,
+  Kinematics kinematics_pass(const Discrete& d, const State& y, bool rates, Workspace* ws,
                              bool seesaw_angle) const;
   // The lid swings on the straight rope, driven through it by something with inertia.
   static bool on_closure(const Discrete& d) {
@@ -275,8 +243,8 @@ class Model {
   void small_balloon_settle(HybridState& hs, Mode before, std::vector<Event>& out) const;
   void small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0, std::vector<Event>& out) const;
   // The flow's stages: the sandbag on the arm in polar form, or flying in Cartesian form.
-  void polar_flow(const Discrete& d, const State& y, State& dy) const;
-  void cartesian_flow(const Discrete& d, const State& y, State& dy) const;
+  void polar_flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const;
+  void cartesian_flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const;
   void dissipation(const Discrete& d, const Kinematics& k, State& dy) const;
   // Coulomb friction (contact_problem.cpp): the slip's tangent in the contact problem, and the
   // sandbag's acceleration along the arm from friction while it slips (the arm's push per unit
@@ -380,7 +348,7 @@ class Model {
                   std::vector<Event>& out) const;
   // Ledger: fold the continuous phase into the books, then book what a jump changed.
   void open_books(HybridState& hs, const Kinematics& k) const;
-  void book(HybridState& hs) const;
+  void book(HybridState& hs, Workspace* ws = nullptr) const;
   double lid_push_now(const Discrete& d, const Kinematics& k, const State& y) const;
 
   Scenario sc_;
@@ -447,7 +415,7 @@ class Model {
   }
   bool pulls_heavy_ = false;  // a stretchy rope on a seesaw with inertia (heavy_pull is not zero)
   double rope_energy(const Kinematics& k) const;
-  void stretchy_flow(const Discrete& d, const State& y, State& dy) const;
+  void stretchy_flow(const Discrete& d, const State& y, State& dy, Workspace* ws) const;
   void stretchy_kinematics(const Discrete& d, Kinematics& k) const;
   void stretchy_accelerations(const Discrete& d, const Kinematics& k, contact::Coords& a) const;
   void stretchy_force(const Discrete& d, const Kinematics& k, contact::System& s) const;

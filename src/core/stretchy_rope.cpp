@@ -68,9 +68,9 @@ double Model::rope_energy(const Kinematics& k) const {
   return s > 0.0 ? 0.5 * k_rope_ * s * s : 0.0;
 }
 
-void Model::stretchy_flow(const Discrete& d, const State& y, State& dy) const {
+void Model::stretchy_flow(const Discrete& d, const State& y, State& dy, Workspace* ws) const {
   if (!spring_rope(d)) return;
-  const Kinematics k = kinematics(d, y);
+  const Kinematics k = kinematics(d, y, true, ws);
   const RopePull p = rope_pull(d, k);
   // Slack but still longer than l_R (it let go where its damper would have pushed), the spring's
   // energy goes as the span shrinks: booked as lost (-k s s').
