@@ -56,7 +56,7 @@ struct Model::KinematicsPass {
   // The lid on its own: resting, latched open, held by its hinge's friction, or swinging freely.
   void free_lid() {
     if (d.lid_resting) {
-      k.phi_l = m.phi_l0_;
+      k.phi_l = m.c_.phi_l0;
     } else if (d.latched || d.lid_stuck || !rates) {
       k.phi_l = y[slot::phi_l];
     } else {
@@ -109,7 +109,7 @@ struct Model::KinematicsPass {
       case Layout::carried_slack: carried_slack(); break;
       case Layout::grounded_carrying: on_the_floor(); break;
       case Layout::held_by_rope:
-        k.phi_l = d.lid_resting ? m.phi_l0_ : y[slot::phi_l];  // on the box, or held by the hinge
+        k.phi_l = d.lid_resting ? m.c_.phi_l0 : y[slot::phi_l];  // on the box, or held by the hinge
         if (rates) k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
         break;
       case Layout::on_rope_by_lid: on_rope_by_lid(); break;
@@ -148,7 +148,7 @@ struct Model::KinematicsPass {
     k.dphi_s = 0.0;
     if (!d.taut) return free_lid();
     if (d.lid_resting) {
-      k.phi_l = m.phi_l0_;
+      k.phi_l = m.c_.phi_l0;
     } else {
       placed(false, k.phi_s);
     }
@@ -196,7 +196,7 @@ struct Model::KinematicsPass {
     trig_s = k.r > 0.0;
     if (rates) {
       k.dphi_s = (k.vx * s - k.vh * c) / k.r;
-      k.ddphi_s = (m.g_ * c - 2.0 * k.dr * k.dphi_s) / k.r;
+      k.ddphi_s = (m.c_.g * c - 2.0 * k.dr * k.dphi_s) / k.r;
     }
   }
   // The unloaded heavy seesaw, on its own or with the lid on the rope.
@@ -206,7 +206,7 @@ struct Model::KinematicsPass {
     if (d.seesaw_held()) {
       if (d.taut) on_the_floor();
     } else if (d.taut && d.lid_held()) {
-      k.phi_l = d.lid_resting ? m.phi_l0_ : y[slot::phi_l];
+      k.phi_l = d.lid_resting ? m.c_.phi_l0 : y[slot::phi_l];
       if (rates) k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
     } else if (d.lid_chart && d.taut) {
       const double phi_l = y[slot::seesaw_phi];
@@ -237,8 +237,8 @@ struct Model::KinematicsPass {
   void finish() {
     if (!trig_s) trig(ws ? &ws->seesaw : nullptr, k.phi_s, k.cos_s, k.sin_s);
     if (!trig_l) trig(ws ? &ws->lid : nullptr, k.phi_l, k.cos_l, k.sin_l);
-    if (m.small_) return small_balloon();
-    k.balloon_x = m.r_l_;
+    if (m.c_.small) return small_balloon();
+    k.balloon_x = m.c_.r_l;
     if (d.balloon_stuck) {
       k.balloon_h = m.limit_.height_at(k.cos_l, k.sin_l);
       if (rates) k.balloon_v = m.limit_.rate_at(k.sin_l, k.dphi_l);
@@ -308,7 +308,7 @@ Kinematics Model::kinematics_pass(const Discrete& d, const State& y, bool rates,
     pass.cartesian(layout);
   }
   pass.finish();
-  if (stretchy_ && rates && d.stretched) stretchy_kinematics(d, k);
+  if (c_.stretchy && rates && d.stretched) stretchy_kinematics(d, k);
   return k;
 }
 

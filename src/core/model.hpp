@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "constants.hpp"
 #include "contact.hpp"
 #include "workspace.hpp"
 #include "whatnext/events.hpp"
@@ -177,12 +178,12 @@ class Model {
   double balloon_limit_rate(const Kinematics& k) const;
   // The balloon's upward acceleration at speed v (lift, weights and air drag): the flow, the
   // balloon guard and the jumps all use this one function.
-  double balloon_acceleration(double v) const { return a_b_ - drag_ * v * std::fabs(v); }
+  double balloon_acceleration(double v) const { return c_.a_b - c_.drag * v * std::fabs(v); }
   // The lid's angular acceleration while it swings free of the rope and the box, with the hinge's
   // damper and an extra torque q_l (friction, a stretched rope's pull): the flow's.
   double lid_free_acceleration(double phi_l, double dphi_l, double q_l = 0.0) const;
   // A balloon smaller than the box, which slides along the lid and flies in the plane.
-  bool small_balloon() const { return small_; }
+  bool small_balloon() const { return c_.small; }
 
  private:
   // The seesaw's swing (workspace.hpp Swing), from ws's memo where it holds these arguments.
@@ -206,7 +207,7 @@ class Model {
   double lid_free_acceleration_at(double cos_l, double dphi_l, double q_l) const;  // cos phiL known
   // r'' of the sandbag on the arm (eq. 5): gravity along the arm and the centrifugal term.
   double along_arm_acceleration(double r, double sin_s, double dphi_s) const {
-    return g_ * sin_s + r * dphi_s * dphi_s;
+    return c_.g * sin_s + r * dphi_s * dphi_s;
   }
   double radio_gap(const Kinematics& k) const;
   // guards() in stages (guards.cpp), called in this order.
@@ -251,12 +252,12 @@ class Model {
   // mass, N/m = g cos phiS - 2 r' phiS' - r phiS'', times mu, against the slip).
   void friction_contacts(const Discrete& d, contact::System& s, const Kinematics& k) const;
   double bag_friction(int slip, double r, double dr, double cos_s, double dphi_s, double ddphi_s) const {
-    return -mu_ * slip * (g_ * cos_s - 2.0 * dr * dphi_s - r * ddphi_s);
+    return -c_.mu * slip * (c_.g * cos_s - 2.0 * dr * dphi_s - r * ddphi_s);
   }
   // The sandbag's height above the arm's line and its distance along it from the pivot.
   static double height_above_arm(const Kinematics& k);
-  // Negative while |phiS| < vertical_, from cos phiS alone (guard_kinematics has no phiS).
-  double seesaw_vertical_gap(const Kinematics& k) const { return cos_vertical_ - k.cos_s; }
+  // Negative while |phiS| < c_.vertical, from cos phiS alone (guard_kinematics has no phiS).
+  double seesaw_vertical_gap(const Kinematics& k) const { return c_.cos_vertical - k.cos_s; }
   static double along_arm(const Kinematics& k);
 
   // Contact changes. How the contact that triggered them tends: touching, letting go (its force
@@ -352,50 +353,30 @@ class Model {
   double lid_push_now(const Discrete& d, const Kinematics& k, const State& y) const;
 
   Scenario sc_;
+  const Constants c_;  // constants.hpp: every number the model reads, taken once
   RopeGeometry rope_;
   BalloonLimit limit_;
-  bool small_;  // balloon.radius < r_L
   SmallBalloon sb_;
-  double g_, m_s_, m_l_, i_l_, r_l_, a_b_, phi_l0_, vertical_;
-  double cos_vertical_;  // of vertical_ (seesaw_vertical_gap)
-  // Extensions (zero or infinite: the paper's machine, docs/model.md §1).
-  double drag_, m_b_, i_s_, w_s_, c_p_, c_l_, arm_;
-  bool heavy_, radio_;
-  Vec2 switch_;
-  double string_, balloon_x_;
-  double length_scale_;  // for the contact problem's tolerances
-  // The built machine: how many contacts the problem has (3 without stop and floor), the floor's
-  // height, the restitution of impacts on it, and the seesaw's angles standing on it.
-  int contacts_;
-  bool stop_, floor_;
-  double h_floor_, grounded_left_, grounded_right_;
   std::array<double, kContactCount> e_{};  // Newton's restitution per contact (0: inelastic)
-  bool built_;                             // stop or floor (contacts 3-6)
-  double mu_;                              // Coulomb friction on the arm (contact 7); 0: none
-  double t_p_, t_h_;                       // Coulomb torques at the pivot and the hinge (8, 9)
-  bool friction_;
   // The Coulomb torques of a slipping pivot and hinge, against their slip (docs/extensions.md).
-  double pivot_coulomb(const Discrete& d) const { return -t_p_ * d.seesaw_slip; }
+  double pivot_coulomb(const Discrete& d) const { return -c_.t_p * d.seesaw_slip; }
   // The most a sticking pivot (i = kPivotSlip) or hinge (kHingeSlip) holds: its Coulomb torque and,
   // while the taut rope couples the two and the other is free to turn, the other's through the
   // linkage's k (phiL' = k phiS'): T_p + |k| T_h, or T_h + T_p / |k| (docs/extensions.md).
   double coulomb_hold(const Discrete& d, const Kinematics& k, int i) const;
-  double hinge_coulomb(const Discrete& d) const { return -t_h_ * d.lid_slip; }
-  bool restitution_ = false;  // some contact has one
-  double grounded_angle(int side) const { return side > 0 ? grounded_left_ : grounded_right_; }
+  double hinge_coulomb(const Discrete& d) const { return -c_.t_h * d.lid_slip; }
+  double grounded_angle(int side) const { return side > 0 ? c_.grounded_left : c_.grounded_right; }
   void ground(Kinematics& k, int side, bool carries) const;
 
   // A rope that stretches (stretchy_rope.cpp, docs/impact.md): a one-sided spring-damper instead of
   // the rope's contact while the sandbag rides the massless seesaw; its pull is a generalised force.
-  bool stretchy_ = false;
-  double k_rope_ = 0.0, c_rope_ = 0.0;
   struct RopePull {
     double stretch = 0, rate = 0, tension = 0;  // span - l_R [m], its rate [m/s], the pull [N]
     double q_s = 0, q_l = 0;                    // the pull's torques on the seesaw and the lid [N m]
   };
   // A seesaw with inertia stretches the rope whatever it carries; the massless one only with the
   // sandbag on it (docs/impact.md).
-  bool spring_rope(const Discrete& d) const { return stretchy_ && !d.latched && (d.on_seesaw || heavy_); }
+  bool spring_rope(const Discrete& d) const { return c_.stretchy && !d.latched && (d.on_seesaw || c_.heavy); }
   RopePull rope_pull(const Discrete& d, const Kinematics& k) const;
   // The stretched rope's pull on a seesaw with inertia that it turns (zero otherwise), from the
   // angles and rates alone: its torques join the swings' like the Coulomb torques.
@@ -408,12 +389,11 @@ class Model {
   };
   Torques extra_torques(const Discrete& d, double phi_s, double dphi_s, double phi_l, double dphi_l) const {
     Torques t;
-    if (!friction_ && !pulls_heavy_) return t;
-    const RopePull rope = pulls_heavy_ ? heavy_pull(d, phi_s, dphi_s, phi_l, dphi_l) : RopePull{};
+    if (!c_.friction && !c_.pulls_heavy) return t;
+    const RopePull rope = c_.pulls_heavy ? heavy_pull(d, phi_s, dphi_s, phi_l, dphi_l) : RopePull{};
     t.seesaw = pivot_coulomb(d) + rope.q_s, t.lid = hinge_coulomb(d) + rope.q_l;
     return t;
   }
-  bool pulls_heavy_ = false;  // a stretchy rope on a seesaw with inertia (heavy_pull is not zero)
   double rope_energy(const Kinematics& k) const;
   void stretchy_flow(const Discrete& d, const State& y, State& dy, Workspace* ws) const;
   void stretchy_kinematics(const Discrete& d, Kinematics& k) const;
