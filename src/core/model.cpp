@@ -12,9 +12,7 @@ using namespace model_detail;
 bool fires_at_once(Guard g) {
   // A contact guard at zero is a contact that touches (decided where the piece starts); the balloon
   // is decided by the model (Model::jump) since it is both kinds.
-  return !(g == kGuardBag || g == kGuardRope || g == kGuardLid || g == kGuardStop || g == kGuardFloor ||
-           g == kGuardBagFloor || g == kGuardBagSlip || g == kGuardPivotSlip || g == kGuardHingeSlip ||
-           g == kGuardBalloon || g == kGuardBalloonCorner);
+  return !(is_contact_guard(g) || g == kGuardBalloon || g == kGuardBalloonCorner);
 }
 
 Constants constants_of(const Scenario& scenario) {
@@ -60,8 +58,8 @@ Constants constants_of(const Scenario& scenario) {
   // short to reach the floor never stands on it (NaN).
   c.grounded_left = std::asin(-c.h_floor / c.arm);
   c.grounded_right = std::asin(c.h_floor / m.seesaw_right_arm);
-  c.restitution = m.restitution.sandbag > 0.0 || m.restitution.rope > 0.0 || m.restitution.lid > 0.0 ||
-                  m.restitution.stop > 0.0 || m.floor_restitution > 0.0;
+  c.restitution = false;
+  for (const ContactRow& row : kContacts) c.restitution = c.restitution || row.restitution(m) > 0.0;
   return c;
 }
 
@@ -71,17 +69,7 @@ Model::Model(const Scenario& scenario)
       rope_(scenario.machine),
       limit_{scenario.machine.balloon_radius},
       sb_{scenario.machine.balloon_radius, 2.0 * scenario.machine.lid_half_length} {
-  const Machine& m = scenario.machine;
-  e_ = {m.restitution.sandbag,
-        m.restitution.rope,
-        m.restitution.lid,
-        m.restitution.stop,
-        m.floor_restitution,
-        m.floor_restitution,
-        m.floor_restitution,
-        0.0,
-        0.0,
-        0.0};
+  for (const ContactRow& row : kContacts) e_[row.index] = row.restitution(scenario.machine);
 }
 
 }  // namespace whatnext

@@ -12,6 +12,7 @@
 
 #include "constants.hpp"
 #include "contact.hpp"
+#include "contact_table.hpp"
 #include "workspace.hpp"
 #include "whatnext/events.hpp"
 #include "whatnext/geometry.hpp"
@@ -20,37 +21,6 @@
 
 namespace whatnext {
 
-// Guard functions: each fires when its value crosses from negative to >= 0. Inactive guards read
-// -infinity. A contact's guard is its gap while it is open (it fires on touching) and minus its
-// force while it is closed (it fires when the force would change sign); which contacts change is
-// then decided by the contact problem, not by the guard. The order is the priority for events
-// found at the same instant.
-enum Guard : int {
-  kGuardBag,       // sandbag: height above the arm's line, or minus the arm's push on it
-  kGuardRope,      // rope: |R - E| - l_R, or minus its tension
-  kGuardLid,       // lid: phiL0 - phiL, or minus the box's push on it
-  kGuardStop,      // sandbag against the end stop: r - left_arm, or minus the stop's push
-  kGuardFloor,     // seesaw's ends: minus the nearer one's height above the floor, or minus its push
-  kGuardBagFloor,  // sandbag off the arm: the floor's height minus its own
-  // Coulomb friction on the arm: minus the slip's speed while it slips (it fires when the slip
-  // stops), or the friction force's excess over mu times the arm's push while it sticks.
-  kGuardBagSlip,
-  kGuardPivotSlip,  // the same for the seesaw's pivot (a Coulomb torque) ...
-  kGuardHingeSlip,  // ... and the lid's hinge
-  kGuardArmEnd,     // sandbag on a finite arm reaches its end
-  kGuardBalloon,    // free balloon reaches the lid, or the lid pulls away faster than it can follow
-  // A balloon smaller than the box (docs/extensions.md): sliding along the lid it reaches the far
-  // wall or its top corner; it gets out of the box.
-  kGuardBalloonCorner,
-  kGuardBalloonEscape,
-  kGuardLidOpen,
-  kGuardSeesawVertical,
-  kGuardAtPivot,
-  kGuardRopeLocked,  // the linkage's dead centre: the lid along the rope, or R on the line P-E
-  kGuardRadioOn,
-  kGuardChart,  // on the rope's closure: time to integrate the other angle (no event)
-  kGuardCount
-};
 static_assert(kGuardCount <= kGuardSlots, "Discrete::armed holds every guard");
 using GuardValues = std::array<double, kGuardCount>;
 constexpr double kInactive = -std::numeric_limits<double>::infinity();
@@ -58,25 +28,6 @@ constexpr double kInactive = -std::numeric_limits<double>::infinity();
 // (stops, and a stuck balloon the lid already leaves); the others are contacts, decided there.
 bool fires_at_once(Guard g);
 
-// The contacts of the contact problem, and its coordinates (x, h of the sandbag, phiS, phiL).
-// The built machine adds the end stop, the floor under either end of the seesaw and under the
-// sandbag (contacts 3-6, present only when the machine has them); Coulomb friction the sandbag's
-// slip along the arm (contact 7, the tangent of contact 0, closed while it sticks) and the
-// seesaw's and the lid's turning on their pivot and hinge (8 and 9, bounded by Coulomb torques).
-enum ContactIndex : int {
-  kBag = 0,
-  kRope = 1,
-  kLid = 2,
-  kStop = 3,
-  kFloorLeft = 4,
-  kFloorRight = 5,
-  kBagFloor = 6,
-  kBagSlip = 7,
-  kPivotSlip = 8,
-  kHingeSlip = 9,
-  kContactCount = 10
-};
-constexpr bool is_friction(int contact) { return contact >= kBagSlip; }
 static_assert(kContactCount <= contact::kMaxContacts, "the contact problem holds every contact");
 
 // Full kinematics at one instant, whatever the layout of the continuous state.
