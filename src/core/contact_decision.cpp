@@ -450,14 +450,13 @@ std::array<double, 6> Model::impulses(const Decision& x) const {
     for (int j = 0; j < jump.coords; ++j) dv[j] = x.u[j] - x.sys.velocity[j];
     if (!contact::multipliers_for(jump, x.imp.impulsive, dv, p)) p = x.imp.impulse;
   }
-  // Per contact, in the order of the event's impulses: either end of the seesaw on the floor is
-  // the floor's impulse on the seesaw.
+  // Per contact, in the order of the event's impulses (its row's impulse column). An impulse that
+  // is rounding (within the decision's tolerance) is none: not reported.
   std::array<double, 6> out{};
-  // An impulse that is rounding (within the decision's tolerance) is none: not reported.
-  // Friction's impulse along the arm is not one of them: it is in the sandbag's velocity after.
-  for (int i = 0; i < c_.contacts && i < kBagSlip; ++i) {
-    if (contact::has(x.imp.impulsive, i) && std::fabs(p[i]) > x.ch.impulse_tol)
-      out[i <= kFloorLeft ? i : i - 1] += p[i];
+  for (int i = 0; i < c_.contacts; ++i) {
+    const int column = kContacts[i].impulse;
+    if (column >= 0 && contact::has(x.imp.impulsive, i) && std::fabs(p[i]) > x.ch.impulse_tol)
+      out[column] += p[i];
   }
   return out;
 }

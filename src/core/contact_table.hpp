@@ -75,6 +75,10 @@ struct ContactRow {
   Guard guard;                            // the guard that watches it (both floor contacts share one)
   EventType closes, opens;                // how its closing and its opening are reported
   double (*restitution)(const Machine&);  // Newton's restitution of its impacts (0: inelastic)
+  // Which of an event's impulses (Event::impulse) its impulse adds to: either end of the seesaw
+  // on the floor is the floor's impulse on the seesaw; -1: not reported (friction's impulse is
+  // in the velocities after).
+  int impulse;
 };
 
 // Each contact's restitution (its row's last column).
@@ -88,22 +92,22 @@ constexpr double e_floor(const Machine& m) { return m.floor_restitution; }
 
 using ET = EventType;
 inline constexpr std::array<ContactRow, kContactCount> kContacts{{
-    {kBag, "sandbag on the arm", false, kGuardBag, ET::sandbag_lands, ET::sandbag_leaves, e_sandbag},
-    {kRope, "rope straight", false, kGuardRope, ET::rope_taut, ET::rope_slack, e_rope},
-    {kLid, "lid on the box", false, kGuardLid, ET::lid_rests, ET::lid_lifts, e_lid},
+    {kBag, "sandbag on the arm", false, kGuardBag, ET::sandbag_lands, ET::sandbag_leaves, e_sandbag, 0},
+    {kRope, "rope straight", false, kGuardRope, ET::rope_taut, ET::rope_slack, e_rope, 1},
+    {kLid, "lid on the box", false, kGuardLid, ET::lid_rests, ET::lid_lifts, e_lid, 2},
     {kStop, "sandbag at the end stop", false, kGuardStop, ET::sandbag_at_stop, ET::sandbag_leaves_stop,
-     e_stop},
+     e_stop, 3},
     {kFloorLeft, "seesaw's left end on the floor", false, kGuardFloor, ET::seesaw_on_floor, ET::seesaw_lifts,
-     e_floor},
+     e_floor, 4},
     {kFloorRight, "seesaw's right end on the floor", false, kGuardFloor, ET::seesaw_on_floor,
-     ET::seesaw_lifts, e_floor},
+     ET::seesaw_lifts, e_floor, 4},
     {kBagFloor, "sandbag on the floor", false, kGuardBagFloor, ET::sandbag_on_floor, ET::sandbag_bounces,
-     e_floor},
+     e_floor, 5},
     {kBagSlip, "sandbag sticking on the arm", true, kGuardBagSlip, ET::sandbag_sticks, ET::sandbag_slips,
-     e_none},
+     e_none, -1},
     {kPivotSlip, "seesaw held by its pivot", true, kGuardPivotSlip, ET::seesaw_sticks, ET::seesaw_slips,
-     e_none},
-    {kHingeSlip, "lid held by its hinge", true, kGuardHingeSlip, ET::lid_sticks, ET::lid_slips, e_none},
+     e_none, -1},
+    {kHingeSlip, "lid held by its hinge", true, kGuardHingeSlip, ET::lid_sticks, ET::lid_slips, e_none, -1},
 }};
 }  // namespace contact_rows
 using contact_rows::kContacts;
