@@ -9,6 +9,9 @@
 // limit) stays in its own classes (geometry.hpp), held by the Model beside this.
 #pragma once
 
+#include <array>
+
+#include "contact_table.hpp"
 #include "whatnext/params.hpp"
 #include "whatnext/vec2.hpp"
 
@@ -54,7 +57,8 @@ struct Constants {
   double h_floor;       // [m] the floor's height from the pivot
   // [rad] the seesaw's angle with its left or right end on the floor (NaN: that arm cannot reach it)
   double grounded_left, grounded_right;
-  bool restitution;  // some contact has a restitution above 0
+  std::array<double, kContactCount> e;  // [1] Newton's restitution per contact (kContacts; 0: inelastic)
+  bool restitution;                     // some contact has a restitution above 0
 };
 
 Constants constants_of(const Scenario& scenario);

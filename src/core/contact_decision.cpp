@@ -249,9 +249,9 @@ void Model::rebound(Decision& x) const {
   contact::PerContact after{};
   bool any = false;
   for (int i = 0; i < c_.contacts; ++i) {
-    if (!x.impulsive(i) || !(e_[i] > 0.0)) continue;
+    if (!x.impulsive(i) || !(c_.e[i] > 0.0)) continue;
     const double came = x.sys.rate(i, x.sys.velocity);
-    if (came < 0.0) after[i] = -e_[i] * came, any = true;
+    if (came < 0.0) after[i] = -c_.e[i] * came, any = true;
   }
   if (!any) return;
   const contact::Impact bounce = contact::solve_impact(x.sys, x.touch, x.ch, &after);

@@ -59,7 +59,10 @@ Constants constants_of(const Scenario& scenario) {
   c.grounded_left = std::asin(-c.h_floor / c.arm);
   c.grounded_right = std::asin(c.h_floor / m.seesaw_right_arm);
   c.restitution = false;
-  for (const ContactRow& row : kContacts) c.restitution = c.restitution || row.restitution(m) > 0.0;
+  for (const ContactRow& row : kContacts) {
+    c.e[row.index] = row.restitution(m);
+    c.restitution = c.restitution || c.e[row.index] > 0.0;
+  }
   return c;
 }
 
@@ -68,8 +71,6 @@ Model::Model(const Scenario& scenario)
       c_(constants_of(scenario)),
       rope_(scenario.machine),
       limit_{scenario.machine.balloon_radius},
-      sb_{scenario.machine.balloon_radius, 2.0 * scenario.machine.lid_half_length} {
-  for (const ContactRow& row : kContacts) e_[row.index] = row.restitution(scenario.machine);
-}
+      sb_{scenario.machine.balloon_radius, 2.0 * scenario.machine.lid_half_length} {}
 
 }  // namespace whatnext

@@ -308,7 +308,6 @@ class Model {
   RopeGeometry rope_;
   BalloonLimit limit_;
   SmallBalloon sb_;
-  std::array<double, kContactCount> e_{};  // Newton's restitution per contact (0: inelastic)
   // The Coulomb torques of a slipping pivot and hinge, against their slip (docs/extensions.md).
   double pivot_coulomb(const Discrete& d) const { return -c_.t_p * d.seesaw_slip; }
   // The most a sticking pivot (i = kPivotSlip) or hinge (kHingeSlip) holds: its Coulomb torque and,
