@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
+#include <thread>
 #include <vector>
 
 #include "core/ballistic.hpp"
@@ -400,3 +402,92 @@ TEST(BallisticPieces, OnlyWhereTheSandbagFliesFreely) {
 }
 
 }  // namespace
+
+// --- the model is const; an integration's memos are its Workspace ---------------------------------
+
+namespace {
+
+// States of the layouts whose flow and guards the memos serve: the sandbag on the massless seesaw
+// with the rope taut (the seesaw's chart and the lid's), and the start itself.
+std::vector<wn::HybridState> memo_states(const wn::HybridState& start) {
+  std::vector<wn::HybridState> out{start};
+  for (bool lid_chart : {false, true}) {
+    wn::HybridState s = start;
+    s.d.on_seesaw = true, s.d.taut = true, s.d.lid_resting = false, s.d.lid_chart = lid_chart;
+    s.y[wn::slot::r] = 0.3;
+    s.y[wn::slot::phi_s] = lid_chart ? 0.5 : -0.2;
+    s.y[wn::slot::dr] = -0.4;
+    s.y[wn::slot::dphi_s] = 1.0;
+    out.push_back(s);
+    // Each next state differs from the one before in one argument of the swing alone, so that a
+    // memo that overlooked it would hand back the previous state's swing.
+    for (int i = 0; i < 12; ++i) {
+      const int slot =
+          std::array<int, 4>{wn::slot::r, wn::slot::phi_s, wn::slot::dr, wn::slot::dphi_s}[i % 4];
+      s.y[slot] += 0.01 * (i + 1);
+      out.push_back(s);
+    }
+  }
+  return out;
+}
+
+struct Evaluation {
+  std::vector<wn::State> flows;
+  std::vector<wn::GuardValues> guards;
+};
+
+// Each state's flow and guards, with the workspace ws (each asked twice, the second time from the
+// memos) or without one (null: computed afresh).
+Evaluation evaluate(const wn::Model& model, const std::vector<wn::HybridState>& states, wn::Workspace* ws) {
+  Evaluation e;
+  for (const wn::HybridState& s : states) {
+    for (int twice = 0; twice < (ws ? 2 : 1); ++twice) {
+      wn::State dy{};
+      wn::GuardValues g{};
+      if (ws) {
+        model.flow(s.d, s.y, dy, *ws);
+      } else {
+        model.flow(s.d, s.y, dy);
+      }
+      model.guards(s.d, s.y, g, nullptr, -1, ws);
+      e.flows.push_back(dy);
+      e.guards.push_back(g);
+    }
+  }
+  return e;
+}
+
+bool same_bits(const Evaluation& a, const Evaluation& b, std::size_t stride_a) {
+  const std::size_t n = b.flows.size();
+  if (a.flows.size() != n * stride_a) return false;
+  for (std::size_t i = 0; i < a.flows.size(); ++i) {
+    const std::size_t j = i / stride_a;
+    if (std::memcmp(a.flows[i].data(), b.flows[j].data(), sizeof(wn::State)) != 0) return false;
+    if (std::memcmp(a.guards[i].data(), b.guards[j].data(), sizeof(wn::GuardValues)) != 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+// The memos hand back only what the same arguments gave: a run's workspace changes no bit of the
+// flow or the guards, and one const Model evaluated on two threads at once (no workspace) gives
+// the numbers of a single thread.
+TEST(Workspace, MemosChangeNoBitAndAModelServesTwoThreadsAtOnce) {
+  for (int ex = 1; ex <= 4; ++ex) {
+    const wn::Scenario sc = wn::build_scenario(wn::example_config(ex));
+    const wn::Model model(sc);
+    std::vector<wn::Event> events;
+    const std::vector<wn::HybridState> states = memo_states(model.initial(events));
+    const Evaluation fresh = evaluate(model, states, nullptr);
+    wn::Workspace ws;
+    EXPECT_TRUE(same_bits(evaluate(model, states, &ws), fresh, 2)) << "example " << ex;
+    Evaluation on[2];
+    std::thread a([&] { on[0] = evaluate(model, states, nullptr); });
+    std::thread b([&] { on[1] = evaluate(model, states, nullptr); });
+    a.join();
+    b.join();
+    EXPECT_TRUE(same_bits(on[0], fresh, 1)) << "example " << ex;
+    EXPECT_TRUE(same_bits(on[1], fresh, 1)) << "example " << ex;
+  }
+}

@@ -35,14 +35,15 @@ class BallisticStepper {
   // vanish where a slip starts from rest: the check below cannot see them), and the model's flow
   // there the free fall's (checked, so that a contact added to the model later, say a floor the
   // sandbag rests on, is never taken for one).
-  static bool applies(const Model& model, const Scenario& sc, const Discrete& d, const State& y) {
+  static bool applies(const Model& model, const Scenario& sc, const Discrete& d, const State& y,
+                      Workspace* ws = nullptr) {
     const Machine& m = sc.machine;
     if (d.polar() || d.heavy || d.stretched || m.heavy_seesaw() || m.pivot_damping > 0.0 ||
         m.lid_hinge_damping > 0.0 || m.balloon_drag_rate() > 0.0 || m.has_friction()) {
       return false;
     }
     State dy;
-    model.flow(d, y, dy);
+    ws ? model.flow(d, y, dy, *ws) : model.flow(d, y, dy);
     if (!(dy[slot::x] == y[slot::vx] && dy[slot::h] == y[slot::vh] && dy[slot::vx] == 0.0 &&
           dy[slot::vh] == -m.gravity)) {
       return false;
@@ -57,9 +58,11 @@ class BallisticStepper {
   }
 
   // y: the piece's start, where the model's flow tells which parts move and how (closed_forms).
+  // ws: the run's workspace (workspace.hpp), or null.
   BallisticStepper(const Model& model, const Discrete& d, const State& y, double gravity,
-                   const DenseSettings& set)
+                   const DenseSettings& set, Workspace* ws = nullptr)
       : model_(&model),
+        ws_(ws),
         d_(&d),
         g_(gravity),
         // The series' own error, far below the integrator's (the other pieces'), and not below rounding.
@@ -140,7 +143,7 @@ class BallisticStepper {
   // small balloon sliding along the lid is integrated.
   bool closed_forms(const State& y) {
     State dy;
-    model_->flow(*d_, y, dy);
+    ws_ ? model_->flow(*d_, y, dy, *ws_) : model_->flow(*d_, y, dy);
     lid_swings_ = !(dy[slot::phi_l] == 0.0 && dy[slot::dphi_l] == 0.0);
     balloon_rises_ = !(dy[slot::balloon_h] == 0.0 && dy[slot::balloon_v] == 0.0);
     if (lid_swings_ && !(dy[slot::phi_l] == y[slot::dphi_l] &&
@@ -195,7 +198,8 @@ class BallisticStepper {
     const BallisticStepper* self;
     void operator()(const Moving& r, Moving& dr, double t) const {
       State dy;
-      self->model_->flow(*self->d_, self->at(t, r), dy);
+      const State y = self->at(t, r);
+      self->ws_ ? self->model_->flow(*self->d_, y, dy, *self->ws_) : self->model_->flow(*self->d_, y, dy);
       for (std::size_t k = 0; k < kMoving.size(); ++k) dr[k] = dy[kMoving[k]];
     }
   };
@@ -207,6 +211,7 @@ class BallisticStepper {
   // about 1 rad start to miss a rope that tightens again for an instant.
   static constexpr double kLidArc = 0.2, kLidArcTolerance = 1e-8 / 15.0;
   const Model* model_;
+  Workspace* ws_;  // the run's (workspace.hpp)
   const Discrete* d_;
   double g_;
   double series_error_;

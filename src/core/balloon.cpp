@@ -45,7 +45,7 @@ Vec2 off_the_edge(Vec2 p, Vec2 v, Vec2 e, Vec2 ve) {
 Vec2 Model::small_balloon_force(const Kinematics& k) const {
   // Net lift upwards, quadratic drag against the velocity (the paper's balloon's, in the plane).
   const double v = std::hypot(k.balloon_vx, k.balloon_v);
-  return {-drag_ * v * k.balloon_vx, a_b_ - drag_ * v * k.balloon_v};
+  return {-c_.drag * v * k.balloon_vx, c_.a_b - c_.drag * v * k.balloon_v};
 }
 
 double Model::small_balloon_slide(const Kinematics& k) const {
@@ -113,7 +113,7 @@ Model::BalloonForces Model::small_balloon_forces(const Discrete& d, const Kinema
 
 void Model::small_balloon_guards(const Discrete& d, const Kinematics& k, GuardValues& g,
                                  GuardValues* rates) const {
-  const double tol = slack(a_b_, g_), r = sb_.radius;
+  const double tol = slack(c_.a_b, c_.g), r = sb_.radius;
   if (d.balloon_out && !d.balloon_stuck) return;  // nothing is in its way any more
   if (d.balloon_stuck) {
     const BalloonForces f = small_balloon_forces(d, k);
@@ -183,7 +183,7 @@ void Model::small_balloon_free(HybridState& hs, const Kinematics& k) const {
 void Model::small_balloon_settle(HybridState& hs, Mode before, std::vector<Event>& out) const {
   // Which of lid and wall hold on: the pushes' signs, at most a few changes at one instant. Half
   // the guards' slack: a guard found at its zero lets go here, and one kept starts below zero.
-  const double tol = 0.5 * slack(a_b_, g_);
+  const double tol = 0.5 * slack(c_.a_b, c_.g);
   for (int round = 0; round < 4 && hs.d.balloon_stuck; ++round) {
     const Kinematics k = kinematics(hs.d, hs.y);
     const BalloonForces f = small_balloon_forces(hs.d, k);
@@ -225,13 +225,13 @@ void Model::small_balloon_settle(HybridState& hs, Mode before, std::vector<Event
     for (int side : {1, -1}) {
       SmallBalloon::Limit lim{0.0, 0.0, 0.0};
       if (!small_balloon_wall(side, k.cos_l, k.sin_l, lim) ||
-          side * (k.balloon_q - lim.q) < -1e-12 * length_scale_) {
+          side * (k.balloon_q - lim.q) < -1e-12 * c_.length_scale) {
         continue;
       }
       // At a wall: held there if it moves into it (an inelastic stop), or, at the wall's own
       // rate, if it would accelerate into it.
       const double closing = side * (k.balloon_dq - lim.dq * k.dphi_l),
-                   rate_tol = 1e-9 * std::sqrt(g_ * length_scale_);
+                   rate_tol = 1e-9 * std::sqrt(c_.g * c_.length_scale);
       const double apart =
           side * (small_balloon_slide(k) - (lim.ddq * k.dphi_l * k.dphi_l + lim.dq * k.ddphi_l));
       if (closing > rate_tol || (closing >= -rate_tol && apart > tol)) {
@@ -273,7 +273,7 @@ void Model::small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k
     // A free balloon meets a wall or the wall's top: it loses its velocity into it (inelastic,
     // without friction) and goes on free.
     const Vec2 v = off_the_box({k0.balloon_x, k0.balloon_h}, {k0.balloon_vx, k0.balloon_v}, sb_.radius,
-                               sb_.lid, 1e-9 * length_scale_);
+                               sb_.lid, 1e-9 * c_.length_scale);
     hs.y[slot::balloon_vx] = v.x;
     hs.y[slot::balloon_v] = v.h;
     book(hs);
@@ -300,13 +300,13 @@ void Model::small_balloon_jump(Guard fired, HybridState& hs, const Kinematics& k
     hs.y[slot::balloon_h] = q;
     hs.y[slot::balloon_v] = k0.balloon_vx * c + k0.balloon_v * s - sb_.radius * k0.dphi_l;
     SmallBalloon::Limit lim{0.0, 0.0, 0.0};
-    if (sb_.limit(c, s, lim) && q >= lim.q - 1e-12 * length_scale_) {
+    if (sb_.limit(c, s, lim) && q >= lim.q - 1e-12 * c_.length_scale) {
       // Lid and wall found at one instant: the centre is put on both exactly. The step (of the
       // order of the events' location error) changes its lift's potential: booked with the catch.
       d.balloon_held = true;
       d.balloon_side = 1;
       const double h1 = kinematics(d, hs.y).balloon_h;
-      d.books.balloon_catch += m_b_ * a_b_ * (h1 - k0.balloon_h);
+      d.books.balloon_catch += c_.m_b * c_.a_b * (h1 - k0.balloon_h);
     }
     out.push_back(make_event(EventType::balloon_caught, hs, before, before));
   } else if (fired == kGuardBalloonCorner) {
@@ -334,7 +334,7 @@ void Model::small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0,
     const Vec2 e{std::cos(psi), std::sin(psi)}, ep{-e.h, e.x};
     const Vec2 v0{k0.balloon_vx, k0.balloon_v},
         ve{-sb_.lid * k.sin_l * k.dphi_l, sb_.lid * k.cos_l * k.dphi_l};
-    if (dot(v0 - ve, e) > 1e-7 * std::sqrt(g_ * length_scale_)) {
+    if (dot(v0 - ve, e) > 1e-7 * std::sqrt(c_.g * c_.length_scale)) {
       small_balloon_free(hs, k0);
     } else {
       hs.y[slot::balloon_v] = dot(v0 - ve, ep) / sb_.radius;
@@ -345,7 +345,7 @@ void Model::small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0,
   const double v_n = k0.balloon_vx * s - k0.balloon_v * c;  // the balloon's velocity along n
   const double lid_n = -q * k.dphi_l;                       // the lid's there
   const Mode m = hs.d.mode();
-  if (v_n > lid_n + 1e-7 * std::sqrt(g_ * length_scale_)) {
+  if (v_n > lid_n + 1e-7 * std::sqrt(c_.g * c_.length_scale)) {
     small_balloon_free(hs, k0);
     out.push_back(make_event(EventType::balloon_free, hs, m, m));
     return;

@@ -17,10 +17,10 @@ using namespace model_detail;
 contact::Set Model::touching(const Discrete& d, const Kinematics& k) const {
   // Open contacts whose gap is (numerically) closed as well: they take part in the decision.
   Set s = 0;
-  if (d.latched && !built_) return s;
+  if (d.latched && !c_.built) return s;
   if (!d.on_seesaw && !d.fallen_off && !d.bag_on_floor) {
     const double along = along_arm(k);
-    if (std::fabs(height_above_arm(k)) <= kContact && along >= 0.0 && along <= arm_) s |= bit(kBag);
+    if (std::fabs(height_above_arm(k)) <= kContact && along >= 0.0 && along <= c_.arm) s |= bit(kBag);
   }
   if (d.latched) return s | touching_built(d, k);  // the rope let go for good, the lid held open
   if (!d.taut && !spring_rope(d) &&
@@ -28,19 +28,19 @@ contact::Set Model::touching(const Discrete& d, const Kinematics& k) const {
       rope_.lid_below_rope(k.phi_s, k.phi_l)) {
     s |= bit(kRope);
   }
-  if (!d.lid_resting && k.phi_l - phi_l0_ <= kContact) s |= bit(kLid);
-  if (contacts_ > 3) s |= touching_built(d, k);
+  if (!d.lid_resting && k.phi_l - c_.phi_l0 <= kContact) s |= bit(kLid);
+  if (c_.contacts > 3) s |= touching_built(d, k);
   return s;
 }
 
 contact::Set Model::touching_built(const Discrete& d, const Kinematics& k) const {
   Set s = 0;
-  if (stop_ && d.on_seesaw && !d.at_stop && std::fabs(arm_ - along_arm(k)) <= kContact) s |= bit(kStop);
-  if (!floor_) return s;
-  if (d.grounded <= 0 && std::fabs(-arm_ * k.sin_s - h_floor_) <= kContact) s |= bit(kFloorLeft);
+  if (c_.stop && d.on_seesaw && !d.at_stop && std::fabs(c_.arm - along_arm(k)) <= kContact) s |= bit(kStop);
+  if (!c_.floor) return s;
+  if (d.grounded <= 0 && std::fabs(-c_.arm * k.sin_s - c_.h_floor) <= kContact) s |= bit(kFloorLeft);
   const double right = sc_.machine.seesaw_right_arm;
-  if (d.grounded >= 0 && std::fabs(right * k.sin_s - h_floor_) <= kContact) s |= bit(kFloorRight);
-  if (!d.on_seesaw && !d.bag_on_floor && std::fabs(k.h - h_floor_) <= kContact) s |= bit(kBagFloor);
+  if (d.grounded >= 0 && std::fabs(right * k.sin_s - c_.h_floor) <= kContact) s |= bit(kFloorRight);
+  if (!d.on_seesaw && !d.bag_on_floor && std::fabs(k.h - c_.h_floor) <= kContact) s |= bit(kBagFloor);
   return s;
 }
 
@@ -52,7 +52,7 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
   // tends, and a sandbag on a massless seesaw stays on it (docs/model.md §4: once landed, it stays; with
   // the rope slack that seesaw simply turns with the falling sandbag).
   const Set s0 = active_set(d);
-  for (int i = 0; i < contacts_; ++i) {
+  for (int i = 0; i < c_.contacts; ++i) {
     c.want[i] = contact::has(s0, i) ? 1 : -1;
     c.weight[i] = 1;
   }
@@ -60,19 +60,19 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
     c.want[trigger] = trend == Trend::closing ? 1 : -1;
     c.weight[trigger] = 8;
   }
-  if (!heavy_) {
+  if (!c_.heavy) {
     c.want[kBag] = 1;
     c.weight[kBag] = 16;
   }
   c.needs[kStop] = bit(kBag);     // the stop is an edge of the arm
   c.needs[kBagSlip] = bit(kBag);  // friction acts only while the arm pushes
   // "Zero" on the scale of this machine and motion.
-  const double len = length_scale_;
-  double v = std::sqrt(g_ * len);
+  const double len = c_.length_scale;
+  double v = std::sqrt(c_.g * len);
   v = std::fmax(v, std::fmax(std::fabs(k.vx), std::fabs(k.vh)));
   v = std::fmax(v, len * std::fmax(std::fabs(k.dphi_s), std::fabs(k.dphi_l)));
-  const double mass = m_s_ + m_l_ + sc_.machine.seesaw_mass;
-  const double acc = g_ + v * v / len;
+  const double mass = c_.m_s + c_.m_l + sc_.machine.seesaw_mass;
+  const double acc = c_.g + v * v / len;
   c.force_tol = 1e-9 * mass * acc * (1.0 + len);
   c.impulse_tol = 1e-9 * mass * v * (1.0 + len);
   // A contact that would separate slower than a millionth of the machine's speed is held: the
@@ -83,7 +83,7 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
   c.closing_tol = 1e-12 * v;
   c.accel_tol = 1e-9 * acc;
   // Below every friction guard's band: the sandbag's (N) and the torques' (N m).
-  c.friction_tol = 1e-11 * mass * g_ * std::fmin(1.0, len);
+  c.friction_tol = 1e-11 * mass * c_.g * std::fmin(1.0, len);
   (void)sys;
   return c;
 }
@@ -91,7 +91,7 @@ contact::Choice Model::choice(const Discrete& d, const contact::System& sys, con
 Kinematics Model::touch_exactly(const Discrete& d, contact::Set touch, Kinematics k) const {
   using contact::has;
   const bool resting = has(touch, kLid);
-  if (resting && k.phi_l < phi_l0_) k.phi_l = phi_l0_;
+  if (resting && k.phi_l < c_.phi_l0) k.phi_l = c_.phi_l0;
   k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
   if (has(touch, kRope) && std::fabs(rope_.span(k.phi_s, k.phi_l) - rope_.rope_length()) > 0.0) {
     double phi = 0.0;
@@ -124,8 +124,8 @@ Kinematics Model::touch_exactly(const Discrete& d, contact::Set touch, Kinematic
     const double above = height_above_arm(k);
     if (std::fabs(above) < 1e-3) k.x += above * k.sin_s, k.h -= above * k.cos_s;
   }
-  if (has(touch, kStop)) k.x = -arm_ * k.cos_s, k.h = -arm_ * k.sin_s;  // at the arm's end
-  if (has(touch, kBagFloor)) k.h = h_floor_;
+  if (has(touch, kStop)) k.x = -c_.arm * k.cos_s, k.h = -c_.arm * k.sin_s;  // at the arm's end
+  if (has(touch, kBagFloor)) k.h = c_.h_floor;
   k.r = along_arm(k);
   return k;
 }
@@ -160,9 +160,9 @@ Discrete Model::with_contacts(Discrete d, Set s) {
 }
 
 void Model::take_slips(Discrete& d, const std::array<int, contact::kMaxContacts>& slip) const {
-  d.bag_slip = mu_ > 0.0 && d.on_seesaw && !d.bag_stuck ? slip[kBagSlip] : 0;
-  d.seesaw_slip = t_p_ > 0.0 && !d.seesaw_held() ? slip[kPivotSlip] : 0;
-  d.lid_slip = t_h_ > 0.0 && !d.lid_held() && !d.latched ? slip[kHingeSlip] : 0;
+  d.bag_slip = c_.mu > 0.0 && d.on_seesaw && !d.bag_stuck ? slip[kBagSlip] : 0;
+  d.seesaw_slip = c_.t_p > 0.0 && !d.seesaw_held() ? slip[kPivotSlip] : 0;
+  d.lid_slip = c_.t_h > 0.0 && !d.lid_held() && !d.latched ? slip[kHingeSlip] : 0;
 }
 
 void Model::set_contacts(Discrete& d, Set s, const Kinematics& k) const {
@@ -209,17 +209,17 @@ Model::Decision Model::decide_touching(const Discrete& d, const Kinematics& k_ev
   if (trend == Trend::closing) x.touch |= bit(trigger);
   // A rope that stretches is a spring, not a contact, once the sandbag rides the seesaw: a landing
   // takes no impulse through it (docs/impact.md).
-  if (stretchy_ && trigger == kBag && trend == Trend::closing) x.touch &= ~bit(kRope);
+  if (c_.stretchy && trigger == kBag && trend == Trend::closing) x.touch &= ~bit(kRope);
   if (trend == Trend::forced_off) {
     x.touch &= ~bit(trigger);
     // Off the end of an arm that stands on the floor: the sandbag is on the floor at once.
-    if (floor_ && std::fabs(k_event.h - h_floor_) <= kContact) x.touch |= bit(kBagFloor);
+    if (c_.floor && std::fabs(k_event.h - c_.h_floor) <= kContact) x.touch |= bit(kBagFloor);
   }
   // Wherever the arm may push the sandbag, friction takes part: it sticks or slips; so do the
   // pivot's and the hinge's Coulomb torques.
-  if (mu_ > 0.0 && contact::has(x.touch, kBag)) x.touch |= bit(kBagSlip);
-  if (t_p_ > 0.0) x.touch |= bit(kPivotSlip);
-  if (t_h_ > 0.0 && !d.latched) x.touch |= bit(kHingeSlip);
+  if (c_.mu > 0.0 && contact::has(x.touch, kBag)) x.touch |= bit(kBagSlip);
+  if (c_.t_p > 0.0) x.touch |= bit(kPivotSlip);
+  if (c_.t_h > 0.0 && !d.latched) x.touch |= bit(kHingeSlip);
   // The touching contacts are at zero gap by definition: take back the event's overshoot (the
   // event-time tolerance times the closing speed, or a fixed step's interpolation error) before
   // anything is decided, so that the impact happens where the contacts touch and a contact that
@@ -237,9 +237,9 @@ void Model::impact_on_velocities(const Discrete& d, Decision& x, double t) const
   if (!x.imp.ok) no_consistent("impact", t, d.mode());
   x.u = x.imp.velocity;
   x.rate = x.imp.rate;
-  if (restitution_) rebound(x);
+  if (c_.restitution) rebound(x);
   x.impacted = false;
-  for (int i = 0; i < contacts_; ++i) x.impacted = x.impacted || x.impulsive(i);
+  for (int i = 0; i < c_.contacts; ++i) x.impacted = x.impacted || x.impulsive(i);
 }
 
 void Model::rebound(Decision& x) const {
@@ -248,10 +248,10 @@ void Model::rebound(Decision& x) const {
   // close; the same complementarity problem as the inelastic impact, with those rates as targets.
   contact::PerContact after{};
   bool any = false;
-  for (int i = 0; i < contacts_; ++i) {
-    if (!x.impulsive(i) || !(e_[i] > 0.0)) continue;
+  for (int i = 0; i < c_.contacts; ++i) {
+    if (!x.impulsive(i) || !(c_.e[i] > 0.0)) continue;
     const double came = x.sys.rate(i, x.sys.velocity);
-    if (came < 0.0) after[i] = -e_[i] * came, any = true;
+    if (came < 0.0) after[i] = -c_.e[i] * came, any = true;
   }
   if (!any) return;
   const contact::Impact bounce = contact::solve_impact(x.sys, x.touch, x.ch, &after);
@@ -267,8 +267,8 @@ void Model::rebound(Decision& x) const {
   const double before = kinetic(x.sys.velocity);
   if (kinetic(bounce.velocity) > before + 1e-12 * before) return;
   // A contact that bounced took an impulse but is not held (unless its rebound is rounding).
-  for (int i = 0; i < contacts_; ++i) {
-    const double speed = i == kLid ? 2.0 * r_l_ * after[i] : after[i];
+  for (int i = 0; i < c_.contacts; ++i) {
+    const double speed = i == kLid ? 2.0 * c_.r_l * after[i] : after[i];
     if (contact::has(bounce.impulsive, i) && speed > x.ch.rate_tol) x.bounced |= bit(i);
   }
   x.imp = bounce;
@@ -301,7 +301,7 @@ void Model::apply_impact_law(Decision& x) const {
   }
   bool ok = true;
   contact::PerContact rl = x.rate;
-  for (int i = 0; i < contacts_; ++i) {
+  for (int i = 0; i < c_.contacts; ++i) {
     if (!has(x.touch, i) || is_friction(i)) continue;  // a slip either way is no gap closing
     rl[i] = has(x.imp.impulsive, i) ? 0.0 : x.sys.rate(i, ul);
     ok = ok && rl[i] >= -x.ch.closing_tol;
@@ -331,7 +331,7 @@ bool Model::slip_is_rounding(const Decision& x, int i) const {
   double twice_energy = 0.0;
   for (int j = 0; j < x.sys.coords; ++j)
     twice_energy += after.mass[j] * (with[j] - without[j]) * (with[j] - without[j]);
-  const double mass = m_s_ + m_l_ + sc_.machine.seesaw_mass;
+  const double mass = c_.m_s + c_.m_l + sc_.machine.seesaw_mass;
   return twice_energy <= mass * x.ch.rate_tol * x.ch.rate_tol;
 }
 
@@ -339,7 +339,7 @@ void Model::hold_after_impact(Decision& x) const {
   // Touching contacts with zero gap rate after the impact.
   using contact::has;
   x.held = 0;
-  for (int i = 0; i < contacts_; ++i) {
+  for (int i = 0; i < c_.contacts; ++i) {
     if (is_friction(i)) {  // friction: a candidate to stick where it acts and the slip is zero
       const bool acts = i != kBagSlip || has(x.held, kBag);
       if (has(x.touch, i) && acts && std::fabs(x.sys.rate(i, x.u)) <= x.ch.rate_tol && slip_is_rounding(x, i))
@@ -347,7 +347,7 @@ void Model::hold_after_impact(Decision& x) const {
       continue;
     }
     // The lid's gap is an angle: its rate compared as the speed of the lid's far edge.
-    const double speed = i == kLid ? 2.0 * r_l_ * x.rate[i] : x.rate[i];
+    const double speed = i == kLid ? 2.0 * c_.r_l * x.rate[i] : x.rate[i];
     const bool stopped = has(x.imp.impulsive, i) && !has(x.bounced, i);
     if (has(x.touch, i) && (stopped || speed <= x.ch.rate_tol)) x.held |= bit(i);
   }
@@ -361,7 +361,7 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
   // A stretched rope is a force of one sign, T = k s + c s' >= 0, decided with the contacts: where
   // the impact's velocities would make it push (its damper, s' changed by a jump elsewhere), it lets
   // go now, and the contacts' forces are found without it.
-  if (x.impacted && stretchy_ && held.stretched && spring_rope(held) &&
+  if (x.impacted && c_.stretchy && held.stretched && spring_rope(held) &&
       !(rope_pull(held, x.k1).tension > 0.0)) {
     held.stretched = false;
     x.rope_let_go = true;
@@ -372,7 +372,7 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
   x.s2 = x.mot.active;
 
   // Released contacts: their gaps start at zero and open, by their rate or their acceleration.
-  for (int i = 0; i < contacts_; ++i) {
+  for (int i = 0; i < c_.contacts; ++i) {
     if (is_friction(i)) {
       // Friction's guard is minus the slip's speed: it starts at zero where the slip starts from
       // rest, and falls as fast as the slip picks up.
@@ -397,7 +397,7 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
   // gave it: it starts from exactly zero (its guard, minus the slip's speed, starts at zero and
   // falls), not from a speed the other way that its guard would find at once, again and again.
   Set at_rest = x.s2;
-  for (int i = kBagSlip; i < contacts_; ++i)
+  for (int i = kBagSlip; i < c_.contacts; ++i)
     if (has(x.held, i) && !has(x.s2, i) && x.mot.slip[i] * sys1.rate(i, sys1.velocity) < 0.0)
       at_rest |= bit(i);
   x.k2 = x.k1;
@@ -416,14 +416,14 @@ void Model::enter_contacts(HybridState& hs, const Decision& x) const {
   d.armed = {};
   set_contacts(d, x.s2, x.k2);
   take_slips(d, x.mot.slip);
-  for (int i = 0; i < contacts_; ++i) {
+  for (int i = 0; i < c_.contacts; ++i) {
     const Guard gi = guard_of(i);
     if (has(x.touch, i) && !has(x.s2, i)) {
       if (i == kBagSlip && !has(x.s2, kBag)) continue;  // no friction off the arm
       d.armed[gi] = x.released[i];
     } else if (is_friction(i)) {
       // Sticking with the friction force at its bound already: it can only slip.
-      const double bound = i == kBagSlip ? mu_ * x.mot.force[kBag] : coulomb_hold(d, x.k2, i);
+      const double bound = i == kBagSlip ? c_.mu * x.mot.force[kBag] : coulomb_hold(d, x.k2, i);
       if (!has(x.s2, i) || has(x.s0, i) || std::fabs(x.mot.force[i]) < bound - x.ch.force_tol) continue;
       d.armed[gi] = {1, kUnknownLead};
     } else if (has(x.s2, i) && !has(x.s0, i) && x.mot.force[i] <= x.ch.force_tol) {
@@ -450,14 +450,13 @@ std::array<double, 6> Model::impulses(const Decision& x) const {
     for (int j = 0; j < jump.coords; ++j) dv[j] = x.u[j] - x.sys.velocity[j];
     if (!contact::multipliers_for(jump, x.imp.impulsive, dv, p)) p = x.imp.impulse;
   }
-  // Per contact, in the order of the event's impulses: either end of the seesaw on the floor is
-  // the floor's impulse on the seesaw.
+  // Per contact, in the order of the event's impulses (its row's impulse column). An impulse that
+  // is rounding (within the decision's tolerance) is none: not reported.
   std::array<double, 6> out{};
-  // An impulse that is rounding (within the decision's tolerance) is none: not reported.
-  // Friction's impulse along the arm is not one of them: it is in the sandbag's velocity after.
-  for (int i = 0; i < contacts_ && i < kBagSlip; ++i) {
-    if (contact::has(x.imp.impulsive, i) && std::fabs(p[i]) > x.ch.impulse_tol)
-      out[i <= kFloorLeft ? i : i - 1] += p[i];
+  for (int i = 0; i < c_.contacts; ++i) {
+    const int column = kContacts[i].impulse;
+    if (column >= 0 && contact::has(x.imp.impulsive, i) && std::fabs(p[i]) > x.ch.impulse_tol)
+      out[column] += p[i];
   }
   return out;
 }
@@ -500,14 +499,14 @@ void Model::report_changes(HybridState& hs, const Decision& x, Mode before, std:
   }
   // A bounce on the floor touches and lets go in the same instant: reported as both, even where
   // it is not the contact that triggered the event.
-  for (int i = 0; i < contacts_; ++i) {
+  for (int i = 0; i < c_.contacts; ++i) {
     if (!has(x.bounced, i) || has(cur, i)) continue;
     cur |= bit(i);
     emit(change_event(i, true));
   }
   // The trigger's own change was reported first; a contact it closed may still let go below.
   auto step_to = [&](Set target, bool trigger_may_change) {
-    for (int i = 0; i < contacts_; ++i) {
+    for (int i = 0; i < c_.contacts; ++i) {
       if (i == trigger && !trigger_may_change) continue;
       if (has(cur, i) == has(target, i)) continue;
       if (i == kBagSlip && !has(target, kBag)) {  // off the arm: no friction, nothing to report

@@ -21,11 +21,12 @@ contact::System Model::contact_system(const Discrete& d, const Kinematics& k) co
   contact::System s;
   s.coords = 4;
   s.contacts = 3;
-  s.mass = {m_s_, m_s_, i_s_, i_l_};
+  s.mass = {c_.m_s, c_.m_s, c_.i_s, c_.i_l};
   s.velocity = {k.vx, k.vh, k.dphi_s, k.dphi_l};
   const double cs = k.cos_s, sn = k.sin_s, cl = k.cos_l, sl = k.sin_l;
   // The pivot's damper needs a seesaw with inertia (validation rejects it on a massless one).
-  s.force = {0.0, -m_s_ * g_, -w_s_ * g_ * cs - c_p_ * k.dphi_s, -m_l_ * g_ * r_l_ * cl - c_l_ * k.dphi_l};
+  s.force = {0.0, -c_.m_s * c_.g, -c_.w_s * c_.g * cs - c_.c_p * k.dphi_s,
+             -c_.m_l * c_.g * c_.r_l * cl - c_.c_l * k.dphi_l};
 
   const double height = -k.x * sn + k.h * cs;
   s.normal[kBag] = {-sn, cs, -k.x * cs - k.h * sn, 0.0};
@@ -45,9 +46,9 @@ contact::System Model::contact_system(const Discrete& d, const Kinematics& k) co
 
   s.normal[kLid] = {0.0, 0.0, 0.0, 1.0};
   s.curvature[kLid] = 0.0;
-  if (contacts_ > 3) built_contacts(s, k);
-  if (stretchy_ && d.stretched) stretchy_force(d, k, s);
-  if (friction_) friction_contacts(d, s, k);
+  if (c_.contacts > 3) built_contacts(s, k);
+  if (c_.stretchy && d.stretched) stretchy_force(d, k, s);
+  if (c_.friction) friction_contacts(d, s, k);
   return s;
 }
 
@@ -60,18 +61,18 @@ void Model::friction_contacts(const Discrete& d, contact::System& s, const Kinem
   s.curvature[kBagSlip] =
       2.0 * k.dphi_s * (k.vx * sn - k.vh * cs) + (k.x * cs + k.h * sn) * k.dphi_s * k.dphi_s;
   s.friction[kBagSlip] = kBag + 1;
-  s.bound[kBagSlip] = mu_;
+  s.bound[kBagSlip] = c_.mu;
   s.slip[kBagSlip] = d.on_seesaw && !d.bag_stuck ? d.bag_slip : 0;
   // The seesaw's and the lid's turning, bounded by the pivot's and the hinge's Coulomb torques.
   s.normal[kPivotSlip] = {0.0, 0.0, 1.0, 0.0};
   s.curvature[kPivotSlip] = 0.0;
   s.friction[kPivotSlip] = contact::kFixedBound;
-  s.bound[kPivotSlip] = t_p_;
+  s.bound[kPivotSlip] = c_.t_p;
   s.slip[kPivotSlip] = d.seesaw_stuck ? 0 : d.seesaw_slip;
   s.normal[kHingeSlip] = {0.0, 0.0, 0.0, 1.0};
   s.curvature[kHingeSlip] = 0.0;
   s.friction[kHingeSlip] = contact::kFixedBound;
-  s.bound[kHingeSlip] = t_h_;
+  s.bound[kHingeSlip] = c_.t_h;
   s.slip[kHingeSlip] = d.lid_stuck ? 0 : d.lid_slip;
 }
 
@@ -83,7 +84,7 @@ void Model::built_contacts(contact::System& s, const Kinematics& k) const {
   //   floor, bag:   h - h_floor
   s.contacts = kContactCount;
   const double cs = k.cos_s, sn = k.sin_s, w2 = k.dphi_s * k.dphi_s;
-  const double left = std::isfinite(arm_) ? arm_ : 0.0, right = sc_.machine.seesaw_right_arm;
+  const double left = std::isfinite(c_.arm) ? c_.arm : 0.0, right = sc_.machine.seesaw_right_arm;
   s.normal[kStop] = {cs, sn, -k.x * sn + k.h * cs, 0.0};
   s.curvature[kStop] = 2.0 * k.dphi_s * (-k.vx * sn + k.vh * cs) - (k.x * cs + k.h * sn) * w2;
   s.normal[kFloorLeft] = {0.0, 0.0, -left * cs, 0.0};
@@ -96,7 +97,7 @@ void Model::built_contacts(contact::System& s, const Kinematics& k) const {
 
 double Model::coulomb_hold(const Discrete& d, const Kinematics& k, int i) const {
   const bool pivot = i == kPivotSlip;
-  const double own = pivot ? t_p_ : t_h_, other = pivot ? t_h_ : t_p_;
+  const double own = pivot ? c_.t_p : c_.t_h, other = pivot ? c_.t_h : c_.t_p;
   const bool coupled = d.taut && !d.latched && (pivot ? !d.lid_resting : d.grounded == 0);
   if (!(other > 0.0) || !coupled) return own;
   const double ratio = std::fabs(rope_.transfer(Vec2{k.cos_s, k.sin_s}, Vec2{k.cos_l, k.sin_l}).k);
@@ -113,8 +114,8 @@ contact::Set Model::active_set(const Discrete& d) {
 
 contact::Coords Model::accelerations(const Discrete& d, const Kinematics& k) const {
   if (!d.polar()) {  // falls, or lies; on the massless seesaw pushed by the arm against a stretched rope
-    contact::Coords a{0.0, d.bag_on_floor ? 0.0 : -g_, k.ddphi_s, k.ddphi_l};
-    if (stretchy_ && d.stretched) stretchy_accelerations(d, k, a);
+    contact::Coords a{0.0, d.bag_on_floor ? 0.0 : -c_.g, k.ddphi_s, k.ddphi_l};
+    if (c_.stretchy && d.stretched) stretchy_accelerations(d, k, a);
     return a;
   }
   // x = -r cos phiS, h = -r sin phiS: along the arm r'' - r phiS'^2, across it 2 r' phiS' + r phiS''.

@@ -16,7 +16,7 @@ double Model::lid_free_acceleration(double phi_l, double dphi_l, double q_l) con
 }
 
 double Model::lid_free_acceleration_at(double cos_l, double dphi_l, double q_l) const {
-  return (-m_l_ * g_ * r_l_ * cos_l - c_l_ * dphi_l + q_l) / i_l_;
+  return (-c_.m_l * c_.g * c_.r_l * cos_l - c_.c_l * dphi_l + q_l) / c_.i_l;
 }
 
 namespace {
@@ -35,24 +35,24 @@ const Value& remember(Memo& m, int flags, double a, double b, double c, double d
 }
 }  // namespace
 
-Model::Swing Model::swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s, double q_s,
-                          double q_l) const {
+Swing Model::swing(Workspace& ws, bool on, bool taut, double r, double phi_s, double dr, double dphi_s,
+                   double q_s, double q_l) const {
   const int flags = (on ? 1 : 0) | (taut ? 2 : 0);
-  if (recall(swing_memo_, flags, r, phi_s, dr, dphi_s, q_s, q_l)) return swing_memo_.value;
-  return remember(swing_memo_, flags, r, phi_s, dr, dphi_s, q_s, q_l,
+  if (recall(ws.swing, flags, r, phi_s, dr, dphi_s, q_s, q_l)) return ws.swing.value;
+  return remember(ws.swing, flags, r, phi_s, dr, dphi_s, q_s, q_l,
                   compute_swing(on, taut, r, phi_s, dr, dphi_s, q_s, q_l));
 }
 
-Model::LidSwing Model::swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side,
-                                    double q_s, double q_l) const {
+LidSwing Model::swing_by_lid(Workspace& ws, bool on, double r, double phi_l, double dr, double dphi_l,
+                             int side, double q_s, double q_l) const {
   const int flags = (on ? 1 : 0) | (side > 0 ? 2 : 0);
-  if (recall(lid_swing_memo_, flags, r, phi_l, dr, dphi_l, q_s, q_l)) return lid_swing_memo_.value;
-  return remember(lid_swing_memo_, flags, r, phi_l, dr, dphi_l, q_s, q_l,
+  if (recall(ws.lid_swing, flags, r, phi_l, dr, dphi_l, q_s, q_l)) return ws.lid_swing.value;
+  return remember(ws.lid_swing, flags, r, phi_l, dr, dphi_l, q_s, q_l,
                   compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side, q_s, q_l));
 }
 
-Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s,
-                                  double q_s, double q_l) const {
+Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s, double q_s,
+                           double q_l) const {
   // J phiS'' = Q with J = I_S + [on] m_S r^2 + [taut] I_L k^2. With I_S = 0, no seesaw weight and no
   // damping (docs/model.md §1) the extra terms are exact zeros and this is eqs. (3) and (4) of the paper.
   // This is the flow's hot path: one sincos of phiS serves the weights and the whole linkage.
@@ -63,25 +63,25 @@ Model::Swing Model::compute_swing(bool on, bool taut, double r, double phi_s, do
   } else {
     p.lk.cos_s = cs, p.lk.sin_s = ss;
   }
-  double num = -w_s_ * g_ * cs - c_p_ * dphi_s + q_s;
-  double den = i_s_;
+  double num = -c_.w_s * c_.g * cs - c_.c_p * dphi_s + q_s;
+  double den = c_.i_s;
   if (on) {
     p.ddr = along_arm_acceleration(r, ss, dphi_s);
-    num += m_s_ * g_ * r * cs - 2.0 * m_s_ * r * dr * dphi_s;
-    den += m_s_ * r * r;
+    num += c_.m_s * c_.g * r * cs - 2.0 * c_.m_s * r * dr * dphi_s;
+    den += c_.m_s * r * r;
   }
   if (taut) {
     const double k = p.lk.transfer.k;
-    num -= (m_l_ * g_ * r_l_ * p.lk.cos_l + i_l_ * p.lk.transfer.dk * dphi_s * dphi_s - q_l) * k +
-           c_l_ * k * k * dphi_s;
-    den += i_l_ * k * k;
+    num -= (c_.m_l * c_.g * c_.r_l * p.lk.cos_l + c_.i_l * p.lk.transfer.dk * dphi_s * dphi_s - q_l) * k +
+           c_.c_l * k * k * dphi_s;
+    den += c_.i_l * k * k;
   }
   p.ddphi_s = num / den;
   return p;
 }
 
-Model::LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l,
-                                            int side, double q_s_coulomb, double q_l_coulomb) const {
+LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side,
+                                     double q_s_coulomb, double q_l_coulomb) const {
   // Along the closure phiS = S(phiL): multiply the seesaw's equation by S' and add the lid's, and
   // the rope's force drops out (its gradient is normal to the closure). With phiS' = S' phiL' and
   // phiS'' = S' phiL'' + S'' phiL'^2:
@@ -91,20 +91,20 @@ Model::LidSwing Model::compute_swing_by_lid(bool on, double r, double phi_l, dou
   p.lk = rope_.from_lid(std::cos(phi_l), std::sin(phi_l), side);
   const double ds = p.lk.ds, dphi_s = ds * dphi_l;
   const double cs = p.lk.cos_s;
-  const double carried = i_s_ + (on ? m_s_ * r * r : 0.0);
-  double q_s = -w_s_ * g_ * cs - c_p_ * dphi_s + q_s_coulomb;
+  const double carried = c_.i_s + (on ? c_.m_s * r * r : 0.0);
+  double q_s = -c_.w_s * c_.g * cs - c_.c_p * dphi_s + q_s_coulomb;
   if (on) {
-    q_s += m_s_ * g_ * r * cs;
+    q_s += c_.m_s * c_.g * r * cs;
     p.ddr = along_arm_acceleration(r, p.lk.sin_s, dphi_s);
   }
-  const double q_l = -m_l_ * g_ * r_l_ * p.lk.cos_l - c_l_ * dphi_l + q_l_coulomb;
+  const double q_l = -c_.m_l * c_.g * c_.r_l * p.lk.cos_l - c_.c_l * dphi_l + q_l_coulomb;
   const double num = ds * q_s + q_l - carried * ds * p.lk.dds * dphi_l * dphi_l -
-                     (on ? 2.0 * m_s_ * r * dr * ds * ds * dphi_l : 0.0);
-  p.ddphi_l = num / (carried * ds * ds + i_l_);
+                     (on ? 2.0 * c_.m_s * r * dr * ds * ds * dphi_l : 0.0);
+  p.ddphi_l = num / (carried * ds * ds + c_.i_l);
   return p;
 }
 
-WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& dy) const {
+WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const {
   // The sandbag on the arm (r, phiS): the seesaw's swing with it, or the arm held still.
   dy[slot::r] = y[slot::dr];
   dy[slot::phi_s] = y[slot::dphi_s];
@@ -117,7 +117,7 @@ WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& 
     if (d.bag_slip != 0) dy[slot::dr] += bag_friction(d.bag_slip, r, dr, std::cos(y[slot::phi_s]), 0.0, 0.0);
   } else if (d.lid_chart && d.taut) {  // M4 near the lid's dead centre: the lid's angle integrated
     const double dphi_l = y[slot::dphi_s];
-    const LidSwing p = swing_by_lid(true, r, y[slot::phi_s], dr, dphi_l, d.side, q_s, q_l);
+    const LidSwing p = swing_by_lid(ws, true, r, y[slot::phi_s], dr, dphi_l, d.side, q_s, q_l);
     dy[slot::dr] = p.ddr;
     dy[slot::dphi_s] = p.ddphi_l;
     if (d.bag_slip != 0) {  // phiS' = S' phiL', phiS'' = S' phiL'' + S'' phiL'^2
@@ -125,7 +125,7 @@ WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& 
                                    p.lk.ds * p.ddphi_l + p.lk.dds * dphi_l * dphi_l);
     }
   } else {  // M4, or a heavy seesaw carrying the sandbag
-    const Swing p = swing(true, d.taut, r, y[slot::phi_s], dr, y[slot::dphi_s], q_s, q_l);
+    const Swing p = swing(ws, true, d.taut, r, y[slot::phi_s], dr, y[slot::dphi_s], q_s, q_l);
     dy[slot::dr] = p.ddr;
     dy[slot::dphi_s] = p.ddphi_s;
     if (d.bag_slip != 0)
@@ -138,12 +138,12 @@ WHATNEXT_STAGE void Model::polar_flow(const Discrete& d, const State& y, State& 
   }
 }
 
-WHATNEXT_STAGE void Model::cartesian_flow(const Discrete& d, const State& y, State& dy) const {
+WHATNEXT_STAGE void Model::cartesian_flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const {
   // Sandbag in free fall. On the seesaw with the rope slack (M3) this is the paper's polar free
   // fall written in Cartesian form: the same motion, regular at r = 0, and exact for any RK method.
   dy[slot::x] = y[slot::vx];
   dy[slot::h] = y[slot::vh];
-  dy[slot::vh] = d.bag_on_floor ? 0.0 : -g_;
+  dy[slot::vh] = d.bag_on_floor ? 0.0 : -c_.g;
   // The lid follows a heavy seesaw on the rope, or hangs from one standing on the floor.
   const bool lid_on_rope = (d.heavy || d.seesaw_held()) && d.taut;
   const Torques q =
@@ -157,30 +157,35 @@ WHATNEXT_STAGE void Model::cartesian_flow(const Discrete& d, const State& y, Sta
     dy[slot::seesaw_phi] = y[slot::seesaw_dphi];
     dy[slot::seesaw_dphi] =
         d.lid_chart && d.taut
-            ? swing_by_lid(false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side, q_s, q_l)
+            ? swing_by_lid(ws, false, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], d.side, q_s, q_l)
                   .ddphi_l
-            : swing(false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], q_s, q_l).ddphi_s;
+            : swing(ws, false, d.taut, 0.0, y[slot::seesaw_phi], 0.0, y[slot::seesaw_dphi], q_s, q_l).ddphi_s;
   }
 }
 
 void Model::flow(const Discrete& d, const State& y, State& dy) const {
+  Workspace fresh;
+  flow(d, y, dy, fresh);
+}
+
+void Model::flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const {
   // Each layout's motion, then the balloon's, then the losses the ledger integrates.
   dy.fill(0.0);
   if (d.polar()) {
-    polar_flow(d, y, dy);
+    polar_flow(d, y, dy, ws);
   } else {
-    cartesian_flow(d, y, dy);
+    cartesian_flow(d, y, dy, ws);
   }
-  if (small_) {
+  if (c_.small) {
     if (!d.balloon_stuck) {  // free in the plane: lift and drag
-      const Kinematics k = kinematics(d, y);
+      const Kinematics k = kinematics(d, y, true, &ws);
       const Vec2 f = small_balloon_force(k);
       dy[slot::balloon_x] = y[slot::balloon_vx];
       dy[slot::balloon_vx] = f.x;
       dy[slot::balloon_h] = y[slot::balloon_v];
       dy[slot::balloon_v] = f.h;
     } else if (!d.balloon_held) {  // sliding along the lid, or rolling round its free edge
-      const Kinematics k = kinematics(d, y);
+      const Kinematics k = kinematics(d, y, true, &ws);
       dy[slot::balloon_h] = y[slot::balloon_v];
       dy[slot::balloon_v] =
           d.balloon_edge ? small_balloon_roll(k, y[slot::balloon_h]) : small_balloon_slide(k);
@@ -189,21 +194,22 @@ void Model::flow(const Discrete& d, const State& y, State& dy) const {
     dy[slot::balloon_h] = y[slot::balloon_v];
     dy[slot::balloon_v] = balloon_acceleration(y[slot::balloon_v]);
   }
-  if (c_p_ > 0.0 || c_l_ > 0.0 || drag_ > 0.0 || friction_) dissipation(d, kinematics(d, y), dy);
-  if (stretchy_) stretchy_flow(d, y, dy);
+  if (c_.c_p > 0.0 || c_.c_l > 0.0 || c_.drag > 0.0 || c_.friction)
+    dissipation(d, kinematics(d, y, true, &ws), dy);
+  if (c_.stretchy) stretchy_flow(d, y, dy, &ws);
 }
 
 void Model::dissipation(const Discrete& d, const Kinematics& k, State& dy) const {
   // Power turned into heat (the pivot's damper comes with a seesaw that has inertia).
-  dy[slot::lost_pivot] = c_p_ * k.dphi_s * k.dphi_s;
-  dy[slot::lost_hinge] = c_l_ * k.dphi_l * k.dphi_l;
-  const double v = small_ ? std::hypot(k.balloon_vx, k.balloon_v) : std::fabs(k.balloon_v);
-  dy[slot::lost_drag] = m_b_ * drag_ * v * v * v;
+  dy[slot::lost_pivot] = c_.c_p * k.dphi_s * k.dphi_s;
+  dy[slot::lost_hinge] = c_.c_l * k.dphi_l * k.dphi_l;
+  const double v = c_.small ? std::hypot(k.balloon_vx, k.balloon_v) : std::fabs(k.balloon_v);
+  dy[slot::lost_drag] = c_.m_b * c_.drag * v * v * v;
   // Coulomb friction against the slips: mu times the arm's push times the sandbag's slip, the
   // pivot's and the hinge's torques times their rates.
   double heat = 0.0;
   if (d.polar() && d.bag_slip != 0)
-    heat += m_s_ * bag_friction(d.bag_slip, k.r, k.dr, k.cos_s, k.dphi_s, k.ddphi_s) * -k.dr;
+    heat += c_.m_s * bag_friction(d.bag_slip, k.r, k.dr, k.cos_s, k.dphi_s, k.ddphi_s) * -k.dr;
   if (d.seesaw_slip != 0) heat += -pivot_coulomb(d) * k.dphi_s;
   if (d.lid_slip != 0) heat += -hinge_coulomb(d) * k.dphi_l;
   dy[slot::lost_friction] = heat;

@@ -19,20 +19,20 @@ bool Model::law_velocity(const Kinematics& k, bool bag, contact::Coords& u, std:
   const double v_par = -k.vx * c - k.vh * s;
   const double v_perp = k.vx * s - k.vh * c;
   const double kk = rope_.transfer(k.phi_s, k.phi_l).k;
-  const double m = bag ? m_s_ : 0.0;
+  const double m = bag ? c_.m_s : 0.0;
   const double w0 = k.dphi_l, ws = k.dphi_s;
   double dr = v_par, dphi_s = 0.0;
-  const double rope_num = m * r * v_perp + kk * i_l_ * w0 + i_s_ * ws;
-  const double rope_den = m * r * r + i_l_ * kk * kk + i_s_;
+  const double rope_num = m * r * v_perp + kk * c_.i_l * w0 + c_.i_s * ws;
+  const double rope_den = m * r * r + c_.i_l * kk * kk + c_.i_s;
   switch (sc_.run.impact_law) {
     case ImpactLaw::rope:  // eq. (7): inelastic impulse along the rope
       dphi_s = rope_num / rope_den;
       break;
     case ImpactLaw::angular_momentum_sum:
-      dphi_s = (m * r * v_perp + i_l_ * w0 + i_s_ * ws) / (m * r * r + i_l_ * kk + i_s_);
+      dphi_s = (m * r * v_perp + c_.i_l * w0 + c_.i_s * ws) / (m * r * r + c_.i_l * kk + c_.i_s);
       break;
     case ImpactLaw::kinetic_energy: {
-      const double mag = std::sqrt((m * v_perp * v_perp + i_l_ * w0 * w0 + i_s_ * ws * ws) / rope_den);
+      const double mag = std::sqrt((m * v_perp * v_perp + c_.i_l * w0 * w0 + c_.i_s * ws * ws) / rope_den);
       dphi_s = rope_num < 0.0 ? -mag : mag;
       break;
     }
@@ -47,10 +47,10 @@ bool Model::law_velocity(const Kinematics& k, bool bag, contact::Coords& u, std:
       }
       // Linear momentum of sandbag and lid centre of mass before = after (2x2 in r', phiS').
       const double sl = std::sin(k.phi_l), cl = std::cos(k.phi_l);
-      const double px = m_s_ * k.vx - m_l_ * r_l_ * sl * w0;
-      const double ph = m_s_ * k.vh + m_l_ * r_l_ * cl * w0;
-      const double a11 = -m_s_ * c, a12 = m_s_ * r * s - m_l_ * r_l_ * sl * kk;
-      const double a21 = -m_s_ * s, a22 = -m_s_ * r * c + m_l_ * r_l_ * cl * kk;
+      const double px = c_.m_s * k.vx - c_.m_l * c_.r_l * sl * w0;
+      const double ph = c_.m_s * k.vh + c_.m_l * c_.r_l * cl * w0;
+      const double a11 = -c_.m_s * c, a12 = c_.m_s * r * s - c_.m_l * c_.r_l * sl * kk;
+      const double a21 = -c_.m_s * s, a22 = -c_.m_s * r * c + c_.m_l * c_.r_l * cl * kk;
       const double det = a11 * a22 - a12 * a21;
       dr = (px * a22 - a12 * ph) / det;
       dphi_s = (a11 * ph - a21 * px) / det;

@@ -21,7 +21,7 @@ HybridState Model::initial(std::vector<Event>& out) const {
   d.parked_seesaw = st.seesaw_angle;
   d.balloon_stuck = true;
   d.balloon_held = true;  // a balloon smaller than the box: in the corner at the far wall
-  d.heavy = heavy_;
+  d.heavy = c_.heavy;
   d.on_seesaw = false;
   d.taut = false;
   d.lid_resting = true;
@@ -37,9 +37,9 @@ HybridState Model::initial(std::vector<Event>& out) const {
   take_slips(d, mot.slip);
   hs.y.fill(0.0);
   place(hs, k);
-  hs.y[slot::balloon_h] = limit_.height(phi_l0_);
+  hs.y[slot::balloon_h] = limit_.height(c_.phi_l0);
   SmallBalloon::Limit corner{0.0, 0.0, 0.0};
-  if (small_ && !sb_.limit(k.cos_l, k.sin_l, corner)) {
+  if (c_.small && !sb_.limit(k.cos_l, k.sin_l, corner)) {
     // A lid resting so steep that the wall's top lets a smaller balloon by: it starts under the
     // lid above the far wall's face (docs/extensions.md), free to slide along the lid; at most at
     // the line where it is out (beyond it the face's point may lie past the lid's free edge).
@@ -63,7 +63,7 @@ Set Model::start_touching(const Discrete& d, Kinematics& k) const {
   k.x = st.sandbag_x;
   k.h = st.sandbag_h;
   k.phi_s = st.seesaw_angle;
-  k.phi_l = phi_l0_;
+  k.phi_l = c_.phi_l0;
   k.cos_s = std::cos(k.phi_s), k.sin_s = std::sin(k.phi_s);
   k.cos_l = std::cos(k.phi_l), k.sin_l = std::sin(k.phi_l);
   // What touches at t = 0: the sandbag placed on the arm, the rope straight, the lid on the box.
@@ -76,25 +76,25 @@ Set Model::start_touching(const Discrete& d, Kinematics& k) const {
     k.x = -r * c;
     k.h = -r * s;
   }
-  if (rope_.span(st.seesaw_angle, phi_l0_) >= rope_.rope_length() - kContact) touch |= bit(kRope);
+  if (rope_.span(st.seesaw_angle, c_.phi_l0) >= rope_.rope_length() - kContact) touch |= bit(kRope);
   // A rope that stretches is no contact while the sandbag rides the seesaw (docs/impact.md).
-  if (stretchy_ && (heavy_ || contact::has(touch, kBag))) touch &= ~bit(kRope);
+  if (c_.stretchy && (c_.heavy || contact::has(touch, kBag))) touch &= ~bit(kRope);
   k = with_velocity(k, contact::Coords{});
-  if (contacts_ > 3) {  // a seesaw that starts standing on the floor (a sandbag on it at the stop)
+  if (c_.contacts > 3) {  // a seesaw that starts standing on the floor (a sandbag on it at the stop)
     Discrete dt = d;
     dt.on_seesaw = contact::has(touch, kBag);
     touch |= touching_built(dt, k);
     k = touch_exactly(dt, touch, k);
   }
-  if (mu_ > 0.0 && contact::has(touch, kBag)) touch |= bit(kBagSlip);  // it sticks, or slips
-  if (t_p_ > 0.0) touch |= bit(kPivotSlip);  // a seesaw at rest on its pivot, unless its torque wins
+  if (c_.mu > 0.0 && contact::has(touch, kBag)) touch |= bit(kBagSlip);  // it sticks, or slips
+  if (c_.t_p > 0.0) touch |= bit(kPivotSlip);  // a seesaw at rest on its pivot, unless its torque wins
   return touch;
 }
 
 void Model::arm_start_releases(Discrete& d, Set touch, const contact::Motion& mot, double accel_tol) const {
   // A contact that touches but is not kept opens from rest: its guard starts at zero and turns
   // negative as its acceleration, or a higher derivative, makes it (GuardStart).
-  for (int i = 0; i < contacts_; ++i) {
+  for (int i = 0; i < c_.contacts; ++i) {
     if (!contact::has(touch, i) || contact::has(mot.active, i)) continue;
     const Guard gi = guard_of(i);
     if (is_friction(i)) {  // slipping from rest: minus the slip's speed falls as it picks up
@@ -128,7 +128,7 @@ void Model::place(HybridState& hs, const Kinematics& k) const {
   // A closed stop or floor holds its coordinate exactly (its rate is zero within rounding).
   const double held_rate = hs.d.seesaw_held() ? 0.0 : rate;
   if (hs.d.polar()) {
-    hs.y[slot::r] = hs.d.at_stop ? arm_ : k.r;
+    hs.y[slot::r] = hs.d.at_stop ? c_.arm : k.r;
     hs.y[slot::phi_s] = angle;
     hs.y[slot::dr] = hs.d.at_stop || hs.d.bag_stuck ? 0.0 : k.dr;
     hs.y[slot::dphi_s] = held_rate;
@@ -164,7 +164,7 @@ void Model::free_balloon(HybridState& hs, const Kinematics& k, double v) const {
 void Model::release_balloon_if_lid_jumped(HybridState& hs, const Kinematics& k0, double limit_rate_before,
                                           const Books& opened, std::vector<Event>& out) const {
   if (!hs.d.balloon_stuck) return;
-  if (small_) {
+  if (c_.small) {
     // Booked once, at the jump's end, for the whole change of the balloon's velocity.
     Books& b = hs.d.books;
     b.balloon_catch = opened.balloon_catch;
@@ -177,7 +177,8 @@ void Model::release_balloon_if_lid_jumped(HybridState& hs, const Kinematics& k0,
   const Kinematics k = kinematics(hs.d, hs.y);
   const double rate = limit_.rate(k.phi_l, k.dphi_l);
   // A jump, not rounding: beyond what the contact decision calls a zero rate.
-  if (rate > limit_rate_before + 1e-7 * std::sqrt(g_ * length_scale_) + 1e-9 * std::fabs(limit_rate_before)) {
+  if (rate >
+      limit_rate_before + 1e-7 * std::sqrt(c_.g * c_.length_scale) + 1e-9 * std::fabs(limit_rate_before)) {
     // The lid jumped away faster than the balloon moves: it keeps its own velocity, so the
     // balloon's side of the books is as it was before the jump.
     const Mode m = hs.d.mode();
@@ -223,7 +224,7 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   hs.d.stretched = false;
   // The built machine's sandbag stays where it is (on the arm, at the stop): it has a floor to
   // land on and the drawing shows it.
-  if (!built_) hs.d.on_seesaw = false;
+  if (!c_.built) hs.d.on_seesaw = false;
   hs.d.lid_chart = false;
   hs.d.parked_seesaw = k0.phi_s;
   Kinematics k = k0;
@@ -236,12 +237,12 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   Event latch = make_event(EventType::lid_open, hs, before, latched);
   latch.impact = true;
   latch.energy_before = energy(k0);
-  latch.impulse[2] = i_l_ * k0.dphi_l;
+  latch.impulse[2] = c_.i_l * k0.dphi_l;
   out.push_back(latch);
   if (pulled) out.push_back(make_event(EventType::rope_slack, hs, latched, hs.d.mode()));
   if (hs.d.balloon_stuck) {
     const Mode m = hs.d.mode();
-    if (small_) {
+    if (c_.small) {
       small_balloon_free(hs, k0);
     } else {
       free_balloon(hs, k0, limit_rate0);
@@ -250,22 +251,22 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   }
 }
 
-bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out) const {
-  if (stretchy_) {  // the contact decision names modes by its contacts: add the stretched rope
+bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out, Workspace* ws) const {
+  if (c_.stretchy) {  // the contact decision names modes by its contacts: add the stretched rope
     const std::size_t first = out.size();
     const bool was_stretched = hs.d.stretched;
-    const bool end = jump_contacts(fired, hs, out);
+    const bool end = jump_contacts(fired, hs, out, ws);
     if (!end) stretched_rope_left(hs, out);
     stretchy_modes(was_stretched, hs.d, out, first);
     return end;
   }
-  return jump_contacts(fired, hs, out);
+  return jump_contacts(fired, hs, out, ws);
 }
 
-bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out) const {
+bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out, Workspace* ws) const {
   hs.d.armed = {};
   const Mode before = hs.d.mode();
-  const Kinematics k0 = kinematics(hs.d, hs.y);
+  const Kinematics k0 = kinematics(hs.d, hs.y, true, ws);
   const double limit_rate0 = limit_.rate(k0.phi_l, k0.dphi_l);
   open_books(hs, k0);
   const Books opened = hs.d.books;
@@ -278,7 +279,7 @@ bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out)
   if (hs.d.on_seesaw && k0.r <= kContact && !fires_at_once(fired)) return stop(EventType::sandbag_at_pivot);
   switch (fired) {
     case kGuardBag:
-      if (!heavy_ && spring_rope(hs.d) && hs.d.stretched) return stretchy_jump(fired, hs, k0, before, out);
+      if (!c_.heavy && spring_rope(hs.d) && hs.d.stretched) return stretchy_jump(fired, hs, k0, before, out);
       if (hs.d.on_seesaw) {
         resolve(hs, k0, kBag, Trend::releasing, out);
         break;
@@ -287,7 +288,7 @@ bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out)
         // The falling sandbag reaches the arm's line: it lands where the arm is. Beyond a finite
         // arm's end it has missed it for good; on the pivot's other side the model ends.
         const double along = along_arm(k0);
-        if (along > arm_) {
+        if (along > c_.arm) {
           hs.d.fallen_off = true;
           out.push_back(make_event(EventType::sandbag_falls_off, hs, before, before));
           return false;
@@ -309,7 +310,7 @@ bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out)
       if (hs.d.grounded != 0) {
         resolve(hs, k0, hs.d.grounded > 0 ? kFloorLeft : kFloorRight, Trend::releasing, out);
       } else {  // the end that reached the floor
-        const double left = -arm_ * k0.sin_s, right = sc_.machine.seesaw_right_arm * k0.sin_s;
+        const double left = -c_.arm * k0.sin_s, right = sc_.machine.seesaw_right_arm * k0.sin_s;
         resolve(hs, k0, left <= right ? kFloorLeft : kFloorRight, Trend::closing, out);
       }
       break;
@@ -338,7 +339,7 @@ bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out)
     case kGuardCount: break;
   }
   release_balloon_if_lid_jumped(hs, k0, limit_rate0, opened, out);
-  book(hs);  // a jump may end with a change that no event reports
+  book(hs, ws);  // a jump may end with a change that no event reports
   return false;
 }
 
@@ -350,7 +351,7 @@ bool Model::jump_without_contacts(Guard fired, HybridState& hs, const Kinematics
   };
   switch (fired) {
     case kGuardBalloon:
-      if (small_) {
+      if (c_.small) {
         small_balloon_jump(fired, hs, k0, before, out);
         return false;
       }
@@ -359,7 +360,7 @@ bool Model::jump_without_contacts(Guard fired, HybridState& hs, const Kinematics
     case kGuardBalloonCorner:
     case kGuardBalloonEscape: small_balloon_jump(fired, hs, k0, before, out); return false;
     case kGuardLidOpen:
-      if (!radio_) return stop(EventType::lid_open);
+      if (!c_.radio) return stop(EventType::lid_open);
       latch_open(hs, k0, limit_rate0, before, out);
       return false;
     case kGuardSeesawVertical: return stop(EventType::seesaw_vertical);

@@ -35,7 +35,8 @@ struct Model::KinematicsPass {
   const Model& m;
   const Discrete& d;
   const State& y;
-  bool rates, memo;
+  bool rates;
+  Workspace* ws;      // the integration's memos, or null
   bool seesaw_angle;  // phiS itself, where only its cos and sin follow (guard_kinematics: not asked)
   Kinematics& k;      // the caller's, returned without a copy
   bool trig_s = false, trig_l = false;  // cos and sin of phiS / phiL already known
@@ -44,19 +45,18 @@ struct Model::KinematicsPass {
   void torqued(double phi_s, double dphi_s) {
     q = m.extra_torques(d, phi_s, dphi_s, y[slot::phi_l], y[slot::dphi_l]);
   }
-  // The memos serve one thread's integration; samples made on other threads compute afresh.
   Swing swing_of(bool on, bool taut, double r, double phi_s, double dr, double dphi_s) const {
-    return memo ? m.swing(on, taut, r, phi_s, dr, dphi_s, q.seesaw, q.lid)
-                : m.compute_swing(on, taut, r, phi_s, dr, dphi_s, q.seesaw, q.lid);
+    return ws ? m.swing(*ws, on, taut, r, phi_s, dr, dphi_s, q.seesaw, q.lid)
+              : m.compute_swing(on, taut, r, phi_s, dr, dphi_s, q.seesaw, q.lid);
   }
   LidSwing lid_swing_of(bool on, double r, double phi_l, double dr, double dphi_l, int side) const {
-    return memo ? m.swing_by_lid(on, r, phi_l, dr, dphi_l, side, q.seesaw, q.lid)
-                : m.compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side, q.seesaw, q.lid);
+    return ws ? m.swing_by_lid(*ws, on, r, phi_l, dr, dphi_l, side, q.seesaw, q.lid)
+              : m.compute_swing_by_lid(on, r, phi_l, dr, dphi_l, side, q.seesaw, q.lid);
   }
   // The lid on its own: resting, latched open, held by its hinge's friction, or swinging freely.
   void free_lid() {
     if (d.lid_resting) {
-      k.phi_l = m.phi_l0_;
+      k.phi_l = m.c_.phi_l0;
     } else if (d.latched || d.lid_stuck || !rates) {
       k.phi_l = y[slot::phi_l];
     } else {
@@ -109,13 +109,13 @@ struct Model::KinematicsPass {
       case Layout::carried_slack: carried_slack(); break;
       case Layout::grounded_carrying: on_the_floor(); break;
       case Layout::held_by_rope:
-        k.phi_l = d.lid_resting ? m.phi_l0_ : y[slot::phi_l];  // on the box, or held by the hinge
+        k.phi_l = d.lid_resting ? m.c_.phi_l0 : y[slot::phi_l];  // on the box, or held by the hinge
         if (rates) k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
         break;
       case Layout::on_rope_by_lid: on_rope_by_lid(); break;
       default: carried_on_rope(); break;
     }
-    if (!trig_s) trig(m.seesaw_trig_, k.phi_s, k.cos_s, k.sin_s, memo), trig_s = true;
+    if (!trig_s) trig(ws ? &ws->seesaw : nullptr, k.phi_s, k.cos_s, k.sin_s), trig_s = true;
     const double c = k.cos_s, s = k.sin_s;
     k.x = -k.r * c;
     k.h = -k.r * s;
@@ -148,7 +148,7 @@ struct Model::KinematicsPass {
     k.dphi_s = 0.0;
     if (!d.taut) return free_lid();
     if (d.lid_resting) {
-      k.phi_l = m.phi_l0_;
+      k.phi_l = m.c_.phi_l0;
     } else {
       placed(false, k.phi_s);
     }
@@ -196,7 +196,7 @@ struct Model::KinematicsPass {
     trig_s = k.r > 0.0;
     if (rates) {
       k.dphi_s = (k.vx * s - k.vh * c) / k.r;
-      k.ddphi_s = (m.g_ * c - 2.0 * k.dr * k.dphi_s) / k.r;
+      k.ddphi_s = (m.c_.g * c - 2.0 * k.dr * k.dphi_s) / k.r;
     }
   }
   // The unloaded heavy seesaw, on its own or with the lid on the rope.
@@ -206,7 +206,7 @@ struct Model::KinematicsPass {
     if (d.seesaw_held()) {
       if (d.taut) on_the_floor();
     } else if (d.taut && d.lid_held()) {
-      k.phi_l = d.lid_resting ? m.phi_l0_ : y[slot::phi_l];
+      k.phi_l = d.lid_resting ? m.c_.phi_l0 : y[slot::phi_l];
       if (rates) k.transfer = m.rope_.transfer(k.phi_s, k.phi_l);
     } else if (d.lid_chart && d.taut) {
       const double phi_l = y[slot::seesaw_phi];
@@ -235,10 +235,10 @@ struct Model::KinematicsPass {
 
   // What every layout shares: both angles' cos and sin, and the balloon.
   void finish() {
-    if (!trig_s) trig(m.seesaw_trig_, k.phi_s, k.cos_s, k.sin_s, memo);
-    if (!trig_l) trig(m.lid_trig_, k.phi_l, k.cos_l, k.sin_l, memo);
-    if (m.small_) return small_balloon();
-    k.balloon_x = m.r_l_;
+    if (!trig_s) trig(ws ? &ws->seesaw : nullptr, k.phi_s, k.cos_s, k.sin_s);
+    if (!trig_l) trig(ws ? &ws->lid : nullptr, k.phi_l, k.cos_l, k.sin_l);
+    if (m.c_.small) return small_balloon();
+    k.balloon_x = m.c_.r_l;
     if (d.balloon_stuck) {
       k.balloon_h = m.limit_.height_at(k.cos_l, k.sin_l);
       if (rates) k.balloon_v = m.limit_.rate_at(k.sin_l, k.dphi_l);
@@ -288,19 +288,19 @@ struct Model::KinematicsPass {
   }
 };
 
-Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, bool memo) const {
-  return kinematics_pass(d, y, rates, memo, true);
+Kinematics Model::kinematics(const Discrete& d, const State& y, bool rates, Workspace* ws) const {
+  return kinematics_pass(d, y, rates, ws, true);
 }
 
-Kinematics Model::guard_kinematics(const Discrete& d, const State& y) const {
-  return kinematics_pass(d, y, true, true, false);
+Kinematics Model::guard_kinematics(const Discrete& d, const State& y, Workspace* ws) const {
+  return kinematics_pass(d, y, true, ws, false);
 }
 
-Kinematics Model::kinematics_pass(const Discrete& d, const State& y, bool rates, bool memo,
+Kinematics Model::kinematics_pass(const Discrete& d, const State& y, bool rates, Workspace* ws,
                                   bool seesaw_angle) const {
   Kinematics k;
   k.rope_let_go = d.latched;
-  KinematicsPass pass{*this, d, y, rates, memo, seesaw_angle, k};
+  KinematicsPass pass{*this, d, y, rates, ws, seesaw_angle, k};
   const Layout layout = Model::layout(d);
   if (d.polar()) {
     pass.polar(layout);
@@ -308,7 +308,7 @@ Kinematics Model::kinematics_pass(const Discrete& d, const State& y, bool rates,
     pass.cartesian(layout);
   }
   pass.finish();
-  if (stretchy_ && rates && d.stretched) stretchy_kinematics(d, k);
+  if (c_.stretchy && rates && d.stretched) stretchy_kinematics(d, k);
   return k;
 }
 

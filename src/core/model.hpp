@@ -10,7 +10,10 @@
 #include <string_view>
 #include <vector>
 
+#include "constants.hpp"
 #include "contact.hpp"
+#include "contact_table.hpp"
+#include "workspace.hpp"
 #include "whatnext/events.hpp"
 #include "whatnext/geometry.hpp"
 #include "whatnext/params.hpp"
@@ -18,37 +21,6 @@
 
 namespace whatnext {
 
-// Guard functions: each fires when its value crosses from negative to >= 0. Inactive guards read
-// -infinity. A contact's guard is its gap while it is open (it fires on touching) and minus its
-// force while it is closed (it fires when the force would change sign); which contacts change is
-// then decided by the contact problem, not by the guard. The order is the priority for events
-// found at the same instant.
-enum Guard : int {
-  kGuardBag,       // sandbag: height above the arm's line, or minus the arm's push on it
-  kGuardRope,      // rope: |R - E| - l_R, or minus its tension
-  kGuardLid,       // lid: phiL0 - phiL, or minus the box's push on it
-  kGuardStop,      // sandbag against the end stop: r - left_arm, or minus the stop's push
-  kGuardFloor,     // seesaw's ends: minus the nearer one's height above the floor, or minus its push
-  kGuardBagFloor,  // sandbag off the arm: the floor's height minus its own
-  // Coulomb friction on the arm: minus the slip's speed while it slips (it fires when the slip
-  // stops), or the friction force's excess over mu times the arm's push while it sticks.
-  kGuardBagSlip,
-  kGuardPivotSlip,  // the same for the seesaw's pivot (a Coulomb torque) ...
-  kGuardHingeSlip,  // ... and the lid's hinge
-  kGuardArmEnd,     // sandbag on a finite arm reaches its end
-  kGuardBalloon,    // free balloon reaches the lid, or the lid pulls away faster than it can follow
-  // A balloon smaller than the box (docs/extensions.md): sliding along the lid it reaches the far
-  // wall or its top corner; it gets out of the box.
-  kGuardBalloonCorner,
-  kGuardBalloonEscape,
-  kGuardLidOpen,
-  kGuardSeesawVertical,
-  kGuardAtPivot,
-  kGuardRopeLocked,  // the linkage's dead centre: the lid along the rope, or R on the line P-E
-  kGuardRadioOn,
-  kGuardChart,  // on the rope's closure: time to integrate the other angle (no event)
-  kGuardCount
-};
 static_assert(kGuardCount <= kGuardSlots, "Discrete::armed holds every guard");
 using GuardValues = std::array<double, kGuardCount>;
 constexpr double kInactive = -std::numeric_limits<double>::infinity();
@@ -56,25 +28,6 @@ constexpr double kInactive = -std::numeric_limits<double>::infinity();
 // (stops, and a stuck balloon the lid already leaves); the others are contacts, decided there.
 bool fires_at_once(Guard g);
 
-// The contacts of the contact problem, and its coordinates (x, h of the sandbag, phiS, phiL).
-// The built machine adds the end stop, the floor under either end of the seesaw and under the
-// sandbag (contacts 3-6, present only when the machine has them); Coulomb friction the sandbag's
-// slip along the arm (contact 7, the tangent of contact 0, closed while it sticks) and the
-// seesaw's and the lid's turning on their pivot and hinge (8 and 9, bounded by Coulomb torques).
-enum ContactIndex : int {
-  kBag = 0,
-  kRope = 1,
-  kLid = 2,
-  kStop = 3,
-  kFloorLeft = 4,
-  kFloorRight = 5,
-  kBagFloor = 6,
-  kBagSlip = 7,
-  kPivotSlip = 8,
-  kHingeSlip = 9,
-  kContactCount = 10
-};
-constexpr bool is_friction(int contact) { return contact >= kBagSlip; }
 static_assert(kContactCount <= contact::kMaxContacts, "the contact problem holds every contact");
 
 // Full kinematics at one instant, whatever the layout of the continuous state.
@@ -103,19 +56,21 @@ class Model {
   // sandbag that touches but lets go at once is reported in out (at t = 0).
   HybridState initial(std::vector<Event>& out) const;
 
-  // Flow: dy/dt in the discrete state d.
+  // Flow: dy/dt in the discrete state d. ws: the integration's workspace (workspace.hpp); without
+  // one, a fresh one: the same numbers.
+  void flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const;
   void flow(const Discrete& d, const State& y, State& dy) const;
   // Guard values in the discrete state d, and, if asked, their rates where they are gaps of open
   // contacts (NaN elsewhere: not known). With only >= 0, g[only] is all the caller reads (root
   // finding), and what no other guard needs is skipped.
-  void guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates = nullptr,
-              int only = -1) const;
+  void guards(const Discrete& d, const State& y, GuardValues& g, GuardValues* rates = nullptr, int only = -1,
+              Workspace* ws = nullptr) const;
   // Jump for the guard that fired at hs.t; every resulting event is appended to out in the order
   // it happens (all at hs.t). Returns true when the run ends. The events' after, energy_after
   // and (unless an impact) energy_before are the state the motion goes on with once every event
-  // of the instant is decided: simulate() fills them in then, once for all of them.
-  bool jump(Guard fired, HybridState& hs, std::vector<Event>& out) const;
-  bool jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out) const;
+  // of the instant is decided: simulate() fills them in then, once for all of them. ws: as in kinematics().
+  bool jump(Guard fired, HybridState& hs, std::vector<Event>& out, Workspace* ws = nullptr) const;
+  bool jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out, Workspace* ws = nullptr) const;
   // The run ends at t_max.
   void timeout(HybridState& hs, std::vector<Event>& out) const;
   // The rounding band of a guard in d (see GuardStart): values within it count as zero.
@@ -125,13 +80,12 @@ class Model {
 
   // rates = false: where everything is (x, h, r, phiS, phiL with their cos and sin, the balloon's
   // height), the same numbers, without the rates, accelerations and the linkage's k (all zero).
-  // memo = false: without the memos of the flow's last swing (below), so that other threads may
-  // call it while this model integrates; the same numbers.
-  Kinematics kinematics(const Discrete& d, const State& y, bool rates = true, bool memo = true) const;
+  // ws: the integration's workspace, or null (computed afresh): the same numbers.
+  Kinematics kinematics(const Discrete& d, const State& y, bool rates = true, Workspace* ws = nullptr) const;
   // What the guards read: kinematics() with rates, but phiS left NaN where only its cos and sin
   // follow from the state (the sandbag's fall, the lid's chart): no guard reads the angle itself,
   // and its atan2 was 4 % of a sweep.
-  Kinematics guard_kinematics(const Discrete& d, const State& y) const;
+  Kinematics guard_kinematics(const Discrete& d, const State& y, Workspace* ws) const;
   // How the continuous state is laid out, decided by the contacts alone (kinematics.cpp):
   // polar (r, phiS) while the sandbag rides the seesaw with something to carry it, else Cartesian.
   enum class Layout {
@@ -147,8 +101,11 @@ class Model {
   };
   static Layout layout(const Discrete& d);
   // full = false: positions only (Observer::Detail::positions), no rates, forces nor energies.
-  Snapshot snapshot(double t, const Discrete& d, const State& y, bool full = true, bool memo = true) const;
-  Snapshot snapshot(const HybridState& hs) const { return snapshot(hs.t, hs.d, hs.y); }
+  Snapshot snapshot(double t, const Discrete& d, const State& y, bool full = true,
+                    Workspace* ws = nullptr) const;
+  Snapshot snapshot(const HybridState& hs, Workspace* ws = nullptr) const {
+    return snapshot(hs.t, hs.d, hs.y, true, ws);
+  }
   // A snapshot's positions alone (Observer::Detail::positions), the same bits, for writers that
   // read nothing else: no Snapshot of 50 numbers made and copied per sample.
   Positions positions(double t, const Discrete& d, const State& y) const;
@@ -172,64 +129,27 @@ class Model {
   double balloon_limit_rate(const Kinematics& k) const;
   // The balloon's upward acceleration at speed v (lift, weights and air drag): the flow, the
   // balloon guard and the jumps all use this one function.
-  double balloon_acceleration(double v) const { return a_b_ - drag_ * v * std::fabs(v); }
+  double balloon_acceleration(double v) const { return c_.a_b - c_.drag * v * std::fabs(v); }
   // The lid's angular acceleration while it swings free of the rope and the box, with the hinge's
   // damper and an extra torque q_l (friction, a stretched rope's pull): the flow's.
   double lid_free_acceleration(double phi_l, double dphi_l, double q_l = 0.0) const;
   // A balloon smaller than the box, which slides along the lid and flies in the plane.
-  bool small_balloon() const { return small_; }
+  bool small_balloon() const { return c_.small; }
 
  private:
-  // The seesaw's angular acceleration with whatever it carries (J phiS'' = Q, docs/extensions.md),
-  // and the lid's angle on the rope's closure when the rope is taut.
-  struct Swing {
-    double ddr, ddphi_s;
-    RopeGeometry::Linkage lk;  // the seesaw's cos and sin always; the rest while taut
-  };
+  // The seesaw's swing (workspace.hpp Swing), from ws's memo where it holds these arguments.
   // q_s, q_l: the slipping pivot's and hinge's Coulomb torques (0 without friction).
-  Swing swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s, double q_s = 0.0,
-              double q_l = 0.0) const;
-  // The same motion on the rope's closure in the lid chart: phiL integrated, phiS = S(phiL).
-  struct LidSwing {
-    double ddr, ddphi_l;
-    RopeGeometry::Linkage lk;
-  };
-  LidSwing swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side, double q_s = 0.0,
-                        double q_l = 0.0) const;
+  Swing swing(Workspace& ws, bool on, bool taut, double r, double phi_s, double dr, double dphi_s,
+              double q_s = 0.0, double q_l = 0.0) const;
+  LidSwing swing_by_lid(Workspace& ws, bool on, double r, double phi_l, double dr, double dphi_l, int side,
+                        double q_s = 0.0, double q_l = 0.0) const;
   Swing compute_swing(bool on, bool taut, double r, double phi_s, double dr, double dphi_s, double q_s = 0.0,
                       double q_l = 0.0) const;
   LidSwing compute_swing_by_lid(bool on, double r, double phi_l, double dr, double dphi_l, int side,
                                 double q_s = 0.0, double q_l = 0.0) const;
-  // The flow's last stage (FSAL) and the guards at the step's end ask for the swing of the same
-  // state: the last one computed is kept and handed out again for identical arguments. A Model
-  // belongs to one simulate() call, hence to one thread (kinematics(memo = false) leaves them be).
-  template <class Result>
-  struct Memo {
-    bool valid = false;
-    int flags = 0;
-    double args[6] = {0, 0, 0, 0, 0, 0};
-    Result value{};
-  };
-  mutable Memo<Swing> swing_memo_;
-  mutable Memo<LidSwing> lid_swing_memo_;
-  // cos and sin of an angle that stays put for a while (a resting lid, a parked seesaw: every guard
-  // evaluation of the sandbag's fall took a sincos of each): the last angle's are kept, and handed
-  // out again for the same angle. Like the memos above, for one thread's integration only.
-  struct Trig {
-    double angle = std::numeric_limits<double>::quiet_NaN(), cos = 1.0, sin = 0.0;
-  };
-  mutable Trig seesaw_trig_, lid_trig_;
-  static void trig(Trig& last, double angle, double& c, double& s, bool memo) {
-    if (!memo) {
-      c = std::cos(angle), s = std::sin(angle);
-      return;
-    }
-    if (!(last.angle == angle)) last.angle = angle, last.cos = std::cos(angle), last.sin = std::sin(angle);
-    c = last.cos, s = last.sin;
-  }
   static void lid_chart(Kinematics& k, const LidSwing& p, double phi_l, double dphi_l, bool seesaw_angle);
   struct KinematicsPass;  // kinematics.cpp: one evaluation, stage by stage
-  Kinematics kinematics_pass(const Discrete& d, const State& y, bool rates, bool memo,
+  Kinematics kinematics_pass(const Discrete& d, const State& y, bool rates, Workspace* ws,
                              bool seesaw_angle) const;
   // The lid swings on the straight rope, driven through it by something with inertia.
   static bool on_closure(const Discrete& d) {
@@ -238,7 +158,7 @@ class Model {
   double lid_free_acceleration_at(double cos_l, double dphi_l, double q_l) const;  // cos phiL known
   // r'' of the sandbag on the arm (eq. 5): gravity along the arm and the centrifugal term.
   double along_arm_acceleration(double r, double sin_s, double dphi_s) const {
-    return g_ * sin_s + r * dphi_s * dphi_s;
+    return c_.g * sin_s + r * dphi_s * dphi_s;
   }
   double radio_gap(const Kinematics& k) const;
   // guards() in stages (guards.cpp), called in this order.
@@ -275,20 +195,20 @@ class Model {
   void small_balloon_settle(HybridState& hs, Mode before, std::vector<Event>& out) const;
   void small_balloon_after_lid_jump(HybridState& hs, const Kinematics& k0, std::vector<Event>& out) const;
   // The flow's stages: the sandbag on the arm in polar form, or flying in Cartesian form.
-  void polar_flow(const Discrete& d, const State& y, State& dy) const;
-  void cartesian_flow(const Discrete& d, const State& y, State& dy) const;
+  void polar_flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const;
+  void cartesian_flow(const Discrete& d, const State& y, State& dy, Workspace& ws) const;
   void dissipation(const Discrete& d, const Kinematics& k, State& dy) const;
   // Coulomb friction (contact_problem.cpp): the slip's tangent in the contact problem, and the
   // sandbag's acceleration along the arm from friction while it slips (the arm's push per unit
   // mass, N/m = g cos phiS - 2 r' phiS' - r phiS'', times mu, against the slip).
   void friction_contacts(const Discrete& d, contact::System& s, const Kinematics& k) const;
   double bag_friction(int slip, double r, double dr, double cos_s, double dphi_s, double ddphi_s) const {
-    return -mu_ * slip * (g_ * cos_s - 2.0 * dr * dphi_s - r * ddphi_s);
+    return -c_.mu * slip * (c_.g * cos_s - 2.0 * dr * dphi_s - r * ddphi_s);
   }
   // The sandbag's height above the arm's line and its distance along it from the pivot.
   static double height_above_arm(const Kinematics& k);
-  // Negative while |phiS| < vertical_, from cos phiS alone (guard_kinematics has no phiS).
-  double seesaw_vertical_gap(const Kinematics& k) const { return cos_vertical_ - k.cos_s; }
+  // Negative while |phiS| < c_.vertical, from cos phiS alone (guard_kinematics has no phiS).
+  double seesaw_vertical_gap(const Kinematics& k) const { return c_.cos_vertical - k.cos_s; }
   static double along_arm(const Kinematics& k);
 
   // Contact changes. How the contact that triggered them tends: touching, letting go (its force
@@ -380,54 +300,33 @@ class Model {
                   std::vector<Event>& out) const;
   // Ledger: fold the continuous phase into the books, then book what a jump changed.
   void open_books(HybridState& hs, const Kinematics& k) const;
-  void book(HybridState& hs) const;
+  void book(HybridState& hs, Workspace* ws = nullptr) const;
   double lid_push_now(const Discrete& d, const Kinematics& k, const State& y) const;
 
   Scenario sc_;
+  const Constants c_;  // constants.hpp: every number the model reads, taken once
   RopeGeometry rope_;
   BalloonLimit limit_;
-  bool small_;  // balloon.radius < r_L
   SmallBalloon sb_;
-  double g_, m_s_, m_l_, i_l_, r_l_, a_b_, phi_l0_, vertical_;
-  double cos_vertical_;  // of vertical_ (seesaw_vertical_gap)
-  // Extensions (zero or infinite: the paper's machine, docs/model.md §1).
-  double drag_, m_b_, i_s_, w_s_, c_p_, c_l_, arm_;
-  bool heavy_, radio_;
-  Vec2 switch_;
-  double string_, balloon_x_;
-  double length_scale_;  // for the contact problem's tolerances
-  // The built machine: how many contacts the problem has (3 without stop and floor), the floor's
-  // height, the restitution of impacts on it, and the seesaw's angles standing on it.
-  int contacts_;
-  bool stop_, floor_;
-  double h_floor_, grounded_left_, grounded_right_;
-  std::array<double, kContactCount> e_{};  // Newton's restitution per contact (0: inelastic)
-  bool built_;                             // stop or floor (contacts 3-6)
-  double mu_;                              // Coulomb friction on the arm (contact 7); 0: none
-  double t_p_, t_h_;                       // Coulomb torques at the pivot and the hinge (8, 9)
-  bool friction_;
   // The Coulomb torques of a slipping pivot and hinge, against their slip (docs/extensions.md).
-  double pivot_coulomb(const Discrete& d) const { return -t_p_ * d.seesaw_slip; }
+  double pivot_coulomb(const Discrete& d) const { return -c_.t_p * d.seesaw_slip; }
   // The most a sticking pivot (i = kPivotSlip) or hinge (kHingeSlip) holds: its Coulomb torque and,
   // while the taut rope couples the two and the other is free to turn, the other's through the
   // linkage's k (phiL' = k phiS'): T_p + |k| T_h, or T_h + T_p / |k| (docs/extensions.md).
   double coulomb_hold(const Discrete& d, const Kinematics& k, int i) const;
-  double hinge_coulomb(const Discrete& d) const { return -t_h_ * d.lid_slip; }
-  bool restitution_ = false;  // some contact has one
-  double grounded_angle(int side) const { return side > 0 ? grounded_left_ : grounded_right_; }
+  double hinge_coulomb(const Discrete& d) const { return -c_.t_h * d.lid_slip; }
+  double grounded_angle(int side) const { return side > 0 ? c_.grounded_left : c_.grounded_right; }
   void ground(Kinematics& k, int side, bool carries) const;
 
   // A rope that stretches (stretchy_rope.cpp, docs/impact.md): a one-sided spring-damper instead of
   // the rope's contact while the sandbag rides the massless seesaw; its pull is a generalised force.
-  bool stretchy_ = false;
-  double k_rope_ = 0.0, c_rope_ = 0.0;
   struct RopePull {
     double stretch = 0, rate = 0, tension = 0;  // span - l_R [m], its rate [m/s], the pull [N]
     double q_s = 0, q_l = 0;                    // the pull's torques on the seesaw and the lid [N m]
   };
   // A seesaw with inertia stretches the rope whatever it carries; the massless one only with the
   // sandbag on it (docs/impact.md).
-  bool spring_rope(const Discrete& d) const { return stretchy_ && !d.latched && (d.on_seesaw || heavy_); }
+  bool spring_rope(const Discrete& d) const { return c_.stretchy && !d.latched && (d.on_seesaw || c_.heavy); }
   RopePull rope_pull(const Discrete& d, const Kinematics& k) const;
   // The stretched rope's pull on a seesaw with inertia that it turns (zero otherwise), from the
   // angles and rates alone: its torques join the swings' like the Coulomb torques.
@@ -440,14 +339,13 @@ class Model {
   };
   Torques extra_torques(const Discrete& d, double phi_s, double dphi_s, double phi_l, double dphi_l) const {
     Torques t;
-    if (!friction_ && !pulls_heavy_) return t;
-    const RopePull rope = pulls_heavy_ ? heavy_pull(d, phi_s, dphi_s, phi_l, dphi_l) : RopePull{};
+    if (!c_.friction && !c_.pulls_heavy) return t;
+    const RopePull rope = c_.pulls_heavy ? heavy_pull(d, phi_s, dphi_s, phi_l, dphi_l) : RopePull{};
     t.seesaw = pivot_coulomb(d) + rope.q_s, t.lid = hinge_coulomb(d) + rope.q_l;
     return t;
   }
-  bool pulls_heavy_ = false;  // a stretchy rope on a seesaw with inertia (heavy_pull is not zero)
   double rope_energy(const Kinematics& k) const;
-  void stretchy_flow(const Discrete& d, const State& y, State& dy) const;
+  void stretchy_flow(const Discrete& d, const State& y, State& dy, Workspace* ws) const;
   void stretchy_kinematics(const Discrete& d, Kinematics& k) const;
   void stretchy_accelerations(const Discrete& d, const Kinematics& k, contact::Coords& a) const;
   void stretchy_force(const Discrete& d, const Kinematics& k, contact::System& s) const;

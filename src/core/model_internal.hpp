@@ -28,34 +28,6 @@ constexpr double kUnknownLead = -1e-300;
 using contact::Set;
 constexpr Set bit(int i) { return 1u << i; }
 
-inline Guard guard_of(int contact) {
-  switch (contact) {
-    case kBag: return kGuardBag;
-    case kRope: return kGuardRope;
-    case kLid: return kGuardLid;
-    case kStop: return kGuardStop;
-    case kBagFloor: return kGuardBagFloor;
-    case kBagSlip: return kGuardBagSlip;
-    case kPivotSlip: return kGuardPivotSlip;
-    case kHingeSlip: return kGuardHingeSlip;
-    default: return kGuardFloor;  // either end of the seesaw
-  }
-}
-
-inline EventType change_event(int contact, bool closes) {
-  switch (contact) {
-    case kBag: return closes ? EventType::sandbag_lands : EventType::sandbag_leaves;
-    case kRope: return closes ? EventType::rope_taut : EventType::rope_slack;
-    case kLid: return closes ? EventType::lid_rests : EventType::lid_lifts;
-    case kStop: return closes ? EventType::sandbag_at_stop : EventType::sandbag_leaves_stop;
-    case kBagFloor: return closes ? EventType::sandbag_on_floor : EventType::sandbag_bounces;
-    case kBagSlip: return closes ? EventType::sandbag_sticks : EventType::sandbag_slips;
-    case kPivotSlip: return closes ? EventType::seesaw_sticks : EventType::seesaw_slips;
-    case kHingeSlip: return closes ? EventType::lid_sticks : EventType::lid_slips;
-    default: return closes ? EventType::seesaw_on_floor : EventType::seesaw_lifts;
-  }
-}
-
 inline Mode mode_of(Set s) {
   return Discrete::mode_of(contact::has(s, kBag), contact::has(s, kRope), contact::has(s, kLid));
 }

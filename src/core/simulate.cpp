@@ -17,16 +17,17 @@ struct MachineSystem {
   using guard_type = GuardValues;
   const Model* model;
   Discrete d;
+  Workspace* ws;                 // the run's (Runner::ws_)
   Observer* observer = nullptr;  // asked to keep going every 256 steps (guards() runs once a step)
   std::uint32_t* steps = nullptr;
-  void operator()(const State& y, State& dy, double /*t*/) const { model->flow(d, y, dy); }
+  void operator()(const State& y, State& dy, double /*t*/) const { model->flow(d, y, dy, *ws); }
   void guards(const State& y, GuardValues& g, GuardValues* rates = nullptr) const {
     if (observer && (++*steps & 255u) == 0 && !observer->keep_going()) throw Cancelled("the run was stopped");
-    model->guards(d, y, g, rates);
+    model->guards(d, y, g, rates, -1, ws);
   }
   double guard(const State& y, int i) const {
     GuardValues g;
-    model->guards(d, y, g, nullptr, i);
+    model->guards(d, y, g, nullptr, i, ws);
     return g[i];
   }
   GuardStart guard_start(int i) const { return d.armed[i]; }
@@ -48,7 +49,7 @@ constexpr std::int64_t kMaxAdaptiveSteps = 5'000'000;
 }  // namespace
 
 Snapshot SampleBatch::snapshot(std::size_t i) const {
-  return model_->snapshot(times_[i], d_, states_[i], full_, /*memo=*/false);
+  return model_->snapshot(times_[i], d_, states_[i], full_);  // no workspace: any thread
 }
 
 Positions SampleBatch::positions(std::size_t i) const { return model_->positions(times_[i], d_, states_[i]); }
@@ -101,11 +102,12 @@ class Runner {
   // at zero that the contact decision did not arm is armed here, so it is looked for just after.
   bool start_piece(std::vector<Event>& out) {
     GuardValues g;
-    model_.guards(hs_.d, hs_.y, g);
+    model_.guards(hs_.d, hs_.y, g, nullptr, -1, &ws_);
     for (int i = 0; i < kGuardCount; ++i) {
       const Guard gi = static_cast<Guard>(i);
       if (!(g[i] >= 0.0)) continue;
-      if (fires_at_once(gi) || (gi == kGuardBalloon && hs_.d.balloon_stuck)) return model_.jump(gi, hs_, out);
+      if (fires_at_once(gi) || (gi == kGuardBalloon && hs_.d.balloon_stuck))
+        return model_.jump(gi, hs_, out, &ws_);
       if (hs_.d.armed[i].order == 0) hs_.d.armed[i] = {1, -1e-300, model_.guard_floor(gi, hs_.d)};
     }
     return false;
@@ -124,7 +126,7 @@ class Runner {
   // Every event of one instant carries the state the motion goes on with after all of them.
   void publish(std::vector<Event>& events) {
     if (!events.empty()) {
-      const Snapshot final_state = model_.snapshot(hs_);
+      const Snapshot final_state = model_.snapshot(hs_, &ws_);
       for (Event& e : events) {  // all of them at hs.t: the jumps' events carry no state of their own
         e.after = final_state;
         e.energy_after = final_state.energy();
@@ -141,7 +143,7 @@ class Runner {
   // samples go to the observer before its events. hs_.y is left at the piece's end.
   Crossing integrate_piece() {
     namespace odeint = boost::numeric::odeint;
-    const MachineSystem sys{&model_, hs_.d, observer_, &steps_};
+    const MachineSystem sys{&model_, hs_.d, &ws_, observer_, &steps_};
     if (observer_) batch_.start(hs_.d);
     auto sample = [&](double t, const State& y) {
       batch_.add(t, y);
@@ -154,8 +156,9 @@ class Runner {
       case IntegratorKind::adaptive: {
         const DenseSettings dense{run.tolerance, kMaxAdaptiveStep, run.event_time_tolerance,
                                   kMaxAdaptiveSteps - res_.stats.steps};
-        if (BallisticStepper::applies(model_, sc_, hs_.d, hs_.y)) {  // the sandbag's parabola in closed form
-          BallisticStepper stepper(model_, hs_.d, hs_.y, sc_.machine.gravity, dense);
+        if (BallisticStepper::applies(model_, sc_, hs_.d, hs_.y,
+                                      &ws_)) {  // the sandbag's parabola in closed form
+          BallisticStepper stepper(model_, hs_.d, hs_.y, sc_.machine.gravity, dense, &ws_);
           c = integrate_dense(stepper, sys, hs_.y, t_, run.t_max, dense, grid_, sample, res_.stats);
         } else {
           c = integrate_adaptive(sys, hs_.y, t_, run.t_max, dense, grid_, sample, res_.stats);
@@ -205,7 +208,7 @@ class Runner {
       model_.timeout(hs_, fresh);
       return true;
     }
-    const bool stop = settle(fresh, model_.jump(static_cast<Guard>(c.guard), hs_, fresh));
+    const bool stop = settle(fresh, model_.jump(static_cast<Guard>(c.guard), hs_, fresh, &ws_));
     // The chart's switch is no event; what it leads to at once is found on no crossing.
     if (c.guard != kGuardChart) {
       for (Event& e : fresh) e.time_uncertainty = c.uncertainty;
@@ -229,6 +232,7 @@ class Runner {
   const Scenario& sc_;
   Observer* observer_;
   const Model model_;
+  Workspace ws_;  // what this run's evaluations of model_ keep (workspace.hpp)
   SampleBatch batch_;
   Result res_;
   HybridState hs_;

@@ -42,7 +42,7 @@ Model::RopePull Model::rope_pull(const Discrete& d, const Kinematics& k) const {
   p.rate = ds * k.dphi_s + dl * k.dphi_l;
   // No clamp at zero inside the piece: the guard ends the pull where it reaches zero, so the flow
   // stays smooth (the stiff integrator's Jacobian sees the spring, not a corner).
-  if (d.stretched) p.tension = k_rope_ * p.stretch + c_rope_ * p.rate;
+  if (d.stretched) p.tension = c_.k_rope * p.stretch + c_.c_rope * p.rate;
   p.q_s = -p.tension * ds;
   p.q_l = -p.tension * dl;
   return p;
@@ -50,7 +50,7 @@ Model::RopePull Model::rope_pull(const Discrete& d, const Kinematics& k) const {
 
 Model::RopePull Model::heavy_pull(const Discrete& d, double phi_s, double dphi_s, double phi_l,
                                   double dphi_l) const {
-  if (!stretchy_ || !heavy_ || !d.stretched || !spring_rope(d)) return {};
+  if (!c_.stretchy || !c_.heavy || !d.stretched || !spring_rope(d)) return {};
   Kinematics k;
   k.cos_s = std::cos(phi_s), k.sin_s = std::sin(phi_s), k.cos_l = std::cos(phi_l), k.sin_l = std::sin(phi_l);
   // A seesaw held (on the floor, or by its pivot's friction) still has the rope pull the lid: what
@@ -65,43 +65,43 @@ Model::RopePull Model::heavy_pull(const Discrete& d, double phi_s, double dphi_s
 double Model::rope_energy(const Kinematics& k) const {
   if (k.rope_let_go) return 0.0;  // what it held was booked at the latch (an impact's loss)
   const double s = rope_.span(Vec2{k.cos_s, k.sin_s}, Vec2{k.cos_l, k.sin_l}) - rope_.rope_length();
-  return s > 0.0 ? 0.5 * k_rope_ * s * s : 0.0;
+  return s > 0.0 ? 0.5 * c_.k_rope * s * s : 0.0;
 }
 
-void Model::stretchy_flow(const Discrete& d, const State& y, State& dy) const {
+void Model::stretchy_flow(const Discrete& d, const State& y, State& dy, Workspace* ws) const {
   if (!spring_rope(d)) return;
-  const Kinematics k = kinematics(d, y);
+  const Kinematics k = kinematics(d, y, true, ws);
   const RopePull p = rope_pull(d, k);
   // Slack but still longer than l_R (it let go where its damper would have pushed), the spring's
   // energy goes as the span shrinks: booked as lost (-k s s').
-  dy[slot::lost_rope] = (p.tension - k_rope_ * std::fmax(p.stretch, 0.0)) * p.rate;
+  dy[slot::lost_rope] = (p.tension - c_.k_rope * std::fmax(p.stretch, 0.0)) * p.rate;
   if (!d.stretched) return;
   // A seesaw with inertia: the pull's torques are in its and the lid's swings already (heavy_pull).
-  if (heavy_) return;
+  if (c_.heavy) return;
   if (k.r > 0.0) {
     // The sandbag in Cartesian free fall (M3) on the massless seesaw, pushed by the arm with
     // N = -Q_S / r along the arm's normal (-sin phiS, cos phiS).
-    const double push = -p.q_s / (k.r * m_s_);
+    const double push = -p.q_s / (k.r * c_.m_s);
     dy[slot::vx] += -push * k.sin_s;
     dy[slot::vh] += push * k.cos_s;
   }
-  if (!d.lid_resting) dy[slot::dphi_l] += p.q_l / i_l_;
+  if (!d.lid_resting) dy[slot::dphi_l] += p.q_l / c_.i_l;
 }
 
 void Model::stretchy_kinematics(const Discrete& d, Kinematics& k) const {
   if (!spring_rope(d)) return;
   const RopePull p = rope_pull(d, k);
-  if (heavy_) return;  // in the swings already (heavy_pull)
+  if (c_.heavy) return;  // in the swings already (heavy_pull)
   if (k.r > 0.0) {
     // phiS = atan2(-h, -x): the arm's push adds -N / (m r) = Q_S / (m r^2) to the free fall's phiS''.
-    k.ddphi_s += p.q_s / (m_s_ * k.r * k.r);
+    k.ddphi_s += p.q_s / (c_.m_s * k.r * k.r);
   }
-  if (!d.lid_resting) k.ddphi_l += p.q_l / i_l_;
+  if (!d.lid_resting) k.ddphi_l += p.q_l / c_.i_l;
 }
 
 void Model::stretchy_accelerations(const Discrete& d, const Kinematics& k, contact::Coords& a) const {
-  if (heavy_ || !spring_rope(d) || !(k.r > 0.0)) return;  // the heavy seesaw's are in k already
-  const double push = -rope_pull(d, k).q_s / (k.r * m_s_);
+  if (c_.heavy || !spring_rope(d) || !(k.r > 0.0)) return;  // the heavy seesaw's are in k already
+  const double push = -rope_pull(d, k).q_s / (k.r * c_.m_s);
   a[0] += -push * k.sin_s;
   a[1] += push * k.cos_s;
 }
@@ -124,10 +124,10 @@ void Model::stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues&
   // be positive: min(s, s + (c/k) s') crosses zero (at s = 0 on an ordinary tightening, where s'
   // > 0; before s = 0 returns, if the ends are driven apart while still stretched).
   const RopePull p = rope_pull(d, k);
-  const double tau = c_rope_ / k_rope_, pull = p.stretch + tau * p.rate;
+  const double tau = c_.c_rope / c_.k_rope, pull = p.stretch + tau * p.rate;
   if (d.stretched) {
     g[kGuardRope] = -pull;
-    if (rates) (*rates)[kGuardRope] = c_rope_ > 0.0 ? std::numeric_limits<double>::quiet_NaN() : -p.rate;
+    if (rates) (*rates)[kGuardRope] = c_.c_rope > 0.0 ? std::numeric_limits<double>::quiet_NaN() : -p.rate;
   } else {
     g[kGuardRope] = std::fmin(p.stretch, pull);
     if (rates) (*rates)[kGuardRope] = p.rate >= 0.0 ? p.rate : std::numeric_limits<double>::quiet_NaN();
@@ -141,11 +141,11 @@ void Model::stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues&
   const Vec2 r{rh * k.cos_s, rh * k.sin_s};
   const Vec2 dv = r - (rope_.hinge() + Vec2{knot * k.cos_l, knot * k.sin_l});
   // (A seesaw with inertia carries the pull itself: its arm's push is the contact problem's.)
-  if (p.tension > 0.0 && !heavy_) g[kGuardBag] = -dot(dv, Vec2{-r.h, r.x});
+  if (p.tension > 0.0 && !c_.heavy) g[kGuardBag] = -dot(dv, Vec2{-r.h, r.x});
 }
 
 double Model::lid_lift(const Kinematics& k, const RopePull& p) const {
-  return p.q_l - m_l_ * g_ * r_l_ * k.cos_l;
+  return p.q_l - c_.m_l * c_.g * c_.r_l * k.cos_l;
 }
 
 bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mode before,
@@ -159,7 +159,7 @@ bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mo
   Discrete& d = hs.d;
   d.stretched = !d.stretched;
   out.push_back(make_event(d.stretched ? EventType::rope_taut : EventType::rope_slack, hs, before, d.mode()));
-  if (d.stretched && c_rope_ > 0.0 && (d.lid_resting || (heavy_ && d.on_seesaw))) {
+  if (d.stretched && c_.c_rope > 0.0 && (d.lid_resting || (c_.heavy && d.on_seesaw))) {
     // A damped rope pulls c s' at once: the contacts it loads or unloads (the lid on the box, the
     // sandbag on a seesaw with inertia, friction's sticking) are decided now with it, as after an
     // impact (nothing changes where all of them still hold).
@@ -167,7 +167,7 @@ bool Model::stretchy_jump(Guard fired, HybridState& hs, const Kinematics& k0, Mo
   }
   // The guard starts at zero and turns negative (without damping at the span's rate).
   const RopePull p = rope_pull(d, k0);
-  const double lead = c_rope_ > 0.0 ? 0.0 : -std::fabs(p.rate);
+  const double lead = c_.c_rope > 0.0 ? 0.0 : -std::fabs(p.rate);
   d.armed[kGuardRope] = lead < 0.0 ? GuardStart{1, lead} : GuardStart{1, kUnknownLead};
   d.armed[kGuardRope].floor = guard_floor(kGuardRope, d);
   return false;
@@ -181,7 +181,7 @@ void Model::stretched_rope_left(HybridState& hs, std::vector<Event>& out) const 
   // and after) whose loss is the spring's (1/2) k s^2: the contact problem decides whether the
   // rope holds the seesaw to the lid after it.
   Discrete& d = hs.d;
-  if (heavy_ || d.latched) return;
+  if (c_.heavy || d.latched) return;
   if (d.on_seesaw && spring_rope(d) && !d.stretched) {
     // The sandbag has landed on a seesaw that followed the lid (the rope at l_R): where the arm now
     // drives the rope's ends apart the spring pulls from this instant, not a moment later (a rope
@@ -247,7 +247,8 @@ void Model::stretchy_snapshot(const Discrete& d, const Kinematics& k, const Stat
   if (spring_rope(d)) {
     // At the slack the pull is zero within rounding: written as zero. A pull below that would be
     // a rope that pushes, and is shown as it is.
-    const double t = rope_pull(d, k).tension, rounding = 1e-10 * (m_s_ + m_l_ + sc_.machine.seesaw_mass) * g_;
+    const double t = rope_pull(d, k).tension,
+                 rounding = 1e-10 * (c_.m_s + c_.m_l + sc_.machine.seesaw_mass) * c_.g;
     s.tension = t < 0.0 && t >= -rounding ? 0.0 : t;
   }
 }
