@@ -71,6 +71,8 @@ struct Discrete {
   // A rope that stretches (docs/impact.md): longer than l_R and pulling as a spring-damper. The rope
   // contact (taut) stays open then; the mode names it as straight.
   bool stretched = false;
+  // ... slack again but still longer than l_R: the spring's energy goes as the span shrinks to l_R.
+  bool rope_relaxing = false;
   std::array<GuardStart, kGuardSlots> armed{};  // for the smooth piece that starts here
   Books books;
 

@@ -43,9 +43,15 @@ enum Guard : int {
   kGuardAtPivot,
   kGuardRopeLocked,  // the linkage's dead centre: the lid along the rope, or R on the line P-E
   kGuardRadioOn,
+  // A rope that stretches, slack but still longer than l_R, reaches l_R: its spring's energy is
+  // spent there (no event; the piece ends so that the books' loss, -k s s' until then, is not
+  // integrated across its corner).
+  kGuardRopeRelaxed,
   kGuardChart,  // on the rope's closure: time to integrate the other angle (no event)
   kGuardCount
 };
+// The guards that end a smooth piece without an event of their own.
+constexpr bool reports_no_event(Guard g) { return g == kGuardRopeRelaxed || g == kGuardChart; }
 
 // The contacts of the contact problem, and its coordinates (x, h of the sandbag, phiS, phiL).
 // The built machine adds the end stop, the floor under either end of the seesaw and under the

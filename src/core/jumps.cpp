@@ -258,6 +258,7 @@ bool Model::jump(Guard fired, HybridState& hs, std::vector<Event>& out, Workspac
     const bool end = jump_contacts(fired, hs, out, ws);
     if (!end) stretched_rope_left(hs, out);
     stretchy_modes(was_stretched, hs.d, out, first);
+    if (!end) hs.d.rope_relaxing = relaxing(hs);
     return end;
   }
   return jump_contacts(fired, hs, out, ws);
@@ -335,6 +336,7 @@ bool Model::jump_contacts(Guard fired, HybridState& hs, std::vector<Event>& out,
     case kGuardAtPivot:
     case kGuardRopeLocked:
     case kGuardRadioOn:
+    case kGuardRopeRelaxed:
     case kGuardChart: return jump_without_contacts(fired, hs, k0, limit_rate0, before, out);
     case kGuardCount: break;
   }
@@ -370,6 +372,9 @@ bool Model::jump_without_contacts(Guard fired, HybridState& hs, const Kinematics
       // The string straightens and holds the balloon: it pulls with the balloon's net lift.
       return stop(sc_.machine.balloon_pull() >= sc_.machine.switch_force ? EventType::radio_on
                                                                          : EventType::switch_stays_off);
+    case kGuardRopeRelaxed:  // the slack rope back at l_R: nothing moves differently, no event
+      hs.d.rope_relaxing = false;
+      return false;
     case kGuardChart:  // the same state in the other angle: no event
       hs.d.lid_chart = !hs.d.lid_chart;
       hs.d.side = RopeGeometry::side_of(rope_.lid_edge(k0.phi_l), rope_.seesaw_end(k0.phi_s));

@@ -328,6 +328,8 @@ class Model {
   // sandbag on it (docs/impact.md).
   bool spring_rope(const Discrete& d) const { return c_.stretchy && !d.latched && (d.on_seesaw || c_.heavy); }
   RopePull rope_pull(const Discrete& d, const Kinematics& k) const;
+  // Slack but still longer than l_R after a jump (Discrete::rope_relaxing).
+  bool relaxing(const HybridState& hs) const;
   // The stretched rope's pull on a seesaw with inertia that it turns (zero otherwise), from the
   // angles and rates alone: its torques join the swings' like the Coulomb torques.
   RopePull heavy_pull(const Discrete& d, double phi_s, double dphi_s, double phi_l, double dphi_l) const;

@@ -209,8 +209,9 @@ class Runner {
       return true;
     }
     const bool stop = settle(fresh, model_.jump(static_cast<Guard>(c.guard), hs_, fresh, &ws_));
-    // The chart's switch is no event; what it leads to at once is found on no crossing.
-    if (c.guard != kGuardChart) {
+    // The chart's switch and the rope's relaxing are no events; what they lead to at once is found on
+    // no crossing.
+    if (!reports_no_event(static_cast<Guard>(c.guard))) {
       for (Event& e : fresh) e.time_uncertainty = c.uncertainty;
     }
     return stop;

@@ -62,6 +62,12 @@ Model::RopePull Model::heavy_pull(const Discrete& d, double phi_s, double dphi_s
   return p;
 }
 
+bool Model::relaxing(const HybridState& hs) const {
+  // Beyond rounding of l_R only: a rope let go within it has no corner left worth a piece.
+  if (!spring_rope(hs.d) || hs.d.stretched) return false;
+  return rope_pull(hs.d, kinematics(hs.d, hs.y, false)).stretch > 1e-12 * c_.length_scale;
+}
+
 double Model::rope_energy(const Kinematics& k) const {
   if (k.rope_let_go) return 0.0;  // what it held was booked at the latch (an impact's loss)
   const double s = rope_.span(Vec2{k.cos_s, k.sin_s}, Vec2{k.cos_l, k.sin_l}) - rope_.rope_length();
@@ -131,6 +137,7 @@ void Model::stretchy_guards(const Discrete& d, const Kinematics& k, GuardValues&
   } else {
     g[kGuardRope] = std::fmin(p.stretch, pull);
     if (rates) (*rates)[kGuardRope] = p.rate >= 0.0 ? p.rate : std::numeric_limits<double>::quiet_NaN();
+    if (d.rope_relaxing) g[kGuardRopeRelaxed] = -p.stretch;
     return;
   }
   // The box lets the lid go when the pull's torque outweighs the lid.
