@@ -24,6 +24,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import tomllib
 
 ACCURACY = 1e-8
 FAMILIES = {
@@ -68,7 +69,7 @@ FAMILIES = {
                      "--vary", "start.sandbag_height=0.3:1.5"],
 }
 NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
-SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4"]
+SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped"]
 
 
 def solve(args, got):
@@ -82,7 +83,7 @@ def solve(args, got):
     for flag, item in zip(args, args[1:]):
         if flag == "--set":
             key, value = item.split("=", 1)
-            fixed[key] = value
+            fixed[key] = tomllib.loads(f"v = {value}")["v"]
     rows = []
     for row in got:
         over = dict(fixed, **{k: float(v) for k, v in row.items() if "." in k})

@@ -129,7 +129,11 @@ DEFAULTS = {
 }
 # Keys that do not change the physics (how whatnext integrates or samples).
 IGNORED = {"run.output_step", "run.step", "run.integrator", "run.tolerance"}
-OTHER = {"geometry.hinge_offset", "geometry.rope_on_lid", "balloon.radius"}
+OTHER = {"geometry.hinge_offset", "geometry.rope_on_lid", "balloon.radius", "balloon.rubber_mass", "balloon.drag",
+         "balloon.drag_coefficient"}
+# A seesaw with mass and the dampers: the full-coordinates run (full_coordinates.py).
+HEAVY = {"seesaw.mass", "seesaw.left_arm", "seesaw.inertia", "seesaw.com_offset", "damping.pivot",
+         "damping.lid_hinge"}
 
 
 def load_machine(path=None, overrides=None):
@@ -145,7 +149,7 @@ def load_machine(path=None, overrides=None):
     if "geometry.hinge_offset" in (overrides or {}):
         keys.pop("geometry.hinge_distance", None)
     for name in keys:
-        if name not in DEFAULTS and name not in IGNORED and name not in OTHER:
+        if name not in DEFAULTS and name not in IGNORED and name not in OTHER and name not in HEAVY:
             raise NotCovered(f"{name} is not modelled by the reference")
     if keys["run.impact_law"] != "rope":
         raise NotCovered("only the rope impact law")
@@ -171,9 +175,18 @@ class Machine:
         self.rB = num(keys.get("balloon.radius", self.rL))
         if self.rB < self.rL:
             raise NotCovered("a balloon smaller than the box")
+        # the balloon (docs/extensions.md, "Balloon physics"): net lift F over the accelerated mass,
+        # less its drag D v|v|
         rho_a, rho_he = num(keys["air.density"]), num(keys["air.helium_density"])
+        # (per unit of the balloon's volume: the skin's mass as a density)
+        vol = 4 * N.pi * self.rB ** 3 / 3
+        rho_r = num(keys.get("balloon.rubber_mass", 0.0)) / vol
         denominator = {"program": rho_a, "lagrangian": rho_he, "added-mass": rho_he + rho_a / 2}
-        self.aB = self.g * (rho_a - rho_he) / denominator[keys["balloon.model"]]
+        density = denominator[keys["balloon.model"]] + rho_r
+        self.aB = self.g * (rho_a - rho_he - rho_r) / density
+        drag = keys.get("balloon.drag", False) in (True, "true") or "balloon.drag_coefficient" in keys
+        cd = num(keys.get("balloon.drag_coefficient", 0.47))
+        self.drag = rho_a * cd * N.pi * self.rB ** 2 / 2 / (density * vol) if drag else 0.0
         self.x0, self.h0 = num(keys["start.sandbag_x"]), num(keys["start.sandbag_height"])
         self.s0 = N.radians(num(keys["start.seesaw_angle"]))
         self.L0 = N.radians(num(keys["start.lid_angle"]))
@@ -194,6 +207,9 @@ class Machine:
         Ldd = k * sdd + kp * sd * sd
         torque = self.I * Ldd + self.mL * self.g * self.rL * N.cos(L)  # the rope's on the lid
         return rdd, sdd, k, torque
+
+    def balloon_acc(self, v):
+        return self.aB - self.drag * v * abs(v)
 
     def lid_free_acc(self, L):
         return -self.mL * self.g * self.rL * N.cos(L) / self.I
@@ -257,7 +273,7 @@ class Run:
 
     def balloon_flow(self, vB):
         # A stuck balloon is wherever the lid's limit is: its two entries are not integrated.
-        return [vB, self.mc.aB] if self.balloon == "free" else [0.0, 0.0]
+        return [vB, self.mc.balloon_acc(vB)] if self.balloon == "free" else [0.0, 0.0]
 
     def kin(self, y):
         """phiS, phiS', phiL, phiL', phiL'' and the sandbag's r of the state y."""
@@ -287,7 +303,7 @@ class Run:
         if self.balloon == "free":
             out["balloon_caught"] = hl - y[-2]
         else:
-            out["balloon_free"] = mc.aB - mc.h_lim_acc(L, Ld, Ldd)
+            out["balloon_free"] = mc.balloon_acc(hld) - mc.h_lim_acc(L, Ld, Ldd)
         if self.bag == "air":
             x, h = y[0], y[1]
             out["sandbag_lands"] = -x * N.sin(self.s_air) + h * N.cos(self.s_air)
@@ -339,7 +355,7 @@ class Run:
         if v_before is None:
             v_before = hld
         if hld > v_before + 1e-12 * (1 + abs(v_before)) or (
-                hld >= v_before and self.mc.h_lim_acc(L, Ld, Ldd) > self.mc.aB):
+                hld >= v_before and self.mc.h_lim_acc(L, Ld, Ldd) > self.mc.balloon_acc(hld)):
             self.balloon = "free"
             self.event("balloon_free", t)
             released.add("balloon_caught")
@@ -533,9 +549,23 @@ def simulate(keys, tol=1e-13, digits=None):
     try:
         if digits:
             tol = min(tol, 10.0 ** (10 - digits))
-        return [(name, float(t)) for name, t in Run(Machine(keys), tol).simulate()]
+        return [(name, float(t)) for name, t in make_run(keys, tol).simulate()]
     finally:
         precise(None)
+
+
+def make_run(keys, tol=1e-13):
+    """The run of the machine: the massless seesaw's (Run), or with a seesaw that has mass the
+    full-coordinates one (full_coordinates.py)."""
+    if float(keys.get("seesaw.mass", 0.0)) > 0:
+        if N is not math:
+            raise NotCovered("more digits for a seesaw with mass")
+        import full_coordinates
+        return full_coordinates.HeavyRun(Machine(keys), keys, tol)
+    for name in HEAVY:
+        if name in keys and name != "seesaw.mass":
+            raise NotCovered(f"{name} on the massless seesaw")
+    return Run(Machine(keys), tol)
 
 
 def main():
@@ -546,7 +576,7 @@ def main():
     for item in sys.argv[2:]:
         key, value = item.split("=", 1)
         over[key] = tomllib.loads(f"v = {value}")["v"]
-    run = Run(Machine(load_machine(sys.argv[1], over)))
+    run = make_run(load_machine(sys.argv[1], over))
     for name, t in run.simulate():
         print(f"{t:.12f}  {name}")
     for t, e0, e1 in run.energy:
