@@ -69,7 +69,7 @@ FAMILIES = {
                      "--vary", "start.sandbag_height=0.3:1.5"],
 }
 NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
-SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped"]
+SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex1-hinge-drag", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped"]
 
 
 def solve(args, got):

@@ -67,7 +67,10 @@ def _derive():
     T = m / 2 * (sp.diff(x, t) ** 2 + sp.diff(h, t) ** 2) + I / 2 * sp.diff(Pt, t) ** 2
     V = m * g * h + mL * g * rL * sp.sin(Pt)
     Lag = T - V
-    eqs = [sp.diff(sp.diff(Lag, sp.diff(q, t)), t) - sp.diff(Lag, q) for q in (rt, st)]
+    cL = sp.symbols("cL", nonnegative=True)
+    D = cL / 2 * sp.diff(Pt, t) ** 2  # Rayleigh's dissipation function: the lid hinge's damper
+    eqs = [sp.diff(sp.diff(Lag, sp.diff(q, t)), t) - sp.diff(Lag, q) + sp.diff(D, sp.diff(q, t))
+           for q in (rt, st)]
     k, kp = sp.symbols("k kp")
     rdd, sdd = sp.symbols("rdd sdd")
     rep = {sp.Derivative(rt, (t, 2)): rdd, sp.Derivative(st, (t, 2)): sdd}
@@ -80,7 +83,7 @@ def _derive():
     eqs = [e.subs({sp.Derivative(rt, t): rd, sp.Derivative(st, t): sd}) for e in eqs]
     eqs = [e.subs({P(st): L, rt: r, st: s}) for e in eqs]
     sol = sp.solve(eqs, [rdd, sdd], dict=True)[0]
-    params = (rH, Hx, Hy, a, lR, m, mL, rL, g, I)
+    params = (rH, Hx, Hy, a, lR, m, mL, rL, g, I, cL)
     geo = (s, L) + params
     acc = [sp.simplify(sol[rdd]), sp.simplify(sol[sdd])]
     funs = []
@@ -192,7 +195,9 @@ class Machine:
         self.L0 = N.radians(num(keys["start.lid_angle"]))
         self.t_max = num(keys["run.t_max"])
         self.top = N.pi / 2 - N.radians(num(keys["run.vertical_margin"]))
-        self.params = (self.rH, self.Hx, self.Hy, self.a, self.lR, self.m, self.mL, self.rL, self.g, self.I)
+        self.cL = num(keys.get("damping.lid_hinge", 0.0))
+        self.params = (self.rH, self.Hx, self.Hy, self.a, self.lR, self.m, self.mL, self.rL, self.g, self.I,
+                       self.cL)
 
     # geometry
     def C(self, s, L):
@@ -205,14 +210,14 @@ class Machine:
         k, kp = self.k(s, L)
         rdd, sdd = F["acc"](r, s, L, rd, sd, k, kp, *self.params)
         Ldd = k * sdd + kp * sd * sd
-        torque = self.I * Ldd + self.mL * self.g * self.rL * N.cos(L)  # the rope's on the lid
+        torque = self.I * Ldd + self.mL * self.g * self.rL * N.cos(L) + self.cL * k * sd  # the rope's on the lid
         return rdd, sdd, k, torque
 
     def balloon_acc(self, v):
         return self.aB - self.drag * v * abs(v)
 
-    def lid_free_acc(self, L):
-        return -self.mL * self.g * self.rL * N.cos(L) / self.I
+    def lid_free_acc(self, L, Ld):
+        return -(self.mL * self.g * self.rL * N.cos(L) + self.cL * Ld) / self.I
 
     def h_lim(self, L, Ld):
         c, sn = N.cos(L), N.sin(L)
@@ -268,7 +273,7 @@ class Run:
             rdd, sdd, k, _ = mc.m4_acc(r, s, L, rd, sd)
             return [rd, sd, k * sd, rdd, sdd] + self.balloon_flow(vB)
         x, h, vx, vh, L, Ld, hB, vB = y
-        Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L)
+        Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L, Ld)
         return [vx, vh, 0.0, -mc.g, Ld, Ldd] + self.balloon_flow(vB)
 
     def balloon_flow(self, vB):
@@ -284,7 +289,7 @@ class Run:
             kk, kp = mc.k(s, L)
             return s, sd, L, k * sd, k * sdd + kp * sd * sd, r
         x, h, vx, vh, L, Ld = y[:6]
-        Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L)
+        Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L, Ld)
         if self.bag == "air":
             return self.s_air, 0.0, L, Ld, Ldd, N.hypot(x, h)
         r = N.hypot(x, h)
@@ -563,7 +568,7 @@ def make_run(keys, tol=1e-13):
         import full_coordinates
         return full_coordinates.HeavyRun(Machine(keys), keys, tol)
     for name in HEAVY:
-        if name in keys and name != "seesaw.mass":
+        if name in keys and name not in ("seesaw.mass", "damping.lid_hinge"):
             raise NotCovered(f"{name} on the massless seesaw")
     return Run(Machine(keys), tol)
 

@@ -160,3 +160,20 @@ def test_the_heavy_reference_agrees_with_itself_at_another_tolerance():
     a, b = ref.simulate(keys, tol=1e-11), ref.simulate(keys, tol=1e-13)
     assert [n for n, _ in a] == [n for n, _ in b]
     assert max(abs(x - y) for (_, x), (_, y) in zip(a, b)) < ACCURACY / 100
+
+
+# The smooth extensions that are only forces: the balloon's air drag (the family ex1-hinge-drag)
+# and the lid hinge's damper on the massless seesaw (the pivot's needs a seesaw with mass: above).
+SMOOTH = [(1, {"balloon.drag": True, "geometry.hinge_distance": DRAWS.uniform(0.8, 1.2),
+               "start.sandbag_height": DRAWS.uniform(0.3, 1.5), "geometry.seesaw_right_arm": DRAWS.uniform(0.5, 0.7)})
+          for _ in range(2)]
+SMOOTH += [(example, {"damping.lid_hinge": DRAWS.uniform(0.005, 0.05)}) for example in (1, 2, 4)]
+
+
+@pytest.mark.parametrize("example,overrides", SMOOTH)
+def test_random_machines_with_drag_or_a_damped_hinge(example, overrides, tmp_path):
+    try:
+        want = reference_events(example, overrides)
+    except ref.NotCovered as why:
+        pytest.skip(f"outside the reference: {why}")
+    assert_same_story(whatnext_events(example, overrides, tmp_path), want)
