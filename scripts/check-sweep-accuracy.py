@@ -67,9 +67,13 @@ FAMILIES = {
                      "--vary", "start.sandbag_height=0.3:1.2"],
     "ex1-stretchy": ["--example", "1", "--vary", "rope.stiffness=2000:50000", "--vary", "rope.damping=0:20",
                      "--vary", "start.sandbag_height=0.3:1.5"],
+    "ex1-heavy-stretchy": ["--example", "1", "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.7",
+                           "--vary", "seesaw.mass=0.1:0.6", "--vary", "rope.stiffness=2000:50000",
+                           "--vary", "rope.damping=0:1000", "--vary", "start.sandbag_height=0.3:1.5"],
 }
 NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
-SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex1-hinge-drag", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped"]
+SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex1-hinge-drag", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped",
+                   "ex1-stretchy", "ex1-heavy-stretchy"]
 
 
 def solve(args, got):

@@ -60,6 +60,8 @@ def _derive():
            # (docs/model.md, section 3); zero where the rope would touch the hinge
            "lock": sp.lambdify(args, (R[0] - Hx) * (E[1] - Hy) - (R[1] - Hy) * (E[0] - Hx), "math"),
            "energy": sp.lambdify(args, T + V, "math")}
+    span = sp.sqrt((R - E).dot(R - E))
+    out["span"] = sp.lambdify(args, [span, [sp.diff(span, v) for v in q]], "math", cse=True)
     rows = {}
     for name, gap in gaps.items():
         W = [sp.diff(gap, v) for v in q]
@@ -119,6 +121,10 @@ class HeavyMachine:
         # the machine's scales (docs/model.md, section 5): length, speed, mass, acceleration
         self.ell = rH + 2 * mc.rL + mc.lR
         self.mass = mc.m + mc.mL + mb
+        # a rope that stretches (docs/impact.md): a one-sided spring-damper, a force, no contact
+        self.stretchy = "rope.stiffness" in keys
+        self.k_rope = float(keys.get("rope.stiffness", 0.0))
+        self.c_rope = float(keys.get("rope.damping", 0.0))
         # the lid's gap is an angle: its rates and accelerations are taken at its far edge
         self.gap_scale = {"arm": 1.0, "rope": 1.0, "lid": 2 * mc.rL}
 
@@ -132,6 +138,7 @@ class HeavyRun:
         self.active = set()
         self.balloon = "stuck"
         self.fell_off = False
+        self.spring = False  # the rope that stretches pulling
 
     # --- the flow
     def contact(self, name, y):
@@ -143,6 +150,9 @@ class HeavyRun:
         hm = self.hm
         names = tuple(n for n in CONTACTS if n in active)
         f, *rows = F[names](*y[:8], *hm.params)
+        if self.spring:  # the stretched rope's pull, Q = -T d span / dq
+            T, grad = self.tension(y)
+            f = [f[k] - T * grad[k] for k in range(4)]
         Mi = hm.Minv
         if not names:
             return [Mi[k] * f[k] for k in range(4)], {}
@@ -153,6 +163,21 @@ class HeavyRun:
         lam = solve(A, b)
         acc = [Mi[k] * (f[k] + sum(lam[i] * Ws[i][k] for i in range(len(names)))) for k in range(4)]
         return acc, dict(zip(names, lam))
+
+    def tension(self, y):
+        """k s + c s' of the rope that stretches, and the span's gradient."""
+        hm = self.hm
+        span, grad = F["span"](*y[:8], *hm.params)
+        return hm.k_rope * (span - self.mc.lR) + hm.c_rope * sum(grad[k] * y[4 + k] for k in range(4)), grad
+
+    def spring_guard(self, y):
+        """While it pulls: its tension; slack: minus the tension it would have (its spring's part
+        alone while shorter than l_R, so the guard does not fire as it shortens through l_R)."""
+        hm = self.hm
+        span, grad = F["span"](*y[:8], *hm.params)
+        s = span - self.mc.lR
+        T = hm.k_rope * s + (hm.c_rope * sum(grad[k] * y[4 + k] for k in range(4)) if s >= 0 else 0.0)
+        return (T if self.spring else -T) / (hm.mass * self.mc.g * (1 + hm.ell))
 
     def flow(self, y):
         acc, _ = self.accel(y)
@@ -206,7 +231,11 @@ class HeavyRun:
         acc, lam = self.accel(y)
         out = {"lid_open": mc.top - y[3], "seesaw_vertical": mc.top - abs(y[2])}
         force = hm.mass * (mc.g + 0.0) * (1 + hm.ell)
+        if hm.stretchy:
+            out["spring_pull" if self.spring else "spring_slack"] = self.spring_guard(y)
         for n in CONTACTS:
+            if n == "rope" and hm.stretchy:
+                continue
             if n in self.active:
                 out[n + "_force"] = lam[n] / force
             elif n != "arm" or not self.fell_off:
@@ -245,6 +274,8 @@ class HeavyRun:
         for n in CONTACTS:
             if n in self.active:
                 out.add(n)
+                continue
+            if n == "rope" and hm.stretchy:
                 continue
             if n == "arm":
                 along = F["along"](*y[:8], *hm.params)
@@ -287,6 +318,13 @@ class HeavyRun:
         else:
             held = {n for n in touch if rates[n] <= tol["rate"]}
             y = self.project(y, held)
+        # a jump that would make the stretched rope push lets it go at once, and one that makes a
+        # slack rope longer than l_R pull (k s + c s' > 0) has it pull at once (docs/impact.md)
+        let_go = self.spring and self.tension(y)[0] < -tol["force"]
+        engage = (self.hm.stretchy and not self.spring and impact
+                  and self.spring_guard(y) * hm.mass * self.mc.g * (1 + hm.ell) < -tol["force"])
+        if let_go or engage:
+            self.spring = bool(engage)
         valid = []
         for A in subsets(held):
             try:
@@ -310,8 +348,11 @@ class HeavyRun:
                     continue  # a lid the rope's jerk knocks off the box: part of that impact
                 changes.append(OPENED[n])
         first = [c for c in changes if trigger and c in (CLOSED[trigger], OPENED[trigger])][:1]
-        for c in first + [c for c in changes if c not in first]:
+        for c in first + [c for c in changes if c not in first] + (["rope_slack"] if let_go else []) + (
+                ["rope_taut"] if engage else []):
             self.event(c, t)
+        if let_go or engage:
+            self.released.add("spring_pull" if engage else "spring_slack")
         for n in touch:  # guards that start at zero: open (or holding) by construction
             self.released.add(n + ("_force" if n in A else "_gap"))
         return self.settle_balloon(y, acc, t, v_balloon if (y[3], y[7]) != (L0, Ld0) else None)
@@ -456,6 +497,11 @@ class HeavyRun:
         if name == "balloon_free":
             acc, _ = self.accel(y)
             return self.settle_balloon(y, acc, t)
+        if name in ("spring_pull", "spring_slack"):
+            self.spring = name == "spring_slack"
+            self.event("rope_taut" if self.spring else "rope_slack", t)
+            self.released.add("spring_pull" if self.spring else "spring_slack")
+            return self.decide(y, t, None)
         if name == "sandbag_falls_off":
             self.event(name, t)
             self.fell_off = True

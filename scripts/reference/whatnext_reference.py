@@ -92,6 +92,9 @@ def _derive():
             "C": sp.lambdify(geo, C, module),
             "Cs": sp.lambdify(geo, sp.diff(C, s), module),
             "CL": sp.lambdify(geo, sp.diff(C, L), module),
+            # the rope's span |R - E| and its partial derivatives, for the rope that stretches
+            "span": sp.lambdify(geo, [sp.sqrt(C + lR ** 2), sp.diff(sp.sqrt(C + lR ** 2), s),
+                                      sp.diff(sp.sqrt(C + lR ** 2), L)], module),
             "k": sp.lambdify(geo, k_expr, module),
             "kp": sp.lambdify(geo, kp_expr, module),
             "acc": sp.lambdify((r, s, L, rd, sd, k, kp) + params, acc, module),
@@ -136,7 +139,7 @@ OTHER = {"geometry.hinge_offset", "geometry.rope_on_lid", "balloon.radius", "bal
          "balloon.drag_coefficient"}
 # A seesaw with mass and the dampers: the full-coordinates run (full_coordinates.py).
 HEAVY = {"seesaw.mass", "seesaw.left_arm", "seesaw.inertia", "seesaw.com_offset", "damping.pivot",
-         "damping.lid_hinge"}
+         "damping.lid_hinge", "rope.stiffness", "rope.damping"}
 
 
 def load_machine(path=None, overrides=None):
@@ -196,6 +199,9 @@ class Machine:
         self.t_max = num(keys["run.t_max"])
         self.top = N.pi / 2 - N.radians(num(keys["run.vertical_margin"]))
         self.cL = num(keys.get("damping.lid_hinge", 0.0))
+        self.stretchy = "rope.stiffness" in keys  # a one-sided spring-damper (docs/impact.md)
+        self.k_rope = num(keys.get("rope.stiffness", 0.0))
+        self.c_rope = num(keys.get("rope.damping", 0.0))
         self.params = (self.rH, self.Hx, self.Hy, self.a, self.lR, self.m, self.mL, self.rL, self.g, self.I,
                        self.cL)
 
@@ -263,6 +269,7 @@ class Run:
         self.mc, self.tol = mc, tol
         self.events = []
         self.energy = []
+        self.spring = False  # the rope that stretches pulling (with the sandbag on the arm)
 
     # The state: sandbag 'air' (M1) or 'arm' with rope 'slack' (M3, free fall) or 'taut' (M4);
     # free fall: y = [x, h, vx, vh, phiL, phiL', hB, vB]; M4: y = [r, phiS, phiL, r', phiS', hB, vB].
@@ -273,8 +280,38 @@ class Run:
             rdd, sdd, k, _ = mc.m4_acc(r, s, L, rd, sd)
             return [rd, sd, k * sd, rdd, sdd] + self.balloon_flow(vB)
         x, h, vx, vh, L, Ld, hB, vB = y
+        if self.spring:
+            ax, ah, Ldd, _, _, _ = self.spring_acc(y)
+            return [vx, vh, ax, ah, Ld, Ldd] + self.balloon_flow(vB)
         Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L, Ld)
         return [vx, vh, 0.0, -mc.g, Ld, Ldd] + self.balloon_flow(vB)
+
+    def tension(self, y, slack=False):
+        """k s + c s' of the rope that stretches, with the sandbag on the massless seesaw; and the
+        span's partial derivatives. slack: the damper's part only while longer than l_R."""
+        mc = self.mc
+        x, h, vx, vh, L, Ld = y[:6]
+        s = N.atan2(-h, -x)
+        sd = (vx * N.sin(s) - vh * N.cos(s)) / N.hypot(x, h)
+        span, dS, dL = F["span"](s, L, *mc.params)
+        stretch = span - mc.lR
+        damper = mc.c_rope * (dS * sd + dL * Ld)
+        return mc.k_rope * stretch + (damper if stretch >= 0 or not slack else 0.0), s, dS, dL
+
+    def spring_acc(self, y):
+        """The accelerations while the stretched rope pulls: its torque on the massless seesaw is
+        taken by the arm's push on the sandbag, N r = -Q_S (docs/impact.md), its torque on the
+        lid Q_L. Also N, the box's push on a resting lid, and T."""
+        mc = self.mc
+        x, h, vx, vh, L, Ld = y[:6]
+        T, s, dS, dL = self.tension(y)
+        r = N.hypot(x, h)
+        push = T * dS / r  # N = -Q_S / r with Q_S = -T d span/d phiS
+        ax, ah = -push * N.sin(s) / mc.m, -mc.g + push * N.cos(s) / mc.m
+        lid = -mc.mL * mc.g * mc.rL * N.cos(L) - mc.cL * Ld - T * dL
+        if self.lid == "rest":
+            return ax, ah, 0.0, push, -lid, T
+        return ax, ah, lid / mc.I, push, None, T
 
     def balloon_flow(self, vB):
         # A stuck balloon is wherever the lid's limit is: its two entries are not integrated.
@@ -290,6 +327,8 @@ class Run:
             return s, sd, L, k * sd, k * sdd + kp * sd * sd, r
         x, h, vx, vh, L, Ld = y[:6]
         Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L, Ld)
+        if self.spring:
+            Ldd = self.spring_acc(y)[2]
         if self.bag == "air":
             return self.s_air, 0.0, L, Ld, Ldd, N.hypot(x, h)
         r = N.hypot(x, h)
@@ -315,7 +354,18 @@ class Run:
             out["rope_taut"] = -mc.C(self.s_air, L)
             return out
         out["seesaw_vertical"] = mc.top - abs(s)
-        if self.rope == "slack":
+        if self.rope == "slack" and mc.stretchy:
+            force = (mc.m + mc.mL) * mc.g
+            out["sandbag_at_pivot"] = -y[0]
+            if not self.spring:
+                out["spring_slack"] = -self.tension(y, slack=True)[0] / force
+                return out
+            _, _, _, push, box, T = self.spring_acc(y)
+            out["spring_pull"] = T / force
+            out["arm_pull"] = push / force
+            if box is not None:
+                out["lid_lifts"] = box / force
+        elif self.rope == "slack":
             out["rope_taut"] = -mc.C(s, L)
             out["sandbag_at_pivot"] = -y[0]
         else:
@@ -521,6 +571,59 @@ class Run:
             released.add("rope_taut")
             y = self.to_free_fall(y)
             return self.settle_balloon(y, t, released)
+        if name == "arm_pull":
+            raise NotCovered(f"a stretched rope that would need the arm to pull the sandbag at t = {t}")
+        if name == "spring_slack":
+            self.spring = True
+            self.event("rope_taut", t)
+            released.add("spring_pull")
+            box = self.spring_acc(y)[4]
+            if box is not None and box < -1e-9 * (mc.m + mc.mL) * mc.g:  # a damped rope's pull at once
+                name = "lid_lifts"
+            else:
+                if box is not None:
+                    released.add("lid_lifts")
+                return self.settle_balloon(y, t, released)
+        if name == "lid_lifts":
+            self.lid = "free"
+            self.event("lid_lifts", t)
+            released.add("lid_rests")
+            return self.settle_balloon(y, t, released)
+        if name == "spring_pull":
+            self.spring = False
+            self.event("rope_slack", t)
+            released.add("spring_slack")
+            return self.settle_balloon(y, t, released)
+        if name == "lid_rests" and self.spring:
+            v_balloon = mc.h_lim(y[4], y[5])[1] if self.balloon == "stuck" else None
+            self.event("lid_rests", t)
+            self.lid = "rest"
+            y = y[:4] + [mc.L0, 0.0] + y[6:]
+            if self.tension(y)[0] < -1e-9 * (mc.m + mc.mL) * mc.g:  # the jump would make it push
+                self.spring = False
+                self.event("rope_slack", t)
+                released.add("spring_slack")
+            else:
+                released.add("lid_lifts")
+            if v_balloon is not None:
+                y = self.settle_balloon(y[:-1] + [v_balloon], t, released, v_balloon)
+            return y
+        if name == "lid_rests" and mc.stretchy and self.bag == "arm" and self.rope == "slack":
+            # a slack rope longer than l_R that the lid's stop makes pull (k s + c s' > 0): at once
+            v_balloon = mc.h_lim(y[4], y[5])[1] if self.balloon == "stuck" else None
+            self.event("lid_rests", t)
+            self.lid = "rest"
+            y = y[:4] + [mc.L0, 0.0] + y[6:]
+            if self.tension(y, slack=True)[0] > 1e-9 * (mc.m + mc.mL) * mc.g:
+                self.spring = True
+                self.event("rope_taut", t)
+                released.add("spring_pull")
+                released.add("lid_lifts")
+            else:
+                released.add("spring_slack")
+            if v_balloon is not None:
+                y = self.settle_balloon(y[:-1] + [v_balloon], t, released, v_balloon)
+            return y
         if name == "lid_rests":
             v_balloon = None  # a stuck balloon moves down with the lid until the box stops it
             if self.balloon == "stuck":
@@ -568,7 +671,7 @@ def make_run(keys, tol=1e-13):
         import full_coordinates
         return full_coordinates.HeavyRun(Machine(keys), keys, tol)
     for name in HEAVY:
-        if name in keys and name not in ("seesaw.mass", "damping.lid_hinge"):
+        if name in keys and name not in ("seesaw.mass", "damping.lid_hinge", "rope.stiffness", "rope.damping"):
             raise NotCovered(f"{name} on the massless seesaw")
     return Run(Machine(keys), tol)
 
