@@ -67,13 +67,23 @@ FAMILIES = {
                      "--vary", "start.sandbag_height=0.3:1.2"],
     "ex1-stretchy": ["--example", "1", "--vary", "rope.stiffness=2000:50000", "--vary", "rope.damping=0:20",
                      "--vary", "start.sandbag_height=0.3:1.5"],
+    # The built machine's floor and end stop, with bounces, on the paper's second example.
+    "ex2-heavy-floor": ["--example", "2", "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.9",
+                        "--set", "floor.enabled=true", "--set", "seesaw.end_stop=true",
+                        "--vary", "seesaw.mass=0.1:0.6", "--vary", "floor.restitution=0:0.5",
+                        "--vary", "restitution.stop=0:0.5", "--vary", "start.sandbag_height=0.3:1.2"],
+    # (the first second: bounces chatter chaotically later, docs/extensions.md)
+    "ex1-heavy-floor": ["--example", "1", "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.9",
+                        "--set", "floor.enabled=true", "--set", "seesaw.end_stop=true", "--set", "run.t_max=1.0",
+                        "--vary", "seesaw.mass=0.1:0.6", "--vary", "floor.restitution=0:0.5",
+                        "--vary", "restitution.stop=0:0.5", "--vary", "start.sandbag_height=0.3:1.2"],
     "ex1-heavy-stretchy": ["--example", "1", "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.7",
                            "--vary", "seesaw.mass=0.1:0.6", "--vary", "rope.stiffness=2000:50000",
                            "--vary", "rope.damping=0:1000", "--vary", "start.sandbag_height=0.3:1.5"],
 }
 NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
 SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex1-hinge-drag", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped",
-                   "ex1-stretchy", "ex1-heavy-stretchy"]
+                   "ex1-stretchy", "ex1-heavy-stretchy", "ex2-heavy-floor", "ex1-heavy-floor"]
 
 
 def solve(args, got):

@@ -27,16 +27,22 @@ import sympy as sp
 
 from whatnext_reference import NotCovered, gbs
 
-CONTACTS = ("arm", "rope", "lid")
-CLOSED = {"arm": "sandbag_lands", "rope": "rope_taut", "lid": "lid_rests"}
-OPENED = {"arm": "sandbag_leaves", "rope": "rope_slack", "lid": "lid_lifts"}
+CONTACTS = ("arm", "rope", "lid", "floor_left", "floor_right", "bag_floor", "stop")
+CLOSED = {"arm": "sandbag_lands", "rope": "rope_taut", "lid": "lid_rests", "floor_left": "seesaw_on_floor",
+          "floor_right": "seesaw_on_floor", "bag_floor": "sandbag_on_floor", "stop": "sandbag_at_stop"}
+OPENED = {"arm": "sandbag_leaves", "rope": "rope_slack", "lid": "lid_lifts", "floor_left": "seesaw_lifts",
+          "floor_right": "seesaw_lifts", "bag_floor": "sandbag_bounces", "stop": "sandbag_leaves_stop"}
+# The input keys of each contact's restitution (docs/extensions.md, "The machine students build")
+RESTITUTION = {"arm": "restitution.sandbag", "rope": "restitution.rope", "lid": "restitution.lid",
+               "floor_left": "floor.restitution", "floor_right": "floor.restitution",
+               "bag_floor": "floor.restitution", "stop": "restitution.stop"}
 
 
 def _derive():
     x, h, s, L = q = sp.symbols("x h phiS phiL", real=True)
     u = sp.symbols("xd hd sd Ld", real=True)
-    rH, Hx, Hy, a, lR, m, mL, rL, g, IL, mb, c, IS, cp, cL, L0 = params = sp.symbols(
-        "rH Hx Hy a lR m mL rL g IL mb c IS cp cL L0", real=True)
+    rH, Hx, Hy, a, lR, m, mL, rL, g, IL, mb, c, IS, cp, cL, L0, hf, La = params = sp.symbols(
+        "rH Hx Hy a lR m mL rL g IL mb c IS cp cL L0 hf La", real=True)
     T = m / 2 * (u[0] ** 2 + u[1] ** 2) + IS / 2 * u[2] ** 2 + IL / 2 * u[3] ** 2
     V = m * g * h + mb * g * c * sp.sin(s) + mL * g * rL * sp.sin(L)
     D = cp / 2 * u[2] ** 2 + cL / 2 * u[3] ** 2  # Rayleigh's dissipation function: the dampers
@@ -51,6 +57,11 @@ def _derive():
         "arm": -x * sp.sin(s) + h * sp.cos(s),
         "rope": lR - sp.sqrt((R - E).dot(R - E)),
         "lid": L - L0,
+        # the built machine: the floor under the seesaw's ends and the sandbag, the arm's end stop
+        "floor_left": -La * sp.sin(s) - hf,
+        "floor_right": rH * sp.sin(s) - hf,
+        "bag_floor": h - hf,
+        "stop": La + (x * sp.cos(s) + h * sp.sin(s)),
     }
     args = tuple(q) + tuple(u) + params
     out = {"M": sp.lambdify(params, [M[i, i] for i in range(4)], "math"),
@@ -68,10 +79,6 @@ def _derive():
         w = sum(sp.diff(gap, q[i], q[j]) * u[i] * u[j] for i in range(4) for j in range(4))
         rows[name] = [W, w]
         out[name] = sp.lambdify(args, [gap, W, w], "math", cse=True)
-    # the flow of each set of holding contacts in one function: f and the contacts' rows
-    for r in range(4):
-        for names in itertools.combinations(CONTACTS, r):
-            out[names] = sp.lambdify(args, [f] + [rows[n] for n in names], "math", cse=True)
     return out
 
 
@@ -115,8 +122,14 @@ class HeavyMachine:
         self.IS, self.mb, self.c = IS, mb, c
         self.cp = float(keys.get("damping.pivot", 0.0))
         self.cL = float(keys.get("damping.lid_hinge", 0.0))
+        self.floor = keys.get("floor.enabled", False) in (True, "true")
+        self.end_stop = keys.get("seesaw.end_stop", False) in (True, "true")
+        self.contacts = tuple(n for n in CONTACTS if (n not in ("floor_left", "floor_right", "bag_floor") or self.floor)
+                              and (n != "stop" or self.end_stop))
+        self.e = {n: float(keys.get(RESTITUTION[n], 0.0)) for n in CONTACTS}
+        hf = mc.Hy - 2 * mc.rL  # the floor through the box's bottom
         self.params = (rH, mc.Hx, mc.Hy, mc.a, mc.lR, mc.m, mc.mL, mc.rL, mc.g, mc.I, mb, c, IS,
-                       self.cp, self.cL, mc.L0)
+                       self.cp, self.cL, mc.L0, hf, self.arm)
         self.Minv = [1 / v for v in F["M"](*self.params)]
         # the machine's scales (docs/model.md, section 5): length, speed, mass, acceleration
         self.ell = rH + 2 * mc.rL + mc.lR
@@ -126,7 +139,7 @@ class HeavyMachine:
         self.k_rope = float(keys.get("rope.stiffness", 0.0))
         self.c_rope = float(keys.get("rope.damping", 0.0))
         # the lid's gap is an angle: its rates and accelerations are taken at its far edge
-        self.gap_scale = {"arm": 1.0, "rope": 1.0, "lid": 2 * mc.rL}
+        self.gap_scale = {n: 1.0 for n in CONTACTS} | {"lid": 2 * mc.rL}
 
 
 class HeavyRun:
@@ -149,7 +162,8 @@ class HeavyRun:
         active = self.active if active is None else active
         hm = self.hm
         names = tuple(n for n in CONTACTS if n in active)
-        f, *rows = F[names](*y[:8], *hm.params)
+        f = F["f"](*y[:8], *hm.params)
+        rows = [self.contact(n, y)[1:] for n in names]
         if self.spring:  # the stretched rope's pull, Q = -T d span / dq
             T, grad = self.tension(y)
             f = [f[k] - T * grad[k] for k in range(4)]
@@ -233,17 +247,20 @@ class HeavyRun:
         force = hm.mass * (mc.g + 0.0) * (1 + hm.ell)
         if hm.stretchy:
             out["spring_pull" if self.spring else "spring_slack"] = self.spring_guard(y)
-        for n in CONTACTS:
+        for n in hm.contacts:
             if n == "rope" and hm.stretchy:
                 continue
             if n in self.active:
                 out[n + "_force"] = lam[n] / force
-            elif n != "arm" or not self.fell_off:
+            elif not self.exists(n):
+                continue
+            else:
                 out[n + "_gap"] = self.contact(n, y)[0] * hm.gap_scale[n]
         if "arm" in self.active:
             along = F["along"](*y[:8], *hm.params)
             out["sandbag_at_pivot"] = along
-            out["sandbag_falls_off"] = hm.arm - along
+            if not hm.end_stop:
+                out["sandbag_falls_off"] = hm.arm - along
         if "rope" in self.active:
             out["rope_locked"] = -F["lock"](*y[:8], *hm.params)
         L, Ld = y[3], y[7]
@@ -268,14 +285,30 @@ class HeavyRun:
         return {"force": 1e-9 * hm.mass * acc * (1 + hm.ell), "impulse": 1e-9 * hm.mass * v * (1 + hm.ell),
                 "rate": 1e-6 * v, "closing": 1e-12 * v, "accel": 1e-9 * acc}
 
+    def exists(self, n, arm=None):
+        """Whether contact n can close now: the arm's while the sandbag has not fallen off, the
+        sandbag's floor while it is off the arm, the stop only with the sandbag on the arm."""
+        arm = "arm" in self.active if arm is None else arm
+        if n == "arm":
+            return not self.fell_off
+        if n == "bag_floor":
+            return not arm
+        if n == "stop":
+            return arm
+        return True
+
     def touching(self, y):
         hm = self.hm
         out = set()
-        for n in CONTACTS:
+        for n in hm.contacts:
             if n in self.active:
                 out.add(n)
                 continue
             if n == "rope" and hm.stretchy:
+                continue
+            if n == "stop":
+                continue  # closed with the arm only: added below
+            if n == "bag_floor" and "arm" in self.active:
                 continue
             if n == "arm":
                 along = F["along"](*y[:8], *hm.params)
@@ -283,6 +316,8 @@ class HeavyRun:
                     continue
             if abs(self.contact(n, y)[0]) * hm.gap_scale[n] <= 1e-9:
                 out.add(n)
+        if hm.end_stop and "arm" in out and abs(self.contact("stop", y)[0]) <= 1e-9:
+            out.add("stop")
         return out
 
     def rate(self, n, y):
@@ -302,21 +337,31 @@ class HeavyRun:
         impact = any(r < -tol["closing"] for r in rates.values())
         e0 = F["energy"](*y[:8], *hm.params)
         if impact:
-            valid = []
-            for S in subsets(touch):
-                y1, imp = self.impulse(y, S)
-                if imp is None or any(p < -tol["impulse"] for p in imp.values()):
-                    continue
-                if any(self.rate(n, y1) < -tol["closing"] for n in touch - S):
-                    continue
-                valid.append((S, y1))
-            S, y = self.prefer(valid, before, trigger, closing=True)
-            held = S | {n for n in touch - S if self.rate(n, y) < tol["rate"]}
-            if held != S:
-                y, _ = self.impulse(y, held)
+            # Newton's restitution on each contact's own rate, g'+ = -e g'-, the inelastic impact
+            # where that would gain energy (docs/extensions.md, "Restitution")
+            bounce = {n: -hm.e[n] * rates[n] if rates[n] < -tol["closing"] else 0.0 for n in touch}
+            for targets in (bounce, dict.fromkeys(touch, 0.0)):
+                valid = []
+                for S in subsets(touch):
+                    y1, imp = self.impulse(y, S, targets)
+                    if imp is None or any(p < -tol["impulse"] for p in imp.values()):
+                        continue
+                    if any(self.rate(n, y1) < -tol["closing"] for n in touch - S):
+                        continue
+                    valid.append((S, y1))
+                S, y1 = self.prefer(valid, before, trigger, closing=True)
+                if self.kinetic(y1) <= self.kinetic(y) * (1 + 1e-12):
+                    break
+            # a rebound slower than the machine's zero of speed is held: the end of a cascade
+            held = {n for n in S if targets[n] < tol["rate"]}
+            held |= {n for n in touch - S if self.rate(n, y1) < tol["rate"]}
+            mid = S | held
+            if held != {n for n in S if targets[n] == 0.0}:
+                y1, _ = self.impulse(y, mid, {n: 0.0 if n in held else targets[n] for n in mid})
+            y = y1
             self.energy.append((t, e0, F["energy"](*y[:8], *hm.params)))
         else:
-            held = {n for n in touch if rates[n] <= tol["rate"]}
+            held = mid = {n for n in touch if rates[n] <= tol["rate"]}
             y = self.project(y, held)
         # a jump that would make the stretched rope push lets it go at once, and one that makes a
         # slack rope longer than l_R pull (k s + c s' > 0) has it pull at once (docs/impact.md)
@@ -327,6 +372,8 @@ class HeavyRun:
             self.spring = bool(engage)
         valid = []
         for A in subsets(held):
+            if "stop" in A and "arm" not in A:
+                continue
             try:
                 acc, lam = self.accel(y, A)
             except ZeroDivisionError:
@@ -341,10 +388,10 @@ class HeavyRun:
         # the events, named by what changed: the trigger's first, then the impact's, then the rest
         changes = []
         for n in CONTACTS:
-            if n not in before and (n in held):
+            if n not in before and (n in mid):
                 changes.append(CLOSED[n])
-            if (n in before or n in held) and n not in A:
-                if n == "lid" and "rope" in held and "rope" not in before:
+            if (n in before or n in mid) and n not in A:
+                if n == "lid" and "rope" in mid and "rope" not in before:
                     continue  # a lid the rope's jerk knocks off the box: part of that impact
                 changes.append(OPENED[n])
         first = [c for c in changes if trigger and c in (CLOSED[trigger], OPENED[trigger])][:1]
@@ -357,8 +404,12 @@ class HeavyRun:
             self.released.add(n + ("_force" if n in A else "_gap"))
         return self.settle_balloon(y, acc, t, v_balloon if (y[3], y[7]) != (L0, Ld0) else None)
 
-    def impulse(self, y, S):
-        """The velocities after impulses on the contacts S that leave them with zero rate."""
+    def kinetic(self, y):
+        return sum(y[4 + k] ** 2 / self.hm.Minv[k] for k in range(4)) / 2
+
+    def impulse(self, y, S, targets=None):
+        """The velocities after impulses on the contacts S that leave them with the rates
+        `targets` (default zero; in the units of their gaps)."""
         names = [n for n in CONTACTS if n in S]
         if not names:
             return y, {}
@@ -366,7 +417,8 @@ class HeavyRun:
         Ws = [self.contact(n, y)[1] for n in names]
         A = [[sum(Wi[k] * Mi[k] * Wj[k] for k in range(4)) for Wj in Ws] for Wi in Ws]
         try:
-            p = solve(A, [-sum(W[k] * y[4 + k] for k in range(4)) for W in Ws])
+            p = solve(A, [(targets[n] / self.hm.gap_scale[n] if targets else 0.0) - sum(W[k] * y[4 + k] for k in range(4))
+                          for n, W in zip(names, Ws)])
         except ZeroDivisionError:
             return y, None
         y1 = list(y)
@@ -402,6 +454,10 @@ class HeavyRun:
         y = [mc.x0, mc.h0, mc.s0, mc.L0, 0.0, 0.0, 0.0, 0.0, hl, 0.0]
         self.active = {"lid"}
         self.released = set()
+        touch = self.touching(y)
+        if touch != self.active:  # a seesaw standing on the floor: decided on forces, at rest
+            self.active = touch
+            y = self.decide(y, 0.0, None)
         h = 1e-6
         pending = set()
         while True:
@@ -474,7 +530,7 @@ class HeavyRun:
     def closing_within_rounding(self, name, y):
         """When a gap that never opens beyond rounding closes again: the zero of its expansion
         g + g' tau + g'' tau^2 / 2 (over a microsecond its next term is far below rounding)."""
-        contact, kind = name.split("_")
+        contact, kind = name.rsplit("_", 1)
         if kind != "gap":
             return None
         acc, _ = self.accel(y)
@@ -507,7 +563,7 @@ class HeavyRun:
             self.fell_off = True
             self.active.discard("arm")
             return self.decide(y, t, None)
-        contact, kind = name.split("_")
+        contact, kind = name.rsplit("_", 1)
         if contact == "arm" and kind == "gap":
             along = F["along"](*y[:8], *hm.params)
             if along <= 0:
@@ -526,4 +582,5 @@ class HeavyRun:
 
 def subsets(items):
     items = sorted(items)
-    return [set(c) for r in range(len(items) + 1) for c in itertools.combinations(items, r)]
+    return [set(c) for r in range(len(items) + 1) for c in itertools.combinations(items, r)
+            if "stop" not in c or "arm" in c]  # the stop is an edge of the arm

@@ -139,7 +139,8 @@ OTHER = {"geometry.hinge_offset", "geometry.rope_on_lid", "balloon.radius", "bal
          "balloon.drag_coefficient"}
 # A seesaw with mass and the dampers: the full-coordinates run (full_coordinates.py).
 HEAVY = {"seesaw.mass", "seesaw.left_arm", "seesaw.inertia", "seesaw.com_offset", "damping.pivot",
-         "damping.lid_hinge", "rope.stiffness", "rope.damping"}
+         "damping.lid_hinge", "rope.stiffness", "rope.damping", "floor.enabled", "floor.restitution",
+         "seesaw.end_stop", "restitution.sandbag", "restitution.rope", "restitution.lid", "restitution.stop"}
 
 
 def load_machine(path=None, overrides=None):

@@ -211,3 +211,22 @@ def test_a_landing_that_makes_a_slack_stretched_rope_pull(tmp_path):
     landing = [t for n, t in want if n == "sandbag_lands"][1]
     assert ("rope_taut", landing) in want
     assert_same_story(whatnext_events(1, overrides, tmp_path), want)
+
+
+# The built machine's floor and end stop with restitution (ex2-heavy-floor, ex1-heavy-floor): the
+# seesaw's end lands on the floor and lifts, the sandbag slides to the stop and bounces off it.
+FLOOR = [(example, {"seesaw.mass": DRAWS.uniform(0.1, 0.6), "seesaw.left_arm": 0.9, "floor.enabled": True,
+                    "seesaw.end_stop": True, "floor.restitution": DRAWS.uniform(0, 0.5),
+                    "restitution.stop": DRAWS.uniform(0, 0.5), "start.sandbag_height": DRAWS.uniform(0.3, 1.2),
+                    "run.t_max": 1.0}) for example in (1, 2) for _ in range(2)]
+
+
+@pytest.mark.parametrize("example,overrides", FLOOR)
+def test_random_machines_with_the_floor_and_the_end_stop(example, overrides, tmp_path):
+    try:
+        want = reference_events(example, overrides)
+    except ref.NotCovered as why:
+        pytest.skip(f"outside the reference: {why}")
+    names = {n for n, _ in want}
+    assert "seesaw_on_floor" in names
+    assert_same_story(whatnext_events(example, overrides, tmp_path), want)
