@@ -20,9 +20,13 @@ What is independent of whatnext here:
   sign change is located by bisection, re-integrating from the step's start to each trial time
   (a single extrapolation step), to 1e-15 s: no interpolant, no expansion of the guard.
 
-Machines it does not cover (a seesaw with mass, the extensions, other impact laws, a rope straight
-at the start or at a landing, a lid left resting on a straight rope, a jerk with k < 0 ...) raise
-NotCovered; it never guesses.
+On this seesaw it also has the extensions that are forces: the lid hinge's damper, the balloon's
+drag and skin, and the rope that stretches (a one-sided spring-damper). A seesaw with mass, with
+the built machine's floor and end stop, runs in full coordinates (full_coordinates.py).
+
+Machines it does not cover (friction, the radio, other impact laws, a rope straight at the start
+or at a landing, a lid left resting on a straight rope, a jerk with k < 0 ...) raise NotCovered;
+it never guesses.
 
     from whatnext_reference import simulate, load_machine
     events = simulate(load_machine("examples/example2.toml", {"geometry.rope_length": 0.7}))
