@@ -143,7 +143,7 @@ def main():
                 ref = solve(args, got)
             else:
                 ref = sweep(reference, args, os.path.join(work, "ref.csv"), True)
-            worst, where, other, valid = 0.0, "-", [], 0
+            worst, where, other, valid, beyond = 0.0, "-", [], 0, []
             uncovered = sum(1 for y in ref if y["outcome"] == "not covered")
             for x, y in zip(got, ref):
                 if y["outcome"] == "not covered":
@@ -162,8 +162,11 @@ def main():
                         break
                     if x[k] and abs(float(x[k]) - float(y[k])) > worst:
                         worst, where = abs(float(x[k]) - float(y[k])), f"{k} of machine {x['index']}"
+                    if x[k] and abs(float(x[k]) - float(y[k])) > ACCURACY and x["index"] not in beyond:
+                        beyond.append(x["index"])
             print(f"{name}: {valid} valid machines of {len(got)}; worst {worst:.3g} s = {worst / ACCURACY:.2f} of "
-                  f"the accuracy ({where}); other events or outcome: {len(other)} {other[:5]}"
+                  f"the accuracy ({where}); beyond it: {len(beyond)} {beyond[:5]}; "
+                  f"other events or outcome: {len(other)} {other[:5]}"
                   + (f"; not covered by the solver: {uncovered}" if uncovered else ""), flush=True)
 
 

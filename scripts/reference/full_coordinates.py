@@ -261,7 +261,7 @@ class HeavyRun:
             out["sandbag_at_pivot"] = along
             if not hm.end_stop:
                 out["sandbag_falls_off"] = hm.arm - along
-        if "rope" in self.active:
+        if "rope" in self.active or self.spring:
             out["rope_locked"] = -F["lock"](*y[:8], *hm.params)
         L, Ld = y[3], y[7]
         hl, hld = mc.h_lim(L, Ld)
@@ -553,6 +553,9 @@ class HeavyRun:
         if name == "balloon_free":
             acc, _ = self.accel(y)
             return self.settle_balloon(y, acc, t)
+        if name == "spring_slack" and F["lock"](*y[:8], *hm.params) >= 0:
+            self.event("rope_locked", t)  # straight on the far side of the hinge
+            return None
         if name in ("spring_pull", "spring_slack"):
             self.spring = name == "spring_slack"
             self.event("rope_taut" if self.spring else "rope_slack", t)

@@ -214,6 +214,13 @@ class Machine:
     def C(self, s, L):
         return F["C"](s, L, *self.params)
 
+    def lock(self, s, L):
+        """(R - H) x (E - H): negative with the lid below the rope, the linkage's physical shape
+        (docs/model.md, section 3); zero where the rope would touch the hinge."""
+        Rx, Ry = self.rH * N.cos(s), self.rH * N.sin(s)
+        Ex, Ey = self.Hx + self.a * N.cos(L), self.Hy + self.a * N.sin(L)
+        return (Rx - self.Hx) * (Ey - self.Hy) - (Ry - self.Hy) * (Ex - self.Hx)
+
     def k(self, s, L):
         return F["k"](s, L, *self.params), F["kp"](s, L, *self.params)
 
@@ -367,6 +374,7 @@ class Run:
                 return out
             _, _, _, push, box, T = self.spring_acc(y)
             out["spring_pull"] = T / force
+            out["rope_locked"] = -mc.lock(s, L)
             out["arm_pull"] = push / force
             if box is not None:
                 out["lid_lifts"] = box / force
@@ -547,7 +555,7 @@ class Run:
 
     def handle(self, name, y, t, released):
         mc = self.mc
-        if name in ("lid_open", "seesaw_vertical", "sandbag_at_pivot"):
+        if name in ("lid_open", "seesaw_vertical", "sandbag_at_pivot", "rope_locked"):
             self.event(name, t)
             return None
         if name == "balloon_caught":
@@ -578,6 +586,9 @@ class Run:
             return self.settle_balloon(y, t, released)
         if name == "arm_pull":
             raise NotCovered(f"a stretched rope that would need the arm to pull the sandbag at t = {t}")
+        if name == "spring_slack" and mc.lock(*self.kin(y)[0:3:2]) >= 0:
+            self.event("rope_locked", t)  # straight on the far side of the hinge
+            return None
         if name == "spring_slack":
             self.spring = True
             self.event("rope_taut", t)
