@@ -104,8 +104,8 @@ def solve(args, got):
         over = dict(fixed, **{k: float(v) for k, v in row.items() if "." in k})
         try:
             events = ref.simulate(ref.load_machine(example, over))
-        except ref.NotCovered:
-            rows.append({"index": row["index"], "outcome": "not covered"})
+        except ref.NotCovered as why:
+            rows.append({"index": row["index"], "outcome": "not covered", "why": str(why)})
             continue
         out = {"index": row["index"], "outcome": events[-1][0], "outcome_t": repr(events[-1][1])}
         for name, t in events:
@@ -144,7 +144,7 @@ def main():
             else:
                 ref = sweep(reference, args, os.path.join(work, "ref.csv"), True)
             worst, where, other, valid, beyond = 0.0, "-", [], 0, []
-            uncovered = sum(1 for y in ref if y["outcome"] == "not covered")
+            uncovered = [f"{y['index']}: {y['why']}" for y in ref if y["outcome"] == "not covered"]
             for x, y in zip(got, ref):
                 if y["outcome"] == "not covered":
                     continue
@@ -167,7 +167,7 @@ def main():
             print(f"{name}: {valid} valid machines of {len(got)}; worst {worst:.3g} s = {worst / ACCURACY:.2f} of "
                   f"the accuracy ({where}); beyond it: {len(beyond)} {beyond[:5]}; "
                   f"other events or outcome: {len(other)} {other[:5]}"
-                  + (f"; not covered by the solver: {uncovered}" if uncovered else ""), flush=True)
+                  + (f"; not covered by the solver: {len(uncovered)} {uncovered[:5]}" if uncovered else ""), flush=True)
 
 
 if __name__ == "__main__":
