@@ -25,7 +25,7 @@ import math
 
 import sympy as sp
 
-from whatnext_reference import NotCovered, gbs
+from whatnext_reference import NotCovered, march
 
 CONTACTS = ("arm", "rope", "lid", "floor_left", "floor_right", "bag_floor", "stop")
 CLOSED = {"arm": "sandbag_lands", "rope": "rope_taut", "lid": "lid_rests", "floor_left": "seesaw_on_floor",
@@ -444,8 +444,7 @@ class HeavyRun:
 
     # --- the run
     def simulate(self):
-        mc, hm = self.mc, self.hm
-        t = 0.0
+        mc = self.mc
         if abs(-mc.x0 * math.sin(mc.s0) + mc.h0 * math.cos(mc.s0)) <= 1e-9:
             raise NotCovered("a sandbag on the arm at the start")
         if mc.C(mc.s0, mc.L0) > -2 * mc.lR * 1e-9:
@@ -458,74 +457,17 @@ class HeavyRun:
         if touch != self.active:  # a seesaw standing on the floor: decided on forces, at rest
             self.active = touch
             y = self.decide(y, 0.0, None)
-        h = 1e-6
-        pending = set()
-        while True:
-            if t >= mc.t_max:
-                self.event("timeout", t)
-                return self.events
-            pending |= self.released
-            self.released = set()
-            g0 = self.guards(y)
-            pending &= set(g0)
-            while True:
-                h = min(h, mc.t_max - t)
-                y1, err = gbs(self.flow, y, h)
-                e = max(a / (self.tol * (1 + abs(b))) for a, b in zip(err, y1))
-                if e > 1:
-                    h *= max(0.2, 0.8 * e ** (-1 / 15))
-                    continue
-                turn = max(abs(y1[2] - y[2]), abs(y1[3] - y[3]))
-                if turn > 0.02:
-                    h *= 0.5 * 0.02 / turn
-                    continue
-                break
-            y1 = self.project(y1, self.active)
-            g1 = self.guards(y1)
-            noise = {n: self.noise(n) for n in g1}
-            crossed = [n for n in g1 if n in g0 and (
-                (n in pending and g1[n] < -noise[n]) or (n not in pending and g0[n] > 0 and g1[n] <= 0))]
-            if not crossed:
-                t += h
-                y = y1
-                pending = {n for n in pending if abs(g1[n]) <= noise[n]}
-                h = min(4 * h, h * max(1.0, 0.8 * max(e, 1e-30) ** (-1 / 15)), 0.05)
-                continue
-            best = None
-            for name in crossed:
-                lo = 0.0
-                if name in pending:
-                    lo = None
-                    for j in range(1, 60):
-                        ym, _ = gbs(self.flow, y, h * 0.5 ** j)
-                        if self.guards(ym)[name] > noise[name]:
-                            lo = h * 0.5 ** j
-                            break
-                    if lo is None:
-                        dt = self.closing_within_rounding(name, y)
-                        if dt is None or dt > h:
-                            raise NotCovered(f"{name}: a released contact closing again within rounding at t = {t}")
-                        if best is None or dt < best[0]:
-                            best = (dt, name)
-                        continue
-                hi = h
-                while hi - lo > 0.01 * self.tol * max(1.0, t):
-                    mid = 0.5 * (lo + hi)
-                    ym, _ = gbs(self.flow, y, mid)
-                    if self.guards(ym)[name] > 0:
-                        lo = mid
-                    else:
-                        hi = mid
-                if best is None or hi < best[0]:
-                    best = (hi, name)
-            dt, name = best
-            y, _ = gbs(self.flow, y, dt)
-            t += dt
-            pending = set()
-            y = self.handle(name, y, t)
-            if y is None:
-                return self.events
-            h = 1e-6
+        return march(self, y)
+
+    # what whatnext_reference.march asks of a run
+    def angles(self, y):
+        return y[2], y[3]
+
+    def after_step(self, y):
+        return self.project(y, self.active)  # back onto the holding contacts, against the drift
+
+    def handle_event(self, name, y, t):
+        return self.handle(name, y, t)
 
     def closing_within_rounding(self, name, y):
         """When a gap that never opens beyond rounding closes again: the zero of its expansion
@@ -543,13 +485,6 @@ class HeavyRun:
 
     def handle(self, name, y, t):
         hm = self.hm
-        if name in ("lid_open", "seesaw_vertical", "sandbag_at_pivot", "rope_locked"):
-            self.event(name, t)
-            return None
-        if name == "balloon_caught":
-            self.balloon = "stuck"
-            self.event(name, t)
-            return y
         if name == "balloon_free":
             acc, _ = self.accel(y)
             return self.settle_balloon(y, acc, t)

@@ -468,7 +468,6 @@ class Run:
 
     def simulate(self):
         mc = self.mc
-        t = 0.0
         # start: the sandbag on the arm if it is within 1e-9 m of it
         gap = -mc.x0 * N.sin(mc.s0) + mc.h0 * N.cos(mc.s0)
         self.bag = "arm" if abs(gap) <= 1e-9 else "air"
@@ -478,75 +477,22 @@ class Run:
             raise NotCovered("a rope straight (or too short) at the start")
         hl, _ = mc.h_lim(mc.L0, 0.0)
         y = [mc.x0, mc.h0, 0.0, 0.0, mc.L0, 0.0, hl, 0.0]
-        h = 1e-6
-        released = set()
-        pending = set()  # released guards still within rounding of zero: open by construction
-        while True:
-            if t >= mc.t_max:
-                self.event("timeout", t)
-                return self.events
-            pending |= released
-            released = set()
-            g0 = self.guards(y)
-            pending &= set(g0)
-            # one accepted step
-            while True:
-                h = min(h, mc.t_max - t)
-                y1, err = gbs(self.flow, y, h)
-                e = max(a / (self.tol * (1 + abs(b))) for a, b in zip(err, y1))
-                if e > 1:
-                    h *= max(0.2, 0.8 * e ** (-1 / 15))
-                    continue
-                # bound the angles turned in one step, so that a guard cannot dip and come back
-                # between two looks
-                s0_, _, L0_, _, _, _ = self.kin(y)
-                s1_, _, L1_, _, _, _ = self.kin(y1)
-                turn = max(abs(s1_ - s0_), abs(L1_ - L0_))
-                if turn > 0.02:
-                    h *= 0.5 * 0.02 / turn
-                    continue
-                break
-            g1 = self.guards(y1)
-            noise = {n: self.noise(n) for n in g1}
-            crossed = [n for n in g1 if n in g0 and (
-                (n in pending and g1[n] < -noise[n]) or (n not in pending and g0[n] > 0 and g1[n] <= 0))]
-            if not crossed:
-                t += h
-                y = y1
-                pending = {n for n in pending if abs(g1[n]) <= noise[n]}
-                h = min(4 * h, h * max(1.0, 0.8 * max(e, 1e-30) ** (-1 / 15)), 0.05)
-                continue
-            # locate the earliest crossing by bisection on re-integrations from t
-            best = None
-            for name in crossed:
-                lo = 0.0
-                if name in pending:  # from the last time where the gap is clearly open
-                    lo = None
-                    for j in range(1, 60):
-                        ym, _ = gbs(self.flow, y, h * 0.5 ** j)
-                        if self.guards(ym)[name] > noise[name]:
-                            lo = h * 0.5 ** j
-                            break
-                    if lo is None:
-                        raise NotCovered(f"{name}: a released contact closing again within rounding at t = {t}")
-                hi = h
-                while hi - lo > 0.01 * self.tol * max(1.0, t):
-                    mid = 0.5 * (lo + hi)
-                    ym, _ = gbs(self.flow, y, mid)
-                    if self.guards(ym)[name] > 0:
-                        lo = mid
-                    else:
-                        hi = mid
-                if best is None or hi < best[0]:
-                    best = (hi, name)
-            dt, name = best
-            y, _ = gbs(self.flow, y, dt)
-            t += dt
-            pending = set()
-            y = self.handle(name, y, t, released)
-            if y is None:
-                return self.events
-            h = 1e-6
+        self.released = set()
+        return march(self, y)
+
+    # what march() asks of a run
+    def angles(self, y):
+        s, _, L, _, _, _ = self.kin(y)
+        return s, L
+
+    def after_step(self, y):
+        return y
+
+    def closing_within_rounding(self, name, y):
+        return None
+
+    def handle_event(self, name, y, t):
+        return self.handle(name, y, t, self.released)
 
     def noise(self, name):
         """How near zero a guard's value is rounding (and the integration's error), not a gap."""
@@ -555,13 +501,6 @@ class Run:
 
     def handle(self, name, y, t, released):
         mc = self.mc
-        if name in ("lid_open", "seesaw_vertical", "sandbag_at_pivot", "rope_locked"):
-            self.event(name, t)
-            return None
-        if name == "balloon_caught":
-            self.balloon = "stuck"
-            self.event(name, t)
-            return y
         if name == "balloon_free":
             return self.settle_balloon(y, t, released)
         if name == "sandbag_lands":
@@ -663,6 +602,95 @@ class Run:
                 y = self.settle_balloon(y[:-1] + [v_balloon], t, released, v_balloon)
             return y
         raise AssertionError(name)
+
+
+def march(run, y, t=0.0):
+    """Integrate the run from (t, y) event to event until it stops; its events.
+
+    Every guard of run.guards is looked at at the step ends; the earliest sign change is located
+    by bisection, each trial time integrated again from the step's start in one extrapolation
+    step, and run.handle_event applies it. A guard in run.released (a contact just released, a
+    force that starts at zero) is open by construction until it leaves run.noise."""
+    mc = run.mc
+    h = 1e-6
+    pending = set()  # released guards still within rounding of zero: open by construction
+    while True:
+        if t >= mc.t_max:
+            run.event("timeout", t)
+            return run.events
+        pending |= run.released
+        run.released = set()
+        g0 = run.guards(y)
+        pending &= set(g0)
+        # one accepted step
+        while True:
+            h = min(h, mc.t_max - t)
+            y1, err = gbs(run.flow, y, h)
+            e = max(a / (run.tol * (1 + abs(b))) for a, b in zip(err, y1))
+            if e > 1:
+                h *= max(0.2, 0.8 * e ** (-1 / 15))
+                continue
+            # bound the angles turned in one step, so that a guard cannot dip and come back
+            # between two looks
+            turn = max(abs(p - q) for p, q in zip(run.angles(y1), run.angles(y)))
+            if turn > 0.02:
+                h *= 0.5 * 0.02 / turn
+                continue
+            break
+        y1 = run.after_step(y1)
+        g1 = run.guards(y1)
+        noise = {n: run.noise(n) for n in g1}
+        crossed = [n for n in g1 if n in g0 and (
+            (n in pending and g1[n] < -noise[n]) or (n not in pending and g0[n] > 0 and g1[n] <= 0))]
+        if not crossed:
+            t += h
+            y = y1
+            pending = {n for n in pending if abs(g1[n]) <= noise[n]}
+            h = min(4 * h, h * max(1.0, 0.8 * max(e, 1e-30) ** (-1 / 15)), 0.05)
+            continue
+        # locate the earliest crossing by bisection on re-integrations from t
+        best = None
+        for name in crossed:
+            lo = 0.0
+            if name in pending:  # from the last time where the gap is clearly open
+                lo = None
+                for j in range(1, 60):
+                    ym, _ = gbs(run.flow, y, h * 0.5 ** j)
+                    if run.guards(ym)[name] > noise[name]:
+                        lo = h * 0.5 ** j
+                        break
+                if lo is None:
+                    dt = run.closing_within_rounding(name, y)
+                    if dt is None or dt > h:
+                        raise NotCovered(f"{name}: a released contact closing again within rounding at t = {t}")
+                    if best is None or dt < best[0]:
+                        best = (dt, name)
+                    continue
+            hi = h
+            while hi - lo > 0.01 * run.tol * max(1.0, t):
+                mid = 0.5 * (lo + hi)
+                ym, _ = gbs(run.flow, y, mid)
+                if run.guards(ym)[name] > 0:
+                    lo = mid
+                else:
+                    hi = mid
+            if best is None or hi < best[0]:
+                best = (hi, name)
+        dt, name = best
+        y, _ = gbs(run.flow, y, dt)
+        t += dt
+        pending = set()
+        h = 1e-6
+        if name in ("lid_open", "seesaw_vertical", "sandbag_at_pivot", "rope_locked"):  # the stops
+            run.event(name, t)
+            return run.events
+        if name == "balloon_caught":  # it sticks under the lid, moving with its limit
+            run.balloon = "stuck"
+            run.event(name, t)
+            continue
+        y = run.handle_event(name, y, t)
+        if y is None:
+            return run.events
 
 
 def simulate(keys, tol=1e-13, digits=None):
