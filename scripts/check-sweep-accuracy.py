@@ -83,7 +83,7 @@ FAMILIES = {
                            "--vary", "rope.damping=0:1000", "--vary", "start.sandbag_height=0.3:1.5"],
 }
 NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
-SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex1-hinge-drag", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped",
+SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex2-angular-law", "ex2-kinetic-law", "ex1-hinge-drag", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped",
                    "ex1-stretchy", "ex1-heavy-stretchy", "ex2-heavy-floor", "ex1-heavy-floor"]
 
 
@@ -98,7 +98,10 @@ def solve(args, got):
     for flag, item in zip(args, args[1:]):
         if flag == "--set":
             key, value = item.split("=", 1)
-            fixed[key] = tomllib.loads(f"v = {value}")["v"]
+            try:  # as whatnext reads --set: a TOML value, or else a bare word
+                fixed[key] = tomllib.loads(f"v = {value}")["v"]
+            except tomllib.TOMLDecodeError:
+                fixed[key] = value
     rows = []
     for row in got:
         over = dict(fixed, **{k: float(v) for k, v in row.items() if "." in k})
