@@ -83,7 +83,7 @@ FAMILIES = {
                            "--vary", "rope.damping=0:1000", "--vary", "start.sandbag_height=0.3:1.5"],
 }
 NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
-SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex2-angular-law", "ex2-kinetic-law", "ex1-hinge-drag", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped",
+SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex2-angular-law", "ex2-kinetic-law", "ex1-hinge-drag", "ex2-radio", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped",
                    "ex1-stretchy", "ex1-heavy-stretchy", "ex2-heavy-floor", "ex1-heavy-floor"]
 
 

@@ -25,7 +25,7 @@ import math
 
 import sympy as sp
 
-from whatnext_reference import NotCovered, march
+from whatnext_reference import STOPS, NotCovered, march
 
 CONTACTS = ("arm", "rope", "lid", "floor_left", "floor_right", "bag_floor", "stop")
 CLOSED = {"arm": "sandbag_lands", "rope": "rope_taut", "lid": "lid_rests", "floor_left": "seesaw_on_floor",
@@ -152,6 +152,7 @@ class HeavyRun:
         self.balloon = "stuck"
         self.fell_off = False
         self.spring = False  # the rope that stretches pulling
+        self.stops = STOPS
 
     # --- the flow
     def contact(self, name, y):

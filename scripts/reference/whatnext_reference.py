@@ -141,6 +141,9 @@ DEFAULTS = {
 IGNORED = {"run.output_step", "run.step", "run.integrator", "run.tolerance"}
 OTHER = {"geometry.hinge_offset", "geometry.rope_on_lid", "balloon.radius", "balloon.rubber_mass", "balloon.drag",
          "balloon.drag_coefficient"}
+# The radio (docs/extensions.md, "The radio"), on the massless seesaw.
+RADIO = {"radio.enabled", "radio.switch_offset", "radio.string_length", "radio.switch_force"}
+STOPS = {"lid_open", "seesaw_vertical", "sandbag_at_pivot", "rope_locked", "radio_on", "switch_stays_off"}
 # A seesaw with mass and the dampers: the full-coordinates run (full_coordinates.py).
 HEAVY = {"seesaw.mass", "seesaw.left_arm", "seesaw.inertia", "seesaw.com_offset", "damping.pivot",
          "damping.lid_hinge", "rope.stiffness", "rope.damping", "floor.enabled", "floor.restitution",
@@ -160,7 +163,7 @@ def load_machine(path=None, overrides=None):
     if "geometry.hinge_offset" in (overrides or {}):
         keys.pop("geometry.hinge_distance", None)
     for name in keys:
-        if name not in DEFAULTS and name not in IGNORED and name not in OTHER and name not in HEAVY:
+        if name not in DEFAULTS.keys() | IGNORED | OTHER | HEAVY | RADIO:
             raise NotCovered(f"{name} is not modelled by the reference")
     if keys["run.impact_law"] not in ("rope", "angular-momentum-sum", "kinetic-energy"):
         raise NotCovered(f"the {keys['run.impact_law']} impact law")
@@ -198,6 +201,13 @@ class Machine:
         drag = keys.get("balloon.drag", False) in (True, "true") or "balloon.drag_coefficient" in keys
         cd = num(keys.get("balloon.drag_coefficient", 0.47))
         self.drag = rho_a * cd * N.pi * self.rB ** 2 / 2 / (density * vol) if drag else 0.0
+        self.lift = self.g * (rho_a - rho_he - rho_r) * vol  # what a straight string pulls with
+        self.radio = keys.get("radio.enabled", False) in (True, "true") or any(
+            k in keys for k in RADIO - {"radio.enabled"})
+        dx, dh = keys.get("radio.switch_offset", [0.5, 0.0])
+        self.switch = (self.Hx + 2 * self.rL + num(dx), self.Hy + num(dh))
+        self.string = num(keys.get("radio.string_length", 1.0))
+        self.switch_force = num(keys.get("radio.switch_force", 0.0))
         self.x0, self.h0 = num(keys["start.sandbag_x"]), num(keys["start.sandbag_height"])
         self.s0 = N.radians(num(keys["start.seesaw_angle"]))
         self.L0 = N.radians(num(keys["start.lid_angle"]))
@@ -283,6 +293,8 @@ class Run:
         self.events = []
         self.energy = []
         self.spring = False  # the rope that stretches pulling (with the sandbag on the arm)
+        self.latched = False  # the radio's latch holds the lid open: only the balloon matters
+        self.stops = STOPS - {"radio_on"} - ({"lid_open"} if mc.radio else set())
 
     # The state: sandbag 'air' (M1) or 'arm' with rope 'slack' (M3, free fall) or 'taut' (M4);
     # free fall: y = [x, h, vx, vh, phiL, phiL', hB, vB]; M4: y = [r, phiS, phiL, r', phiS', hB, vB].
@@ -351,6 +363,15 @@ class Run:
 
     def guards(self, y):
         """name -> value; an event where a value reaches zero from above."""
+        mc = self.mc
+        if mc.radio:
+            radio = {"radio_on": mc.string - N.hypot(mc.Hx + mc.rL - mc.switch[0], mc.Hy + y[-2] - mc.switch[1])}
+            if self.latched:
+                return radio
+            return radio | self.machine_guards(y)
+        return self.machine_guards(y)
+
+    def machine_guards(self, y):
         mc = self.mc
         s, sd, L, Ld, Ldd, r = self.kin(y)
         out = {"lid_open": mc.top - L}
@@ -457,7 +478,7 @@ class Run:
         # 7); where one would drive the resting lid into the box the inelastic jerk stands.
         J, p = mc.m * r * r, mc.m * r * r * sd
         law = {"rope": sd1, "angular-momentum-sum": (p + mc.I * Ld) / (J + mc.I * k),
-               "kinetic-energy": N.copysign(N.sqrt((J * sd * sd + mc.I * Ld * Ld) / (J + mc.I * k * k)), sd1)}
+               "kinetic-energy": N.sqrt((J * sd * sd + mc.I * Ld * Ld) / (J + mc.I * k * k)) * (1 if sd1 >= 0 else -1)}
         sd_law = law[mc.law]
         if not (self.lid == "rest" and k * sd_law <= 0):
             sd1 = sd_law
@@ -510,6 +531,24 @@ class Run:
 
     def handle(self, name, y, t, released):
         mc = self.mc
+        if name == "radio_on":  # the string straight: it pulls with the balloon's net lift
+            self.event("radio_on" if mc.lift >= mc.switch_force else "switch_stays_off", t)
+            return None
+        if name == "lid_open":  # the radio's latch (docs/extensions.md, "The radio")
+            self.event("lid_open", t)
+            if self.rope == "taut":
+                y = self.to_free_fall(y)
+                self.rope = "slack"
+                self.event("rope_slack", t)
+            self.spring = False
+            x, h, vx, vh, L, Ld, hB, vB = y
+            if self.balloon == "stuck":  # freed with its current velocity
+                hB, vB = mc.h_lim(L, Ld)
+                self.balloon = "free"
+                self.event("balloon_free", t)
+            # the rope let go for good, the sandbag off the seesaw (which stays where it is)
+            self.latched, self.lid, self.bag, self.s_air = True, "rest", "air", N.atan2(-h, -x)
+            return [x, h, vx, vh, L, 0.0, hB, vB]
         if name == "balloon_free":
             return self.settle_balloon(y, t, released)
         if name == "sandbag_lands":
@@ -690,7 +729,7 @@ def march(run, y, t=0.0):
         t += dt
         pending = set()
         h = 1e-6
-        if name in ("lid_open", "seesaw_vertical", "sandbag_at_pivot", "rope_locked"):  # the stops
+        if name in run.stops:
             run.event(name, t)
             return run.events
         if name == "balloon_caught":  # it sticks under the lid, moving with its limit
@@ -718,6 +757,8 @@ def simulate(keys, tol=1e-13, digits=None):
 def make_run(keys, tol=1e-13):
     """The run of the machine: the massless seesaw's (Run), or with a seesaw that has mass the
     full-coordinates one (full_coordinates.py)."""
+    if any(name in keys for name in RADIO) and float(keys.get("seesaw.mass", 0.0)) > 0:
+        raise NotCovered("the radio on a seesaw with mass")
     if float(keys.get("seesaw.mass", 0.0)) > 0:
         if keys["run.impact_law"] != "rope":
             raise NotCovered("an impact law other than rope on a seesaw with mass")

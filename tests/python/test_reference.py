@@ -202,10 +202,31 @@ LAWS = [(2, {"run.impact_law": law, "geometry.rope_length": DRAWS.uniform(0.64, 
         for law in ("angular-momentum-sum", "kinetic-energy") for _ in range(2)]
 
 
-@pytest.mark.parametrize("example,overrides", MACHINES + HEAVY_MACHINES + SMOOTH + STRETCHY + FLOOR + LAWS)
+# The radio on the massless seesaw (ex2-radio): the latch at lid_open, the balloon rising to its
+# string; and a switch that the balloon's lift cannot push.
+RADIO = [(2, {"radio.enabled": True, "balloon.drag": True, "radio.string_length": DRAWS.uniform(0.75, 1.2),
+              "start.sandbag_height": DRAWS.uniform(0.3, 1.2)})]
+RADIO += [(1, {"radio.enabled": True, "radio.switch_force": 1.0})]
+
+
+@pytest.mark.parametrize("example,overrides", MACHINES + HEAVY_MACHINES + SMOOTH + STRETCHY + FLOOR + LAWS + RADIO)
 def test_random_machines(example, overrides, tmp_path):
     try:
         want = reference_events(example, overrides)
     except ref.NotCovered as why:
         pytest.skip(f"outside the reference: {why}")
     assert_same_story(whatnext_events(example, overrides, tmp_path), want)
+
+
+GRAZING = {"radio.enabled": True, "balloon.drag": True, "radio.string_length": 1.065679321154795,
+           "start.sandbag_height": 0.46136142348425013, "run.t_max": 0.52}
+
+
+@pytest.mark.xfail(strict=True, reason="whatnext places this grazing re-tightening 8.5e-9 s late at its default tolerance")
+def test_a_rope_that_tightens_again_grazing_with_the_radio(tmp_path):
+    """The rope goes slack at 0.5081 s and is straight again 6.7 ms later, grazing: a float's
+    rounding of its gap moves the time by 1e-9 s (the reference in doubles gives 0.51477527006 s
+    at 1e-13), so the reference runs with 24 digits (0.51477526769 s)."""
+    want = reference_events(2, GRAZING, digits=24)
+    assert [n for n, _ in want].count("rope_taut") == 2
+    assert_same_story(whatnext_events(2, GRAZING, tmp_path), want)
