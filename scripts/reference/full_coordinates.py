@@ -8,17 +8,19 @@ the first kind
     M q'' = f(q, q') + sum_{i in A} W_i^T lambda_i,    W_i q'' + q'^T (d2 g_i) q' = 0  (i in A),
 
 for the set A of contacts that hold (the sandbag on the arm, the rope straight, the lid on the
-box), each with its gap g_i (>= 0 open) and its force lambda_i (>= 0: the arm and the box push,
-the rope pulls). SymPy derives M and f from the kinetic energy, the potential and the dampers'
+box; on the built machine the seesaw's ends and the sandbag on the floor, the sandbag at the arm's
+end stop), each with its gap g_i (>= 0 open) and its force lambda_i (>= 0: the arm, the box, the
+floor and the stop push, the rope pulls). A rope that stretches is no contact but a force in f. SymPy derives M and f from the kinetic energy, the potential and the dampers'
 dissipation function, and W_i and the velocity terms from the gaps. Nothing here is a reduced
 equation of one phase, as whatnext integrates: the multipliers are solved for at every evaluation
 (a 3x3 problem at most), and after each step the state is projected back onto the holding
 contacts (their gaps and rates to zero in the metric M), against the drift.
 
 Which contacts hold is decided at each event as docs/model.md, section 5 defines it: the impact
-as the velocities' projection in the metric M with one-signed impulses (every subset tried), then
-the problem on accelerations (every subset tried), the same zeros of the machine's scale as the
-model names (rates 1e-6 of its speed scale count as held, the end of a cascade).
+as the velocities' projection in the metric M with one-signed impulses (every subset tried), with
+Newton's restitution as its target rates (docs/extensions.md), then the problem on accelerations
+(every subset tried), the same zeros of the machine's scale as the model names (rates 1e-6 of its
+speed scale count as held, the end of a cascade).
 """
 import itertools
 import math
