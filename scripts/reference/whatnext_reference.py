@@ -597,33 +597,21 @@ class Run:
             self.event("rope_slack", t)
             released.add("spring_slack")
             return self.settle_balloon(y, t, released)
-        if name == "lid_rests" and self.spring:
-            v_balloon = mc.h_lim(y[4], y[5])[1] if self.balloon == "stuck" else None
-            self.event("lid_rests", t)
-            self.lid = "rest"
-            y = y[:4] + [mc.L0, 0.0] + y[6:]
-            if self.tension(y)[0] < -1e-9 * (mc.m + mc.mL) * mc.g:  # the jump would make it push
-                self.spring = False
-                self.event("rope_slack", t)
-                released.add("spring_slack")
-            else:
-                released.add("lid_lifts")
-            if v_balloon is not None:
-                y = self.settle_balloon(y[:-1] + [v_balloon], t, released, v_balloon)
-            return y
         if name == "lid_rests" and mc.stretchy and self.bag == "arm" and self.rope == "slack":
-            # a slack rope longer than l_R that the lid's stop makes pull (k s + c s' > 0): at once
+            # the lid's stop jumps s': a pulling rope that would push lets go, a slack one longer
+            # than l_R that would pull (k s + c s' > 0) pulls, at that instant (docs/impact.md)
             v_balloon = mc.h_lim(y[4], y[5])[1] if self.balloon == "stuck" else None
             self.event("lid_rests", t)
             self.lid = "rest"
             y = y[:4] + [mc.L0, 0.0] + y[6:]
-            if self.tension(y, slack=True)[0] > 1e-9 * (mc.m + mc.mL) * mc.g:
-                self.spring = True
-                self.event("rope_taut", t)
-                released.add("spring_pull")
+            zero = 1e-9 * (mc.m + mc.mL) * mc.g
+            pulls = self.tension(y, slack=not self.spring)[0] > (-zero if self.spring else zero)
+            if pulls != self.spring:
+                self.spring = pulls
+                self.event("rope_taut" if pulls else "rope_slack", t)
+            released.add("spring_pull" if pulls else "spring_slack")
+            if pulls:
                 released.add("lid_lifts")
-            else:
-                released.add("spring_slack")
             if v_balloon is not None:
                 y = self.settle_balloon(y[:-1] + [v_balloon], t, released, v_balloon)
             return y
