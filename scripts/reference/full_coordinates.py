@@ -27,7 +27,7 @@ import math
 
 import sympy as sp
 
-from whatnext_reference import STOPS, NotCovered, march
+from whatnext_reference import STOPS, NotCovered, balloon_closing, march, quadratic_closing
 
 CONTACTS = ("arm", "rope", "lid", "floor_left", "floor_right", "bag_floor", "stop")
 CLOSED = {"arm": "sandbag_lands", "rope": "rope_taut", "lid": "lid_rests", "floor_left": "seesaw_on_floor",
@@ -475,16 +475,14 @@ class HeavyRun:
     def closing_within_rounding(self, name, y):
         """When a gap that never opens beyond rounding closes again: the zero of its expansion
         g + g' tau + g'' tau^2 / 2 (over a microsecond its next term is far below rounding)."""
+        acc, _ = self.accel(y)
+        if name == "balloon_caught":
+            return balloon_closing(self.mc, y[3], y[7], acc[3], y[8], y[9])
         contact, kind = name.rsplit("_", 1)
         if kind != "gap":
             return None
-        acc, _ = self.accel(y)
         g = self.contact(contact, y)[0] * self.hm.gap_scale[contact]
-        r, a = self.rate(contact, y), self.gap_acc(contact, y, acc)
-        if a >= 0:
-            return None
-        disc = r * r - 2 * a * max(g, 0.0)
-        return (r + math.sqrt(disc)) / -a
+        return quadratic_closing(g, self.rate(contact, y), self.gap_acc(contact, y, acc))
 
     def handle(self, name, y, t):
         hm = self.hm

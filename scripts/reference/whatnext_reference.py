@@ -519,7 +519,10 @@ class Run:
         return y
 
     def closing_within_rounding(self, name, y):
-        return None
+        if name != "balloon_caught":
+            return None
+        _, _, L, Ld, Ldd, _ = self.kin(y)
+        return balloon_closing(self.mc, L, Ld, Ldd, y[-2], y[-1])
 
     def handle_event(self, name, y, t):
         return self.handle(name, y, t, self.released)
@@ -638,6 +641,20 @@ class Run:
                 y = self.settle_balloon(y[:-1] + [v_balloon], t, released, v_balloon)
             return y
         raise AssertionError(name)
+
+
+def quadratic_closing(g, r, a):
+    """When g + r tau + a tau^2 / 2, a gap that has not opened beyond rounding, is zero again:
+    over a microsecond the expansion's next term is far below rounding. None if it does not close."""
+    if a >= 0:
+        return None
+    return (r + N.sqrt(r * r - 2 * a * max(g, 0.0))) / -a
+
+
+def balloon_closing(mc, L, Ld, Ldd, hB, vB):
+    """The freed balloon's gap below the lid's limit closing again within rounding."""
+    hl, hld = mc.h_lim(L, Ld)
+    return quadratic_closing(hl - hB, hld - vB, mc.h_lim_acc(L, Ld, Ldd) - mc.balloon_acc(vB))
 
 
 def march(run, y, t=0.0):
