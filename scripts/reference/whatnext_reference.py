@@ -20,9 +20,13 @@ What is independent of whatnext here:
   sign change is located by bisection, re-integrating from the step's start to each trial time
   (a single extrapolation step), to 1e-15 s: no interpolant, no expansion of the guard.
 
-Machines it does not cover (a seesaw with mass, the extensions, other impact laws, a rope straight
-at the start or at a landing, a lid left resting on a straight rope, a jerk with k < 0 ...) raise
-NotCovered; it never guesses.
+On this seesaw it also has the extensions that are forces: the lid hinge's damper, the balloon's
+drag and skin, and the rope that stretches (a one-sided spring-damper). A seesaw with mass, with
+the built machine's floor and end stop, runs in full coordinates (full_coordinates.py).
+
+Machines it does not cover (friction, the radio, other impact laws, a rope straight at the start
+or at a landing, a lid left resting on a straight rope, a jerk with k < 0 ...) raise NotCovered;
+it never guesses.
 
     from whatnext_reference import simulate, load_machine
     events = simulate(load_machine("examples/example2.toml", {"geometry.rope_length": 0.7}))
@@ -67,7 +71,10 @@ def _derive():
     T = m / 2 * (sp.diff(x, t) ** 2 + sp.diff(h, t) ** 2) + I / 2 * sp.diff(Pt, t) ** 2
     V = m * g * h + mL * g * rL * sp.sin(Pt)
     Lag = T - V
-    eqs = [sp.diff(sp.diff(Lag, sp.diff(q, t)), t) - sp.diff(Lag, q) for q in (rt, st)]
+    cL = sp.symbols("cL", nonnegative=True)
+    D = cL / 2 * sp.diff(Pt, t) ** 2  # Rayleigh's dissipation function: the lid hinge's damper
+    eqs = [sp.diff(sp.diff(Lag, sp.diff(q, t)), t) - sp.diff(Lag, q) + sp.diff(D, sp.diff(q, t))
+           for q in (rt, st)]
     k, kp = sp.symbols("k kp")
     rdd, sdd = sp.symbols("rdd sdd")
     rep = {sp.Derivative(rt, (t, 2)): rdd, sp.Derivative(st, (t, 2)): sdd}
@@ -80,7 +87,7 @@ def _derive():
     eqs = [e.subs({sp.Derivative(rt, t): rd, sp.Derivative(st, t): sd}) for e in eqs]
     eqs = [e.subs({P(st): L, rt: r, st: s}) for e in eqs]
     sol = sp.solve(eqs, [rdd, sdd], dict=True)[0]
-    params = (rH, Hx, Hy, a, lR, m, mL, rL, g, I)
+    params = (rH, Hx, Hy, a, lR, m, mL, rL, g, I, cL)
     geo = (s, L) + params
     acc = [sp.simplify(sol[rdd]), sp.simplify(sol[sdd])]
     funs = []
@@ -89,6 +96,9 @@ def _derive():
             "C": sp.lambdify(geo, C, module),
             "Cs": sp.lambdify(geo, sp.diff(C, s), module),
             "CL": sp.lambdify(geo, sp.diff(C, L), module),
+            # the rope's span |R - E| and its partial derivatives, for the rope that stretches
+            "span": sp.lambdify(geo, [sp.sqrt(C + lR ** 2), sp.diff(sp.sqrt(C + lR ** 2), s),
+                                      sp.diff(sp.sqrt(C + lR ** 2), L)], module),
             "k": sp.lambdify(geo, k_expr, module),
             "kp": sp.lambdify(geo, kp_expr, module),
             "acc": sp.lambdify((r, s, L, rd, sd, k, kp) + params, acc, module),
@@ -129,7 +139,15 @@ DEFAULTS = {
 }
 # Keys that do not change the physics (how whatnext integrates or samples).
 IGNORED = {"run.output_step", "run.step", "run.integrator", "run.tolerance"}
-OTHER = {"geometry.hinge_offset", "geometry.rope_on_lid", "balloon.radius"}
+OTHER = {"geometry.hinge_offset", "geometry.rope_on_lid", "balloon.radius", "balloon.rubber_mass", "balloon.drag",
+         "balloon.drag_coefficient"}
+# The radio (docs/extensions.md, "The radio"), on the massless seesaw.
+RADIO = {"radio.enabled", "radio.switch_offset", "radio.string_length", "radio.switch_force"}
+STOPS = {"lid_open", "seesaw_vertical", "sandbag_at_pivot", "rope_locked", "radio_on", "switch_stays_off"}
+# A seesaw with mass and the dampers: the full-coordinates run (full_coordinates.py).
+HEAVY = {"seesaw.mass", "seesaw.left_arm", "seesaw.inertia", "seesaw.com_offset", "damping.pivot",
+         "damping.lid_hinge", "rope.stiffness", "rope.damping", "floor.enabled", "floor.restitution",
+         "seesaw.end_stop", "restitution.sandbag", "restitution.rope", "restitution.lid", "restitution.stop"}
 
 
 def load_machine(path=None, overrides=None):
@@ -145,10 +163,10 @@ def load_machine(path=None, overrides=None):
     if "geometry.hinge_offset" in (overrides or {}):
         keys.pop("geometry.hinge_distance", None)
     for name in keys:
-        if name not in DEFAULTS and name not in IGNORED and name not in OTHER:
+        if name not in DEFAULTS.keys() | IGNORED | OTHER | HEAVY | RADIO:
             raise NotCovered(f"{name} is not modelled by the reference")
-    if keys["run.impact_law"] != "rope":
-        raise NotCovered("only the rope impact law")
+    if keys["run.impact_law"] not in ("rope", "angular-momentum-sum", "kinetic-energy"):
+        raise NotCovered(f"the {keys['run.impact_law']} impact law")
     return keys
 
 
@@ -171,19 +189,48 @@ class Machine:
         self.rB = num(keys.get("balloon.radius", self.rL))
         if self.rB < self.rL:
             raise NotCovered("a balloon smaller than the box")
+        # the balloon (docs/extensions.md, "Balloon physics"): net lift F over the accelerated mass,
+        # less its drag D v|v|
         rho_a, rho_he = num(keys["air.density"]), num(keys["air.helium_density"])
+        # (per unit of the balloon's volume: the skin's mass as a density)
+        vol = 4 * N.pi * self.rB ** 3 / 3
+        rho_r = num(keys.get("balloon.rubber_mass", 0.0)) / vol
         denominator = {"program": rho_a, "lagrangian": rho_he, "added-mass": rho_he + rho_a / 2}
-        self.aB = self.g * (rho_a - rho_he) / denominator[keys["balloon.model"]]
+        density = denominator[keys["balloon.model"]] + rho_r
+        self.aB = self.g * (rho_a - rho_he - rho_r) / density
+        drag = keys.get("balloon.drag", False) in (True, "true") or "balloon.drag_coefficient" in keys
+        cd = num(keys.get("balloon.drag_coefficient", 0.47))
+        self.drag = rho_a * cd * N.pi * self.rB ** 2 / 2 / (density * vol) if drag else 0.0
+        self.lift = self.g * (rho_a - rho_he - rho_r) * vol  # what a straight string pulls with
+        self.radio = keys.get("radio.enabled", False) in (True, "true") or any(
+            k in keys for k in RADIO - {"radio.enabled"})
+        dx, dh = keys.get("radio.switch_offset", [0.5, 0.0])
+        self.switch = (self.Hx + 2 * self.rL + num(dx), self.Hy + num(dh))
+        self.string = num(keys.get("radio.string_length", 1.0))
+        self.switch_force = num(keys.get("radio.switch_force", 0.0))
         self.x0, self.h0 = num(keys["start.sandbag_x"]), num(keys["start.sandbag_height"])
         self.s0 = N.radians(num(keys["start.seesaw_angle"]))
         self.L0 = N.radians(num(keys["start.lid_angle"]))
         self.t_max = num(keys["run.t_max"])
+        self.law = keys["run.impact_law"]
         self.top = N.pi / 2 - N.radians(num(keys["run.vertical_margin"]))
-        self.params = (self.rH, self.Hx, self.Hy, self.a, self.lR, self.m, self.mL, self.rL, self.g, self.I)
+        self.cL = num(keys.get("damping.lid_hinge", 0.0))
+        self.stretchy = "rope.stiffness" in keys  # a one-sided spring-damper (docs/impact.md)
+        self.k_rope = num(keys.get("rope.stiffness", 0.0))
+        self.c_rope = num(keys.get("rope.damping", 0.0))
+        self.params = (self.rH, self.Hx, self.Hy, self.a, self.lR, self.m, self.mL, self.rL, self.g, self.I,
+                       self.cL)
 
     # geometry
     def C(self, s, L):
         return F["C"](s, L, *self.params)
+
+    def lock(self, s, L):
+        """(R - H) x (E - H): negative with the lid below the rope, the linkage's physical shape
+        (docs/model.md, section 3); zero where the rope would touch the hinge."""
+        Rx, Ry = self.rH * N.cos(s), self.rH * N.sin(s)
+        Ex, Ey = self.Hx + self.a * N.cos(L), self.Hy + self.a * N.sin(L)
+        return (Rx - self.Hx) * (Ey - self.Hy) - (Ry - self.Hy) * (Ex - self.Hx)
 
     def k(self, s, L):
         return F["k"](s, L, *self.params), F["kp"](s, L, *self.params)
@@ -192,11 +239,14 @@ class Machine:
         k, kp = self.k(s, L)
         rdd, sdd = F["acc"](r, s, L, rd, sd, k, kp, *self.params)
         Ldd = k * sdd + kp * sd * sd
-        torque = self.I * Ldd + self.mL * self.g * self.rL * N.cos(L)  # the rope's on the lid
+        torque = self.I * Ldd + self.mL * self.g * self.rL * N.cos(L) + self.cL * k * sd  # the rope's on the lid
         return rdd, sdd, k, torque
 
-    def lid_free_acc(self, L):
-        return -self.mL * self.g * self.rL * N.cos(L) / self.I
+    def balloon_acc(self, v):
+        return self.aB - self.drag * v * abs(v)
+
+    def lid_free_acc(self, L, Ld):
+        return -(self.mL * self.g * self.rL * N.cos(L) + self.cL * Ld) / self.I
 
     def h_lim(self, L, Ld):
         c, sn = N.cos(L), N.sin(L)
@@ -242,6 +292,9 @@ class Run:
         self.mc, self.tol = mc, tol
         self.events = []
         self.energy = []
+        self.spring = False  # the rope that stretches pulling (with the sandbag on the arm)
+        self.latched = False  # the radio's latch holds the lid open: only the balloon matters
+        self.stops = STOPS - {"radio_on"} - ({"lid_open"} if mc.radio else set())
 
     # The state: sandbag 'air' (M1) or 'arm' with rope 'slack' (M3, free fall) or 'taut' (M4);
     # free fall: y = [x, h, vx, vh, phiL, phiL', hB, vB]; M4: y = [r, phiS, phiL, r', phiS', hB, vB].
@@ -252,12 +305,42 @@ class Run:
             rdd, sdd, k, _ = mc.m4_acc(r, s, L, rd, sd)
             return [rd, sd, k * sd, rdd, sdd] + self.balloon_flow(vB)
         x, h, vx, vh, L, Ld, hB, vB = y
-        Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L)
+        if self.spring:
+            ax, ah, Ldd, _, _, _ = self.spring_acc(y)
+            return [vx, vh, ax, ah, Ld, Ldd] + self.balloon_flow(vB)
+        Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L, Ld)
         return [vx, vh, 0.0, -mc.g, Ld, Ldd] + self.balloon_flow(vB)
+
+    def tension(self, y, slack=False):
+        """k s + c s' of the rope that stretches, with the sandbag on the massless seesaw; and the
+        span's partial derivatives. slack: the damper's part only while longer than l_R."""
+        mc = self.mc
+        x, h, vx, vh, L, Ld = y[:6]
+        s = N.atan2(-h, -x)
+        sd = (vx * N.sin(s) - vh * N.cos(s)) / N.hypot(x, h)
+        span, dS, dL = F["span"](s, L, *mc.params)
+        stretch = span - mc.lR
+        damper = mc.c_rope * (dS * sd + dL * Ld)
+        return mc.k_rope * stretch + (damper if stretch >= 0 or not slack else 0.0), s, dS, dL
+
+    def spring_acc(self, y):
+        """The accelerations while the stretched rope pulls: its torque on the massless seesaw is
+        taken by the arm's push on the sandbag, N r = -Q_S (docs/impact.md), its torque on the
+        lid Q_L. Also N, the box's push on a resting lid, and T."""
+        mc = self.mc
+        x, h, vx, vh, L, Ld = y[:6]
+        T, s, dS, dL = self.tension(y)
+        r = N.hypot(x, h)
+        push = T * dS / r  # N = -Q_S / r with Q_S = -T d span/d phiS
+        ax, ah = -push * N.sin(s) / mc.m, -mc.g + push * N.cos(s) / mc.m
+        lid = -mc.mL * mc.g * mc.rL * N.cos(L) - mc.cL * Ld - T * dL
+        if self.lid == "rest":
+            return ax, ah, 0.0, push, -lid, T
+        return ax, ah, lid / mc.I, push, None, T
 
     def balloon_flow(self, vB):
         # A stuck balloon is wherever the lid's limit is: its two entries are not integrated.
-        return [vB, self.mc.aB] if self.balloon == "free" else [0.0, 0.0]
+        return [vB, self.mc.balloon_acc(vB)] if self.balloon == "free" else [0.0, 0.0]
 
     def kin(self, y):
         """phiS, phiS', phiL, phiL', phiL'' and the sandbag's r of the state y."""
@@ -268,7 +351,9 @@ class Run:
             kk, kp = mc.k(s, L)
             return s, sd, L, k * sd, k * sdd + kp * sd * sd, r
         x, h, vx, vh, L, Ld = y[:6]
-        Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L)
+        Ldd = 0.0 if self.lid == "rest" else mc.lid_free_acc(L, Ld)
+        if self.spring:
+            Ldd = self.spring_acc(y)[2]
         if self.bag == "air":
             return self.s_air, 0.0, L, Ld, Ldd, N.hypot(x, h)
         r = N.hypot(x, h)
@@ -279,6 +364,15 @@ class Run:
     def guards(self, y):
         """name -> value; an event where a value reaches zero from above."""
         mc = self.mc
+        if mc.radio:
+            radio = {"radio_on": mc.string - N.hypot(mc.Hx + mc.rL - mc.switch[0], mc.Hy + y[-2] - mc.switch[1])}
+            if self.latched:
+                return radio
+            return radio | self.machine_guards(y)
+        return self.machine_guards(y)
+
+    def machine_guards(self, y):
+        mc = self.mc
         s, sd, L, Ld, Ldd, r = self.kin(y)
         out = {"lid_open": mc.top - L}
         if self.lid == "free":
@@ -287,14 +381,26 @@ class Run:
         if self.balloon == "free":
             out["balloon_caught"] = hl - y[-2]
         else:
-            out["balloon_free"] = mc.aB - mc.h_lim_acc(L, Ld, Ldd)
+            out["balloon_free"] = mc.balloon_acc(hld) - mc.h_lim_acc(L, Ld, Ldd)
         if self.bag == "air":
             x, h = y[0], y[1]
             out["sandbag_lands"] = -x * N.sin(self.s_air) + h * N.cos(self.s_air)
             out["rope_taut"] = -mc.C(self.s_air, L)
             return out
         out["seesaw_vertical"] = mc.top - abs(s)
-        if self.rope == "slack":
+        if self.rope == "slack" and mc.stretchy:
+            force = (mc.m + mc.mL) * mc.g
+            out["sandbag_at_pivot"] = -y[0]
+            if not self.spring:
+                out["spring_slack"] = -self.tension(y, slack=True)[0] / force
+                return out
+            _, _, _, push, box, T = self.spring_acc(y)
+            out["spring_pull"] = T / force
+            out["rope_locked"] = -mc.lock(s, L)
+            out["arm_pull"] = push / force
+            if box is not None:
+                out["lid_lifts"] = box / force
+        elif self.rope == "slack":
             out["rope_taut"] = -mc.C(s, L)
             out["sandbag_at_pivot"] = -y[0]
         else:
@@ -339,7 +445,7 @@ class Run:
         if v_before is None:
             v_before = hld
         if hld > v_before + 1e-12 * (1 + abs(v_before)) or (
-                hld >= v_before and self.mc.h_lim_acc(L, Ld, Ldd) > self.mc.aB):
+                hld >= v_before and self.mc.h_lim_acc(L, Ld, Ldd) > self.mc.balloon_acc(hld)):
             self.balloon = "free"
             self.event("balloon_free", t)
             released.add("balloon_caught")
@@ -368,6 +474,14 @@ class Run:
         Ld1 = Ld - minv[2] * n[2] * lam
         if self.lid == "rest" and Ld1 <= 0:
             raise NotCovered(f"a jerk that leaves the lid on the box at t = {t}")
+        # The other impact laws set the speeds after the jerk themselves (docs/model.md, section
+        # 7); where one would drive the resting lid into the box the inelastic jerk stands.
+        J, p = mc.m * r * r, mc.m * r * r * sd
+        law = {"rope": sd1, "angular-momentum-sum": (p + mc.I * Ld) / (J + mc.I * k),
+               "kinetic-energy": N.sqrt((J * sd * sd + mc.I * Ld * Ld) / (J + mc.I * k * k)) * (1 if sd1 >= 0 else -1)}
+        sd_law = law[mc.law]
+        if not (self.lid == "rest" and k * sd_law <= 0):
+            sd1 = sd_law
         self.lid, self.rope = "free", "taut"
         y4 = [r, s, L, rd, sd1, hB, vB]
         self.event("rope_taut", t)
@@ -384,7 +498,6 @@ class Run:
 
     def simulate(self):
         mc = self.mc
-        t = 0.0
         # start: the sandbag on the arm if it is within 1e-9 m of it
         gap = -mc.x0 * N.sin(mc.s0) + mc.h0 * N.cos(mc.s0)
         self.bag = "arm" if abs(gap) <= 1e-9 else "air"
@@ -394,75 +507,25 @@ class Run:
             raise NotCovered("a rope straight (or too short) at the start")
         hl, _ = mc.h_lim(mc.L0, 0.0)
         y = [mc.x0, mc.h0, 0.0, 0.0, mc.L0, 0.0, hl, 0.0]
-        h = 1e-6
-        released = set()
-        pending = set()  # released guards still within rounding of zero: open by construction
-        while True:
-            if t >= mc.t_max:
-                self.event("timeout", t)
-                return self.events
-            pending |= released
-            released = set()
-            g0 = self.guards(y)
-            pending &= set(g0)
-            # one accepted step
-            while True:
-                h = min(h, mc.t_max - t)
-                y1, err = gbs(self.flow, y, h)
-                e = max(a / (self.tol * (1 + abs(b))) for a, b in zip(err, y1))
-                if e > 1:
-                    h *= max(0.2, 0.8 * e ** (-1 / 15))
-                    continue
-                # bound the angles turned in one step, so that a guard cannot dip and come back
-                # between two looks
-                s0_, _, L0_, _, _, _ = self.kin(y)
-                s1_, _, L1_, _, _, _ = self.kin(y1)
-                turn = max(abs(s1_ - s0_), abs(L1_ - L0_))
-                if turn > 0.02:
-                    h *= 0.5 * 0.02 / turn
-                    continue
-                break
-            g1 = self.guards(y1)
-            noise = {n: self.noise(n) for n in g1}
-            crossed = [n for n in g1 if n in g0 and (
-                (n in pending and g1[n] < -noise[n]) or (n not in pending and g0[n] > 0 and g1[n] <= 0))]
-            if not crossed:
-                t += h
-                y = y1
-                pending = {n for n in pending if abs(g1[n]) <= noise[n]}
-                h = min(4 * h, h * max(1.0, 0.8 * max(e, 1e-30) ** (-1 / 15)), 0.05)
-                continue
-            # locate the earliest crossing by bisection on re-integrations from t
-            best = None
-            for name in crossed:
-                lo = 0.0
-                if name in pending:  # from the last time where the gap is clearly open
-                    lo = None
-                    for j in range(1, 60):
-                        ym, _ = gbs(self.flow, y, h * 0.5 ** j)
-                        if self.guards(ym)[name] > noise[name]:
-                            lo = h * 0.5 ** j
-                            break
-                    if lo is None:
-                        raise NotCovered(f"{name}: a released contact closing again within rounding at t = {t}")
-                hi = h
-                while hi - lo > 0.01 * self.tol * max(1.0, t):
-                    mid = 0.5 * (lo + hi)
-                    ym, _ = gbs(self.flow, y, mid)
-                    if self.guards(ym)[name] > 0:
-                        lo = mid
-                    else:
-                        hi = mid
-                if best is None or hi < best[0]:
-                    best = (hi, name)
-            dt, name = best
-            y, _ = gbs(self.flow, y, dt)
-            t += dt
-            pending = set()
-            y = self.handle(name, y, t, released)
-            if y is None:
-                return self.events
-            h = 1e-6
+        self.released = set()
+        return march(self, y)
+
+    # what march() asks of a run
+    def angles(self, y):
+        s, _, L, _, _, _ = self.kin(y)
+        return s, L
+
+    def after_step(self, y):
+        return y
+
+    def closing_within_rounding(self, name, y):
+        if name != "balloon_caught":
+            return None
+        _, _, L, Ld, Ldd, _ = self.kin(y)
+        return balloon_closing(self.mc, L, Ld, Ldd, y[-2], y[-1])
+
+    def handle_event(self, name, y, t):
+        return self.handle(name, y, t, self.released)
 
     def noise(self, name):
         """How near zero a guard's value is rounding (and the integration's error), not a gap."""
@@ -471,13 +534,24 @@ class Run:
 
     def handle(self, name, y, t, released):
         mc = self.mc
-        if name in ("lid_open", "seesaw_vertical", "sandbag_at_pivot"):
-            self.event(name, t)
+        if name == "radio_on":  # the string straight: it pulls with the balloon's net lift
+            self.event("radio_on" if mc.lift >= mc.switch_force else "switch_stays_off", t)
             return None
-        if name == "balloon_caught":
-            self.balloon = "stuck"
-            self.event(name, t)
-            return y
+        if name == "lid_open":  # the radio's latch (docs/extensions.md, "The radio")
+            self.event("lid_open", t)
+            if self.rope == "taut":
+                y = self.to_free_fall(y)
+                self.rope = "slack"
+                self.event("rope_slack", t)
+            self.spring = False
+            x, h, vx, vh, L, Ld, hB, vB = y
+            if self.balloon == "stuck":  # freed with its current velocity
+                hB, vB = mc.h_lim(L, Ld)
+                self.balloon = "free"
+                self.event("balloon_free", t)
+            # the rope let go for good, the sandbag off the seesaw (which stays where it is)
+            self.latched, self.lid, self.bag, self.s_air = True, "rest", "air", N.atan2(-h, -x)
+            return [x, h, vx, vh, L, 0.0, hB, vB]
         if name == "balloon_free":
             return self.settle_balloon(y, t, released)
         if name == "sandbag_lands":
@@ -500,6 +574,50 @@ class Run:
             released.add("rope_taut")
             y = self.to_free_fall(y)
             return self.settle_balloon(y, t, released)
+        if name == "arm_pull":
+            raise NotCovered(f"a stretched rope that would need the arm to pull the sandbag at t = {t}")
+        if name == "spring_slack" and mc.lock(*self.kin(y)[0:3:2]) >= 0:
+            self.event("rope_locked", t)  # straight on the far side of the hinge
+            return None
+        if name == "spring_slack":
+            self.spring = True
+            self.event("rope_taut", t)
+            released.add("spring_pull")
+            box = self.spring_acc(y)[4]
+            if box is not None and box < -1e-9 * (mc.m + mc.mL) * mc.g:  # a damped rope's pull at once
+                name = "lid_lifts"
+            else:
+                if box is not None:
+                    released.add("lid_lifts")
+                return self.settle_balloon(y, t, released)
+        if name == "lid_lifts":
+            self.lid = "free"
+            self.event("lid_lifts", t)
+            released.add("lid_rests")
+            return self.settle_balloon(y, t, released)
+        if name == "spring_pull":
+            self.spring = False
+            self.event("rope_slack", t)
+            released.add("spring_slack")
+            return self.settle_balloon(y, t, released)
+        if name == "lid_rests" and mc.stretchy and self.bag == "arm" and self.rope == "slack":
+            # the lid's stop jumps s': a pulling rope that would push lets go, a slack one longer
+            # than l_R that would pull (k s + c s' > 0) pulls, at that instant (docs/impact.md)
+            v_balloon = mc.h_lim(y[4], y[5])[1] if self.balloon == "stuck" else None
+            self.event("lid_rests", t)
+            self.lid = "rest"
+            y = y[:4] + [mc.L0, 0.0] + y[6:]
+            zero = 1e-9 * (mc.m + mc.mL) * mc.g
+            pulls = self.tension(y, slack=not self.spring)[0] > (-zero if self.spring else zero)
+            if pulls != self.spring:
+                self.spring = pulls
+                self.event("rope_taut" if pulls else "rope_slack", t)
+            released.add("spring_pull" if pulls else "spring_slack")
+            if pulls:
+                released.add("lid_lifts")
+            if v_balloon is not None:
+                y = self.settle_balloon(y[:-1] + [v_balloon], t, released, v_balloon)
+            return y
         if name == "lid_rests":
             v_balloon = None  # a stuck balloon moves down with the lid until the box stops it
             if self.balloon == "stuck":
@@ -525,6 +643,109 @@ class Run:
         raise AssertionError(name)
 
 
+def quadratic_closing(g, r, a):
+    """When g + r tau + a tau^2 / 2, a gap that has not opened beyond rounding, is zero again:
+    over a microsecond the expansion's next term is far below rounding. None if it does not close."""
+    if a >= 0:
+        return None
+    return (r + N.sqrt(r * r - 2 * a * max(g, 0.0))) / -a
+
+
+def balloon_closing(mc, L, Ld, Ldd, hB, vB):
+    """The freed balloon's gap below the lid's limit closing again within rounding."""
+    hl, hld = mc.h_lim(L, Ld)
+    return quadratic_closing(hl - hB, hld - vB, mc.h_lim_acc(L, Ld, Ldd) - mc.balloon_acc(vB))
+
+
+def march(run, y, t=0.0):
+    """Integrate the run from (t, y) event to event until it stops; its events.
+
+    Every guard of run.guards is looked at at the step ends; the earliest sign change is located
+    by bisection, each trial time integrated again from the step's start in one extrapolation
+    step, and run.handle_event applies it. A guard in run.released (a contact just released, a
+    force that starts at zero) is open by construction until it leaves run.noise."""
+    mc = run.mc
+    h = 1e-6
+    pending = set()  # released guards still within rounding of zero: open by construction
+    while True:
+        if t >= mc.t_max:
+            run.event("timeout", t)
+            return run.events
+        pending |= run.released
+        run.released = set()
+        g0 = run.guards(y)
+        pending &= set(g0)
+        # one accepted step
+        while True:
+            h = min(h, mc.t_max - t)
+            y1, err = gbs(run.flow, y, h)
+            e = max(a / (run.tol * (1 + abs(b))) for a, b in zip(err, y1))
+            if e > 1:
+                h *= max(0.2, 0.8 * e ** (-1 / 15))
+                continue
+            # bound the angles turned in one step, so that a guard cannot dip and come back
+            # between two looks
+            turn = max(abs(p - q) for p, q in zip(run.angles(y1), run.angles(y)))
+            if turn > 0.02:
+                h *= 0.5 * 0.02 / turn
+                continue
+            break
+        y1 = run.after_step(y1)
+        g1 = run.guards(y1)
+        noise = {n: run.noise(n) for n in g1}
+        crossed = [n for n in g1 if n in g0 and (
+            (n in pending and g1[n] < -noise[n]) or (n not in pending and g0[n] > 0 and g1[n] <= 0))]
+        if not crossed:
+            t += h
+            y = y1
+            pending = {n for n in pending if abs(g1[n]) <= noise[n]}
+            h = min(4 * h, h * max(1.0, 0.8 * max(e, 1e-30) ** (-1 / 15)), 0.05)
+            continue
+        # locate the earliest crossing by bisection on re-integrations from t
+        best = None
+        for name in crossed:
+            lo = 0.0
+            if name in pending:  # from the last time where the gap is clearly open
+                lo = None
+                for j in range(1, 60):
+                    ym, _ = gbs(run.flow, y, h * 0.5 ** j)
+                    if run.guards(ym)[name] > noise[name]:
+                        lo = h * 0.5 ** j
+                        break
+                if lo is None:
+                    dt = run.closing_within_rounding(name, y)
+                    if dt is None or dt > h:
+                        raise NotCovered(f"{name}: a released contact closing again within rounding at t = {t}")
+                    if best is None or dt < best[0]:
+                        best = (dt, name)
+                    continue
+            hi = h
+            while hi - lo > 0.01 * run.tol * max(1.0, t):
+                mid = 0.5 * (lo + hi)
+                ym, _ = gbs(run.flow, y, mid)
+                if run.guards(ym)[name] > 0:
+                    lo = mid
+                else:
+                    hi = mid
+            if best is None or hi < best[0]:
+                best = (hi, name)
+        dt, name = best
+        y, _ = gbs(run.flow, y, dt)
+        t += dt
+        pending = set()
+        h = 1e-6
+        if name in run.stops:
+            run.event(name, t)
+            return run.events
+        if name == "balloon_caught":  # it sticks under the lid, moving with its limit
+            run.balloon = "stuck"
+            run.event(name, t)
+            continue
+        y = run.handle_event(name, y, t)
+        if y is None:
+            return run.events
+
+
 def simulate(keys, tol=1e-13, digits=None):
     """The events of the machine `keys` (from load_machine) as (name, time) pairs, in order:
     with floats, each step's error within tol (relative to 1 + |y|); with digits, in mpmath's
@@ -533,9 +754,27 @@ def simulate(keys, tol=1e-13, digits=None):
     try:
         if digits:
             tol = min(tol, 10.0 ** (10 - digits))
-        return [(name, float(t)) for name, t in Run(Machine(keys), tol).simulate()]
+        return [(name, float(t)) for name, t in make_run(keys, tol).simulate()]
     finally:
         precise(None)
+
+
+def make_run(keys, tol=1e-13):
+    """The run of the machine: the massless seesaw's (Run), or with a seesaw that has mass the
+    full-coordinates one (full_coordinates.py)."""
+    if any(name in keys for name in RADIO) and float(keys.get("seesaw.mass", 0.0)) > 0:
+        raise NotCovered("the radio on a seesaw with mass")
+    if float(keys.get("seesaw.mass", 0.0)) > 0:
+        if keys["run.impact_law"] != "rope":
+            raise NotCovered("an impact law other than rope on a seesaw with mass")
+        if N is not math:
+            raise NotCovered("more digits for a seesaw with mass")
+        import full_coordinates
+        return full_coordinates.HeavyRun(Machine(keys), keys, tol)
+    for name in HEAVY:
+        if name in keys and name not in ("seesaw.mass", "damping.lid_hinge", "rope.stiffness", "rope.damping"):
+            raise NotCovered(f"{name} on the massless seesaw")
+    return Run(Machine(keys), tol)
 
 
 def main():
@@ -546,7 +785,7 @@ def main():
     for item in sys.argv[2:]:
         key, value = item.split("=", 1)
         over[key] = tomllib.loads(f"v = {value}")["v"]
-    run = Run(Machine(load_machine(sys.argv[1], over)))
+    run = make_run(load_machine(sys.argv[1], over))
     for name, t in run.simulate():
         print(f"{t:.12f}  {name}")
     for t, e0, e1 in run.energy:

@@ -1,11 +1,14 @@
 """whatnext's event times against a second solver written apart from it (scripts/reference).
 
-The reference derives the straight-rope equations from the Lagrangian with SymPy, integrates by
-extrapolation (Gragg-Bulirsch-Stoer) and finds events by bisection on re-integrations; it shares
-no code and no method with the C++ program. whatnext promises every event time within 1e-9 s at
-its default tolerance (docs/model.md, section 9): that is what is checked, on the paper's four
-examples, on random machines of the families the reference covers (and lids that fall back onto
-the box), and on a re-tightening rope.
+The reference derives its equations from the Lagrangian with SymPy (the straight rope's on the
+massless seesaw; Lagrange's equations of the first kind in full coordinates with a seesaw that has
+mass), integrates by extrapolation (Gragg-Bulirsch-Stoer) and finds events by bisection on
+re-integrations; it shares no code and no method with the C++ program. whatnext promises every
+event time within 1e-9 s at its default tolerance (docs/model.md, section 9): that is what is
+checked, on the paper's four examples, on random machines of every family the reference covers
+(heavy seesaws, dampers, drag, the rope that stretches, the floor and the stop, the impact laws,
+the radio; and lids that fall back onto the box), and on ropes that tighten again. Two machines
+where whatnext is known to miss are strict expected failures: they fail once it agrees.
 """
 
 import functools
@@ -27,7 +30,8 @@ def whatnext_events(example, overrides, tmp_path):
     out = tmp_path / "events.json"
     args = ["run", "--example", str(example), "--events", out, "-q"]
     for key, value in overrides.items():
-        args += ["--set", f"{key}={value!r}"]
+        text = str(value).lower() if isinstance(value, bool) else value if isinstance(value, str) else repr(value)
+        args += ["--set", f"{key}={text}"]
     run_cli(args)
     return [(e["type"], e["t"]) for e in json.loads(out.read_text())["events"]]
 
@@ -42,10 +46,23 @@ def _reference(example, overrides, digits):
     return ref.simulate(keys, digits=digits)
 
 
+def instants(events):
+    """The events' names, those of one instant (within 0.1 µs) in a fixed order: which of two
+    changes at one instant is named first is not what is judged here."""
+    out, group = [], []
+    for name, t in events:
+        if group and t - group[0][1] > 1e-7:
+            out += sorted(n for n, _ in group)
+            group = []
+        group.append((name, t))
+    return out + sorted(n for n, _ in group)
+
+
 def assert_same_story(got, want):
-    """The same events in the same order, each at the reference's time within the accuracy."""
-    names = [n for n, _ in got]
-    assert names == [n for n, _ in want], f"whatnext {got}\nreference {want}"
+    """The same events at the same instants, each at the reference's time within the accuracy."""
+    assert instants(got) == instants(want), f"whatnext {got}\nreference {want}"
+    got = sorted(got, key=lambda e: (round(e[1], 7), e[0]))
+    want = sorted(want, key=lambda e: (round(e[1], 7), e[0]))
     worst = max(abs(a - b) for (_, a), (_, b) in zip(got, want))
     assert worst <= ACCURACY, f"worst difference {worst:.3g} s\nwhatnext {got}\nreference {want}"
 
@@ -69,15 +86,6 @@ MACHINES = [(example, {key: DRAWS.uniform(*span) for key, span in FAMILIES[examp
             for example in FAMILIES for _ in range(3)]
 MACHINES += [(example, {key: DRAWS.uniform(*span) for key, span in FALLS_BACK.items()})
              for example in (1, 4) for _ in range(2)]
-
-
-@pytest.mark.parametrize("example,overrides", MACHINES)
-def test_random_machines(example, overrides, tmp_path):
-    try:
-        want = reference_events(example, overrides)
-    except ref.NotCovered as why:
-        pytest.skip(f"outside the reference: {why}")
-    assert_same_story(whatnext_events(example, overrides, tmp_path), want)
 
 
 def test_the_reference_agrees_with_itself_at_another_tolerance():
@@ -106,3 +114,122 @@ def test_the_reference_places_the_retightening_rope_at_a_float_solvers_time():
 
 def test_a_rope_that_tightens_again(tmp_path):
     assert_same_story(whatnext_events(2, RETIGHTENING, tmp_path), reference_events(2, RETIGHTENING, digits=24))
+
+
+# A seesaw with mass (the families ex2-heavy, ex4-heavy, ex1-heavy-damped of
+# scripts/check-sweep-accuracy.py): the reference's full-coordinates run.
+HEAVY = {
+    2: ({"seesaw.left_arm": 0.5},
+        {"seesaw.mass": (0.05, 0.8), "start.sandbag_height": (0.3, 1.2), "geometry.rope_length": (0.64, 0.8)}),
+    4: ({"seesaw.left_arm": 0.6}, {"seesaw.mass": (0.05, 1.0), "start.sandbag_x": (-0.5, -0.1)}),
+    1: ({"seesaw.mass": 0.3, "seesaw.left_arm": 0.5, "damping.lid_hinge": 0.01},
+        {"damping.pivot": (0.0, 0.1), "start.sandbag_height": (0.3, 1.2)}),
+}
+HEAVY_MACHINES = [(example, dict(fixed, **{key: DRAWS.uniform(*span) for key, span in varied.items()}))
+                  for example, (fixed, varied) in HEAVY.items() for _ in range(2)]
+
+
+def test_a_heavy_seesaw_tipping_the_rope_straight_before_the_sandbag_lands(tmp_path):
+    """The bar tips by its own weight, jerks the rope straight and lifts the lid a hair; lid and
+    rope hand the motion back and forth until both hold (docs/extensions.md), the last round
+    a microsecond long."""
+    overrides = {"seesaw.mass": 0.4, "seesaw.left_arm": 0.5, "geometry.rope_length": 0.64}
+    want = reference_events(2, overrides)
+    landing = [t for n, t in want if n == "sandbag_lands"][0]
+    assert [n for n, t in want if t < landing].count("lid_rests") == 2
+    assert_same_story(whatnext_events(2, overrides, tmp_path), want)
+
+
+def test_the_heavy_reference_agrees_with_itself_at_another_tolerance():
+    keys = ref.load_machine(EXAMPLES / "example2.toml", {"seesaw.mass": 0.4, "seesaw.left_arm": 0.5,
+                                                         "geometry.rope_length": 0.7})
+    a, b = ref.simulate(keys, tol=1e-11), ref.simulate(keys, tol=1e-13)
+    assert [n for n, _ in a] == [n for n, _ in b]
+    assert max(abs(x - y) for (_, x), (_, y) in zip(a, b)) < ACCURACY / 100
+
+
+# The smooth extensions that are only forces: the balloon's air drag (the family ex1-hinge-drag)
+# and the lid hinge's damper on the massless seesaw (the pivot's needs a seesaw with mass: above).
+SMOOTH = [(1, {"balloon.drag": True, "geometry.hinge_distance": DRAWS.uniform(0.8, 1.2),
+               "start.sandbag_height": DRAWS.uniform(0.3, 1.5), "geometry.seesaw_right_arm": DRAWS.uniform(0.5, 0.7)})
+          for _ in range(2)]
+SMOOTH += [(example, {"damping.lid_hinge": DRAWS.uniform(0.005, 0.05)}) for example in (1, 2, 4)]
+
+
+# The rope that stretches (docs/impact.md): a force on the massless seesaw (the family
+# ex1-stretchy) and on a seesaw with mass (ex1-heavy-stretchy).
+STRETCHY = [(1, {"rope.stiffness": DRAWS.uniform(2000, 50000), "rope.damping": DRAWS.uniform(0, 20),
+                 "start.sandbag_height": DRAWS.uniform(0.3, 1.5)}) for _ in range(2)]
+STRETCHY += [(1, {"seesaw.mass": DRAWS.uniform(0.1, 0.6), "seesaw.left_arm": 0.7,
+                  "rope.stiffness": DRAWS.uniform(2000, 50000), "rope.damping": DRAWS.uniform(0, 1000),
+                  "start.sandbag_height": DRAWS.uniform(0.3, 1.5)}) for _ in range(2)]
+# A damped rope that the lid's landing would make push: it lets go at that instant.
+STRETCHY += [(1, {"rope.stiffness": 10920.0, "rope.damping": 809.4, "seesaw.mass": 0.1932, "seesaw.left_arm": 0.7314,
+                  "start.seesaw_angle": -10.348, "start.sandbag_x": -0.363, "start.sandbag_height": 0.304,
+                  "masses.sandbag": 0.369, "masses.lid": 0.781, "run.t_max": 1.5})]
+
+
+@pytest.mark.xfail(strict=True, reason="whatnext leaves the rope slack for its first 1 us step after the landing")
+def test_a_landing_that_makes_a_slack_stretched_rope_pull(tmp_path):
+    """The damped rope let go while still 0.3 mm long; the sandbag's landing on the heavy seesaw
+    then drives its ends apart (k s + c s' from -9 N to +543 N): it pulls from that instant."""
+    overrides = {"seesaw.mass": 0.36233876890009853, "seesaw.left_arm": 0.7, "rope.stiffness": 47156.89671163708,
+                 "rope.damping": 422.3158762513677, "start.sandbag_height": 0.970351818113004}
+    want = reference_events(1, overrides)
+    landing = [t for n, t in want if n == "sandbag_lands"][1]
+    assert ("rope_taut", landing) in want
+    assert_same_story(whatnext_events(1, overrides, tmp_path), want)
+
+
+# The built machine's floor and end stop with restitution (ex2-heavy-floor, ex1-heavy-floor): the
+# seesaw's end lands on the floor and lifts, the sandbag slides to the stop and bounces off it.
+FLOOR = [(example, {"seesaw.mass": DRAWS.uniform(0.1, 0.6), "seesaw.left_arm": 0.9, "floor.enabled": True,
+                    "seesaw.end_stop": True, "floor.restitution": DRAWS.uniform(0, 0.5),
+                    "restitution.stop": DRAWS.uniform(0, 0.5), "start.sandbag_height": DRAWS.uniform(0.3, 1.2),
+                    "run.t_max": 1.0}) for example in (1, 2) for _ in range(2)]
+
+
+def test_the_floor_machines_meet_the_floor_and_the_stop():
+    """What the floor family's machines are there for: the seesaw's end on the floor, the
+    sandbag at the stop."""
+    names = set()
+    for example, overrides in FLOOR:
+        names |= {n for n, _ in reference_events(example, overrides)}
+    assert {"seesaw_on_floor", "seesaw_lifts", "sandbag_at_stop"} <= names
+
+
+# The other impact laws that set the jerk's speeds on the massless seesaw (ex2-angular-law,
+# ex2-kinetic-law); the energy's sign is left to the law.
+LAWS = [(2, {"run.impact_law": law, "geometry.rope_length": DRAWS.uniform(0.64, 0.8),
+             "start.sandbag_height": DRAWS.uniform(0.3, 1.2)})
+        for law in ("angular-momentum-sum", "kinetic-energy") for _ in range(2)]
+
+
+# The radio on the massless seesaw (ex2-radio): the latch at lid_open, the balloon rising to its
+# string; and a switch that the balloon's lift cannot push.
+RADIO = [(2, {"radio.enabled": True, "balloon.drag": True, "radio.string_length": DRAWS.uniform(0.75, 1.2),
+              "start.sandbag_height": DRAWS.uniform(0.3, 1.2)})]
+RADIO += [(1, {"radio.enabled": True, "radio.switch_force": 1.0})]
+
+
+@pytest.mark.parametrize("example,overrides", MACHINES + HEAVY_MACHINES + SMOOTH + STRETCHY + FLOOR + LAWS + RADIO)
+def test_random_machines(example, overrides, tmp_path):
+    try:
+        want = reference_events(example, overrides)
+    except ref.NotCovered as why:
+        pytest.skip(f"outside the reference: {why}")
+    assert_same_story(whatnext_events(example, overrides, tmp_path), want)
+
+
+GRAZING = {"radio.enabled": True, "balloon.drag": True, "radio.string_length": 1.065679321154795,
+           "start.sandbag_height": 0.46136142348425013, "run.t_max": 0.52}
+
+
+@pytest.mark.xfail(strict=True, reason="whatnext places this grazing re-tightening 8.5e-9 s late at its default tolerance")
+def test_a_rope_that_tightens_again_grazing_with_the_radio(tmp_path):
+    """The rope goes slack at 0.5081 s and is straight again 6.7 ms later, grazing: a float's
+    rounding of its gap moves the time by 1e-9 s (the reference in doubles gives 0.51477527006 s
+    at 1e-13), so the reference runs with 24 digits (0.51477526769 s)."""
+    want = reference_events(2, GRAZING, digits=24)
+    assert [n for n, _ in want].count("rope_taut") == 2
+    assert_same_story(whatnext_events(2, GRAZING, tmp_path), want)
