@@ -360,11 +360,19 @@ void Model::motion_on_accelerations(const Discrete& d, Decision& x, double t) co
   Discrete held = with_contacts(d, x.held);
   // A stretched rope is a force of one sign, T = k s + c s' >= 0, decided with the contacts: where
   // the impact's velocities would make it push (its damper, s' changed by a jump elsewhere), it lets
-  // go now, and the contacts' forces are found without it.
-  if (x.impacted && c_.stretchy && held.stretched && spring_rope(held) &&
-      !(rope_pull(held, x.k1).tension > 0.0)) {
-    held.stretched = false;
-    x.rope_let_go = true;
+  // go now, and the contacts' forces are found without it; where they make a slack rope that is
+  // still longer than l_R pull, it pulls from now on, and the forces are found with it.
+  if (x.impacted && c_.stretchy && spring_rope(held)) {
+    Discrete pulling = held;
+    pulling.stretched = true;
+    const RopePull p = rope_pull(pulling, x.k1);
+    if (held.stretched && !(p.tension > 0.0)) {
+      held.stretched = false;
+      x.rope_let_go = true;
+    } else if (!held.stretched && p.stretch > 0.0 && p.tension > 0.0) {
+      held.stretched = true;
+      x.rope_pulls = true;
+    }
   }
   const contact::System sys1 = contact_system(held, x.k1);
   x.mot = contact::solve_motion(sys1, x.held, x.ch);
@@ -435,6 +443,7 @@ void Model::enter_contacts(HybridState& hs, const Decision& x) const {
   }
   if (x.trend == Trend::forced_off) d.fallen_off = true;
   if (x.rope_let_go) d.stretched = false;
+  if (x.rope_pulls) d.stretched = true;
   place(hs, x.k2);
 }
 
@@ -527,6 +536,7 @@ void Model::report_changes(HybridState& hs, const Decision& x, Mode before, std:
   step_to((x.held & ~frictions) | (x.s0 & frictions), false);
   step_to(x.s2, trigger_changed && x.trend == Trend::closing);
   if (x.rope_let_go) emit(EventType::rope_slack);
+  if (x.rope_pulls) emit(EventType::rope_taut);
 }
 
 }  // namespace whatnext

@@ -241,8 +241,9 @@ class Model {
     GuardStart released[kContactCount];  // how each contact's gap opens if it is released
     Kinematics k2;                       // the state the motion goes on from
     // A rope that stretches pulls k s + c s' >= 0: an impact that changes s' so that the pull would
-    // be negative lets it go at that instant (its force's side of the complementarity).
-    bool rope_let_go = false;
+    // be negative lets it go at that instant (its force's side of the complementarity); one that
+    // makes a slack rope still longer than l_R pull (k s + c s' > 0) has it pull from that instant.
+    bool rope_let_go = false, rope_pulls = false;
     bool impulsive(int i) const {  // friction's impulse may have either sign
       return contact::has(imp.impulsive, i) &&
              (is_friction(i) ? std::fabs(imp.impulse[i]) : imp.impulse[i]) > ch.impulse_tol;

@@ -169,7 +169,6 @@ STRETCHY += [(1, {"rope.stiffness": 10920.0, "rope.damping": 809.4, "seesaw.mass
                   "masses.sandbag": 0.369, "masses.lid": 0.781, "run.t_max": 1.5})]
 
 
-@pytest.mark.xfail(strict=True, reason="whatnext leaves the rope slack for its first 1 us step after the landing")
 def test_a_landing_that_makes_a_slack_stretched_rope_pull(tmp_path):
     """The damped rope let go while still 0.3 mm long; the sandbag's landing on the heavy seesaw
     then drives its ends apart (k s + c s' from -9 N to +543 N): it pulls from that instant."""
