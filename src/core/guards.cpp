@@ -181,7 +181,8 @@ double Model::guard_floor(Guard g, const Discrete& d) const {
     case kGuardLid: return d.lid_resting ? 1e-10 * weight * len : 1e-12;
     case kGuardStop: return d.at_stop ? 1e-10 * weight : 1e-12 * len;
     case kGuardFloor: return d.grounded != 0 ? 1e-10 * weight : 1e-12 * len;
-    case kGuardBagFloor: return 1e-12 * len;
+    case kGuardBagFloor:
+    case kGuardRopeRelaxed: return 1e-12 * len;
     case kGuardBagSlip: return d.bag_stuck ? 1e-10 * weight : 1e-12 * len;
     case kGuardPivotSlip: return d.seesaw_stuck ? 1e-10 * weight * len : 1e-12;
     case kGuardHingeSlip: return d.lid_stuck ? 1e-10 * weight * len : 1e-12;

@@ -63,9 +63,9 @@ Model::RopePull Model::heavy_pull(const Discrete& d, double phi_s, double dphi_s
 }
 
 bool Model::relaxing(const HybridState& hs) const {
-  // Beyond rounding of l_R only: a rope let go within it has no corner left worth a piece.
+  // Beyond its guard's rounding band only: a rope let go within it has no corner left worth a piece.
   if (!spring_rope(hs.d) || hs.d.stretched) return false;
-  return rope_pull(hs.d, kinematics(hs.d, hs.y, false)).stretch > 1e-12 * c_.length_scale;
+  return rope_pull(hs.d, kinematics(hs.d, hs.y, false)).stretch > guard_floor(kGuardRopeRelaxed, hs.d);
 }
 
 double Model::rope_energy(const Kinematics& k) const {
