@@ -40,6 +40,9 @@ void Model::guards(const Discrete& d, const State& y, GuardValues& g, GuardValue
   slip_guards(d, k, g);
   if (c_.contacts > 3) built_guards(d, k, sys, g, rates);
   linkage_guards(d, k, g, only);
+  // The lid's opening has the lid's rate: a lid that just reaches the vertical between two steps
+  // is then seen by the Hermite cubic of the guard's values and rates.
+  if (rates && !d.latched) (*rates)[kGuardLidOpen] = k.dphi_l;
   if (c_.stretchy) stretchy_guards(d, k, g, rates);
 }
 
