@@ -444,3 +444,31 @@ TEST(CoulombTorques, APivotStoppedWithinRoundingSlipsOnFromRestInsteadOfChatteri
     EXPECT_LT(most, 8) << "example " << c.example;
   }
 }
+
+// konstanz with a rough arm: the sandbag sticks while the rope pulls the lid open; the latch lets
+// the rope go, the friction it would take to hold the sandbag jumps beyond mu times the arm's push,
+// and it slips at that instant (the contacts decided again at the latch, as at any event), not one
+// first step later. The independent solver of scripts/reference has it so too
+// (tests/python/test_reference.py).
+TEST(FrictionOnTheArm, ASandbagStuckAgainstTheRopeSlipsAtTheLatchsInstant) {
+  for (const char* mu : {"0.7", "1.0"}) {
+    for (const char* tolerance : {"1e-10", "1e-12", "1e-14"}) {
+      wn::Config cfg = wn::example_config(std::string_view("konstanz"));
+      wn::apply_set(cfg, std::string("friction.sandbag=") + mu);
+      wn::apply_set(cfg, std::string("run.tolerance=") + tolerance);
+      const wn::Result r = wn::simulate(wn::build_scenario(cfg));
+      const wn::Event* latch = find(r.events, wn::EventType::lid_open);
+      ASSERT_NE(latch, nullptr) << mu;
+      const wn::Event* sticks = nullptr;
+      for (const wn::Event& e : r.events) {
+        if (e.t >= latch->t) break;
+        if (e.type == wn::EventType::sandbag_sticks) sticks = &e;
+        if (e.type == wn::EventType::sandbag_slips) sticks = nullptr;
+      }
+      ASSERT_NE(sticks, nullptr) << "mu " << mu << ": stuck when the lid opens";
+      const wn::Event* slips = find(r.events, wn::EventType::sandbag_slips, sticks->t);
+      ASSERT_NE(slips, nullptr) << mu;
+      EXPECT_EQ(slips->t, latch->t) << "mu " << mu << " tolerance " << tolerance;
+    }
+  }
+}

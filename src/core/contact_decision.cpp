@@ -477,7 +477,8 @@ void Model::report_changes(HybridState& hs, const Decision& x, Mode before, std:
   using contact::has;
   const int trigger = x.trigger;
   const bool trigger_changed =
-      x.trend == Trend::closing ? x.impulsive(trigger) || has(x.s2, trigger) : !has(x.s2, trigger);
+      trigger >= 0 &&
+      (x.trend == Trend::closing ? x.impulsive(trigger) || has(x.s2, trigger) : !has(x.s2, trigger));
   const bool lid_knocked = x.impacted && has(x.s0, kLid) && !has(x.held, kLid);
   Set cur = x.s0;
   Mode from = before;

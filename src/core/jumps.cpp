@@ -240,6 +240,10 @@ void Model::latch_open(HybridState& hs, const Kinematics& k0, double limit_rate0
   latch.impulse[2] = c_.i_l * k0.dphi_l;
   out.push_back(latch);
   if (pulled) out.push_back(make_event(EventType::rope_slack, hs, latched, hs.d.mode()));
+  // What the rope held is decided again by the contacts that are left, like at any event: a
+  // sandbag stuck on the arm against the rope's pull slips at this instant, a seesaw held on the
+  // floor may lift off.
+  resolve(hs, kinematics(hs.d, hs.y, true), -1, Trend::releasing, out);
   if (hs.d.balloon_stuck) {
     const Mode m = hs.d.mode();
     if (c_.small) {
