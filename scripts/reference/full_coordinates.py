@@ -154,7 +154,8 @@ class HeavyRun:
         self.balloon = "stuck"
         self.fell_off = False
         self.spring = False  # the rope that stretches pulling
-        self.stops = STOPS
+        self.latched = False  # the radio's latch holds the lid open, the rope let go for good
+        self.stops = STOPS - {"radio_on"} - ({"lid_open"} if mc.radio else set())
 
     # --- the flow
     def contact(self, name, y):
@@ -243,14 +244,22 @@ class HeavyRun:
         return y[:8] + [hl, hld]
 
     # --- guards: a value reaching zero from above is an event
+    def contacts(self):
+        """The contacts that exist: after the radio's latch neither the rope nor the lid's box."""
+        return tuple(n for n in self.hm.contacts if not (self.latched and n in ("rope", "lid")))
+
     def guards(self, y):
         mc, hm = self.mc, self.hm
         acc, lam = self.accel(y)
-        out = {"lid_open": mc.top - y[3], "seesaw_vertical": mc.top - abs(y[2])}
+        out = {"seesaw_vertical": mc.top - abs(y[2])}
+        if mc.radio:  # the string straight (docs/extensions.md, "The radio")
+            out["radio_on"] = mc.string - math.hypot(mc.Hx + mc.rL - mc.switch[0], mc.Hy + y[8] - mc.switch[1])
+        if not self.latched:
+            out["lid_open"] = mc.top - y[3]
         force = hm.mass * (mc.g + 0.0) * (1 + hm.ell)
-        if hm.stretchy:
+        if hm.stretchy and not self.latched:
             out["spring_pull" if self.spring else "spring_slack"] = self.spring_guard(y)
-        for n in hm.contacts:
+        for n in self.contacts():
             if n == "rope" and hm.stretchy:
                 continue
             if n in self.active:
@@ -268,7 +277,9 @@ class HeavyRun:
             out["rope_locked"] = -F["lock"](*y[:8], *hm.params)
         L, Ld = y[3], y[7]
         hl, hld = mc.h_lim(L, Ld)
-        if self.balloon == "free":
+        if self.latched:
+            pass  # the balloon rises without a limit
+        elif self.balloon == "free":
             out["balloon_caught"] = hl - y[8]
         else:
             out["balloon_free"] = mc.balloon_acc(hld) - mc.h_lim_acc(L, Ld, acc[3])
@@ -303,7 +314,7 @@ class HeavyRun:
     def touching(self, y):
         hm = self.hm
         out = set()
-        for n in hm.contacts:
+        for n in self.contacts():
             if n in self.active:
                 out.add(n)
                 continue
@@ -355,13 +366,23 @@ class HeavyRun:
                 S, y1 = self.prefer(valid, before, trigger, closing=True)
                 if self.kinetic(y1) <= self.kinetic(y) * (1 + 1e-12):
                     break
-            # a rebound slower than the machine's zero of speed is held: the end of a cascade
-            held = {n for n in S if targets[n] < tol["rate"]}
-            held |= {n for n in touch - S if self.rate(n, y1) < tol["rate"]}
-            mid = S | held
-            if held != {n for n in S if targets[n] == 0.0}:
-                y1, _ = self.impulse(y, mid, {n: 0.0 if n in held else targets[n] for n in mid})
-            y = y1
+            # the rope's jerk under another impact law: its speeds (docs/model.md, section 7)
+            y2 = y1
+            if self.mc.law != "rope" and "rope" in S and rates["rope"] < -tol["closing"]:
+                y2 = self.law_jerk(y, y1, S, touch, tol)
+            if y2 is not y1:
+                # what it leaves separating slower than the machine's zero of speed is held
+                held = {n for n in touch if self.rate(n, y2) < tol["rate"]}
+                mid = S | held
+                y = y2 if held <= S else self.impulse(y2, mid, dict.fromkeys(mid, 0.0))[0]
+            else:
+                # a rebound slower than the machine's zero of speed is held: the end of a cascade
+                held = {n for n in S if targets[n] < tol["rate"]}
+                held |= {n for n in touch - S if self.rate(n, y1) < tol["rate"]}
+                mid = S | held
+                if held != {n for n in S if targets[n] == 0.0}:
+                    y1, _ = self.impulse(y, mid, {n: 0.0 if n in held else targets[n] for n in mid})
+                y = y1
             self.energy.append((t, e0, F["energy"](*y[:8], *hm.params)))
         else:
             held = mid = {n for n in touch if rates[n] <= tol["rate"]}
@@ -407,8 +428,46 @@ class HeavyRun:
             self.released.add(n + ("_force" if n in A else "_gap"))
         return self.settle_balloon(y, acc, t, v_balloon if (y[3], y[7]) != (L0, Ld0) else None)
 
+    def law_jerk(self, y0, y1, S, touch, tol):
+        """The speeds after the rope's jerk by the chosen impact law (docs/model.md, section 7,
+        with I_S on both sides: docs/extensions.md, "A seesaw with mass"), from the state before
+        it, y0; y1 (the inelastic impact, the rope law) where the law cannot be applied: the jerk
+        also presses the lid onto the box, or the law would leave a touching contact closing."""
+        hm, mc = self.hm, self.mc
+        if "lid" in S:
+            return y1
+        if S - {"rope", "arm"}:
+            raise NotCovered(f"the {mc.law} law with {sorted(S - {'rope', 'arm'})} in the jerk")
+        if mc.law not in ("angular-momentum-sum", "kinetic-energy"):
+            raise NotCovered(f"the {mc.law} law on a seesaw with mass")
+        x, h, s = y0[:3]
+        vx, vh, sd, Ld = y0[4:8]
+        W = self.contact("rope", y0)[1]
+        k = -W[2] / W[3]  # phiL' = k phiS' on the straight rope
+        loaded = "arm" in S
+        r = -(x * math.cos(s) + h * math.sin(s))
+        v_across = vx * math.sin(s) - vh * math.cos(s)
+        r_rate = -vx * math.cos(s) - vh * math.sin(s)  # kept (eq. 5)
+        m, IS, IL = (mc.m if loaded else 0.0), hm.IS, mc.I
+        if mc.law == "angular-momentum-sum":
+            den = m * r * r + IS + IL * k
+            if den == 0:
+                return y1
+            sd1 = (m * r * v_across + IS * sd + IL * Ld) / den
+        else:
+            sd1 = math.copysign(math.sqrt((m * v_across ** 2 + IS * sd * sd + IL * Ld * Ld) / (m * r * r + IS + IL * k * k)),
+                                y1[6])
+        y2 = list(y1)
+        if loaded:
+            y2[4] = -r_rate * math.cos(s) + r * sd1 * math.sin(s)
+            y2[5] = -r_rate * math.sin(s) - r * sd1 * math.cos(s)
+        y2[6], y2[7] = sd1, k * sd1
+        if any(self.rate(n, y2) < -tol["closing"] for n in touch):
+            return y1
+        return y2
+
     def kinetic(self, y):
-        return sum(y[4 + k] ** 2 / self.hm.Minv[k] for k in range(4)) / 2
+        return sum(y[4 + k] ** 2 / self.hm.Minv[k] for k in range(4) if self.hm.Minv[k]) / 2
 
     def impulse(self, y, S, targets=None):
         """The velocities after impulses on the contacts S that leave them with the rates
@@ -485,7 +544,24 @@ class HeavyRun:
         return quadratic_closing(g, self.rate(contact, y), self.gap_acc(contact, y, acc))
 
     def handle(self, name, y, t):
-        hm = self.hm
+        hm, mc = self.hm, self.mc
+        if name == "radio_on":  # the string straight: it pulls with the balloon's net lift
+            self.event("radio_on" if mc.lift >= mc.switch_force else "switch_stays_off", t)
+            return None
+        if name == "lid_open":  # the radio's latch (docs/extensions.md, "The radio")
+            self.event(name, t)
+            if "rope" in self.active or self.spring:
+                self.event("rope_slack", t)  # let go from the seesaw for good
+            if self.balloon == "stuck":  # freed with its current velocity
+                self.balloon = "free"
+                self.event("balloon_free", t)
+                y = y[:8] + list(mc.h_lim(y[3], y[7]))
+            # the lid held where it is: its coordinate without motion (an infinite inertia)
+            self.latched, self.spring = True, False
+            self.active -= {"rope", "lid"}
+            hm.Minv = hm.Minv[:3] + [0.0]
+            y = y[:7] + [0.0] + y[8:]
+            return self.decide(y, t, None)
         if name == "balloon_free":
             acc, _ = self.accel(y)
             return self.settle_balloon(y, acc, t)

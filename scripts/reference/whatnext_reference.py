@@ -762,11 +762,9 @@ def simulate(keys, tol=1e-13, digits=None):
 def make_run(keys, tol=1e-13):
     """The run of the machine: the massless seesaw's (Run), or with a seesaw that has mass the
     full-coordinates one (full_coordinates.py)."""
-    if any(name in keys for name in RADIO) and float(keys.get("seesaw.mass", 0.0)) > 0:
-        raise NotCovered("the radio on a seesaw with mass")
     if float(keys.get("seesaw.mass", 0.0)) > 0:
-        if keys["run.impact_law"] != "rope":
-            raise NotCovered("an impact law other than rope on a seesaw with mass")
+        if keys["run.impact_law"] != "rope" and float(keys.get("restitution.rope", 0.0)) > 0:
+            raise NotCovered("restitution.rope with another impact law")
         if N is not math:
             raise NotCovered("more digits for a seesaw with mass")
         import full_coordinates
