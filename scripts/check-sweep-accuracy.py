@@ -50,6 +50,17 @@ FAMILIES = {
     "ex2-heavy-linear-law": ["--example", "2", "--set", "run.impact_law=linear-momentum", "--set", "seesaw.mass=0.3",
                              "--set", "seesaw.left_arm=0.5", "--vary", "geometry.rope_length=0.64:0.8",
                              "--vary", "start.sandbag_height=0.3:1.2"],
+    # The other laws that set the jerk's speeds, and the radio's latch, on a seesaw with mass.
+    "ex2-heavy-angular-law": ["--example", "2", "--set", "run.impact_law=angular-momentum-sum", "--set", "seesaw.mass=0.3",
+                              "--set", "seesaw.left_arm=0.5", "--vary", "seesaw.mass=0.05:0.8",
+                              "--vary", "geometry.rope_length=0.64:0.8", "--vary", "start.sandbag_height=0.3:1.2"],
+    "ex2-heavy-kinetic-law": ["--example", "2", "--set", "run.impact_law=kinetic-energy", "--set", "seesaw.mass=0.3",
+                              "--set", "seesaw.left_arm=0.5", "--vary", "seesaw.mass=0.05:0.8",
+                              "--vary", "geometry.rope_length=0.64:0.8", "--vary", "start.sandbag_height=0.3:1.2"],
+    "ex2-heavy-radio": ["--example", "2", "--set", "radio.enabled=true", "--set", "balloon.drag=true",
+                        "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.9", "--set", "floor.enabled=true",
+                        "--vary", "seesaw.mass=0.05:0.6", "--vary", "radio.string_length=0.75:1.2",
+                        "--vary", "start.sandbag_height=0.3:1.2"],
     "ex1-heavy-damped": ["--example", "1", "--set", "damping.pivot=0.02", "--set", "damping.lid_hinge=0.01",
                          "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.5",
                          "--vary", "damping.pivot=0.0:0.1", "--vary", "start.sandbag_height=0.3:1.2"],
@@ -84,7 +95,8 @@ FAMILIES = {
 }
 NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
 SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex2-angular-law", "ex2-kinetic-law", "ex1-hinge-drag", "ex2-radio", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped",
-                   "ex1-stretchy", "ex1-heavy-stretchy", "ex2-heavy-floor", "ex1-heavy-floor"]
+                   "ex1-stretchy", "ex1-heavy-stretchy", "ex2-heavy-floor", "ex1-heavy-floor", "ex2-heavy-angular-law", "ex2-heavy-kinetic-law",
+                   "ex2-heavy-radio", "konstanz", "konstanz-bounce"]
 
 
 def solve(args, got):
@@ -93,7 +105,8 @@ def solve(args, got):
     here = os.path.dirname(os.path.abspath(__file__))
     sys.path.insert(0, os.path.join(here, "reference"))
     import whatnext_reference as ref
-    example = os.path.join(os.path.dirname(here), "examples", f"example{args[args.index('--example') + 1]}.toml")
+    name = args[args.index('--example') + 1]
+    example = os.path.join(os.path.dirname(here), "examples", f"example{name}.toml" if name.isdigit() else f"{name}.toml")
     fixed = {}
     for flag, item in zip(args, args[1:]):
         if flag == "--set":
@@ -167,6 +180,12 @@ def main():
                         worst, where = abs(float(x[k]) - float(y[k])), f"{k} of machine {x['index']}"
                     if x[k] and abs(float(x[k]) - float(y[k])) > ACCURACY and x["index"] not in beyond:
                         beyond.append(x["index"])
+            if os.environ.get("SHOW_MACHINES"):  # a reproducer for each machine beyond or other
+                for x in got:
+                    if x["index"] in beyond + other:
+                        fixed = [f"{f} {v}" for f, v in zip(FAMILIES[name], FAMILIES[name][1:]) if f == "--set"]
+                        sets = fixed + [f"--set {k}={x[k]}" for k in x if "." in k]
+                        print(f"  machine {x['index']}: whatnext run {' '.join(FAMILIES[name][:2] + sets)}")
             print(f"{name}: {valid} valid machines of {len(got)}; worst {worst:.3g} s = {worst / ACCURACY:.2f} of "
                   f"the accuracy ({where}); beyond it: {len(beyond)} {beyond[:5]}; "
                   f"other events or outcome: {len(other)} {other[:5]}"

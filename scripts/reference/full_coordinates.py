@@ -28,6 +28,7 @@ import math
 import sympy as sp
 
 from whatnext_reference import STOPS, NotCovered, balloon_closing, march, quadratic_closing
+import small_balloon
 
 CONTACTS = ("arm", "rope", "lid", "floor_left", "floor_right", "bag_floor", "stop")
 CLOSED = {"arm": "sandbag_lands", "rope": "rope_taut", "lid": "lid_rests", "floor_left": "seesaw_on_floor",
@@ -152,6 +153,10 @@ class HeavyRun:
         self.events, self.energy = [], []
         self.active = set()
         self.balloon = "stuck"
+        # a balloon smaller than the box: a disc among the lid and the walls (small_balloon.py)
+        self.small = small_balloon.SmallBalloon(mc, self) if mc.small else None
+        if self.small:
+            self.balloon = "small"
         self.fell_off = False
         self.spring = False  # the rope that stretches pulling
         self.latched = False  # the radio's latch holds the lid open, the rope let go for good
@@ -199,6 +204,8 @@ class HeavyRun:
 
     def flow(self, y):
         acc, _ = self.accel(y)
+        if self.small:
+            return list(y[4:8]) + acc + self.small.flow(y[8:], y[3], y[7], acc[3])
         vB = y[9]
         return list(y[4:8]) + acc + ([vB, self.mc.balloon_acc(vB)] if self.balloon == "free" else [0.0, 0.0])
 
@@ -228,6 +235,8 @@ class HeavyRun:
 
     # --- the balloon (one-way coupled, as in whatnext_reference.Run)
     def settle_balloon(self, y, acc, t, v_before=None):
+        if self.small:
+            return y[:8] + self.small.decide(y[8:], y[3], y[7], acc[3], t)
         if self.balloon != "stuck":
             return y
         mc = self.mc
@@ -253,7 +262,8 @@ class HeavyRun:
         acc, lam = self.accel(y)
         out = {"seesaw_vertical": mc.top - abs(y[2])}
         if mc.radio:  # the string straight (docs/extensions.md, "The radio")
-            out["radio_on"] = mc.string - math.hypot(mc.Hx + mc.rL - mc.switch[0], mc.Hy + y[8] - mc.switch[1])
+            bx, by = (y[8], y[9]) if self.small else (mc.rL, y[8])  # its centre from the hinge
+            out["radio_on"] = mc.string - math.hypot(mc.Hx + bx - mc.switch[0], mc.Hy + by - mc.switch[1])
         if not self.latched:
             out["lid_open"] = mc.top - y[3]
         force = hm.mass * (mc.g + 0.0) * (1 + hm.ell)
@@ -277,7 +287,9 @@ class HeavyRun:
             out["rope_locked"] = -F["lock"](*y[:8], *hm.params)
         L, Ld = y[3], y[7]
         hl, hld = mc.h_lim(L, Ld)
-        if self.latched:
+        if self.small:
+            out |= self.small.guards(y[8:], L, Ld, acc[3])
+        elif self.latched:
             pass  # the balloon rises without a limit
         elif self.balloon == "free":
             out["balloon_caught"] = hl - y[8]
@@ -286,7 +298,7 @@ class HeavyRun:
         return out
 
     def noise(self, name):
-        return 10 * self.tol * (self.hm.ell if name in ("balloon_caught",) else 1.0)
+        return 10 * self.tol * (self.hm.ell if name in ("balloon_caught",) or name.startswith("B_") else 1.0)
 
     def event(self, name, t):
         self.events.append((name, t))
@@ -368,7 +380,9 @@ class HeavyRun:
                     break
             # the rope's jerk under another impact law: its speeds (docs/model.md, section 7)
             y2 = y1
-            if self.mc.law != "rope" and "rope" in S and rates["rope"] < -tol["closing"]:
+            # (a jerk: the rope closing, or a landing that the straight rope takes up)
+            if self.mc.law != "rope" and "rope" in S and (
+                    rates["rope"] < -tol["closing"] or "arm" in S and rates["arm"] < -tol["closing"]):
                 y2 = self.law_jerk(y, y1, S, touch, tol)
             if y2 is not y1:
                 # what it leaves separating slower than the machine's zero of speed is held
@@ -512,7 +526,7 @@ class HeavyRun:
         if mc.C(mc.s0, mc.L0) > -2 * mc.lR * 1e-9:
             raise NotCovered("a rope straight (or too short) at the start")
         hl, _ = mc.h_lim(mc.L0, 0.0)
-        y = [mc.x0, mc.h0, mc.s0, mc.L0, 0.0, 0.0, 0.0, 0.0, hl, 0.0]
+        y = [mc.x0, mc.h0, mc.s0, mc.L0, 0.0, 0.0, 0.0, 0.0] + (self.small.start(mc.L0) if self.small else [hl, 0.0])
         self.active = {"lid"}
         self.released = set()
         touch = self.touching(y)
@@ -526,7 +540,10 @@ class HeavyRun:
         return y[2], y[3]
 
     def after_step(self, y):
-        return self.project(y, self.active)  # back onto the holding contacts, against the drift
+        y = self.project(y, self.active)  # back onto the holding contacts, against the drift
+        if self.small:
+            y = y[:8] + self.small.project(y[8:], y[3], y[7])
+        return y
 
     def handle_event(self, name, y, t):
         return self.handle(name, y, t)
@@ -535,6 +552,8 @@ class HeavyRun:
         """When a gap that never opens beyond rounding closes again: the zero of its expansion
         g + g' tau + g'' tau^2 / 2 (over a microsecond its next term is far below rounding)."""
         acc, _ = self.accel(y)
+        if name.startswith("B_"):
+            return self.small.closing_within_rounding(name, y[8:], y[3], y[7], acc[3])
         if name == "balloon_caught":
             return balloon_closing(self.mc, y[3], y[7], acc[3], y[8], y[9])
         contact, kind = name.rsplit("_", 1)
@@ -552,6 +571,10 @@ class HeavyRun:
             self.event(name, t)
             if "rope" in self.active or self.spring:
                 self.event("rope_slack", t)  # let go from the seesaw for good
+            if self.small and "lid" in self.small.active:  # freed with its current velocity
+                self.event("balloon_free", t)
+            if self.small:  # and the latched lid no longer limits it
+                self.small.latch(y[8:], y[3])
             if self.balloon == "stuck":  # freed with its current velocity
                 self.balloon = "free"
                 self.event("balloon_free", t)
@@ -565,6 +588,9 @@ class HeavyRun:
         if name == "balloon_free":
             acc, _ = self.accel(y)
             return self.settle_balloon(y, acc, t)
+        if name.startswith("B_") or name == "balloon_escapes":
+            acc, _ = self.accel(y)
+            return y[:8] + self.small.handle(name, y[8:], y[3], y[7], acc[3], t)
         if name == "spring_slack" and F["lock"](*y[:8], *hm.params) >= 0:
             self.event("rope_locked", t)  # straight on the far side of the hinge
             return None

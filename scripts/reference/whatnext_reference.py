@@ -187,8 +187,7 @@ class Machine:
         self.I = self.mL * (2 * self.rL) ** 2 / 3
         self.g = num(keys["run.gravity"])
         self.rB = num(keys.get("balloon.radius", self.rL))
-        if self.rB < self.rL:
-            raise NotCovered("a balloon smaller than the box")
+        self.small = self.rB < self.rL  # a disc in the box (small_balloon.py)
         # the balloon (docs/extensions.md, "Balloon physics"): net lift F over the accelerated mass,
         # less its drag D v|v|
         rho_a, rho_he = num(keys["air.density"]), num(keys["air.helium_density"])
@@ -772,7 +771,10 @@ def make_run(keys, tol=1e-13):
     for name in HEAVY:
         if name in keys and name not in ("seesaw.mass", "damping.lid_hinge", "rope.stiffness", "rope.damping"):
             raise NotCovered(f"{name} on the massless seesaw")
-    return Run(Machine(keys), tol)
+    mc = Machine(keys)
+    if mc.small:
+        raise NotCovered("a balloon smaller than the box on the massless seesaw")
+    return Run(mc, tol)
 
 
 def main():
