@@ -233,6 +233,12 @@ class SmallBalloon:
         self.set_sides(b, L)
         if "lid" in A and "lid" not in before:
             self.run.event("balloon_caught", t)
+            if self.status == "in" and b[0] * math.cos(L) + b[1] * math.sin(L) >= 2 * self.rL * math.cos(L):
+                # caught beyond the perpendicular from the wall's top: out of the box already
+                self.run.event("balloon_escapes", t)
+                self.status = "escaped"
+                A = self.active = set(A) & set(self.exists())
+                self.set_sides(b, L)
         if "lid" in before and "lid" not in A and self.status == "in":
             self.run.event("balloon_free", t)
         if self.status == "escaped" and "lid" not in A:
