@@ -42,6 +42,9 @@ FAMILIES = {
                         "--vary", "masses.lid=0.2:0.8"],
     "ex2-kinetic-law": ["--example", "2", "--set", "run.impact_law=kinetic-energy",
                         "--vary", "geometry.rope_length=0.64:0.8", "--vary", "start.sandbag_height=0.3:1.2"],
+    "ex2-linear-law": ["--example", "2", "--set", "run.impact_law=linear-momentum",
+                       "--vary", "geometry.rope_length=0.64:0.8", "--vary", "start.sandbag_height=0.3:1.2",
+                       "--vary", "masses.lid=0.2:0.8"],
     "ex2-radio": ["--example", "2", "--set", "radio.enabled=true", "--set", "balloon.drag=true",
                   "--vary", "radio.string_length=0.75:1.2", "--vary", "start.sandbag_height=0.3:1.2"],
     "ex2-heavy": ["--example", "2", "--set", "seesaw.mass=0.4", "--set", "seesaw.left_arm=0.5",
@@ -96,7 +99,8 @@ FAMILIES = {
 NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
 SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex2-angular-law", "ex2-kinetic-law", "ex1-hinge-drag", "ex2-radio", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped",
                    "ex1-stretchy", "ex1-heavy-stretchy", "ex2-heavy-floor", "ex1-heavy-floor", "ex2-heavy-angular-law", "ex2-heavy-kinetic-law",
-                   "ex2-heavy-radio", "konstanz", "konstanz-bounce"]
+                   "ex2-heavy-radio", "konstanz", "konstanz-bounce", "ex2-linear-law",
+                   "ex2-heavy-linear-law"]
 
 
 def solve(args, got):

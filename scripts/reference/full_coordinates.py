@@ -27,7 +27,7 @@ import math
 
 import sympy as sp
 
-from whatnext_reference import STOPS, NotCovered, balloon_closing, march, quadratic_closing
+from whatnext_reference import STOPS, NotCovered, balloon_closing, linear_momentum_law, march, quadratic_closing
 import small_balloon
 
 CONTACTS = ("arm", "rope", "lid", "floor_left", "floor_right", "bag_floor", "stop")
@@ -452,8 +452,8 @@ class HeavyRun:
             return y1
         if S - {"rope", "arm"}:
             raise NotCovered(f"the {mc.law} law with {sorted(S - {'rope', 'arm'})} in the jerk")
-        if mc.law not in ("angular-momentum-sum", "kinetic-energy"):
-            raise NotCovered(f"the {mc.law} law on a seesaw with mass")
+        if mc.law == "linear-momentum" and "arm" not in S:
+            return y1  # the law has nothing to keep without the sandbag: the rope law
         x, h, s = y0[:3]
         vx, vh, sd, Ld = y0[4:8]
         W = self.contact("rope", y0)[1]
@@ -463,7 +463,9 @@ class HeavyRun:
         v_across = vx * math.sin(s) - vh * math.cos(s)
         r_rate = -vx * math.cos(s) - vh * math.sin(s)  # kept (eq. 5)
         m, IS, IL = (mc.m if loaded else 0.0), hm.IS, mc.I
-        if mc.law == "angular-momentum-sum":
+        if mc.law == "linear-momentum":  # the sandbag's and the lid's, as on the massless seesaw
+            sd1, r_rate = linear_momentum_law(mc, r, s, y0[3], k, x, h, vx, vh, Ld)
+        elif mc.law == "angular-momentum-sum":
             den = m * r * r + IS + IL * k
             if den == 0:
                 return y1

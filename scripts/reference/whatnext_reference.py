@@ -165,7 +165,7 @@ def load_machine(path=None, overrides=None):
     for name in keys:
         if name not in DEFAULTS.keys() | IGNORED | OTHER | HEAVY | RADIO:
             raise NotCovered(f"{name} is not modelled by the reference")
-    if keys["run.impact_law"] not in ("rope", "angular-momentum-sum", "kinetic-energy"):
+    if keys["run.impact_law"] not in ("rope", "angular-momentum-sum", "kinetic-energy", "linear-momentum"):
         raise NotCovered(f"the {keys['run.impact_law']} impact law")
     return keys
 
@@ -478,11 +478,15 @@ class Run:
         J, p = mc.m * r * r, mc.m * r * r * sd
         law = {"rope": sd1, "angular-momentum-sum": (p + mc.I * Ld) / (J + mc.I * k),
                "kinetic-energy": N.sqrt((J * sd * sd + mc.I * Ld * Ld) / (J + mc.I * k * k)) * (1 if sd1 >= 0 else -1)}
-        sd_law = law[mc.law]
+        rd1 = rd  # kept (eq. 5), but by the linear-momentum law
+        if mc.law == "linear-momentum":
+            sd_law, rd_law = linear_momentum_law(mc, r, s, L, k, x, h, vx, vh, Ld)
+        else:
+            sd_law, rd_law = law[mc.law], rd
         if not (self.lid == "rest" and k * sd_law <= 0):
-            sd1 = sd_law
+            sd1, rd1 = sd_law, rd_law
         self.lid, self.rope = "free", "taut"
-        y4 = [r, s, L, rd, sd1, hB, vB]
+        y4 = [r, s, L, rd1, sd1, hB, vB]
         self.event("rope_taut", t)
         self.energy.append((t, e0, self.energy_of(y4)))
         # hB, vB of a stuck balloon: decided on the velocities after the jerk
@@ -640,6 +644,24 @@ class Run:
                 y = self.settle_balloon(y[:-1] + [v_balloon], t, released, v_balloon)
             return y
         raise AssertionError(name)
+
+
+def linear_momentum_law(mc, r, s, L, k, x, h, vx, vh, Ld):
+    """The `linear-momentum` law (docs/model.md, section 7): the linear momentum of the sandbag
+    and of the lid's centre of mass (r_L along the lid, moving r_L phiL' across it) kept through
+    the jerk, the sandbag on the arm and phiL' = k phiS' after it: phiS' and r' after it, from
+    the 2x2 system. The sandbag at -r (cos phiS, sin phiS): its velocity
+    -r' (cos, sin) + r phiS' (sin, -cos)."""
+    cs, sn, cL, sL = N.cos(s), N.sin(s), N.cos(L), N.sin(L)
+    m, lid = mc.m, mc.mL * mc.rL
+    Px, Py = m * vx - lid * Ld * sL, m * vh + lid * Ld * cL
+    # unknowns (r', phiS'): columns of the momentum after the jerk
+    a11, a12 = -m * cs, m * r * sn - lid * k * sL
+    a21, a22 = -m * sn, -m * r * cs + lid * k * cL
+    det = a11 * a22 - a12 * a21
+    if det == 0:
+        raise NotCovered("the linear-momentum law without a solution")
+    return (a11 * Py - a21 * Px) / det, (Px * a22 - a12 * Py) / det
 
 
 def quadratic_closing(g, r, a):
