@@ -28,7 +28,8 @@ ACCURACY = 1e-9  # s, whatnext's event accuracy at its default tolerance
 
 def whatnext_events(example, overrides, tmp_path):
     out = tmp_path / "events.json"
-    args = ["run", "--example", str(example), "--events", out, "-q"]
+    given = ["--example", str(example)] if example in (1, 2, 3, 4, "konstanz") else [EXAMPLES / f"{example}.toml"]
+    args = ["run", *given, "--events", out, "-q"]
     for key, value in overrides.items():
         text = str(value).lower() if isinstance(value, bool) else value if isinstance(value, str) else repr(value)
         args += ["--set", f"{key}={text}"]
@@ -42,7 +43,8 @@ def reference_events(example, overrides, digits=None):
 
 @functools.lru_cache(maxsize=None)
 def _reference(example, overrides, digits):
-    keys = ref.load_machine(EXAMPLES / f"example{example}.toml", dict(overrides))
+    name = f"example{example}.toml" if isinstance(example, int) else f"{example}.toml"
+    keys = ref.load_machine(EXAMPLES / name, dict(overrides))
     return ref.simulate(keys, digits=digits)
 
 
@@ -211,13 +213,75 @@ RADIO = [(2, {"radio.enabled": True, "balloon.drag": True, "radio.string_length"
 RADIO += [(1, {"radio.enabled": True, "radio.switch_force": 1.0})]
 
 
-@pytest.mark.parametrize("example,overrides", MACHINES + HEAVY_MACHINES + SMOOTH + STRETCHY + FLOOR + LAWS + RADIO)
+# The linear-momentum law (massless, ex2-linear-law; heavy, ex2-heavy-linear-law) and the other
+# laws on a seesaw with mass (ex2-heavy-angular-law, ex2-heavy-kinetic-law).
+LAWS += [(2, {"run.impact_law": "linear-momentum", "geometry.rope_length": DRAWS.uniform(0.64, 0.8),
+              "start.sandbag_height": DRAWS.uniform(0.3, 1.2), "masses.lid": DRAWS.uniform(0.2, 0.8)})]
+LAWS += [(2, {"run.impact_law": law, "seesaw.mass": DRAWS.uniform(0.05, 0.8), "seesaw.left_arm": 0.5,
+              "geometry.rope_length": DRAWS.uniform(0.64, 0.8), "start.sandbag_height": DRAWS.uniform(0.3, 1.2)})
+         for law in ("angular-momentum-sum", "kinetic-energy", "linear-momentum")]
+# The radio on a seesaw with mass on the floor (ex2-heavy-radio), the students' machine as built
+# and as idealised, and random ones of its family (konstanz, konstanz-bounce): the latch, the
+# balloon smaller than the box in the corner, freed, escaping, the switch.
+RADIO += [(2, {"radio.enabled": True, "balloon.drag": True, "seesaw.mass": DRAWS.uniform(0.05, 0.6),
+               "seesaw.left_arm": 0.9, "floor.enabled": True, "radio.string_length": DRAWS.uniform(0.75, 1.2),
+               "start.sandbag_height": DRAWS.uniform(0.3, 1.2)})]
+KONSTANZ = [("konstanz", {}), ("konstanz-ideal", {})]
+KONSTANZ += [("konstanz", {"start.sandbag_height": DRAWS.uniform(0.6, 1.4), "geometry.rope_length": DRAWS.uniform(0.36, 0.46),
+                           "seesaw.mass": DRAWS.uniform(0.1, 0.6)})]
+# (konstanz-bounce is left to the campaign: its seesaw chatters on the floor in a cascade whose
+# end the reference places only to about 1e-9 s, its times at tolerances 1e-12 and 1e-14 that far
+# apart)
+# A balloon smaller than the box on a seesaw with mass (ex2-small-balloon): caught again by the
+# lid, in the corner, sliding out past the wall's top.
+SMALL = [(example, {"balloon.radius": DRAWS.uniform(0.06, 0.194), "seesaw.mass": DRAWS.uniform(0.05, 0.6),
+                    "seesaw.left_arm": 0.6, "start.sandbag_height": DRAWS.uniform(0.3, 1.2),
+                    "masses.lid": DRAWS.uniform(0.2, 0.8), "radio.enabled": True, "balloon.drag": True})
+         for example in (1, 2)]
+
+
+def test_the_students_machine_stays_off_as_whatnext_says():
+    """The reference's own story of konstanz: the balloon freed by the jerk rises along the far
+    wall, escapes once higher than the lid can reach (2 r_L + r_B above the hinge) and its string
+    pulls less than the switch needs."""
+    want = reference_events("konstanz", {})
+    assert [n for n, _ in want][-2:] == ["balloon_escapes", "switch_stays_off"]
+
+
+@pytest.mark.parametrize("example,overrides", MACHINES + HEAVY_MACHINES + SMOOTH + STRETCHY + FLOOR + LAWS + RADIO
+                         + KONSTANZ + SMALL)
 def test_random_machines(example, overrides, tmp_path):
     try:
         want = reference_events(example, overrides)
     except ref.NotCovered as why:
         pytest.skip(f"outside the reference: {why}")
-    assert_same_story(whatnext_events(example, overrides, tmp_path), want)
+    got = whatnext_events(example, overrides, tmp_path)
+    unnamed = unnamed_at_the_latch(got, want)
+    assert_same_story(got, [e for e in want if e not in unnamed])
+    if unnamed:
+        pytest.xfail("whatnext does not name the sandbag leaving the arm at the radio's latch")
+
+
+def unnamed_at_the_latch(got, want):
+    """The reference's sandbag_leaves at a lid_open instant (the rope let go, the arm no longer
+    needed to push: docs/model.md, section 6 names such a change) that whatnext does not report."""
+    latch = {t for n, t in want if n == "lid_open"}
+    return [(n, t) for n, t in want if n == "sandbag_leaves" and t in latch
+            and not any(m == n and abs(u - t) < 1e-7 for m, u in got)]
+
+
+LATCH = {"seesaw.mass": 0.3, "seesaw.left_arm": 0.5, "radio.enabled": True}
+
+
+@pytest.mark.xfail(strict=True, reason="whatnext does not name the sandbag leaving the arm at the radio's latch")
+def test_the_sandbag_leaving_at_the_latch_is_an_event(tmp_path):
+    """Example 2 with a seesaw of mass and the radio: when the lid latches open the rope is let
+    go, and the arm, which pushed the sandbag only against the rope's pull, lets it go at the
+    same instant (the reference: its force would turn negative). whatnext's mode goes M4 > M2 > M1
+    with no `sandbag_leaves`; its other events agree to 1e-12 s."""
+    want = reference_events(2, LATCH)
+    assert ("sandbag_leaves", [t for n, t in want if n == "lid_open"][0]) in want
+    assert_same_story(whatnext_events(2, LATCH, tmp_path), want)
 
 
 GRAZING = {"radio.enabled": True, "balloon.drag": True, "radio.string_length": 1.065679321154795,
