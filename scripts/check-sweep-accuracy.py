@@ -100,7 +100,7 @@ NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
 SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex2-angular-law", "ex2-kinetic-law", "ex1-hinge-drag", "ex2-radio", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped",
                    "ex1-stretchy", "ex1-heavy-stretchy", "ex2-heavy-floor", "ex1-heavy-floor", "ex2-heavy-angular-law", "ex2-heavy-kinetic-law",
                    "ex2-heavy-radio", "konstanz", "konstanz-bounce", "ex2-linear-law",
-                   "ex2-heavy-linear-law"]
+                   "ex2-heavy-linear-law", "ex2-friction"]
 
 
 def solve(args, got):

@@ -65,6 +65,10 @@ def _derive():
         "floor_right": rH * sp.sin(s) - hf,
         "bag_floor": h - hf,
         "stop": La + (x * sp.cos(s) + h * sp.sin(s)),
+        # the tangential contacts of friction (docs/extensions.md, "Friction"): the sandbag's
+        # distance along the arm, and the seesaw's angle at the pivot
+        "slide": -(x * sp.cos(s) + h * sp.sin(s)),
+        "turn": s,
     }
     args = tuple(q) + tuple(u) + params
     out = {"M": sp.lambdify(params, [M[i, i] for i in range(4)], "math"),
@@ -143,6 +147,15 @@ class HeavyMachine:
         self.c_rope = float(keys.get("rope.damping", 0.0))
         # the lid's gap is an angle: its rates and accelerations are taken at its far edge
         self.gap_scale = {n: 1.0 for n in CONTACTS} | {"lid": 2 * mc.rL}
+        # Coulomb friction: the sandbag on the arm (mu), the pivot's torque bound (N m)
+        self.mu = float(keys.get("friction.sandbag", 0.0))
+        self.Tp = float(keys.get("friction.pivot", 0.0))
+        if float(keys.get("friction.lid_hinge", 0.0)) > 0:
+            raise NotCovered("friction at the lid's hinge")
+        if self.mu > 0 and (self.e["arm"] > 0 or self.e["stop"] > 0 or self.e["bag_floor"] > 0):
+            raise NotCovered("friction with restitution on the sandbag's contacts")
+        if (self.mu > 0 or self.Tp > 0) and (mc.law != "rope" or self.stretchy):
+            raise NotCovered("friction with another impact law or the rope that stretches")
 
 
 class HeavyRun:
@@ -159,6 +172,9 @@ class HeavyRun:
             self.balloon = "small"
         self.fell_off = False
         self.spring = False  # the rope that stretches pulling
+        # the friction contacts' states: "stick", a slip's sign (+1, -1), "idle" (the angle held
+        # by other contacts, the load theirs), or None (absent)
+        self.fric = {"arm": None, "pivot": None}
         self.latched = False  # the radio's latch holds the lid open, the rope let go for good
         self.stops = STOPS - {"radio_on"} - ({"lid_open"} if mc.radio else set())
 
@@ -166,13 +182,34 @@ class HeavyRun:
     def contact(self, name, y):
         return F[name](*y[:8], *self.hm.params)
 
-    def accel(self, y, active=None):
-        """q'' and the forces lambda of the contacts in `active` (default: those that hold)."""
+    def accel(self, y, active=None, fric=None):
+        """q'' and the forces lambda of the contacts in `active` (default: those that hold), with
+        friction in the states `fric` (default: the run's): a sticking contact is one more row
+        (its force "arm_t", "pivot_t"), a slipping sandbag pushes along W_n - s mu W_t, a slipping
+        pivot adds -s T_p to the seesaw's equation (docs/extensions.md, "Friction")."""
         active = self.active if active is None else active
+        fric = self.fric if fric is None else fric
         hm = self.hm
-        names = tuple(n for n in CONTACTS if n in active)
+        names = [n for n in CONTACTS if n in active]
         f = F["f"](*y[:8], *hm.params)
         rows = [self.contact(n, y)[1:] for n in names]
+        cols = [r[0] for r in rows]
+        if "arm" in names and fric["arm"] in (1, -1):
+            Wt = F["slide"](*y[:8], *hm.params)[1]
+            i = names.index("arm")
+            cols[i] = [cols[i][k] - fric["arm"] * hm.mu * Wt[k] for k in range(4)]
+        if "arm" in names and fric["arm"] == "stick":
+            _, Wt, wt = F["slide"](*y[:8], *hm.params)
+            names.append("arm_t")
+            rows.append((Wt, wt))
+            cols.append(Wt)
+        if fric["pivot"] == "stick":
+            names.append("pivot_t")
+            rows.append(([0.0, 0.0, 1.0, 0.0], 0.0))
+            cols.append([0.0, 0.0, 1.0, 0.0])
+        if fric["pivot"] in (1, -1):
+            f = list(f)
+            f[2] -= fric["pivot"] * hm.Tp
         if self.spring:  # the stretched rope's pull, Q = -T d span / dq
             T, grad = self.tension(y)
             f = [f[k] - T * grad[k] for k in range(4)]
@@ -181,10 +218,10 @@ class HeavyRun:
             return [Mi[k] * f[k] for k in range(4)], {}
         Ws = [r[0] for r in rows]
         ws = [r[1] for r in rows]
-        A = [[sum(Wi[k] * Mi[k] * Wj[k] for k in range(4)) for Wj in Ws] for Wi in Ws]
+        A = [[sum(Wi[k] * Mi[k] * Cj[k] for k in range(4)) for Cj in cols] for Wi in Ws]
         b = [-ws[i] - sum(Ws[i][k] * Mi[k] * f[k] for k in range(4)) for i in range(len(names))]
         lam = solve(A, b)
-        acc = [Mi[k] * (f[k] + sum(lam[i] * Ws[i][k] for i in range(len(names)))) for k in range(4)]
+        acc = [Mi[k] * (f[k] + sum(lam[i] * cols[i][k] for i in range(len(names)))) for k in range(4)]
         return acc, dict(zip(names, lam))
 
     def tension(self, y):
@@ -278,6 +315,15 @@ class HeavyRun:
                 continue
             else:
                 out[n + "_gap"] = self.contact(n, y)[0] * hm.gap_scale[n]
+        fa, fp = self.fric["arm"], self.fric["pivot"]
+        if "arm" in self.active and fa == "stick":
+            out["fric_arm_stick"] = (hm.mu * lam["arm"] - abs(lam["arm_t"])) / force
+        if "arm" in self.active and fa in (1, -1):
+            out["fric_arm_slip"] = fa * self.slide_rate(y)
+        if fp == "stick":
+            out["fric_pivot_stick"] = (hm.Tp - abs(lam["pivot_t"])) / force
+        if fp in (1, -1):
+            out["fric_pivot_slip"] = fp * y[6] * hm.ell
         if "arm" in self.active:
             along = F["along"](*y[:8], *hm.params)
             out["sandbag_at_pivot"] = along
@@ -350,8 +396,9 @@ class HeavyRun:
         _, W, _ = self.contact(n, y)
         return sum(W[k] * y[4 + k] for k in range(4)) * self.hm.gap_scale[n]
 
-    def decide(self, y, t, trigger):
-        """The contacts that hold after the event triggered by contact `trigger` (or None)."""
+    def decide(self, y, t, trigger, fric_trigger=None):
+        """The contacts that hold after the event triggered by contact `trigger` (or None), or by
+        the friction contact `fric_trigger` reaching its limit (which then slips where it may)."""
         hm = self.hm
         before = set(self.active)
         touch = self.touching(y) | ({trigger} if trigger else set())
@@ -369,13 +416,18 @@ class HeavyRun:
             for targets in (bounce, dict.fromkeys(touch, 0.0)):
                 valid = []
                 for S in subsets(touch):
-                    y1, imp = self.impulse(y, S, targets)
-                    if imp is None or any(p < -tol["impulse"] for p in imp.values()):
-                        continue
-                    if any(self.rate(n, y1) < -tol["closing"] for n in touch - S):
-                        continue
-                    valid.append((S, y1))
-                S, y1 = self.prefer(valid, before, trigger, closing=True)
+                    for mode in (("stick", 1, -1) if "arm" in S and hm.mu > 0 else (None,)):
+                        y1, imp = self.impulse(y, S, targets, mode)
+                        if imp is None or any(p < -tol["impulse"] for n, p in imp.items() if n != "arm_t"):
+                            continue
+                        if mode == "stick" and abs(imp["arm_t"]) > hm.mu * imp["arm"] + tol["impulse"]:
+                            continue
+                        if mode in (1, -1) and mode * self.slide_rate(y1) < -tol["closing"]:
+                            continue
+                        if any(self.rate(n, y1) < -tol["closing"] for n in touch - S):
+                            continue
+                        valid.append((S, (y1, mode)))
+                S, (y1, arm_mode) = self.prefer(valid, before, trigger, closing=True)
                 if self.kinetic(y1) <= self.kinetic(y) * (1 + 1e-12):
                     break
             # the rope's jerk under another impact law: its speeds (docs/model.md, section 7)
@@ -388,14 +440,14 @@ class HeavyRun:
                 # what it leaves separating slower than the machine's zero of speed is held
                 held = {n for n in touch if self.rate(n, y2) < tol["rate"]}
                 mid = S | held
-                y = y2 if held <= S else self.impulse(y2, mid, dict.fromkeys(mid, 0.0))[0]
+                y = y2 if held <= S else self.impulse(y2, mid, dict.fromkeys(mid, 0.0), arm_mode)[0]
             else:
                 # a rebound slower than the machine's zero of speed is held: the end of a cascade
                 held = {n for n in S if targets[n] < tol["rate"]}
                 held |= {n for n in touch - S if self.rate(n, y1) < tol["rate"]}
                 mid = S | held
                 if held != {n for n in S if targets[n] == 0.0}:
-                    y1, _ = self.impulse(y, mid, {n: 0.0 if n in held else targets[n] for n in mid})
+                    y1, _ = self.impulse(y, mid, {n: 0.0 if n in held else targets[n] for n in mid}, arm_mode)
                 y = y1
             self.energy.append((t, e0, F["energy"](*y[:8], *hm.params)))
         else:
@@ -408,21 +460,56 @@ class HeavyRun:
                   and self.spring_guard(y) * hm.mass * self.mc.g * (1 + hm.ell) < -tol["force"])
         if let_go or engage:
             self.spring = bool(engage)
+        # friction: a slip at rest starts from exactly zero speed (docs/extensions.md, "Friction")
+        arm_rest = piv_rest = None
+        if hm.mu > 0 and "arm" in held:
+            arm_rest = self.at_rest(y, held, "slide", tol)
+            y = arm_rest or y
+        if hm.Tp > 0:
+            piv_rest = self.at_rest(y, held, "turn", tol)
+            y = piv_rest or y
+        sign = lambda v: 1 if v > 0 else -1
+        # at rest: sticking where it may, or slipping where its limit was the event
+        rest_opts = {c: (1, -1, "stick", "idle") if fric_trigger == c else ("stick", "idle", 1, -1)
+                     for c in ("arm", "pivot")}
+        piv_opts = ((rest_opts["pivot"] if piv_rest else (sign(y[6]),)) if hm.Tp > 0 else (None,))
+        before_fric = dict(self.fric)
         valid = []
         for A in subsets(held):
             if "stop" in A and "arm" not in A:
                 continue
-            try:
-                acc, lam = self.accel(y, A)
-            except ZeroDivisionError:
-                continue
-            if any(v < -tol["force"] for v in lam.values()):
-                continue
-            if any(self.gap_acc(n, y, acc) < -tol["accel"] for n in held - A):
-                continue
-            valid.append((A, acc))
-        A, acc = self.prefer(valid, before, trigger, closing=bool(trigger) and trigger not in before)
+            arm_opts = ((rest_opts["arm"] if arm_rest else (sign(self.slide_rate(y)),))
+                        if hm.mu > 0 and "arm" in A else (None,))
+            for fa in arm_opts:
+                for fp in piv_opts:
+                    fric = {"arm": fa, "pivot": fp}
+                    try:
+                        acc, lam = self.accel(y, A, fric)
+                    except ZeroDivisionError:
+                        continue
+                    if "idle" in (fa, fp):  # only where the other contacts hold it already
+                        stuck = {"arm": "stick" if fa == "idle" else fa, "pivot": "stick" if fp == "idle" else fp}
+                        try:
+                            self.accel(y, A, stuck)
+                            continue
+                        except ZeroDivisionError:
+                            pass
+                    if any(v < -tol["force"] for n, v in lam.items() if n not in ("arm_t", "pivot_t")):
+                        continue
+                    if fa == "stick" and abs(lam["arm_t"]) > hm.mu * lam["arm"] + tol["force"]:
+                        continue
+                    if fp == "stick" and abs(lam["pivot_t"]) > hm.Tp + tol["force"]:
+                        continue
+                    if arm_rest and fa in (1, -1) and fa * self.slide_acc(y, acc) < -tol["accel"]:
+                        continue
+                    if piv_rest and fp in (1, -1) and fp * acc[2] * hm.ell < -tol["accel"]:
+                        continue
+                    if any(self.gap_acc(n, y, acc) < -tol["accel"] for n in held - A):
+                        continue
+                    valid.append((A, (acc, fric)))
+        A, (acc, fric) = self.prefer(valid, before, trigger, closing=bool(trigger) and trigger not in before)
         self.active = set(A)
+        self.fric = fric
         # the events, named by what changed: the trigger's first, then the impact's, then the rest
         changes = []
         for n in CONTACTS:
@@ -436,6 +523,16 @@ class HeavyRun:
         for c in first + [c for c in changes if c not in first] + (["rope_slack"] if let_go else []) + (
                 ["rope_taut"] if engage else []):
             self.event(c, t)
+        # friction's events: sticking, slipping (from sticking, or back the other way)
+        for c, (stick_event, slip_event) in (("arm", ("sandbag_sticks", "sandbag_slips")),
+                                             ("pivot", ("seesaw_sticks", "seesaw_slips"))):
+            was, now = (before_fric[c] if c != "arm" or "arm" in before else None), fric[c]
+            if now == "stick" and was != "stick":
+                self.event(stick_event, t)
+            if now in (1, -1) and was == "stick":
+                self.event(slip_event, t)
+            for kind in ("stick", "slip"):
+                self.released.add(f"fric_{c}_{kind}")
         if let_go or engage:
             self.released.add("spring_pull" if engage else "spring_slack")
         for n in touch:  # guards that start at zero: open (or holding) by construction
@@ -485,24 +582,63 @@ class HeavyRun:
     def kinetic(self, y):
         return sum(y[4 + k] ** 2 / self.hm.Minv[k] for k in range(4) if self.hm.Minv[k]) / 2
 
-    def impulse(self, y, S, targets=None):
+    def impulse(self, y, S, targets=None, arm_mode=None, extra=()):
         """The velocities after impulses on the contacts S that leave them with the rates
-        `targets` (default zero; in the units of their gaps)."""
+        `targets` (default zero; in the units of their gaps). With friction on the arm
+        (arm_mode): "stick" stops the slip too (its impulse "arm_t", |p_t| <= mu p_n to be
+        checked), a sign s takes mu p_n off it (the impulse along W_n - s mu W_t). `extra`:
+        the tangential rows ("slide", "turn") to bring to rest as well."""
+        hm = self.hm
         names = [n for n in CONTACTS if n in S]
+        Ws = [self.contact(n, y)[1] for n in names]
+        rhs = [(targets[n] / hm.gap_scale[n] if targets else 0.0) - sum(W[k] * y[4 + k] for k in range(4))
+               for n, W in zip(names, Ws)]
+        cols = list(Ws)
+        Wt = F["slide"](*y[:8], *hm.params)[1]
+        if "arm" in names and arm_mode in (1, -1):
+            i = names.index("arm")
+            cols[i] = [Ws[i][k] - arm_mode * hm.mu * Wt[k] for k in range(4)]
+        rest = list(extra) + (["slide"] if "arm" in names and arm_mode == "stick" else [])
+        for n in rest:
+            W = Wt if n == "slide" else [0.0, 0.0, 1.0, 0.0]
+            names.append("arm_t" if n == "slide" else "pivot_t")
+            Ws.append(W)
+            cols.append(W)
+            rhs.append(-sum(W[k] * y[4 + k] for k in range(4)))
         if not names:
             return y, {}
-        Mi = self.hm.Minv
-        Ws = [self.contact(n, y)[1] for n in names]
-        A = [[sum(Wi[k] * Mi[k] * Wj[k] for k in range(4)) for Wj in Ws] for Wi in Ws]
+        Mi = hm.Minv
+        A = [[sum(Wi[k] * Mi[k] * Cj[k] for k in range(4)) for Cj in cols] for Wi in Ws]
         try:
-            p = solve(A, [(targets[n] / self.hm.gap_scale[n] if targets else 0.0) - sum(W[k] * y[4 + k] for k in range(4))
-                          for n, W in zip(names, Ws)])
+            p = solve(A, rhs)
         except ZeroDivisionError:
             return y, None
         y1 = list(y)
         for k in range(4):
-            y1[4 + k] += Mi[k] * sum(p[i] * Ws[i][k] for i in range(len(names)))
+            y1[4 + k] += Mi[k] * sum(p[i] * cols[i][k] for i in range(len(names)))
         return y1, dict(zip(names, p))
+
+    def slide_rate(self, y):
+        W = F["slide"](*y[:8], *self.hm.params)[1]
+        return sum(W[k] * y[4 + k] for k in range(4))
+
+    def slide_acc(self, y, acc):
+        _, W, w = F["slide"](*y[:8], *self.hm.params)
+        return sum(W[k] * acc[k] for k in range(4)) + w
+
+    def at_rest(self, y, held, row, tol):
+        """A slip at rest (docs/extensions.md, "Friction"): slower than the zero of speed, and
+        stopping it with the contacts that hold takes no more kinetic energy than the machine's
+        mass has at that speed. The velocities with it stopped, or None."""
+        speed = self.slide_rate(y) if row == "slide" else y[6] * self.hm.ell
+        if abs(speed) >= tol["rate"]:
+            return None
+        y1, p = self.impulse(y, held, None, None, (row,))
+        if p is None:  # the contacts that hold keep it still already
+            y1 = y
+        if self.kinetic(y) - self.kinetic(y1) > 0.5 * self.hm.mass * tol["rate"] ** 2:
+            return None
+        return y1
 
     def gap_acc(self, n, y, acc):
         _, W, w = self.contact(n, y)
@@ -532,9 +668,12 @@ class HeavyRun:
         self.active = {"lid"}
         self.released = set()
         touch = self.touching(y)
-        if touch != self.active:  # a seesaw standing on the floor: decided on forces, at rest
+        if touch != self.active or self.hm.mu > 0 or self.hm.Tp > 0:
+            # a seesaw standing on the floor, friction: decided on forces, at rest (friction's
+            # state at the start is no event)
             self.active = touch
             y = self.decide(y, 0.0, None)
+            self.events = [e for e in self.events if not e[0].endswith(("_sticks", "_slips"))]
         return march(self, y)
 
     # what whatnext_reference.march asks of a run
@@ -543,6 +682,10 @@ class HeavyRun:
 
     def after_step(self, y):
         y = self.project(y, self.active)  # back onto the holding contacts, against the drift
+        extra = (("slide",) if self.fric["arm"] == "stick" and "arm" in self.active else ()) + (
+            ("turn",) if self.fric["pivot"] == "stick" else ())
+        if extra:  # and the sticking ones' rates
+            y = self.impulse(y, self.active, None, None, extra)[0]
         if self.small:
             y = y[:8] + self.small.project(y[8:], y[3], y[7])
         return y
@@ -590,6 +733,9 @@ class HeavyRun:
         if name == "balloon_free":
             acc, _ = self.accel(y)
             return self.settle_balloon(y, acc, t)
+        if name.startswith("fric_"):
+            _, c, kind = name.split("_")
+            return self.decide(y, t, None, c if kind == "stick" else None)
         if name.startswith("B_") or name == "balloon_escapes":
             acc, _ = self.accel(y)
             return y[:8] + self.small.handle(name, y[8:], y[3], y[7], acc[3], t)

@@ -147,7 +147,8 @@ STOPS = {"lid_open", "seesaw_vertical", "sandbag_at_pivot", "rope_locked", "radi
 # A seesaw with mass and the dampers: the full-coordinates run (full_coordinates.py).
 HEAVY = {"seesaw.mass", "seesaw.left_arm", "seesaw.inertia", "seesaw.com_offset", "damping.pivot",
          "damping.lid_hinge", "rope.stiffness", "rope.damping", "floor.enabled", "floor.restitution",
-         "seesaw.end_stop", "restitution.sandbag", "restitution.rope", "restitution.lid", "restitution.stop"}
+         "seesaw.end_stop", "restitution.sandbag", "restitution.rope", "restitution.lid", "restitution.stop",
+         "friction.sandbag", "friction.pivot", "friction.lid_hinge"}
 
 
 def load_machine(path=None, overrides=None):
