@@ -20,7 +20,10 @@ Which contacts hold is decided at each event as docs/model.md, section 5 defines
 as the velocities' projection in the metric M with one-signed impulses (every subset tried), with
 Newton's restitution as its target rates (docs/extensions.md), then the problem on accelerations
 (every subset tried), the same zeros of the machine's scale as the model names (rates 1e-6 of its
-speed scale count as held, the end of a cascade).
+speed scale count as held, the end of a cascade). Friction's tangential contacts (the sandbag's
+slide along the arm, the seesaw's turn at the pivot) join the same problems, sticking as a row,
+slipping as a force bounded by mu N or T_p; the other impact laws set the jerk's speeds after the
+inelastic impact has decided it; the radio's latch holds the lid and lets the rope go.
 """
 import itertools
 import math
