@@ -178,6 +178,10 @@ class SmallBalloon:
                 out["balloon_escapes"] = 2 * self.rL * math.cos(L) - (b[0] * math.cos(L) + b[1] * math.sin(L))
             else:
                 out["balloon_escapes"] = 2 * self.rL + self.rB - b[1]
+                # its centre above the lid's line (beside the lid it cannot be: only beyond the
+                # free edge): docs/extensions.md does not say whether that is out
+                if not self.latched:
+                    out["B_above_line"] = b[0] * math.sin(L) - b[1] * math.cos(L)
         return out
 
     def kink(self, n, b, L):
@@ -239,7 +243,9 @@ class SmallBalloon:
                 self.status = "escaped"
                 A = self.active = set(A) & set(self.exists())
                 self.set_sides(b, L)
-        if "lid" in before and "lid" not in A and self.status == "in":
+        # let go by the lid: named inside the box, and outside while beside the lid's face (rolling
+        # off its free edge is the way out the docs describe, no event)
+        if "lid" in before and "lid" not in A and (self.status == "in" or self.piece("lid", b, L) == "lid_face"):
             self.run.event("balloon_free", t)
         if self.status == "escaped" and "lid" not in A:
             self.status = "out"
@@ -269,6 +275,8 @@ class SmallBalloon:
             self.active &= set(self.exists())
             self.set_sides(b, L)
             return b
+        if name == "B_above_line":
+            raise NotCoveredBalloon("a free balloon in the box passing above the lid's line beyond its free edge")
         _, contact, kind = name.split("_")
         if kind == "kink":
             self.set_sides(b, L)

@@ -297,10 +297,25 @@ class Run:
         self.spring = False  # the rope that stretches pulling (with the sandbag on the arm)
         self.latched = False  # the radio's latch holds the lid open: only the balloon matters
         self.stops = STOPS - {"radio_on"} - ({"lid_open"} if mc.radio else set())
+        # a balloon smaller than the box: a disc among the lid and the walls (small_balloon.py),
+        # its four entries at the state's end instead of (hB, vB)
+        self.small = None
+        if mc.small:
+            if N is not math:
+                raise NotCovered("more digits with a balloon smaller than the box")
+            import small_balloon
+            self.small = small_balloon.SmallBalloon(mc, self)
 
     # The state: sandbag 'air' (M1) or 'arm' with rope 'slack' (M3, free fall) or 'taut' (M4);
     # free fall: y = [x, h, vx, vh, phiL, phiL', hB, vB]; M4: y = [r, phiS, phiL, r', phiS', hB, vB].
     def flow(self, y):
+        if self.small:
+            d = self.machine_flow(y[:-4] + [0.0, 0.0])[:-2]
+            _, _, L, Ld, Ldd, _ = self.kin(y)
+            return d + self.small.flow(y[-4:], L, Ld, Ldd)
+        return self.machine_flow(y)
+
+    def machine_flow(self, y):
         mc = self.mc
         if self.rope == "taut":
             r, s, L, rd, sd, hB, vB = y
@@ -368,10 +383,18 @@ class Run:
         mc = self.mc
         if mc.radio:
             radio = {"radio_on": mc.string - N.hypot(mc.Hx + mc.rL - mc.switch[0], mc.Hy + y[-2] - mc.switch[1])}
+            if self.small:
+                radio["radio_on"] = mc.string - N.hypot(mc.Hx + y[-4] - mc.switch[0], mc.Hy + y[-3] - mc.switch[1])
             if self.latched:
-                return radio
+                return radio | self.small_guards(y)
             return radio | self.machine_guards(y)
         return self.machine_guards(y)
+
+    def small_guards(self, y):
+        if not self.small:
+            return {}
+        _, _, L, Ld, Ldd, _ = self.kin(y)
+        return self.small.guards(y[-4:], L, Ld, Ldd)
 
     def machine_guards(self, y):
         mc = self.mc
@@ -380,7 +403,9 @@ class Run:
         if self.lid == "free":
             out["lid_rests"] = L - mc.L0
         hl, hld = mc.h_lim(L, Ld)
-        if self.balloon == "free":
+        if self.small:
+            out |= self.small.guards(y[-4:], L, Ld, Ldd)
+        elif self.balloon == "free":
             out["balloon_caught"] = hl - y[-2]
         else:
             out["balloon_free"] = mc.balloon_acc(hld) - mc.h_lim_acc(L, Ld, Ldd)
@@ -424,14 +449,14 @@ class Run:
         return 0.5 * mc.m * v2 + mc.m * mc.g * h + 0.5 * mc.I * Ld * Ld + mc.mL * mc.g * mc.rL * N.sin(L)
 
     def to_free_fall(self, y):
-        r, s, L, rd, sd, hB, vB = y
+        r, s, L, rd, sd = y[:5]
         for _ in range(3):  # the lid's angle back onto the closure, from the integration's drift
             L -= F["C"](s, L, *self.mc.params) / F["CL"](s, L, *self.mc.params)
         Ld = self.mc.k(s, L)[0] * sd
         x, h = -r * N.cos(s), -r * N.sin(s)
         vx = -rd * N.cos(s) + r * sd * N.sin(s)
         vh = -rd * N.sin(s) - r * sd * N.cos(s)
-        return [x, h, vx, vh, L, Ld, hB, vB]
+        return [x, h, vx, vh, L, Ld] + y[5:]
 
     def event(self, name, t):
         self.events.append((name, t))
@@ -440,6 +465,9 @@ class Run:
     def settle_balloon(self, y, t, released, v_before=None):
         """A stuck balloon that the lid leaves behind goes free: by its rate if an impact jumped the
         lid's (v_before: the balloon's speed before it), else by its acceleration."""
+        if self.small:
+            _, _, L, Ld, Ldd, _ = self.kin(y)
+            return y[:-4] + self.small.decide(y[-4:], L, Ld, Ldd, t)
         if self.balloon != "stuck":
             return y
         s, sd, L, Ld, Ldd, r = self.kin(y)
@@ -457,7 +485,8 @@ class Run:
     def jerk(self, y, t, released):
         """The rope jerked straight from free fall with the sandbag on the arm."""
         mc = self.mc
-        x, h, vx, vh, L, Ld, hB, vB = y
+        x, h, vx, vh, L, Ld = y[:6]
+        hB, vB = (y[6], y[7]) if not self.small else (None, None)
         r = N.hypot(x, h)
         s = N.atan2(-h, -x)
         rd = -vx * N.cos(s) - vh * N.sin(s)
@@ -489,7 +518,7 @@ class Run:
         if not (self.lid == "rest" and k * sd_law <= 0):
             sd1, rd1 = sd_law, rd_law
         self.lid, self.rope = "free", "taut"
-        y4 = [r, s, L, rd1, sd1, hB, vB]
+        y4 = [r, s, L, rd1, sd1] + (y[6:] if self.small else [hB, vB])
         self.event("rope_taut", t)
         self.energy.append((t, e0, self.energy_of(y4)))
         # hB, vB of a stuck balloon: decided on the velocities after the jerk
@@ -512,8 +541,10 @@ class Run:
         if mc.C(mc.s0, mc.L0) > -2 * mc.lR * 1e-9:
             raise NotCovered("a rope straight (or too short) at the start")
         hl, _ = mc.h_lim(mc.L0, 0.0)
-        y = [mc.x0, mc.h0, 0.0, 0.0, mc.L0, 0.0, hl, 0.0]
+        y = [mc.x0, mc.h0, 0.0, 0.0, mc.L0, 0.0] + (self.small.start(mc.L0) if self.small else [hl, 0.0])
         self.released = set()
+        if self.small:
+            self.balloon = "small"
         return march(self, y)
 
     # what march() asks of a run
@@ -522,9 +553,15 @@ class Run:
         return s, L
 
     def after_step(self, y):
+        if self.small:
+            _, _, L, Ld, _, _ = self.kin(y)
+            return y[:-4] + self.small.project(y[-4:], L, Ld)
         return y
 
     def closing_within_rounding(self, name, y):
+        if name.startswith("B_"):
+            _, _, L, Ld, Ldd, _ = self.kin(y)
+            return self.small.closing_within_rounding(name, y[-4:], L, Ld, Ldd)
         if name != "balloon_caught":
             return None
         _, _, L, Ld, Ldd, _ = self.kin(y)
@@ -536,10 +573,13 @@ class Run:
     def noise(self, name):
         """How near zero a guard's value is rounding (and the integration's error), not a gap."""
         scale = {"rope_taut": self.mc.lR ** 2, "balloon_caught": self.mc.rB}
-        return 10 * self.tol * scale.get(name, 1.0)
+        return 10 * self.tol * (self.mc.rB if name.startswith("B_") else scale.get(name, 1.0))
 
     def handle(self, name, y, t, released):
         mc = self.mc
+        if name.startswith("B_") or name == "balloon_escapes":
+            _, _, L, Ld, Ldd, _ = self.kin(y)
+            return y[:-4] + self.small.handle(name, y[-4:], L, Ld, Ldd, t)
         if name == "radio_on":  # the string straight: it pulls with the balloon's net lift
             self.event("radio_on" if mc.lift >= mc.switch_force else "switch_stays_off", t)
             return None
@@ -550,7 +590,14 @@ class Run:
                 self.rope = "slack"
                 self.event("rope_slack", t)
             self.spring = False
-            x, h, vx, vh, L, Ld, hB, vB = y
+            x, h, vx, vh, L, Ld = y[:6]
+            if self.small:  # freed with its current velocity, the latched lid no limit to it
+                if "lid" in self.small.active:
+                    self.event("balloon_free", t)
+                self.small.latch(y[-4:], L)
+                self.latched, self.lid, self.bag, self.s_air = True, "rest", "air", N.atan2(-h, -x)
+                return [x, h, vx, vh, L, 0.0] + y[6:]
+            hB, vB = y[6:8]
             if self.balloon == "stuck":  # freed with its current velocity
                 hB, vB = mc.h_lim(L, Ld)
                 self.balloon = "free"
@@ -796,10 +843,7 @@ def make_run(keys, tol=1e-13):
     for name in HEAVY:
         if name in keys and name not in ("seesaw.mass", "damping.lid_hinge", "rope.stiffness", "rope.damping"):
             raise NotCovered(f"{name} on the massless seesaw")
-    mc = Machine(keys)
-    if mc.small:
-        raise NotCovered("a balloon smaller than the box on the massless seesaw")
-    return Run(mc, tol)
+    return Run(Machine(keys), tol)
 
 
 def main():
