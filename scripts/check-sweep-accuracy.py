@@ -70,6 +70,8 @@ FAMILIES = {
                                 "--set", "radio.enabled=true", "--set", "balloon.drag=true",
                                 "--vary", "balloon.radius=0.06:0.194", "--vary", "seesaw.mass=0.05:0.6",
                                 "--vary", "start.sandbag_height=0.3:1.2", "--vary", "masses.lid=0.2:0.8"],
+    "ex1-small-balloon": ["--example", "1", "--set", "radio.enabled=true", "--vary", "balloon.radius=0.06:0.194",
+                          "--vary", "start.sandbag_height=0.3:1.5", "--vary", "masses.lid=0.2:0.8"],
     "ex1-heavy-damped": ["--example", "1", "--set", "damping.pivot=0.02", "--set", "damping.lid_hinge=0.01",
                          "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.5",
                          "--vary", "damping.pivot=0.0:0.1", "--vary", "start.sandbag_height=0.3:1.2"],
@@ -106,7 +108,8 @@ NOT_TIMES = {"index", "outcome", "error", "final_r", "final_phi_l_deg"}
 SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex2-angular-law", "ex2-kinetic-law", "ex1-hinge-drag", "ex2-radio", "ex2-heavy", "ex4-heavy", "ex1-heavy-damped",
                    "ex1-stretchy", "ex1-heavy-stretchy", "ex2-heavy-floor", "ex1-heavy-floor", "ex2-heavy-angular-law", "ex2-heavy-kinetic-law",
                    "ex2-heavy-radio", "konstanz", "konstanz-bounce", "ex2-linear-law",
-                   "ex2-heavy-linear-law", "ex2-friction", "ex2-heavy-small-balloon"]
+                   "ex2-heavy-linear-law", "ex2-friction", "ex2-heavy-small-balloon",
+                   "ex1-small-balloon"]
 
 
 def solve(args, got):
