@@ -153,11 +153,10 @@ class HeavyMachine:
         # Coulomb friction: the sandbag on the arm (mu), the pivot's torque bound (N m)
         self.mu = float(keys.get("friction.sandbag", 0.0))
         self.Tp = float(keys.get("friction.pivot", 0.0))
-        if float(keys.get("friction.lid_hinge", 0.0)) > 0:
-            raise NotCovered("friction at the lid's hinge")
+        self.Th = float(keys.get("friction.lid_hinge", 0.0))
         if self.mu > 0 and (self.e["arm"] > 0 or self.e["stop"] > 0 or self.e["bag_floor"] > 0):
             raise NotCovered("friction with restitution on the sandbag's contacts")
-        if (self.mu > 0 or self.Tp > 0) and (mc.law != "rope" or self.stretchy):
+        if (self.mu > 0 or self.Tp > 0 or self.Th > 0) and (mc.law != "rope" or self.stretchy):
             raise NotCovered("friction with another impact law or the rope that stretches")
 
 
@@ -177,7 +176,7 @@ class HeavyRun:
         self.spring = False  # the rope that stretches pulling
         # the friction contacts' states: "stick", a slip's sign (+1, -1), "idle" (the angle held
         # by other contacts, the load theirs), or None (absent)
-        self.fric = {"arm": None, "pivot": None}
+        self.fric = {"arm": None, "pivot": None, "hinge": None}
         self.latched = False  # the radio's latch holds the lid open, the rope let go for good
         self.stops = STOPS - {"radio_on"} - ({"lid_open"} if mc.radio else set())
 
@@ -210,9 +209,15 @@ class HeavyRun:
             names.append("pivot_t")
             rows.append(([0.0, 0.0, 1.0, 0.0], 0.0))
             cols.append([0.0, 0.0, 1.0, 0.0])
+        if fric["hinge"] == "stick":
+            names.append("hinge_t")
+            rows.append(([0.0, 0.0, 0.0, 1.0], 0.0))
+            cols.append([0.0, 0.0, 0.0, 1.0])
+        f = list(f)
         if fric["pivot"] in (1, -1):
-            f = list(f)
             f[2] -= fric["pivot"] * hm.Tp
+        if fric["hinge"] in (1, -1):
+            f[3] -= fric["hinge"] * hm.Th
         if self.spring:  # the stretched rope's pull, Q = -T d span / dq
             T, grad = self.tension(y)
             f = [f[k] - T * grad[k] for k in range(4)]
@@ -324,9 +329,14 @@ class HeavyRun:
         if "arm" in self.active and fa in (1, -1):
             out["fric_arm_slip"] = fa * self.slide_rate(y)
         if fp == "stick":
-            out["fric_pivot_stick"] = (hm.Tp - abs(lam["pivot_t"])) / force
+            out["fric_pivot_stick"] = (self.pivot_bound(y, self.active, self.fric) - abs(lam["pivot_t"])) / force
         if fp in (1, -1):
             out["fric_pivot_slip"] = fp * y[6] * hm.ell
+        fh = self.fric["hinge"]
+        if fh == "stick":
+            out["fric_hinge_stick"] = (hm.Th - abs(lam["hinge_t"])) / force
+        if fh in (1, -1):
+            out["fric_hinge_slip"] = fh * y[7] * 2 * mc.rL
         if "arm" in self.active:
             along = F["along"](*y[:8], *hm.params)
             out["sandbag_at_pivot"] = along
@@ -471,10 +481,16 @@ class HeavyRun:
         if hm.Tp > 0:
             piv_rest = self.at_rest(y, held, "turn", tol)
             y = piv_rest or y
+        lid_rest = None
+        if hm.Th > 0 and not self.latched:
+            lid_rest = self.at_rest(y, held, "turnL", tol)
+            y = lid_rest or y
         sign = lambda v: 1 if v > 0 else -1
         # at rest: sticking where it may, or slipping where its limit was the event
         rest_opts = {c: (1, -1, "stick", "idle") if fric_trigger == c else ("stick", "idle", 1, -1)
-                     for c in ("arm", "pivot")}
+                     for c in ("arm", "pivot", "hinge")}
+        lid_opts = ((rest_opts["hinge"] if lid_rest else (sign(y[7]),)) if hm.Th > 0 and not self.latched
+                    else (None,))
         piv_opts = ((rest_opts["pivot"] if piv_rest else (sign(y[6]),)) if hm.Tp > 0 else (None,))
         before_fric = dict(self.fric)
         valid = []
@@ -483,33 +499,43 @@ class HeavyRun:
                 continue
             arm_opts = ((rest_opts["arm"] if arm_rest else (sign(self.slide_rate(y)),))
                         if hm.mu > 0 and "arm" in A else (None,))
-            for fa in arm_opts:
-                for fp in piv_opts:
-                    fric = {"arm": fa, "pivot": fp}
+            for fa, fp, fh in itertools.product(arm_opts, piv_opts, lid_opts):
+                fric = {"arm": fa, "pivot": fp, "hinge": fh}
+                try:
+                    acc, lam = self.accel(y, A, fric)
+                except ZeroDivisionError:
+                    continue
+                # idle only where other contacts hold it already (the pivot: other than the
+                # hinge's friction, so that the pivot is the one named stuck)
+                idle_ok = True
+                for c in ("arm", "pivot", "hinge"):
+                    if fric[c] != "idle":
+                        continue
+                    stuck = dict(fric, **{c: "stick"}) | ({"hinge": None} if c == "pivot" else {})
                     try:
-                        acc, lam = self.accel(y, A, fric)
+                        self.accel(y, A, stuck)
+                        idle_ok = False
                     except ZeroDivisionError:
-                        continue
-                    if "idle" in (fa, fp):  # only where the other contacts hold it already
-                        stuck = {"arm": "stick" if fa == "idle" else fa, "pivot": "stick" if fp == "idle" else fp}
-                        try:
-                            self.accel(y, A, stuck)
-                            continue
-                        except ZeroDivisionError:
-                            pass
-                    if any(v < -tol["force"] for n, v in lam.items() if n not in ("arm_t", "pivot_t")):
-                        continue
-                    if fa == "stick" and abs(lam["arm_t"]) > hm.mu * lam["arm"] + tol["force"]:
-                        continue
-                    if fp == "stick" and abs(lam["pivot_t"]) > hm.Tp + tol["force"]:
-                        continue
-                    if arm_rest and fa in (1, -1) and fa * self.slide_acc(y, acc) < -tol["accel"]:
-                        continue
-                    if piv_rest and fp in (1, -1) and fp * acc[2] * hm.ell < -tol["accel"]:
-                        continue
-                    if any(self.gap_acc(n, y, acc) < -tol["accel"] for n in held - A):
-                        continue
-                    valid.append((A, (acc, fric)))
+                        pass
+                if not idle_ok:
+                    continue
+                if any(v < -tol["force"] for n, v in lam.items() if n not in ("arm_t", "pivot_t", "hinge_t")):
+                    continue
+                if fa == "stick" and abs(lam["arm_t"]) > hm.mu * lam["arm"] + tol["force"]:
+                    continue
+                if fp == "stick" and abs(lam["pivot_t"]) > self.pivot_bound(y, A, fric) + tol["force"]:
+                    continue
+                if fh == "stick" and abs(lam["hinge_t"]) > hm.Th + tol["force"]:
+                    continue
+                if arm_rest and fa in (1, -1) and fa * self.slide_acc(y, acc) < -tol["accel"]:
+                    continue
+                if piv_rest and fp in (1, -1) and fp * acc[2] * hm.ell < -tol["accel"]:
+                    continue
+                if lid_rest and fh in (1, -1) and fh * acc[3] * 2 * self.mc.rL < -tol["accel"]:
+                    continue
+                if any(self.gap_acc(n, y, acc) < -tol["accel"] for n in held - A):
+                    continue
+                valid.append((A, (acc, fric)))
         A, (acc, fric) = self.prefer(valid, before, trigger, closing=bool(trigger) and trigger not in before)
         self.active = set(A)
         self.fric = fric
@@ -528,7 +554,8 @@ class HeavyRun:
             self.event(c, t)
         # friction's events: sticking, slipping (from sticking, or back the other way)
         for c, (stick_event, slip_event) in (("arm", ("sandbag_sticks", "sandbag_slips")),
-                                             ("pivot", ("seesaw_sticks", "seesaw_slips"))):
+                                             ("pivot", ("seesaw_sticks", "seesaw_slips")),
+                                             ("hinge", ("lid_sticks", "lid_slips"))):
             was, now = (before_fric[c] if c != "arm" or "arm" in before else None), fric[c]
             if now == "stick" and was != "stick":
                 self.event(stick_event, t)
@@ -603,8 +630,8 @@ class HeavyRun:
             cols[i] = [Ws[i][k] - arm_mode * hm.mu * Wt[k] for k in range(4)]
         rest = list(extra) + (["slide"] if "arm" in names and arm_mode == "stick" else [])
         for n in rest:
-            W = Wt if n == "slide" else [0.0, 0.0, 1.0, 0.0]
-            names.append("arm_t" if n == "slide" else "pivot_t")
+            W = {"slide": Wt, "turn": [0.0, 0.0, 1.0, 0.0], "turnL": [0.0, 0.0, 0.0, 1.0]}[n]
+            names.append({"slide": "arm_t", "turn": "pivot_t", "turnL": "hinge_t"}[n])
             Ws.append(W)
             cols.append(W)
             rhs.append(-sum(W[k] * y[4 + k] for k in range(4)))
@@ -621,6 +648,15 @@ class HeavyRun:
             y1[4 + k] += Mi[k] * sum(p[i] * cols[i][k] for i in range(len(names)))
         return y1, dict(zip(names, p))
 
+    def pivot_bound(self, y, A, fric):
+        """The pivot's bound: T_p, or, with the hinge idle while the taut rope couples the two
+        (phiL' = k phiS'), T_p + |k| T_h (docs/extensions.md, "Friction")."""
+        hm = self.hm
+        if fric["hinge"] == "idle" and "rope" in A and "lid" not in A:
+            W = self.contact("rope", y)[1]
+            return hm.Tp + abs(W[2] / W[3]) * hm.Th
+        return hm.Tp
+
     def slide_rate(self, y):
         W = F["slide"](*y[:8], *self.hm.params)[1]
         return sum(W[k] * y[4 + k] for k in range(4))
@@ -633,7 +669,7 @@ class HeavyRun:
         """A slip at rest (docs/extensions.md, "Friction"): slower than the zero of speed, and
         stopping it with the contacts that hold takes no more kinetic energy than the machine's
         mass has at that speed. The velocities with it stopped, or None."""
-        speed = self.slide_rate(y) if row == "slide" else y[6] * self.hm.ell
+        speed = {"slide": self.slide_rate(y), "turn": y[6] * self.hm.ell, "turnL": y[7] * 2 * self.mc.rL}[row]
         if abs(speed) >= tol["rate"]:
             return None
         y1, p = self.impulse(y, held, None, None, (row,))
@@ -671,7 +707,7 @@ class HeavyRun:
         self.active = {"lid"}
         self.released = set()
         touch = self.touching(y)
-        if touch != self.active or self.hm.mu > 0 or self.hm.Tp > 0:
+        if touch != self.active or self.hm.mu > 0 or self.hm.Tp > 0 or self.hm.Th > 0:
             # a seesaw standing on the floor, friction: decided on forces, at rest (friction's
             # state at the start is no event)
             self.active = touch
@@ -686,7 +722,7 @@ class HeavyRun:
     def after_step(self, y):
         y = self.project(y, self.active)  # back onto the holding contacts, against the drift
         extra = (("slide",) if self.fric["arm"] == "stick" and "arm" in self.active else ()) + (
-            ("turn",) if self.fric["pivot"] == "stick" else ())
+            ("turn",) if self.fric["pivot"] == "stick" else ()) + (("turnL",) if self.fric["hinge"] == "stick" else ())
         if extra:  # and the sticking ones' rates
             y = self.impulse(y, self.active, None, None, extra)[0]
         if self.small:
@@ -729,6 +765,7 @@ class HeavyRun:
                 y = y[:8] + list(mc.h_lim(y[3], y[7]))
             # the lid held where it is: its coordinate without motion (an infinite inertia)
             self.latched, self.spring = True, False
+            self.fric["hinge"] = None
             self.active -= {"rope", "lid"}
             hm.Minv = hm.Minv[:3] + [0.0]
             y = y[:7] + [0.0] + y[8:]
