@@ -88,6 +88,9 @@ FAMILIES = {
     "ex2-friction": ["--example", "2", "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.5",
                      "--vary", "friction.sandbag=0.0:0.8", "--vary", "friction.pivot=0.0:0.3",
                      "--vary", "start.sandbag_height=0.3:1.2"],
+    "ex2-friction-hinge": ["--example", "2", "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.5",
+                           "--vary", "friction.lid_hinge=0.0:1.0", "--vary", "friction.sandbag=0.0:0.8",
+                           "--vary", "start.sandbag_height=0.3:1.2"],
     "ex1-stretchy": ["--example", "1", "--vary", "rope.stiffness=2000:50000", "--vary", "rope.damping=0:20",
                      "--vary", "start.sandbag_height=0.3:1.5"],
     # The built machine's floor and end stop, with bounces, on the paper's second example.
@@ -109,7 +112,7 @@ SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex2-angular-law", "ex2-kinet
                    "ex1-stretchy", "ex1-heavy-stretchy", "ex2-heavy-floor", "ex1-heavy-floor", "ex2-heavy-angular-law", "ex2-heavy-kinetic-law",
                    "ex2-heavy-radio", "konstanz", "konstanz-bounce", "ex2-linear-law",
                    "ex2-heavy-linear-law", "ex2-friction", "ex2-heavy-small-balloon",
-                   "ex1-small-balloon"]
+                   "ex1-small-balloon", "ex2-friction-hinge"]
 
 
 def solve(args, got):
