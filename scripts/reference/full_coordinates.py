@@ -98,10 +98,11 @@ F = _derive()
 def solve(A, b):
     """A x = b for a small dense system (Gaussian elimination with partial pivoting)."""
     n = len(b)
+    scale = max((abs(v) for row in A for v in row), default=0.0)
     A = [row[:] + [b[i]] for i, row in enumerate(A)]
     for k in range(n):
         p = max(range(k, n), key=lambda i: abs(A[i][k]))
-        if A[p][k] == 0:
+        if abs(A[p][k]) <= 1e-12 * scale:  # dependent rows within rounding: no unique forces
             raise ZeroDivisionError("singular contact problem")
         A[k], A[p] = A[p], A[k]
         for i in range(k + 1, n):
@@ -177,6 +178,9 @@ class HeavyRun:
         # the friction contacts' states: "stick", a slip's sign (+1, -1), "idle" (the angle held
         # by other contacts, the load theirs), or None (absent)
         self.fric = {"arm": None, "pivot": None, "hinge": None}
+        # a gap this small touches: 1e-9 in its own units (m, the lid's rad), as at the start
+        # (docs/model.md, section 6)
+        self.touch_zero = 1e-9
         self.latched = False  # the radio's latch holds the lid open, the rope let go for good
         self.stops = STOPS - {"radio_on"} - ({"lid_open"} if mc.radio else set())
 
@@ -399,9 +403,9 @@ class HeavyRun:
                 along = F["along"](*y[:8], *hm.params)
                 if self.fell_off or not 0 <= along <= hm.arm:
                     continue
-            if abs(self.contact(n, y)[0]) * hm.gap_scale[n] <= 1e-9:
+            if abs(self.contact(n, y)[0]) <= self.touch_zero:
                 out.add(n)
-        if hm.end_stop and "arm" in out and abs(self.contact("stop", y)[0]) <= 1e-9:
+        if hm.end_stop and "arm" in out and abs(self.contact("stop", y)[0]) <= self.touch_zero:
             out.add("stop")
         return out
 
@@ -473,30 +477,32 @@ class HeavyRun:
                   and self.spring_guard(y) * hm.mass * self.mc.g * (1 + hm.ell) < -tol["force"])
         if let_go or engage:
             self.spring = bool(engage)
-        # friction: a slip at rest starts from exactly zero speed (docs/extensions.md, "Friction")
-        arm_rest = piv_rest = None
-        if hm.mu > 0 and "arm" in held:
-            arm_rest = self.at_rest(y, held, "slide", tol)
-            y = arm_rest or y
-        if hm.Tp > 0:
-            piv_rest = self.at_rest(y, held, "turn", tol)
-            y = piv_rest or y
-        lid_rest = None
-        if hm.Th > 0 and not self.latched:
-            lid_rest = self.at_rest(y, held, "turnL", tol)
-            y = lid_rest or y
+        # friction: a slip at rest starts from exactly zero speed (docs/extensions.md, "Friction");
+        # at rest or not is judged with the contacts of each candidate set
         sign = lambda v: 1 if v > 0 else -1
         # at rest: sticking where it may, or slipping where its limit was the event
         rest_opts = {c: (1, -1, "stick", "idle") if fric_trigger == c else ("stick", "idle", 1, -1)
                      for c in ("arm", "pivot", "hinge")}
-        lid_opts = ((rest_opts["hinge"] if lid_rest else (sign(y[7]),)) if hm.Th > 0 and not self.latched
-                    else (None,))
-        piv_opts = ((rest_opts["pivot"] if piv_rest else (sign(y[6]),)) if hm.Tp > 0 else (None,))
         before_fric = dict(self.fric)
+        y_event = y
         valid = []
         for A in subsets(held):
             if "stop" in A and "arm" not in A:
                 continue
+            y = y_event
+            arm_rest = piv_rest = lid_rest = None
+            if hm.mu > 0 and "arm" in A:
+                arm_rest = self.at_rest(y, A, "slide", tol)
+                y = arm_rest or y
+            if hm.Tp > 0:
+                piv_rest = self.at_rest(y, A, "turn", tol)
+                y = piv_rest or y
+            if hm.Th > 0 and not self.latched:
+                lid_rest = self.at_rest(y, A, "turnL", tol)
+                y = lid_rest or y
+            piv_opts = ((rest_opts["pivot"] if piv_rest else (sign(y[6]),)) if hm.Tp > 0 else (None,))
+            lid_opts = ((rest_opts["hinge"] if lid_rest else (sign(y[7]),)) if hm.Th > 0 and not self.latched
+                        else (None,))
             arm_opts = ((rest_opts["arm"] if arm_rest else (sign(self.slide_rate(y)),))
                         if hm.mu > 0 and "arm" in A else (None,))
             for fa, fp, fh in itertools.product(arm_opts, piv_opts, lid_opts):
@@ -535,8 +541,8 @@ class HeavyRun:
                     continue
                 if any(self.gap_acc(n, y, acc) < -tol["accel"] for n in held - A):
                     continue
-                valid.append((A, (acc, fric)))
-        A, (acc, fric) = self.prefer(valid, before, trigger, closing=bool(trigger) and trigger not in before)
+                valid.append((A, (acc, fric, y)))
+        A, (acc, fric, y) = self.prefer(valid, before, trigger, closing=bool(trigger) and trigger not in before)
         self.active = set(A)
         self.fric = fric
         # the events, named by what changed: the trigger's first, then the impact's, then the rest
@@ -706,6 +712,7 @@ class HeavyRun:
         y = [mc.x0, mc.h0, mc.s0, mc.L0, 0.0, 0.0, 0.0, 0.0] + (self.small.start(mc.L0) if self.small else [hl, 0.0])
         self.active = {"lid"}
         self.released = set()
+        self.touch_zero = 1e-9
         touch = self.touching(y)
         if touch != self.active or self.hm.mu > 0 or self.hm.Tp > 0 or self.hm.Th > 0:
             # a seesaw standing on the floor, friction: decided on forces, at rest (friction's
