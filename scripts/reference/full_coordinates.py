@@ -304,6 +304,8 @@ class HeavyRun:
     # --- guards: a value reaching zero from above is an event
     def contacts(self):
         """The contacts that exist: after the radio's latch neither the rope nor the lid's box."""
+        if self.latched and not (self.hm.floor or self.hm.end_stop):
+            return ()  # the paper's machine: the sandbag has fallen out of the story
         return tuple(n for n in self.hm.contacts if not (self.latched and n in ("rope", "lid")))
 
     def guards(self, y):
@@ -773,6 +775,13 @@ class HeavyRun:
             # the lid held where it is: its coordinate without motion (an infinite inertia)
             self.latched, self.spring = True, False
             self.fric["hinge"] = None
+            if not (hm.floor or hm.end_stop):
+                # the paper's machine (docs/extensions.md, "The radio"): the sandbag goes on in free
+                # fall, no machine event is checked but the seesaw turning vertical under its own
+                # weight; the built machine's seesaw and sandbag go on on its floor and stop
+                self.active = set()
+                self.fell_off = True
+                self.fric["arm"] = None
             self.active -= {"rope", "lid"}
             hm.Minv = hm.Minv[:3] + [0.0]
             y = y[:7] + [0.0] + y[8:]

@@ -297,32 +297,20 @@ def test_random_machines(example, overrides, tmp_path):
         want = reference_events(example, overrides)
     except ref.NotCovered as why:
         pytest.skip(f"outside the reference: {why}")
-    got = whatnext_events(example, overrides, tmp_path)
-    unnamed = unnamed_at_the_latch(got, want)
-    assert_same_story(got, [e for e in want if e not in unnamed])
-    if unnamed:
-        pytest.xfail("whatnext does not name the sandbag leaving the arm at the radio's latch")
-
-
-def unnamed_at_the_latch(got, want):
-    """The reference's sandbag_leaves at a lid_open instant (the rope let go, the arm no longer
-    needed to push: docs/model.md, section 6 names such a change) that whatnext does not report."""
-    latch = {t for n, t in want if n == "lid_open"}
-    return [(n, t) for n, t in want if n == "sandbag_leaves" and t in latch
-            and not any(m == n and abs(u - t) < 1e-7 for m, u in got)]
+    assert_same_story(whatnext_events(example, overrides, tmp_path), want)
 
 
 LATCH = {"seesaw.mass": 0.3, "seesaw.left_arm": 0.5, "radio.enabled": True}
 
 
-@pytest.mark.xfail(strict=True, reason="whatnext does not name the sandbag leaving the arm at the radio's latch")
-def test_the_sandbag_leaving_at_the_latch_is_an_event(tmp_path):
-    """Example 2 with a seesaw of mass and the radio: when the lid latches open the rope is let
-    go, and the arm, which pushed the sandbag only against the rope's pull, lets it go at the
-    same instant (the reference: its force would turn negative). whatnext's mode goes M4 > M2 > M1
-    with no `sandbag_leaves`; its other events agree to 1e-12 s."""
+def test_the_sandbag_falls_out_of_the_story_at_the_latch(tmp_path):
+    """Example 2 with a seesaw of mass and the radio, no floor: at lid_open the latch lets the
+    rope go and the sandbag goes on in free fall, no machine event checked but the seesaw turning
+    vertical under its own weight (docs/extensions.md, "The radio")."""
     want = reference_events(2, LATCH)
-    assert ("sandbag_leaves", [t for n, t in want if n == "lid_open"][0]) in want
+    assert [n for n, _ in want][-1] == "seesaw_vertical"
+    latch = [t for n, t in want if n == "lid_open"][0]
+    assert {n for n, t in want if t > latch} == {"seesaw_vertical"}
     assert_same_story(whatnext_events(2, LATCH, tmp_path), want)
 
 
