@@ -203,6 +203,7 @@ class SmallBalloon:
             touch.add(trigger)
         zero_v = 1e-6 * max(math.sqrt(self.mc.g * self.rL), abs(b[2]), abs(b[3]), abs(Ld) * 2 * self.rL)
         rates = {n: self.rate(n, b, L, Ld) for n in touch}
+        S = set()
         if any(r < -1e-12 * zero_v * 1e6 for r in rates.values()):
             valid = []
             for S in _subsets(touch):
@@ -235,9 +236,12 @@ class SmallBalloon:
         A, _ = min(valid, key=lambda v: (len(v[0]), len(v[0] ^ before)))
         self.active = set(A)
         self.set_sides(b, L)
-        if "lid" in A and "lid" not in before:
+        # a lid that strikes the balloon and leaves it at once: caught and free at one instant
+        struck = "lid" in S
+        if ("lid" in A or struck) and "lid" not in before:
             self.run.event("balloon_caught", t)
-            if self.status == "in" and b[0] * math.cos(L) + b[1] * math.sin(L) >= 2 * self.rL * math.cos(L):
+            if "lid" in A and self.status == "in" and (
+                    b[0] * math.cos(L) + b[1] * math.sin(L) >= 2 * self.rL * math.cos(L)):
                 # caught beyond the perpendicular from the wall's top: out of the box already
                 self.run.event("balloon_escapes", t)
                 self.status = "escaped"
@@ -245,7 +249,8 @@ class SmallBalloon:
                 self.set_sides(b, L)
         # let go by the lid: named inside the box, and outside while beside the lid's face (rolling
         # off its free edge is the way out the docs describe, no event)
-        if "lid" in before and "lid" not in A and (self.status == "in" or self.piece("lid", b, L) == "lid_face"):
+        if ("lid" in before or struck) and "lid" not in A and (
+                self.status == "in" or self.piece("lid", b, L) == "lid_face"):
             self.run.event("balloon_free", t)
         if self.status == "escaped" and "lid" not in A:
             self.status = "out"
