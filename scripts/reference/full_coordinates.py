@@ -178,9 +178,6 @@ class HeavyRun:
         # the friction contacts' states: "stick", a slip's sign (+1, -1), "idle" (the angle held
         # by other contacts, the load theirs), or None (absent)
         self.fric = {"arm": None, "pivot": None, "hinge": None}
-        # a gap this small touches: 1e-9 in its own units (m, the lid's rad), as at the start
-        # (docs/model.md, section 6)
-        self.touch_zero = 1e-9
         self.latched = False  # the radio's latch holds the lid open, the rope let go for good
         self.stops = STOPS - {"radio_on"} - ({"lid_open"} if mc.radio else set())
 
@@ -405,9 +402,11 @@ class HeavyRun:
                 along = F["along"](*y[:8], *hm.params)
                 if self.fell_off or not 0 <= along <= hm.arm:
                     continue
-            if abs(self.contact(n, y)[0]) <= self.touch_zero:
+            # a gap within 1e-9 of its own units (m, the lid's rad) touches, at an event as at the
+            # start (docs/model.md, section 6)
+            if abs(self.contact(n, y)[0]) <= 1e-9:
                 out.add(n)
-        if hm.end_stop and "arm" in out and abs(self.contact("stop", y)[0]) <= self.touch_zero:
+        if hm.end_stop and "arm" in out and abs(self.contact("stop", y)[0]) <= 1e-9:
             out.add("stop")
         return out
 
@@ -714,7 +713,6 @@ class HeavyRun:
         y = [mc.x0, mc.h0, mc.s0, mc.L0, 0.0, 0.0, 0.0, 0.0] + (self.small.start(mc.L0) if self.small else [hl, 0.0])
         self.active = {"lid"}
         self.released = set()
-        self.touch_zero = 1e-9
         touch = self.touching(y)
         if touch != self.active or self.hm.mu > 0 or self.hm.Tp > 0 or self.hm.Th > 0:
             # a seesaw standing on the floor, friction: decided on forces, at rest (friction's
