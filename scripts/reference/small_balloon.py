@@ -16,8 +16,8 @@ projected (one-signed impulses, every subset tried: the inelastic stop, "its vel
 lid becomes the lid's, along it is kept"), then the forces on the accelerations decide which
 contacts hold. Nothing here is the docs' closed forms (q_max, the 2x2 corner problem): those follow.
 
-The story's rules on top (docs/extensions.md): the lid's contact closing is `balloon_caught`, opening
-`balloon_free` (the walls' contacts are not reported); on the lid the balloon escapes when its centre
+The story's rules on top (docs/extensions.md): the lid's contact closing beside its face is
+`balloon_caught`, opening there `balloon_free` (the walls' and the free edge's are not reported); on the lid the balloon escapes when its centre
 passes the perpendicular from W to the lid (p.u = 2 r_L cos phiL), free in the box when it is higher
 than the lid can reach (p_y >= 2 r_L + r_B); escaped, only the lid is an obstacle, and once it has
 left the lid nothing is (out). It starts in the corner, at rest, the lid resting.
@@ -236,9 +236,12 @@ class SmallBalloon:
         A, _ = min(valid, key=lambda v: (len(v[0]), len(v[0] ^ before)))
         self.active = set(A)
         self.set_sides(b, L)
-        # a lid that strikes the balloon and leaves it at once: caught and free at one instant
+        # a lid that strikes the balloon and leaves it at once: caught and free at one instant;
+        # named beside the lid's face only (its free edge stops the balloon from beside like a
+        # wall, and rolling off it is the way out: docs/extensions.md)
+        face = self.piece("lid", b, L) == "lid_face"
         struck = "lid" in S
-        if ("lid" in A or struck) and "lid" not in before:
+        if ("lid" in A or struck) and "lid" not in before and face:
             self.run.event("balloon_caught", t)
             if "lid" in A and self.status == "in" and (
                     b[0] * math.cos(L) + b[1] * math.sin(L) >= 2 * self.rL * math.cos(L)):
@@ -247,10 +250,8 @@ class SmallBalloon:
                 self.status = "escaped"
                 A = self.active = set(A) & set(self.exists())
                 self.set_sides(b, L)
-        # let go by the lid: named inside the box, and outside while beside the lid's face (rolling
-        # off its free edge is the way out the docs describe, no event)
-        if ("lid" in before or struck) and "lid" not in A and (
-                self.status == "in" or self.piece("lid", b, L) == "lid_face"):
+        # let go by the lid beside its face
+        if ("lid" in before or struck) and "lid" not in A and face:
             self.run.event("balloon_free", t)
         if self.status == "escaped" and "lid" not in A:
             self.status = "out"
