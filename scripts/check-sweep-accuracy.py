@@ -6,8 +6,8 @@ an extension or an impact law switched on), the same machines are swept at the d
 of 1e-8 s and compared with a reference: by default the same build at run.tolerance 1e-14
 (events located to 1e-14 s), or, with REFERENCE `solver`, the independent solver of
 scripts/reference (another method family, no code shared with whatnext) for the families it
-covers (SOLVER_FAMILIES: the massless seesaw's examples, drag, the rope that stretches, the seesaw
-with mass, damped, stretchy, on the floor with the end stop). Every event column (each event type's first
+covers (SOLVER_FAMILIES: every family here, the students' machine, friction and the balloon smaller
+than the box included; a machine it does not model is counted as not covered). Every event column (each event type's first
 time) and the outcome are compared. Printed per family: the worst difference, as a fraction of the
 accuracy, and the machines whose outcome or set of events differs (and, with the solver, how many
 machines it does not cover). docs/performance.md ("Sweeps") quotes its output.
@@ -18,7 +18,9 @@ Usage: scripts/check-sweep-accuracy.py [WHATNEXT] [MACHINES] [SEED] [FAMILY,...|
   build for the reference runs (say, one before a change to how often the guards are looked at,
   which a reference taking the same steps could not judge), or `solver`.
 The builds need only the Python standard library; the solver needs Debian's python3-sympy
-(about 0.1 s of CPU a machine, 1-3 s with a seesaw with mass).
+(about 0.1 s of CPU a machine, 1-3 s with a seesaw with mass, 5 s with konstanz's bounces).
+SHOW_MACHINES=1 in the environment prints a `whatnext run` line for each machine beyond the
+accuracy or with other events.
 """
 import csv
 import os
