@@ -274,8 +274,8 @@ def test_friction_sticks_and_slips():
 def test_a_sandbag_stuck_at_the_latch_slips_at_once(tmp_path):
     """konstanz with friction.sandbag = 0.7: the sandbag sticks on the arm while the rope pulls;
     at lid_open the latch lets the rope go, the friction it needs jumps beyond mu N, and it slips
-    at that instant (a build that decided it only at its next step reported it 1.0e-6 s late, and
-    the seesaw's landing on the floor 1.7e-8 s early)."""
+    at that instant (decided only at the step after it, it would come 1.0e-6 s late and the
+    seesaw's landing on the floor 1.7e-8 s early)."""
     overrides = {"friction.sandbag": 0.7}
     want = reference_events("konstanz", overrides)
     assert [t for n, t in want if n == "sandbag_slips"][0] == [t for n, t in want if n == "lid_open"][0]
