@@ -87,6 +87,8 @@ FAMILIES = {
                  "--vary", "geometry.rope_length=0.36:0.46", "--vary", "seesaw.mass=0.1:0.6"],
     "konstanz-bounce": ["--example", "konstanz", "--set", "floor.restitution=0.4", "--set", "restitution.stop=0.3",
                         "--vary", "start.sandbag_height=0.6:1.4", "--vary", "start.sandbag_x=-0.7:-0.3"],
+    "ex1-friction-hinge": ["--example", "1", "--vary", "friction.lid_hinge=0.0:1.5", "--vary", "start.sandbag_height=0.3:1.5",
+                           "--vary", "masses.lid=0.2:0.8"],
     "konstanz-friction": ["--example", "konstanz", "--vary", "friction.sandbag=0.0:0.8", "--vary", "friction.pivot=0.0:0.3",
                           "--vary", "friction.lid_hinge=0.0:0.2", "--vary", "start.sandbag_height=0.6:1.4"],
     "ex2-friction": ["--example", "2", "--set", "seesaw.mass=0.3", "--set", "seesaw.left_arm=0.5",
@@ -117,7 +119,7 @@ SOLVER_FAMILIES = ["ex1", "ex2-lid", "ex3", "ex4", "ex2-angular-law", "ex2-kinet
                    "ex2-heavy-radio", "konstanz", "konstanz-bounce", "ex2-linear-law",
                    "ex2-heavy-linear-law", "ex2-friction", "ex2-heavy-small-balloon",
                    "ex1-small-balloon", "ex2-friction-hinge",
-                   "konstanz-friction"]
+                   "konstanz-friction", "ex1-friction-hinge"]
 
 
 def solve(args, got):

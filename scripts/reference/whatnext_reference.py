@@ -73,10 +73,12 @@ def _derive():
     T = m / 2 * (sp.diff(x, t) ** 2 + sp.diff(h, t) ** 2) + I / 2 * sp.diff(Pt, t) ** 2
     V = m * g * h + mL * g * rL * sp.sin(Pt)
     Lag = T - V
-    cL = sp.symbols("cL", nonnegative=True)
+    cL, Tf = sp.symbols("cL Tf")
     D = cL / 2 * sp.diff(Pt, t) ** 2  # Rayleigh's dissipation function: the lid hinge's damper
+    # and the hinge's Coulomb torque Tf against the lid's turning: its generalised forces
+    # Tf d(phiL')/d(q') (docs/extensions.md, "Friction")
     eqs = [sp.diff(sp.diff(Lag, sp.diff(q, t)), t) - sp.diff(Lag, q) + sp.diff(D, sp.diff(q, t))
-           for q in (rt, st)]
+           + Tf * sp.diff(sp.diff(Pt, t), sp.diff(q, t)) for q in (rt, st)]
     k, kp = sp.symbols("k kp")
     rdd, sdd = sp.symbols("rdd sdd")
     rep = {sp.Derivative(rt, (t, 2)): rdd, sp.Derivative(st, (t, 2)): sdd}
@@ -103,7 +105,7 @@ def _derive():
                                       sp.diff(sp.sqrt(C + lR ** 2), L)], module),
             "k": sp.lambdify(geo, k_expr, module),
             "kp": sp.lambdify(geo, kp_expr, module),
-            "acc": sp.lambdify((r, s, L, rd, sd, k, kp) + params, acc, module),
+            "acc": sp.lambdify((r, s, L, rd, sd, k, kp) + params + (Tf,), acc, module),
         })
     return funs
 
@@ -218,6 +220,10 @@ class Machine:
         self.top = N.pi / 2 - N.radians(num(keys["run.vertical_margin"]))
         self.cL = num(keys.get("damping.lid_hinge", 0.0))
         self.stretchy = "rope.stiffness" in keys  # a one-sided spring-damper (docs/impact.md)
+        # Coulomb friction at the lid's hinge: the bound, and the torque against the lid's turning
+        # now (+-Th slipping, 0 idle on the box), or the lid stuck
+        self.Th = num(keys.get("friction.lid_hinge", 0.0))
+        self.Tf, self.lid_stuck = num(0.0), False
         self.k_rope = num(keys.get("rope.stiffness", 0.0))
         self.c_rope = num(keys.get("rope.damping", 0.0))
         self.params = (self.rH, self.Hx, self.Hy, self.a, self.lR, self.m, self.mL, self.rL, self.g, self.I,
@@ -239,16 +245,19 @@ class Machine:
 
     def m4_acc(self, r, s, L, rd, sd):
         k, kp = self.k(s, L)
-        rdd, sdd = F["acc"](r, s, L, rd, sd, k, kp, *self.params)
+        rdd, sdd = F["acc"](r, s, L, rd, sd, k, kp, *self.params, self.Tf)
         Ldd = k * sdd + kp * sd * sd
-        torque = self.I * Ldd + self.mL * self.g * self.rL * N.cos(L) + self.cL * k * sd  # the rope's on the lid
+        # the rope's on the lid
+        torque = self.I * Ldd + self.mL * self.g * self.rL * N.cos(L) + self.cL * k * sd + self.Tf
         return rdd, sdd, k, torque
 
     def balloon_acc(self, v):
         return self.aB - self.drag * v * abs(v)
 
     def lid_free_acc(self, L, Ld):
-        return -(self.mL * self.g * self.rL * N.cos(L) + self.cL * Ld) / self.I
+        if self.lid_stuck:
+            return 0.0
+        return -(self.mL * self.g * self.rL * N.cos(L) + self.cL * Ld + self.Tf) / self.I
 
     def h_lim(self, L, Ld):
         c, sn = N.cos(L), N.sin(L)
@@ -400,6 +409,11 @@ class Run:
         mc = self.mc
         s, sd, L, Ld, Ldd, r = self.kin(y)
         out = {"lid_open": mc.top - L}
+        if mc.Th > 0 and self.lid == "free":  # the hinge's friction: its limit, or its slip stopping
+            if mc.lid_stuck:
+                out["hinge_stick"] = (mc.Th - abs(mc.mL * mc.g * mc.rL * N.cos(L))) / ((mc.m + mc.mL) * mc.g)
+            else:
+                out["hinge_slip"] = (1 if mc.Tf > 0 else -1) * Ld * 2 * mc.rL
         if self.lid == "free":
             out["lid_rests"] = L - mc.L0
         hl, hld = mc.h_lim(L, Ld)
@@ -518,6 +532,13 @@ class Run:
         if not (self.lid == "rest" and k * sd_law <= 0):
             sd1, rd1 = sd_law, rd_law
         self.lid, self.rope = "free", "taut"
+        if mc.Th > 0:  # the hinge slips the way the jerk turns the lid (no impulse of its own)
+            if k * sd1 == 0:
+                raise NotCovered(f"a jerk that leaves the lid at rest against its hinge's friction at t = {t}")
+            if mc.lid_stuck:
+                self.event("lid_slips", t)
+            mc.lid_stuck, mc.Tf = False, mc.Th if k * sd1 > 0 else -mc.Th
+            released.add("hinge_slip")
         y4 = [r, s, L, rd1, sd1] + (y[6:] if self.small else [hB, vB])
         self.event("rope_taut", t)
         self.energy.append((t, e0, self.energy_of(y4)))
@@ -567,6 +588,26 @@ class Run:
         _, _, L, Ld, Ldd, _ = self.kin(y)
         return balloon_closing(self.mc, L, Ld, Ldd, y[-2], y[-1])
 
+    def hinge(self, name, y, t, released):
+        """The hinge's Coulomb friction on a free lid (docs/extensions.md, "Friction"): a slip that
+        stops sticks while the lid's weight needs at most T_h to hold it, else slips back; a
+        stuck lid slips where its weight needs more."""
+        mc = self.mc
+        if self.rope == "taut":
+            raise NotCovered(f"the lid's hinge sticking with the rope straight on the massless seesaw at t = {t}")
+        x, h, vx, vh, L, Ld = y[:6]
+        weight = mc.mL * mc.g * mc.rL * N.cos(L)
+        if name == "hinge_slip" and abs(weight) <= mc.Th:
+            mc.lid_stuck, mc.Tf = True, num(0.0)
+            self.event("lid_sticks", t)
+            released.add("hinge_stick")
+            return self.settle_balloon(y[:5] + [num(0.0)] + y[6:], t, released)
+        if name == "hinge_stick":
+            self.event("lid_slips", t)
+        mc.lid_stuck, mc.Tf = False, -mc.Th if weight > 0 else mc.Th  # slipping the way it falls
+        released.add("hinge_slip")
+        return self.settle_balloon(y, t, released)
+
     def handle_event(self, name, y, t):
         return self.handle(name, y, t, self.released)
 
@@ -577,6 +618,8 @@ class Run:
 
     def handle(self, name, y, t, released):
         mc = self.mc
+        if name in ("hinge_slip", "hinge_stick"):
+            return self.hinge(name, y, t, released)
         if name.startswith("B_") or name == "balloon_escapes":
             _, _, L, Ld, Ldd, _ = self.kin(y)
             return y[:-4] + self.small.handle(name, y[-4:], L, Ld, Ldd, t)
@@ -596,6 +639,7 @@ class Run:
                     self.event("balloon_free", t)
                 self.small.latch(y[-4:], L)
                 self.latched, self.lid, self.bag, self.s_air = True, "rest", "air", N.atan2(-h, -x)
+                mc.Tf, mc.lid_stuck = num(0.0), False
                 return [x, h, vx, vh, L, 0.0] + y[6:]
             hB, vB = y[6:8]
             if self.balloon == "stuck":  # freed with its current velocity
@@ -604,6 +648,7 @@ class Run:
                 self.event("balloon_free", t)
             # the rope let go for good, the sandbag off the seesaw (which stays where it is)
             self.latched, self.lid, self.bag, self.s_air = True, "rest", "air", N.atan2(-h, -x)
+            mc.Tf, mc.lid_stuck = num(0.0), False
             return [x, h, vx, vh, L, 0.0, hB, vB]
         if name == "balloon_free":
             return self.settle_balloon(y, t, released)
@@ -659,6 +704,7 @@ class Run:
             v_balloon = mc.h_lim(y[4], y[5])[1] if self.balloon == "stuck" else None
             self.event("lid_rests", t)
             self.lid = "rest"
+            mc.Tf, mc.lid_stuck = num(0.0), False  # the hinge's friction idle: the box holds the lid
             y = y[:4] + [mc.L0, 0.0] + y[6:]
             zero = 1e-9 * (mc.m + mc.mL) * mc.g
             pulls = self.tension(y, slack=not self.spring)[0] > (-zero if self.spring else zero)
@@ -689,6 +735,7 @@ class Run:
                 self.event("rope_slack", t)
                 released.add("rope_taut")
             self.lid = "rest"
+            mc.Tf, mc.lid_stuck = num(0.0), False  # the hinge's friction idle: the box holds the lid
             y = y[:4] + [mc.L0, 0.0] + y[6:]
             if v_balloon is not None:  # it goes on down, free, if it was moving
                 y = self.settle_balloon(y[:-1] + [v_balloon], t, released, v_balloon)
@@ -841,9 +888,13 @@ def make_run(keys, tol=1e-13):
         import full_coordinates
         return full_coordinates.HeavyRun(Machine(keys), keys, tol)
     for name in HEAVY:
-        if name in keys and name not in ("seesaw.mass", "damping.lid_hinge", "rope.stiffness", "rope.damping"):
+        if name in keys and name not in ("seesaw.mass", "damping.lid_hinge", "rope.stiffness", "rope.damping",
+                                          "friction.lid_hinge"):
             raise NotCovered(f"{name} on the massless seesaw")
-    return Run(Machine(keys), tol)
+    mc = Machine(keys)
+    if mc.Th > 0 and mc.stretchy:
+        raise NotCovered("the hinge's friction with the rope that stretches on the massless seesaw")
+    return Run(mc, tol)
 
 
 def main():

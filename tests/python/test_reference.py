@@ -258,6 +258,11 @@ FRICTION += [(2, {"seesaw.mass": 0.3, "seesaw.left_arm": 0.5, "friction.sandbag"
 FRICTION += [(1, {"seesaw.mass": 0.3, "seesaw.left_arm": 0.5, "friction.lid_hinge": 1.0}),
              ("konstanz", {"friction.lid_hinge": DRAWS.uniform(0.0, 0.3), "friction.sandbag": DRAWS.uniform(0.0, 0.8),
                            "start.sandbag_height": DRAWS.uniform(0.6, 1.4)})]
+# and the hinge's on the massless seesaw (ex1-friction-hinge): example 1's lid stopped by a hinge of
+# 1 N m after the jerk (docs/extensions.md), slipping again when the rope tightens.
+FRICTION += [(1, {"friction.lid_hinge": 1.0}),
+             (1, {"friction.lid_hinge": DRAWS.uniform(0.0, 1.5), "start.sandbag_height": DRAWS.uniform(0.3, 1.5),
+                  "masses.lid": DRAWS.uniform(0.2, 0.8)})]
 # (not example 2's heavy seesaw, whose bar tips the rope straight by its own weight and lets it
 # go again 10 us later, grazing: a float's rounding places that re-tightening only to about 1e-9 s
 # in the reference, 2e-9 s apart at tolerances 1e-12 ... 1e-14)
