@@ -26,8 +26,7 @@ the built machine's floor and end stop, runs in full coordinates (full_coordinat
 
 On the seesaw with mass it also has the other impact laws, the radio, a balloon smaller than the
 box (small_balloon.py) and Coulomb friction on the sandbag and at the pivot. Machines it does not
-cover (friction at the lid's hinge, a small balloon on the massless seesaw, a rope straight at the
-start or at a landing, a lid left resting on a straight rope, a jerk with k < 0 ...) raise
+cover (the sandbag's friction on the massless seesaw, a rope straight at the start or at a landing, a lid left resting on a straight rope, a jerk with k < 0 ...) raise
 NotCovered; it never guesses.
 
     from whatnext_reference import simulate, load_machine
