@@ -24,10 +24,11 @@ On this seesaw it also has the extensions that are forces: the lid hinge's dampe
 drag and skin, and the rope that stretches (a one-sided spring-damper). A seesaw with mass, with
 the built machine's floor and end stop, runs in full coordinates (full_coordinates.py).
 
-On the seesaw with mass it also has the other impact laws, the radio, a balloon smaller than the
-box (small_balloon.py) and Coulomb friction on the sandbag and at the pivot. Machines it does not
-cover (the sandbag's friction on the massless seesaw, a rope straight at the start or at a landing, a lid left resting on a straight rope, a jerk with k < 0 ...) raise
-NotCovered; it never guesses.
+It also has the four impact laws, the radio, a balloon smaller than the box (small_balloon.py)
+and Coulomb friction: at the lid's hinge here, on the sandbag, the pivot and the hinge on the
+seesaw with mass. Machines it does not cover (the sandbag's friction on the massless seesaw, a
+rope straight at the start or at a landing, a lid left resting on a straight rope, a jerk with
+k < 0 ...) raise NotCovered; it never guesses.
 
     from whatnext_reference import simulate, load_machine
     events = simulate(load_machine("examples/example2.toml", {"geometry.rope_length": 0.7}))
