@@ -19,7 +19,7 @@ contacts hold. Nothing here is the docs' closed forms (q_max, the 2x2 corner pro
 The story's rules on top (docs/extensions.md): the lid's contact closing beside its face is
 `balloon_caught`, opening there `balloon_free` (the walls' and the free edge's are not reported); on the lid the balloon escapes when its centre
 passes the perpendicular from W to the lid (p.u = 2 r_L cos phiL), free in the box when it is higher
-than the lid can reach (p_y >= 2 r_L + r_B); escaped, only the lid is an obstacle, and once it has
+than the lid can reach (p_y >= 2 r_L + r_B) or beyond the free edge and above the lid's line; escaped, only the lid is an obstacle, and once it has
 left the lid nothing is (out). It starts in the corner, at rest, the lid resting.
 """
 import itertools
@@ -178,10 +178,9 @@ class SmallBalloon:
                 out["balloon_escapes"] = 2 * self.rL * math.cos(L) - (b[0] * math.cos(L) + b[1] * math.sin(L))
             else:
                 out["balloon_escapes"] = 2 * self.rL + self.rB - b[1]
-                # its centre above the lid's line (beside the lid it cannot be: only beyond the
-                # free edge): docs/extensions.md does not say whether that is out
-                if not self.latched:
-                    out["B_above_line"] = b[0] * math.sin(L) - b[1] * math.cos(L)
+                # or its centre above the lid's line, beyond the free edge (beside the lid's face it
+                # cannot be): nothing of the box is over it (docs/extensions.md)
+                out["B_above_line"] = b[0] * math.sin(L) - b[1] * math.cos(L)
         return out
 
     def kink(self, n, b, L):
@@ -282,7 +281,13 @@ class SmallBalloon:
             self.set_sides(b, L)
             return b
         if name == "B_above_line":
-            raise NotCoveredBalloon("a free balloon in the box passing above the lid's line beyond its free edge")
+            if b[0] * math.cos(L) + b[1] * math.sin(L) <= 2 * self.rL:
+                raise NotCoveredBalloon("a free balloon crossing the lid's line beside the lid")
+            self.run.event("balloon_escapes", t)
+            self.status = "out"
+            self.active = set()
+            self.set_sides(b, L)
+            return b
         _, contact, kind = name.split("_")
         if kind == "kink":
             self.set_sides(b, L)

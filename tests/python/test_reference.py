@@ -242,6 +242,9 @@ SMALL = [(example, {"balloon.radius": DRAWS.uniform(0.06, 0.194), "seesaw.mass":
 # and on the massless seesaw (ex1-small-balloon): example 3's balloon of docs/extensions.md, out at
 # 49.1 deg after the corner let it go, and a random one with the radio.
 SMALL += [(3, {"balloon.radius": 0.15}),
+          # freed inside the box, out beyond the free edge above the lid's line before its height
+          (4, {"balloon.radius": 0.105, "masses.sandbag": 0.365, "start.sandbag_height": 1.02, "masses.lid": 0.683,
+               "radio.enabled": True, "balloon.drag": True}),
           (1, {"balloon.radius": DRAWS.uniform(0.06, 0.194), "radio.enabled": True,
                "start.sandbag_height": DRAWS.uniform(0.3, 1.5), "masses.lid": DRAWS.uniform(0.2, 0.8)})]
 
