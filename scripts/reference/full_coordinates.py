@@ -20,14 +20,18 @@ Which contacts hold is decided at each event as docs/model.md, section 5 defines
 as the velocities' projection in the metric M with one-signed impulses (every subset tried), with
 Newton's restitution as its target rates (docs/extensions.md), then the problem on accelerations
 (every subset tried), the same zeros of the machine's scale as the model names (rates 1e-6 of its
-speed scale count as held, the end of a cascade).
+speed scale count as held, the end of a cascade). Friction's tangential contacts (the sandbag's
+slide along the arm, the seesaw's turn at the pivot) join the same problems, sticking as a row,
+slipping as a force bounded by mu N or T_p; the other impact laws set the jerk's speeds after the
+inelastic impact has decided it; the radio's latch holds the lid and lets the rope go.
 """
 import itertools
 import math
 
 import sympy as sp
 
-from whatnext_reference import STOPS, NotCovered, balloon_closing, march, quadratic_closing
+from whatnext_reference import STOPS, NotCovered, balloon_closing, linear_momentum_law, march, quadratic_closing
+import small_balloon
 
 CONTACTS = ("arm", "rope", "lid", "floor_left", "floor_right", "bag_floor", "stop")
 CLOSED = {"arm": "sandbag_lands", "rope": "rope_taut", "lid": "lid_rests", "floor_left": "seesaw_on_floor",
@@ -64,6 +68,10 @@ def _derive():
         "floor_right": rH * sp.sin(s) - hf,
         "bag_floor": h - hf,
         "stop": La + (x * sp.cos(s) + h * sp.sin(s)),
+        # the tangential contacts of friction (docs/extensions.md, "Friction"): the sandbag's
+        # distance along the arm, and the seesaw's angle at the pivot
+        "slide": -(x * sp.cos(s) + h * sp.sin(s)),
+        "turn": s,
     }
     args = tuple(q) + tuple(u) + params
     out = {"M": sp.lambdify(params, [M[i, i] for i in range(4)], "math"),
@@ -90,10 +98,11 @@ F = _derive()
 def solve(A, b):
     """A x = b for a small dense system (Gaussian elimination with partial pivoting)."""
     n = len(b)
+    scale = max((abs(v) for row in A for v in row), default=0.0)
     A = [row[:] + [b[i]] for i, row in enumerate(A)]
     for k in range(n):
         p = max(range(k, n), key=lambda i: abs(A[i][k]))
-        if A[p][k] == 0:
+        if abs(A[p][k]) <= 1e-12 * scale:  # dependent rows within rounding: no unique forces
             raise ZeroDivisionError("singular contact problem")
         A[k], A[p] = A[p], A[k]
         for i in range(k + 1, n):
@@ -142,6 +151,14 @@ class HeavyMachine:
         self.c_rope = float(keys.get("rope.damping", 0.0))
         # the lid's gap is an angle: its rates and accelerations are taken at its far edge
         self.gap_scale = {n: 1.0 for n in CONTACTS} | {"lid": 2 * mc.rL}
+        # Coulomb friction: the sandbag on the arm (mu), the pivot's torque bound (N m)
+        self.mu = float(keys.get("friction.sandbag", 0.0))
+        self.Tp = float(keys.get("friction.pivot", 0.0))
+        self.Th = float(keys.get("friction.lid_hinge", 0.0))
+        if self.mu > 0 and (self.e["arm"] > 0 or self.e["stop"] > 0 or self.e["bag_floor"] > 0):
+            raise NotCovered("friction with restitution on the sandbag's contacts")
+        if (self.mu > 0 or self.Tp > 0 or self.Th > 0) and (mc.law != "rope" or self.stretchy):
+            raise NotCovered("friction with another impact law or the rope that stretches")
 
 
 class HeavyRun:
@@ -152,21 +169,56 @@ class HeavyRun:
         self.events, self.energy = [], []
         self.active = set()
         self.balloon = "stuck"
+        # a balloon smaller than the box: a disc among the lid and the walls (small_balloon.py)
+        self.small = small_balloon.SmallBalloon(mc, self) if mc.small else None
+        if self.small:
+            self.balloon = "small"
         self.fell_off = False
         self.spring = False  # the rope that stretches pulling
-        self.stops = STOPS
+        # the friction contacts' states: "stick", a slip's sign (+1, -1), "idle" (the angle held
+        # by other contacts, the load theirs), or None (absent)
+        self.fric = {"arm": None, "pivot": None, "hinge": None}
+        self.latched = False  # the radio's latch holds the lid open, the rope let go for good
+        self.stops = STOPS - {"radio_on"} - ({"lid_open"} if mc.radio else set())
 
     # --- the flow
     def contact(self, name, y):
         return F[name](*y[:8], *self.hm.params)
 
-    def accel(self, y, active=None):
-        """q'' and the forces lambda of the contacts in `active` (default: those that hold)."""
+    def accel(self, y, active=None, fric=None):
+        """q'' and the forces lambda of the contacts in `active` (default: those that hold), with
+        friction in the states `fric` (default: the run's): a sticking contact is one more row
+        (its force "arm_t", "pivot_t"), a slipping sandbag pushes along W_n - s mu W_t, a slipping
+        pivot adds -s T_p to the seesaw's equation (docs/extensions.md, "Friction")."""
         active = self.active if active is None else active
+        fric = self.fric if fric is None else fric
         hm = self.hm
-        names = tuple(n for n in CONTACTS if n in active)
+        names = [n for n in CONTACTS if n in active]
         f = F["f"](*y[:8], *hm.params)
         rows = [self.contact(n, y)[1:] for n in names]
+        cols = [r[0] for r in rows]
+        if "arm" in names and fric["arm"] in (1, -1):
+            Wt = F["slide"](*y[:8], *hm.params)[1]
+            i = names.index("arm")
+            cols[i] = [cols[i][k] - fric["arm"] * hm.mu * Wt[k] for k in range(4)]
+        if "arm" in names and fric["arm"] == "stick":
+            _, Wt, wt = F["slide"](*y[:8], *hm.params)
+            names.append("arm_t")
+            rows.append((Wt, wt))
+            cols.append(Wt)
+        if fric["pivot"] == "stick":
+            names.append("pivot_t")
+            rows.append(([0.0, 0.0, 1.0, 0.0], 0.0))
+            cols.append([0.0, 0.0, 1.0, 0.0])
+        if fric["hinge"] == "stick":
+            names.append("hinge_t")
+            rows.append(([0.0, 0.0, 0.0, 1.0], 0.0))
+            cols.append([0.0, 0.0, 0.0, 1.0])
+        f = list(f)
+        if fric["pivot"] in (1, -1):
+            f[2] -= fric["pivot"] * hm.Tp
+        if fric["hinge"] in (1, -1):
+            f[3] -= fric["hinge"] * hm.Th
         if self.spring:  # the stretched rope's pull, Q = -T d span / dq
             T, grad = self.tension(y)
             f = [f[k] - T * grad[k] for k in range(4)]
@@ -175,10 +227,10 @@ class HeavyRun:
             return [Mi[k] * f[k] for k in range(4)], {}
         Ws = [r[0] for r in rows]
         ws = [r[1] for r in rows]
-        A = [[sum(Wi[k] * Mi[k] * Wj[k] for k in range(4)) for Wj in Ws] for Wi in Ws]
+        A = [[sum(Wi[k] * Mi[k] * Cj[k] for k in range(4)) for Cj in cols] for Wi in Ws]
         b = [-ws[i] - sum(Ws[i][k] * Mi[k] * f[k] for k in range(4)) for i in range(len(names))]
         lam = solve(A, b)
-        acc = [Mi[k] * (f[k] + sum(lam[i] * Ws[i][k] for i in range(len(names)))) for k in range(4)]
+        acc = [Mi[k] * (f[k] + sum(lam[i] * cols[i][k] for i in range(len(names)))) for k in range(4)]
         return acc, dict(zip(names, lam))
 
     def tension(self, y):
@@ -198,6 +250,8 @@ class HeavyRun:
 
     def flow(self, y):
         acc, _ = self.accel(y)
+        if self.small:
+            return list(y[4:8]) + acc + self.small.flow(y[8:], y[3], y[7], acc[3])
         vB = y[9]
         return list(y[4:8]) + acc + ([vB, self.mc.balloon_acc(vB)] if self.balloon == "free" else [0.0, 0.0])
 
@@ -227,6 +281,8 @@ class HeavyRun:
 
     # --- the balloon (one-way coupled, as in whatnext_reference.Run)
     def settle_balloon(self, y, acc, t, v_before=None):
+        if self.small:
+            return y[:8] + self.small.decide(y[8:], y[3], y[7], acc[3], t)
         if self.balloon != "stuck":
             return y
         mc = self.mc
@@ -243,14 +299,25 @@ class HeavyRun:
         return y[:8] + [hl, hld]
 
     # --- guards: a value reaching zero from above is an event
+    def contacts(self):
+        """The contacts that exist: after the radio's latch neither the rope nor the lid's box."""
+        if self.latched and not (self.hm.floor or self.hm.end_stop):
+            return ()  # the paper's machine: the sandbag has fallen out of the story
+        return tuple(n for n in self.hm.contacts if not (self.latched and n in ("rope", "lid")))
+
     def guards(self, y):
         mc, hm = self.mc, self.hm
         acc, lam = self.accel(y)
-        out = {"lid_open": mc.top - y[3], "seesaw_vertical": mc.top - abs(y[2])}
+        out = {"seesaw_vertical": mc.top - abs(y[2])}
+        if mc.radio:  # the string straight (docs/extensions.md, "The radio")
+            bx, by = (y[8], y[9]) if self.small else (mc.rL, y[8])  # its centre from the hinge
+            out["radio_on"] = mc.string - math.hypot(mc.Hx + bx - mc.switch[0], mc.Hy + by - mc.switch[1])
+        if not self.latched:
+            out["lid_open"] = mc.top - y[3]
         force = hm.mass * (mc.g + 0.0) * (1 + hm.ell)
-        if hm.stretchy:
+        if hm.stretchy and not self.latched:
             out["spring_pull" if self.spring else "spring_slack"] = self.spring_guard(y)
-        for n in hm.contacts:
+        for n in self.contacts():
             if n == "rope" and hm.stretchy:
                 continue
             if n in self.active:
@@ -259,6 +326,20 @@ class HeavyRun:
                 continue
             else:
                 out[n + "_gap"] = self.contact(n, y)[0] * hm.gap_scale[n]
+        fa, fp = self.fric["arm"], self.fric["pivot"]
+        if "arm" in self.active and fa == "stick":
+            out["fric_arm_stick"] = (hm.mu * lam["arm"] - abs(lam["arm_t"])) / force
+        if "arm" in self.active and fa in (1, -1):
+            out["fric_arm_slip"] = fa * self.slide_rate(y)
+        if fp == "stick":
+            out["fric_pivot_stick"] = (self.pivot_bound(y, self.active, self.fric) - abs(lam["pivot_t"])) / force
+        if fp in (1, -1):
+            out["fric_pivot_slip"] = fp * y[6] * hm.ell
+        fh = self.fric["hinge"]
+        if fh == "stick":
+            out["fric_hinge_stick"] = (hm.Th - abs(lam["hinge_t"])) / force
+        if fh in (1, -1):
+            out["fric_hinge_slip"] = fh * y[7] * 2 * mc.rL
         if "arm" in self.active:
             along = F["along"](*y[:8], *hm.params)
             out["sandbag_at_pivot"] = along
@@ -268,14 +349,18 @@ class HeavyRun:
             out["rope_locked"] = -F["lock"](*y[:8], *hm.params)
         L, Ld = y[3], y[7]
         hl, hld = mc.h_lim(L, Ld)
-        if self.balloon == "free":
+        if self.small:
+            out |= self.small.guards(y[8:], L, Ld, acc[3])
+        elif self.latched:
+            pass  # the balloon rises without a limit
+        elif self.balloon == "free":
             out["balloon_caught"] = hl - y[8]
         else:
             out["balloon_free"] = mc.balloon_acc(hld) - mc.h_lim_acc(L, Ld, acc[3])
         return out
 
     def noise(self, name):
-        return 10 * self.tol * (self.hm.ell if name in ("balloon_caught",) else 1.0)
+        return 10 * self.tol * (self.hm.ell if name in ("balloon_caught",) or name.startswith("B_") else 1.0)
 
     def event(self, name, t):
         self.events.append((name, t))
@@ -303,7 +388,7 @@ class HeavyRun:
     def touching(self, y):
         hm = self.hm
         out = set()
-        for n in hm.contacts:
+        for n in self.contacts():
             if n in self.active:
                 out.add(n)
                 continue
@@ -317,7 +402,9 @@ class HeavyRun:
                 along = F["along"](*y[:8], *hm.params)
                 if self.fell_off or not 0 <= along <= hm.arm:
                     continue
-            if abs(self.contact(n, y)[0]) * hm.gap_scale[n] <= 1e-9:
+            # a gap within 1e-9 of its own units (m, the lid's rad) touches, at an event as at the
+            # start (docs/model.md, section 6)
+            if abs(self.contact(n, y)[0]) <= 1e-9:
                 out.add(n)
         if hm.end_stop and "arm" in out and abs(self.contact("stop", y)[0]) <= 1e-9:
             out.add("stop")
@@ -327,8 +414,9 @@ class HeavyRun:
         _, W, _ = self.contact(n, y)
         return sum(W[k] * y[4 + k] for k in range(4)) * self.hm.gap_scale[n]
 
-    def decide(self, y, t, trigger):
-        """The contacts that hold after the event triggered by contact `trigger` (or None)."""
+    def decide(self, y, t, trigger, fric_trigger=None):
+        """The contacts that hold after the event triggered by contact `trigger` (or None), or by
+        the friction contact `fric_trigger` reaching its limit (which then slips where it may)."""
         hm = self.hm
         before = set(self.active)
         touch = self.touching(y) | ({trigger} if trigger else set())
@@ -346,22 +434,39 @@ class HeavyRun:
             for targets in (bounce, dict.fromkeys(touch, 0.0)):
                 valid = []
                 for S in subsets(touch):
-                    y1, imp = self.impulse(y, S, targets)
-                    if imp is None or any(p < -tol["impulse"] for p in imp.values()):
-                        continue
-                    if any(self.rate(n, y1) < -tol["closing"] for n in touch - S):
-                        continue
-                    valid.append((S, y1))
-                S, y1 = self.prefer(valid, before, trigger, closing=True)
+                    for mode in (("stick", 1, -1) if "arm" in S and hm.mu > 0 else (None,)):
+                        y1, imp = self.impulse(y, S, targets, mode)
+                        if imp is None or any(p < -tol["impulse"] for n, p in imp.items() if n != "arm_t"):
+                            continue
+                        if mode == "stick" and abs(imp["arm_t"]) > hm.mu * imp["arm"] + tol["impulse"]:
+                            continue
+                        if mode in (1, -1) and mode * self.slide_rate(y1) < -tol["closing"]:
+                            continue
+                        if any(self.rate(n, y1) < -tol["closing"] for n in touch - S):
+                            continue
+                        valid.append((S, (y1, mode)))
+                S, (y1, arm_mode) = self.prefer(valid, before, trigger, closing=True)
                 if self.kinetic(y1) <= self.kinetic(y) * (1 + 1e-12):
                     break
-            # a rebound slower than the machine's zero of speed is held: the end of a cascade
-            held = {n for n in S if targets[n] < tol["rate"]}
-            held |= {n for n in touch - S if self.rate(n, y1) < tol["rate"]}
-            mid = S | held
-            if held != {n for n in S if targets[n] == 0.0}:
-                y1, _ = self.impulse(y, mid, {n: 0.0 if n in held else targets[n] for n in mid})
-            y = y1
+            # the rope's jerk under another impact law: its speeds (docs/model.md, section 7)
+            y2 = y1
+            # (a jerk: the rope closing, or a landing that the straight rope takes up)
+            if self.mc.law != "rope" and "rope" in S and (
+                    rates["rope"] < -tol["closing"] or "arm" in S and rates["arm"] < -tol["closing"]):
+                y2 = self.law_jerk(y, y1, S, touch, tol)
+            if y2 is not y1:
+                # what it leaves separating slower than the machine's zero of speed is held
+                held = {n for n in touch if self.rate(n, y2) < tol["rate"]}
+                mid = S | held
+                y = y2 if held <= S else self.impulse(y2, mid, dict.fromkeys(mid, 0.0), arm_mode)[0]
+            else:
+                # a rebound slower than the machine's zero of speed is held: the end of a cascade
+                held = {n for n in S if targets[n] < tol["rate"]}
+                held |= {n for n in touch - S if self.rate(n, y1) < tol["rate"]}
+                mid = S | held
+                if held != {n for n in S if targets[n] == 0.0}:
+                    y1, _ = self.impulse(y, mid, {n: 0.0 if n in held else targets[n] for n in mid}, arm_mode)
+                y = y1
             self.energy.append((t, e0, F["energy"](*y[:8], *hm.params)))
         else:
             held = mid = {n for n in touch if rates[n] <= tol["rate"]}
@@ -373,21 +478,74 @@ class HeavyRun:
                   and self.spring_guard(y) * hm.mass * self.mc.g * (1 + hm.ell) < -tol["force"])
         if let_go or engage:
             self.spring = bool(engage)
+        # friction: a slip at rest starts from exactly zero speed (docs/extensions.md, "Friction");
+        # at rest or not is judged with the contacts of each candidate set
+        sign = lambda v: 1 if v > 0 else -1
+        # at rest: sticking where it may, or slipping where its limit was the event
+        rest_opts = {c: (1, -1, "stick", "idle") if fric_trigger == c else ("stick", "idle", 1, -1)
+                     for c in ("arm", "pivot", "hinge")}
+        before_fric = dict(self.fric)
+        y_event = y
         valid = []
         for A in subsets(held):
             if "stop" in A and "arm" not in A:
                 continue
-            try:
-                acc, lam = self.accel(y, A)
-            except ZeroDivisionError:
-                continue
-            if any(v < -tol["force"] for v in lam.values()):
-                continue
-            if any(self.gap_acc(n, y, acc) < -tol["accel"] for n in held - A):
-                continue
-            valid.append((A, acc))
-        A, acc = self.prefer(valid, before, trigger, closing=bool(trigger) and trigger not in before)
+            y = y_event
+            arm_rest = piv_rest = lid_rest = None
+            if hm.mu > 0 and "arm" in A:
+                arm_rest = self.at_rest(y, A, "slide", tol)
+                y = arm_rest or y
+            if hm.Tp > 0:
+                piv_rest = self.at_rest(y, A, "turn", tol)
+                y = piv_rest or y
+            if hm.Th > 0 and not self.latched:
+                lid_rest = self.at_rest(y, A, "turnL", tol)
+                y = lid_rest or y
+            piv_opts = ((rest_opts["pivot"] if piv_rest else (sign(y[6]),)) if hm.Tp > 0 else (None,))
+            lid_opts = ((rest_opts["hinge"] if lid_rest else (sign(y[7]),)) if hm.Th > 0 and not self.latched
+                        else (None,))
+            arm_opts = ((rest_opts["arm"] if arm_rest else (sign(self.slide_rate(y)),))
+                        if hm.mu > 0 and "arm" in A else (None,))
+            for fa, fp, fh in itertools.product(arm_opts, piv_opts, lid_opts):
+                fric = {"arm": fa, "pivot": fp, "hinge": fh}
+                try:
+                    acc, lam = self.accel(y, A, fric)
+                except ZeroDivisionError:
+                    continue
+                # idle only where other contacts hold it already (the pivot: other than the
+                # hinge's friction, so that the pivot is the one named stuck)
+                idle_ok = True
+                for c in ("arm", "pivot", "hinge"):
+                    if fric[c] != "idle":
+                        continue
+                    stuck = dict(fric, **{c: "stick"}) | ({"hinge": None} if c == "pivot" else {})
+                    try:
+                        self.accel(y, A, stuck)
+                        idle_ok = False
+                    except ZeroDivisionError:
+                        pass
+                if not idle_ok:
+                    continue
+                if any(v < -tol["force"] for n, v in lam.items() if n not in ("arm_t", "pivot_t", "hinge_t")):
+                    continue
+                if fa == "stick" and abs(lam["arm_t"]) > hm.mu * lam["arm"] + tol["force"]:
+                    continue
+                if fp == "stick" and abs(lam["pivot_t"]) > self.pivot_bound(y, A, fric) + tol["force"]:
+                    continue
+                if fh == "stick" and abs(lam["hinge_t"]) > hm.Th + tol["force"]:
+                    continue
+                if arm_rest and fa in (1, -1) and fa * self.slide_acc(y, acc) < -tol["accel"]:
+                    continue
+                if piv_rest and fp in (1, -1) and fp * acc[2] * hm.ell < -tol["accel"]:
+                    continue
+                if lid_rest and fh in (1, -1) and fh * acc[3] * 2 * self.mc.rL < -tol["accel"]:
+                    continue
+                if any(self.gap_acc(n, y, acc) < -tol["accel"] for n in held - A):
+                    continue
+                valid.append((A, (acc, fric, y)))
+        A, (acc, fric, y) = self.prefer(valid, before, trigger, closing=bool(trigger) and trigger not in before)
         self.active = set(A)
+        self.fric = fric
         # the events, named by what changed: the trigger's first, then the impact's, then the rest
         changes = []
         for n in CONTACTS:
@@ -401,33 +559,132 @@ class HeavyRun:
         for c in first + [c for c in changes if c not in first] + (["rope_slack"] if let_go else []) + (
                 ["rope_taut"] if engage else []):
             self.event(c, t)
+        # friction's events: sticking, slipping (from sticking, or back the other way)
+        for c, (stick_event, slip_event) in (("arm", ("sandbag_sticks", "sandbag_slips")),
+                                             ("pivot", ("seesaw_sticks", "seesaw_slips")),
+                                             ("hinge", ("lid_sticks", "lid_slips"))):
+            was, now = (before_fric[c] if c != "arm" or "arm" in before else None), fric[c]
+            if now == "stick" and was != "stick":
+                self.event(stick_event, t)
+            if now in (1, -1) and was == "stick":
+                self.event(slip_event, t)
+            for kind in ("stick", "slip"):
+                self.released.add(f"fric_{c}_{kind}")
         if let_go or engage:
             self.released.add("spring_pull" if engage else "spring_slack")
         for n in touch:  # guards that start at zero: open (or holding) by construction
             self.released.add(n + ("_force" if n in A else "_gap"))
         return self.settle_balloon(y, acc, t, v_balloon if (y[3], y[7]) != (L0, Ld0) else None)
 
-    def kinetic(self, y):
-        return sum(y[4 + k] ** 2 / self.hm.Minv[k] for k in range(4)) / 2
+    def law_jerk(self, y0, y1, S, touch, tol):
+        """The speeds after the rope's jerk by the chosen impact law (docs/model.md, section 7,
+        with I_S on both sides: docs/extensions.md, "A seesaw with mass"), from the state before
+        it, y0; y1 (the inelastic impact, the rope law) where the law cannot be applied: the jerk
+        also presses the lid onto the box, or the law would leave a touching contact closing."""
+        hm, mc = self.hm, self.mc
+        if "lid" in S:
+            return y1
+        if S - {"rope", "arm"}:
+            raise NotCovered(f"the {mc.law} law with {sorted(S - {'rope', 'arm'})} in the jerk")
+        if mc.law == "linear-momentum" and "arm" not in S:
+            return y1  # the law has nothing to keep without the sandbag: the rope law
+        x, h, s = y0[:3]
+        vx, vh, sd, Ld = y0[4:8]
+        W = self.contact("rope", y0)[1]
+        k = -W[2] / W[3]  # phiL' = k phiS' on the straight rope
+        loaded = "arm" in S
+        r = -(x * math.cos(s) + h * math.sin(s))
+        v_across = vx * math.sin(s) - vh * math.cos(s)
+        r_rate = -vx * math.cos(s) - vh * math.sin(s)  # kept (eq. 5)
+        m, IS, IL = (mc.m if loaded else 0.0), hm.IS, mc.I
+        if mc.law == "linear-momentum":  # the sandbag's and the lid's, as on the massless seesaw
+            sd1, r_rate = linear_momentum_law(mc, r, s, y0[3], k, x, h, vx, vh, Ld)
+        elif mc.law == "angular-momentum-sum":
+            den = m * r * r + IS + IL * k
+            if den == 0:
+                return y1
+            sd1 = (m * r * v_across + IS * sd + IL * Ld) / den
+        else:
+            sd1 = math.copysign(math.sqrt((m * v_across ** 2 + IS * sd * sd + IL * Ld * Ld) / (m * r * r + IS + IL * k * k)),
+                                y1[6])
+        y2 = list(y1)
+        if loaded:
+            y2[4] = -r_rate * math.cos(s) + r * sd1 * math.sin(s)
+            y2[5] = -r_rate * math.sin(s) - r * sd1 * math.cos(s)
+        y2[6], y2[7] = sd1, k * sd1
+        if any(self.rate(n, y2) < -tol["closing"] for n in touch):
+            return y1
+        return y2
 
-    def impulse(self, y, S, targets=None):
+    def kinetic(self, y):
+        return sum(y[4 + k] ** 2 / self.hm.Minv[k] for k in range(4) if self.hm.Minv[k]) / 2
+
+    def impulse(self, y, S, targets=None, arm_mode=None, extra=()):
         """The velocities after impulses on the contacts S that leave them with the rates
-        `targets` (default zero; in the units of their gaps)."""
+        `targets` (default zero; in the units of their gaps). With friction on the arm
+        (arm_mode): "stick" stops the slip too (its impulse "arm_t", |p_t| <= mu p_n to be
+        checked), a sign s takes mu p_n off it (the impulse along W_n - s mu W_t). `extra`:
+        the tangential rows ("slide", "turn") to bring to rest as well."""
+        hm = self.hm
         names = [n for n in CONTACTS if n in S]
+        Ws = [self.contact(n, y)[1] for n in names]
+        rhs = [(targets[n] / hm.gap_scale[n] if targets else 0.0) - sum(W[k] * y[4 + k] for k in range(4))
+               for n, W in zip(names, Ws)]
+        cols = list(Ws)
+        Wt = F["slide"](*y[:8], *hm.params)[1]
+        if "arm" in names and arm_mode in (1, -1):
+            i = names.index("arm")
+            cols[i] = [Ws[i][k] - arm_mode * hm.mu * Wt[k] for k in range(4)]
+        rest = list(extra) + (["slide"] if "arm" in names and arm_mode == "stick" else [])
+        for n in rest:
+            W = {"slide": Wt, "turn": [0.0, 0.0, 1.0, 0.0], "turnL": [0.0, 0.0, 0.0, 1.0]}[n]
+            names.append({"slide": "arm_t", "turn": "pivot_t", "turnL": "hinge_t"}[n])
+            Ws.append(W)
+            cols.append(W)
+            rhs.append(-sum(W[k] * y[4 + k] for k in range(4)))
         if not names:
             return y, {}
-        Mi = self.hm.Minv
-        Ws = [self.contact(n, y)[1] for n in names]
-        A = [[sum(Wi[k] * Mi[k] * Wj[k] for k in range(4)) for Wj in Ws] for Wi in Ws]
+        Mi = hm.Minv
+        A = [[sum(Wi[k] * Mi[k] * Cj[k] for k in range(4)) for Cj in cols] for Wi in Ws]
         try:
-            p = solve(A, [(targets[n] / self.hm.gap_scale[n] if targets else 0.0) - sum(W[k] * y[4 + k] for k in range(4))
-                          for n, W in zip(names, Ws)])
+            p = solve(A, rhs)
         except ZeroDivisionError:
             return y, None
         y1 = list(y)
         for k in range(4):
-            y1[4 + k] += Mi[k] * sum(p[i] * Ws[i][k] for i in range(len(names)))
+            y1[4 + k] += Mi[k] * sum(p[i] * cols[i][k] for i in range(len(names)))
         return y1, dict(zip(names, p))
+
+    def pivot_bound(self, y, A, fric):
+        """The pivot's bound: T_p, or, with the hinge idle while the taut rope couples the two
+        (phiL' = k phiS'), T_p + |k| T_h (docs/extensions.md, "Friction")."""
+        hm = self.hm
+        if fric["hinge"] == "idle" and "rope" in A and "lid" not in A:
+            W = self.contact("rope", y)[1]
+            return hm.Tp + abs(W[2] / W[3]) * hm.Th
+        return hm.Tp
+
+    def slide_rate(self, y):
+        W = F["slide"](*y[:8], *self.hm.params)[1]
+        return sum(W[k] * y[4 + k] for k in range(4))
+
+    def slide_acc(self, y, acc):
+        _, W, w = F["slide"](*y[:8], *self.hm.params)
+        return sum(W[k] * acc[k] for k in range(4)) + w
+
+    def at_rest(self, y, held, row, tol):
+        """A slip at rest (docs/extensions.md, "Friction"): slower than the zero of speed, and
+        stopping it with the contacts that hold takes no more kinetic energy than the machine's
+        mass has at that speed. The velocities with it stopped, or None."""
+        speed = {"slide": self.slide_rate(y), "turn": y[6] * self.hm.ell, "turnL": y[7] * 2 * self.mc.rL}[row]
+        if abs(speed) >= tol["rate"]:
+            return None
+        y1, p = self.impulse(y, held, None, None, (row,))
+        if p is None:  # the contacts that hold keep it still already
+            y1 = y
+        if self.kinetic(y) - self.kinetic(y1) > 0.5 * self.hm.mass * tol["rate"] ** 2:
+            return None
+        return y1
 
     def gap_acc(self, n, y, acc):
         _, W, w = self.contact(n, y)
@@ -453,13 +710,16 @@ class HeavyRun:
         if mc.C(mc.s0, mc.L0) > -2 * mc.lR * 1e-9:
             raise NotCovered("a rope straight (or too short) at the start")
         hl, _ = mc.h_lim(mc.L0, 0.0)
-        y = [mc.x0, mc.h0, mc.s0, mc.L0, 0.0, 0.0, 0.0, 0.0, hl, 0.0]
+        y = [mc.x0, mc.h0, mc.s0, mc.L0, 0.0, 0.0, 0.0, 0.0] + (self.small.start(mc.L0) if self.small else [hl, 0.0])
         self.active = {"lid"}
         self.released = set()
         touch = self.touching(y)
-        if touch != self.active:  # a seesaw standing on the floor: decided on forces, at rest
+        if touch != self.active or self.hm.mu > 0 or self.hm.Tp > 0 or self.hm.Th > 0:
+            # a seesaw standing on the floor, friction: decided on forces, at rest (friction's
+            # state at the start is no event)
             self.active = touch
             y = self.decide(y, 0.0, None)
+            self.events = [e for e in self.events if not e[0].endswith(("_sticks", "_slips"))]
         return march(self, y)
 
     # what whatnext_reference.march asks of a run
@@ -467,7 +727,14 @@ class HeavyRun:
         return y[2], y[3]
 
     def after_step(self, y):
-        return self.project(y, self.active)  # back onto the holding contacts, against the drift
+        y = self.project(y, self.active)  # back onto the holding contacts, against the drift
+        extra = (("slide",) if self.fric["arm"] == "stick" and "arm" in self.active else ()) + (
+            ("turn",) if self.fric["pivot"] == "stick" else ()) + (("turnL",) if self.fric["hinge"] == "stick" else ())
+        if extra:  # and the sticking ones' rates
+            y = self.impulse(y, self.active, None, None, extra)[0]
+        if self.small:
+            y = y[:8] + self.small.project(y[8:], y[3], y[7])
+        return y
 
     def handle_event(self, name, y, t):
         return self.handle(name, y, t)
@@ -476,6 +743,8 @@ class HeavyRun:
         """When a gap that never opens beyond rounding closes again: the zero of its expansion
         g + g' tau + g'' tau^2 / 2 (over a microsecond its next term is far below rounding)."""
         acc, _ = self.accel(y)
+        if name.startswith("B_"):
+            return self.small.closing_within_rounding(name, y[8:], y[3], y[7], acc[3])
         if name == "balloon_caught":
             return balloon_closing(self.mc, y[3], y[7], acc[3], y[8], y[9])
         contact, kind = name.rsplit("_", 1)
@@ -485,10 +754,45 @@ class HeavyRun:
         return quadratic_closing(g, self.rate(contact, y), self.gap_acc(contact, y, acc))
 
     def handle(self, name, y, t):
-        hm = self.hm
+        hm, mc = self.hm, self.mc
+        if name == "radio_on":  # the string straight: it pulls with the balloon's net lift
+            self.event("radio_on" if mc.lift >= mc.switch_force else "switch_stays_off", t)
+            return None
+        if name == "lid_open":  # the radio's latch (docs/extensions.md, "The radio")
+            self.event(name, t)
+            if "rope" in self.active or self.spring:
+                self.event("rope_slack", t)  # let go from the seesaw for good
+            if self.small and "lid" in self.small.active:  # freed with its current velocity
+                self.event("balloon_free", t)
+            if self.small:  # and the latched lid no longer limits it
+                self.small.latch(y[8:], y[3])
+            if self.balloon == "stuck":  # freed with its current velocity
+                self.balloon = "free"
+                self.event("balloon_free", t)
+                y = y[:8] + list(mc.h_lim(y[3], y[7]))
+            # the lid held where it is: its coordinate without motion (an infinite inertia)
+            self.latched, self.spring = True, False
+            self.fric["hinge"] = None
+            if not (hm.floor or hm.end_stop):
+                # the paper's machine (docs/extensions.md, "The radio"): the sandbag goes on in free
+                # fall, no machine event is checked but the seesaw turning vertical under its own
+                # weight; the built machine's seesaw and sandbag go on on its floor and stop
+                self.active = set()
+                self.fell_off = True
+                self.fric["arm"] = None
+            self.active -= {"rope", "lid"}
+            hm.Minv = hm.Minv[:3] + [0.0]
+            y = y[:7] + [0.0] + y[8:]
+            return self.decide(y, t, None)
         if name == "balloon_free":
             acc, _ = self.accel(y)
             return self.settle_balloon(y, acc, t)
+        if name.startswith("fric_"):
+            _, c, kind = name.split("_")
+            return self.decide(y, t, None, c if kind == "stick" else None)
+        if name.startswith("B_") or name == "balloon_escapes":
+            acc, _ = self.accel(y)
+            return y[:8] + self.small.handle(name, y[8:], y[3], y[7], acc[3], t)
         if name == "spring_slack" and F["lock"](*y[:8], *hm.params) >= 0:
             self.event("rope_locked", t)  # straight on the far side of the hinge
             return None

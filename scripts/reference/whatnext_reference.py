@@ -24,9 +24,11 @@ On this seesaw it also has the extensions that are forces: the lid hinge's dampe
 drag and skin, and the rope that stretches (a one-sided spring-damper). A seesaw with mass, with
 the built machine's floor and end stop, runs in full coordinates (full_coordinates.py).
 
-Machines it does not cover (friction, the radio, other impact laws, a rope straight at the start
-or at a landing, a lid left resting on a straight rope, a jerk with k < 0 ...) raise NotCovered;
-it never guesses.
+It also has the four impact laws, the radio, a balloon smaller than the box (small_balloon.py)
+and Coulomb friction: at the lid's hinge here, on the sandbag, the pivot and the hinge on the
+seesaw with mass. Machines it does not cover (the sandbag's friction on the massless seesaw, a
+rope straight at the start or at a landing, a lid left resting on a straight rope, a jerk with
+k < 0 ...) raise NotCovered; it never guesses.
 
     from whatnext_reference import simulate, load_machine
     events = simulate(load_machine("examples/example2.toml", {"geometry.rope_length": 0.7}))
@@ -71,10 +73,12 @@ def _derive():
     T = m / 2 * (sp.diff(x, t) ** 2 + sp.diff(h, t) ** 2) + I / 2 * sp.diff(Pt, t) ** 2
     V = m * g * h + mL * g * rL * sp.sin(Pt)
     Lag = T - V
-    cL = sp.symbols("cL", nonnegative=True)
+    cL, Tf = sp.symbols("cL Tf")
     D = cL / 2 * sp.diff(Pt, t) ** 2  # Rayleigh's dissipation function: the lid hinge's damper
+    # and the hinge's Coulomb torque Tf against the lid's turning: its generalised forces
+    # Tf d(phiL')/d(q') (docs/extensions.md, "Friction")
     eqs = [sp.diff(sp.diff(Lag, sp.diff(q, t)), t) - sp.diff(Lag, q) + sp.diff(D, sp.diff(q, t))
-           for q in (rt, st)]
+           + Tf * sp.diff(sp.diff(Pt, t), sp.diff(q, t)) for q in (rt, st)]
     k, kp = sp.symbols("k kp")
     rdd, sdd = sp.symbols("rdd sdd")
     rep = {sp.Derivative(rt, (t, 2)): rdd, sp.Derivative(st, (t, 2)): sdd}
@@ -101,7 +105,7 @@ def _derive():
                                       sp.diff(sp.sqrt(C + lR ** 2), L)], module),
             "k": sp.lambdify(geo, k_expr, module),
             "kp": sp.lambdify(geo, kp_expr, module),
-            "acc": sp.lambdify((r, s, L, rd, sd, k, kp) + params, acc, module),
+            "acc": sp.lambdify((r, s, L, rd, sd, k, kp) + params + (Tf,), acc, module),
         })
     return funs
 
@@ -147,7 +151,8 @@ STOPS = {"lid_open", "seesaw_vertical", "sandbag_at_pivot", "rope_locked", "radi
 # A seesaw with mass and the dampers: the full-coordinates run (full_coordinates.py).
 HEAVY = {"seesaw.mass", "seesaw.left_arm", "seesaw.inertia", "seesaw.com_offset", "damping.pivot",
          "damping.lid_hinge", "rope.stiffness", "rope.damping", "floor.enabled", "floor.restitution",
-         "seesaw.end_stop", "restitution.sandbag", "restitution.rope", "restitution.lid", "restitution.stop"}
+         "seesaw.end_stop", "restitution.sandbag", "restitution.rope", "restitution.lid", "restitution.stop",
+         "friction.sandbag", "friction.pivot", "friction.lid_hinge"}
 
 
 def load_machine(path=None, overrides=None):
@@ -165,7 +170,7 @@ def load_machine(path=None, overrides=None):
     for name in keys:
         if name not in DEFAULTS.keys() | IGNORED | OTHER | HEAVY | RADIO:
             raise NotCovered(f"{name} is not modelled by the reference")
-    if keys["run.impact_law"] not in ("rope", "angular-momentum-sum", "kinetic-energy"):
+    if keys["run.impact_law"] not in ("rope", "angular-momentum-sum", "kinetic-energy", "linear-momentum"):
         raise NotCovered(f"the {keys['run.impact_law']} impact law")
     return keys
 
@@ -187,8 +192,7 @@ class Machine:
         self.I = self.mL * (2 * self.rL) ** 2 / 3
         self.g = num(keys["run.gravity"])
         self.rB = num(keys.get("balloon.radius", self.rL))
-        if self.rB < self.rL:
-            raise NotCovered("a balloon smaller than the box")
+        self.small = self.rB < self.rL  # a disc in the box (small_balloon.py)
         # the balloon (docs/extensions.md, "Balloon physics"): net lift F over the accelerated mass,
         # less its drag D v|v|
         rho_a, rho_he = num(keys["air.density"]), num(keys["air.helium_density"])
@@ -216,6 +220,10 @@ class Machine:
         self.top = N.pi / 2 - N.radians(num(keys["run.vertical_margin"]))
         self.cL = num(keys.get("damping.lid_hinge", 0.0))
         self.stretchy = "rope.stiffness" in keys  # a one-sided spring-damper (docs/impact.md)
+        # Coulomb friction at the lid's hinge: the bound, and the torque against the lid's turning
+        # now (+-Th slipping, 0 idle on the box), or the lid stuck
+        self.Th = num(keys.get("friction.lid_hinge", 0.0))
+        self.Tf, self.lid_stuck = num(0.0), False
         self.k_rope = num(keys.get("rope.stiffness", 0.0))
         self.c_rope = num(keys.get("rope.damping", 0.0))
         self.params = (self.rH, self.Hx, self.Hy, self.a, self.lR, self.m, self.mL, self.rL, self.g, self.I,
@@ -237,16 +245,19 @@ class Machine:
 
     def m4_acc(self, r, s, L, rd, sd):
         k, kp = self.k(s, L)
-        rdd, sdd = F["acc"](r, s, L, rd, sd, k, kp, *self.params)
+        rdd, sdd = F["acc"](r, s, L, rd, sd, k, kp, *self.params, self.Tf)
         Ldd = k * sdd + kp * sd * sd
-        torque = self.I * Ldd + self.mL * self.g * self.rL * N.cos(L) + self.cL * k * sd  # the rope's on the lid
+        # the rope's on the lid
+        torque = self.I * Ldd + self.mL * self.g * self.rL * N.cos(L) + self.cL * k * sd + self.Tf
         return rdd, sdd, k, torque
 
     def balloon_acc(self, v):
         return self.aB - self.drag * v * abs(v)
 
     def lid_free_acc(self, L, Ld):
-        return -(self.mL * self.g * self.rL * N.cos(L) + self.cL * Ld) / self.I
+        if self.lid_stuck:
+            return 0.0
+        return -(self.mL * self.g * self.rL * N.cos(L) + self.cL * Ld + self.Tf) / self.I
 
     def h_lim(self, L, Ld):
         c, sn = N.cos(L), N.sin(L)
@@ -295,10 +306,25 @@ class Run:
         self.spring = False  # the rope that stretches pulling (with the sandbag on the arm)
         self.latched = False  # the radio's latch holds the lid open: only the balloon matters
         self.stops = STOPS - {"radio_on"} - ({"lid_open"} if mc.radio else set())
+        # a balloon smaller than the box: a disc among the lid and the walls (small_balloon.py),
+        # its four entries at the state's end instead of (hB, vB)
+        self.small = None
+        if mc.small:
+            if N is not math:
+                raise NotCovered("more digits with a balloon smaller than the box")
+            import small_balloon
+            self.small = small_balloon.SmallBalloon(mc, self)
 
     # The state: sandbag 'air' (M1) or 'arm' with rope 'slack' (M3, free fall) or 'taut' (M4);
     # free fall: y = [x, h, vx, vh, phiL, phiL', hB, vB]; M4: y = [r, phiS, phiL, r', phiS', hB, vB].
     def flow(self, y):
+        if self.small:
+            d = self.machine_flow(y[:-4] + [0.0, 0.0])[:-2]
+            _, _, L, Ld, Ldd, _ = self.kin(y)
+            return d + self.small.flow(y[-4:], L, Ld, Ldd)
+        return self.machine_flow(y)
+
+    def machine_flow(self, y):
         mc = self.mc
         if self.rope == "taut":
             r, s, L, rd, sd, hB, vB = y
@@ -366,19 +392,34 @@ class Run:
         mc = self.mc
         if mc.radio:
             radio = {"radio_on": mc.string - N.hypot(mc.Hx + mc.rL - mc.switch[0], mc.Hy + y[-2] - mc.switch[1])}
+            if self.small:
+                radio["radio_on"] = mc.string - N.hypot(mc.Hx + y[-4] - mc.switch[0], mc.Hy + y[-3] - mc.switch[1])
             if self.latched:
-                return radio
+                return radio | self.small_guards(y)
             return radio | self.machine_guards(y)
         return self.machine_guards(y)
+
+    def small_guards(self, y):
+        if not self.small:
+            return {}
+        _, _, L, Ld, Ldd, _ = self.kin(y)
+        return self.small.guards(y[-4:], L, Ld, Ldd)
 
     def machine_guards(self, y):
         mc = self.mc
         s, sd, L, Ld, Ldd, r = self.kin(y)
         out = {"lid_open": mc.top - L}
+        if mc.Th > 0 and self.lid == "free":  # the hinge's friction: its limit, or its slip stopping
+            if mc.lid_stuck:
+                out["hinge_stick"] = (mc.Th - abs(mc.mL * mc.g * mc.rL * N.cos(L))) / ((mc.m + mc.mL) * mc.g)
+            else:
+                out["hinge_slip"] = (1 if mc.Tf > 0 else -1) * Ld * 2 * mc.rL
         if self.lid == "free":
             out["lid_rests"] = L - mc.L0
         hl, hld = mc.h_lim(L, Ld)
-        if self.balloon == "free":
+        if self.small:
+            out |= self.small.guards(y[-4:], L, Ld, Ldd)
+        elif self.balloon == "free":
             out["balloon_caught"] = hl - y[-2]
         else:
             out["balloon_free"] = mc.balloon_acc(hld) - mc.h_lim_acc(L, Ld, Ldd)
@@ -422,14 +463,14 @@ class Run:
         return 0.5 * mc.m * v2 + mc.m * mc.g * h + 0.5 * mc.I * Ld * Ld + mc.mL * mc.g * mc.rL * N.sin(L)
 
     def to_free_fall(self, y):
-        r, s, L, rd, sd, hB, vB = y
+        r, s, L, rd, sd = y[:5]
         for _ in range(3):  # the lid's angle back onto the closure, from the integration's drift
             L -= F["C"](s, L, *self.mc.params) / F["CL"](s, L, *self.mc.params)
         Ld = self.mc.k(s, L)[0] * sd
         x, h = -r * N.cos(s), -r * N.sin(s)
         vx = -rd * N.cos(s) + r * sd * N.sin(s)
         vh = -rd * N.sin(s) - r * sd * N.cos(s)
-        return [x, h, vx, vh, L, Ld, hB, vB]
+        return [x, h, vx, vh, L, Ld] + y[5:]
 
     def event(self, name, t):
         self.events.append((name, t))
@@ -438,6 +479,9 @@ class Run:
     def settle_balloon(self, y, t, released, v_before=None):
         """A stuck balloon that the lid leaves behind goes free: by its rate if an impact jumped the
         lid's (v_before: the balloon's speed before it), else by its acceleration."""
+        if self.small:
+            _, _, L, Ld, Ldd, _ = self.kin(y)
+            return y[:-4] + self.small.decide(y[-4:], L, Ld, Ldd, t)
         if self.balloon != "stuck":
             return y
         s, sd, L, Ld, Ldd, r = self.kin(y)
@@ -455,7 +499,8 @@ class Run:
     def jerk(self, y, t, released):
         """The rope jerked straight from free fall with the sandbag on the arm."""
         mc = self.mc
-        x, h, vx, vh, L, Ld, hB, vB = y
+        x, h, vx, vh, L, Ld = y[:6]
+        hB, vB = (y[6], y[7]) if not self.small else (None, None)
         r = N.hypot(x, h)
         s = N.atan2(-h, -x)
         rd = -vx * N.cos(s) - vh * N.sin(s)
@@ -479,11 +524,22 @@ class Run:
         J, p = mc.m * r * r, mc.m * r * r * sd
         law = {"rope": sd1, "angular-momentum-sum": (p + mc.I * Ld) / (J + mc.I * k),
                "kinetic-energy": N.sqrt((J * sd * sd + mc.I * Ld * Ld) / (J + mc.I * k * k)) * (1 if sd1 >= 0 else -1)}
-        sd_law = law[mc.law]
+        rd1 = rd  # kept (eq. 5), but by the linear-momentum law
+        if mc.law == "linear-momentum":
+            sd_law, rd_law = linear_momentum_law(mc, r, s, L, k, x, h, vx, vh, Ld)
+        else:
+            sd_law, rd_law = law[mc.law], rd
         if not (self.lid == "rest" and k * sd_law <= 0):
-            sd1 = sd_law
+            sd1, rd1 = sd_law, rd_law
         self.lid, self.rope = "free", "taut"
-        y4 = [r, s, L, rd, sd1, hB, vB]
+        if mc.Th > 0:  # the hinge slips the way the jerk turns the lid (no impulse of its own)
+            if k * sd1 == 0:
+                raise NotCovered(f"a jerk that leaves the lid at rest against its hinge's friction at t = {t}")
+            if mc.lid_stuck:
+                self.event("lid_slips", t)
+            mc.lid_stuck, mc.Tf = False, mc.Th if k * sd1 > 0 else -mc.Th
+            released.add("hinge_slip")
+        y4 = [r, s, L, rd1, sd1] + (y[6:] if self.small else [hB, vB])
         self.event("rope_taut", t)
         self.energy.append((t, e0, self.energy_of(y4)))
         # hB, vB of a stuck balloon: decided on the velocities after the jerk
@@ -506,8 +562,10 @@ class Run:
         if mc.C(mc.s0, mc.L0) > -2 * mc.lR * 1e-9:
             raise NotCovered("a rope straight (or too short) at the start")
         hl, _ = mc.h_lim(mc.L0, 0.0)
-        y = [mc.x0, mc.h0, 0.0, 0.0, mc.L0, 0.0, hl, 0.0]
+        y = [mc.x0, mc.h0, 0.0, 0.0, mc.L0, 0.0] + (self.small.start(mc.L0) if self.small else [hl, 0.0])
         self.released = set()
+        if self.small:
+            self.balloon = "small"
         return march(self, y)
 
     # what march() asks of a run
@@ -516,13 +574,39 @@ class Run:
         return s, L
 
     def after_step(self, y):
+        if self.small:
+            _, _, L, Ld, _, _ = self.kin(y)
+            return y[:-4] + self.small.project(y[-4:], L, Ld)
         return y
 
     def closing_within_rounding(self, name, y):
+        if name.startswith("B_"):
+            _, _, L, Ld, Ldd, _ = self.kin(y)
+            return self.small.closing_within_rounding(name, y[-4:], L, Ld, Ldd)
         if name != "balloon_caught":
             return None
         _, _, L, Ld, Ldd, _ = self.kin(y)
         return balloon_closing(self.mc, L, Ld, Ldd, y[-2], y[-1])
+
+    def hinge(self, name, y, t, released):
+        """The hinge's Coulomb friction on a free lid (docs/extensions.md, "Friction"): a slip that
+        stops sticks while the lid's weight needs at most T_h to hold it, else slips back; a
+        stuck lid slips where its weight needs more."""
+        mc = self.mc
+        if self.rope == "taut":
+            raise NotCovered(f"the lid's hinge sticking with the rope straight on the massless seesaw at t = {t}")
+        x, h, vx, vh, L, Ld = y[:6]
+        weight = mc.mL * mc.g * mc.rL * N.cos(L)
+        if name == "hinge_slip" and abs(weight) <= mc.Th:
+            mc.lid_stuck, mc.Tf = True, num(0.0)
+            self.event("lid_sticks", t)
+            released.add("hinge_stick")
+            return self.settle_balloon(y[:5] + [num(0.0)] + y[6:], t, released)
+        if name == "hinge_stick":
+            self.event("lid_slips", t)
+        mc.lid_stuck, mc.Tf = False, -mc.Th if weight > 0 else mc.Th  # slipping the way it falls
+        released.add("hinge_slip")
+        return self.settle_balloon(y, t, released)
 
     def handle_event(self, name, y, t):
         return self.handle(name, y, t, self.released)
@@ -530,10 +614,15 @@ class Run:
     def noise(self, name):
         """How near zero a guard's value is rounding (and the integration's error), not a gap."""
         scale = {"rope_taut": self.mc.lR ** 2, "balloon_caught": self.mc.rB}
-        return 10 * self.tol * scale.get(name, 1.0)
+        return 10 * self.tol * (self.mc.rB if name.startswith("B_") else scale.get(name, 1.0))
 
     def handle(self, name, y, t, released):
         mc = self.mc
+        if name in ("hinge_slip", "hinge_stick"):
+            return self.hinge(name, y, t, released)
+        if name.startswith("B_") or name == "balloon_escapes":
+            _, _, L, Ld, Ldd, _ = self.kin(y)
+            return y[:-4] + self.small.handle(name, y[-4:], L, Ld, Ldd, t)
         if name == "radio_on":  # the string straight: it pulls with the balloon's net lift
             self.event("radio_on" if mc.lift >= mc.switch_force else "switch_stays_off", t)
             return None
@@ -544,13 +633,22 @@ class Run:
                 self.rope = "slack"
                 self.event("rope_slack", t)
             self.spring = False
-            x, h, vx, vh, L, Ld, hB, vB = y
+            x, h, vx, vh, L, Ld = y[:6]
+            if self.small:  # freed with its current velocity, the latched lid no limit to it
+                if "lid" in self.small.active:
+                    self.event("balloon_free", t)
+                self.small.latch(y[-4:], L)
+                self.latched, self.lid, self.bag, self.s_air = True, "rest", "air", N.atan2(-h, -x)
+                mc.Tf, mc.lid_stuck = num(0.0), False
+                return [x, h, vx, vh, L, 0.0] + y[6:]
+            hB, vB = y[6:8]
             if self.balloon == "stuck":  # freed with its current velocity
                 hB, vB = mc.h_lim(L, Ld)
                 self.balloon = "free"
                 self.event("balloon_free", t)
             # the rope let go for good, the sandbag off the seesaw (which stays where it is)
             self.latched, self.lid, self.bag, self.s_air = True, "rest", "air", N.atan2(-h, -x)
+            mc.Tf, mc.lid_stuck = num(0.0), False
             return [x, h, vx, vh, L, 0.0, hB, vB]
         if name == "balloon_free":
             return self.settle_balloon(y, t, released)
@@ -606,6 +704,7 @@ class Run:
             v_balloon = mc.h_lim(y[4], y[5])[1] if self.balloon == "stuck" else None
             self.event("lid_rests", t)
             self.lid = "rest"
+            mc.Tf, mc.lid_stuck = num(0.0), False  # the hinge's friction idle: the box holds the lid
             y = y[:4] + [mc.L0, 0.0] + y[6:]
             zero = 1e-9 * (mc.m + mc.mL) * mc.g
             pulls = self.tension(y, slack=not self.spring)[0] > (-zero if self.spring else zero)
@@ -636,11 +735,30 @@ class Run:
                 self.event("rope_slack", t)
                 released.add("rope_taut")
             self.lid = "rest"
+            mc.Tf, mc.lid_stuck = num(0.0), False  # the hinge's friction idle: the box holds the lid
             y = y[:4] + [mc.L0, 0.0] + y[6:]
             if v_balloon is not None:  # it goes on down, free, if it was moving
                 y = self.settle_balloon(y[:-1] + [v_balloon], t, released, v_balloon)
             return y
         raise AssertionError(name)
+
+
+def linear_momentum_law(mc, r, s, L, k, x, h, vx, vh, Ld):
+    """The `linear-momentum` law (docs/model.md, section 7): the linear momentum of the sandbag
+    and of the lid's centre of mass (r_L along the lid, moving r_L phiL' across it) kept through
+    the jerk, the sandbag on the arm and phiL' = k phiS' after it: phiS' and r' after it, from
+    the 2x2 system. The sandbag at -r (cos phiS, sin phiS): its velocity
+    -r' (cos, sin) + r phiS' (sin, -cos)."""
+    cs, sn, cL, sL = N.cos(s), N.sin(s), N.cos(L), N.sin(L)
+    m, lid = mc.m, mc.mL * mc.rL
+    Px, Py = m * vx - lid * Ld * sL, m * vh + lid * Ld * cL
+    # unknowns (r', phiS'): columns of the momentum after the jerk
+    a11, a12 = -m * cs, m * r * sn - lid * k * sL
+    a21, a22 = -m * sn, -m * r * cs + lid * k * cL
+    det = a11 * a22 - a12 * a21
+    if det == 0:
+        raise NotCovered("the linear-momentum law without a solution")
+    return (a11 * Py - a21 * Px) / det, (Px * a22 - a12 * Py) / det
 
 
 def quadratic_closing(g, r, a):
@@ -762,19 +880,21 @@ def simulate(keys, tol=1e-13, digits=None):
 def make_run(keys, tol=1e-13):
     """The run of the machine: the massless seesaw's (Run), or with a seesaw that has mass the
     full-coordinates one (full_coordinates.py)."""
-    if any(name in keys for name in RADIO) and float(keys.get("seesaw.mass", 0.0)) > 0:
-        raise NotCovered("the radio on a seesaw with mass")
     if float(keys.get("seesaw.mass", 0.0)) > 0:
-        if keys["run.impact_law"] != "rope":
-            raise NotCovered("an impact law other than rope on a seesaw with mass")
+        if keys["run.impact_law"] != "rope" and float(keys.get("restitution.rope", 0.0)) > 0:
+            raise NotCovered("restitution.rope with another impact law")
         if N is not math:
             raise NotCovered("more digits for a seesaw with mass")
         import full_coordinates
         return full_coordinates.HeavyRun(Machine(keys), keys, tol)
     for name in HEAVY:
-        if name in keys and name not in ("seesaw.mass", "damping.lid_hinge", "rope.stiffness", "rope.damping"):
+        if name in keys and name not in ("seesaw.mass", "damping.lid_hinge", "rope.stiffness", "rope.damping",
+                                          "friction.lid_hinge"):
             raise NotCovered(f"{name} on the massless seesaw")
-    return Run(Machine(keys), tol)
+    mc = Machine(keys)
+    if mc.Th > 0 and mc.stretchy:
+        raise NotCovered("the hinge's friction with the rope that stretches on the massless seesaw")
+    return Run(mc, tol)
 
 
 def main():
