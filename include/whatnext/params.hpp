@@ -126,6 +126,10 @@ struct Start {
   double lid_angle = 5.0 * units::kRadiansPerDegree;
 };
 
+// The tightest tolerance a run is integrated again at, where an event's time is uncertain (a
+// piece in simulate(), a machine in a sweep): about where a double's state stops improving.
+constexpr double kTightestTolerance = 1e-14;
+
 struct RunSettings {
   IntegratorKind integrator = IntegratorKind::adaptive;
   double step = 1e-3;                   // fixed step for euler/rk4 [s]

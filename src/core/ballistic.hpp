@@ -136,6 +136,11 @@ class BallisticStepper {
   double current_time() const { return exact_ ? t_ : inner_.current_time(); }
 
  private:
+  // The model's flow at y, with the run's memos where there are any (the same bits either way).
+  void flow(const State& y, State& dy) const {
+    ws_ ? model_->flow(*d_, y, dy, *ws_) : model_->flow(*d_, y, dy);
+  }
+
   // Which parts move in this piece, and whether each is known without integrating, read off the
   // model's flow at the start: the lid swinging free, undamped and unforced (its acceleration the
   // free lid's at rest at that angle: a pendulum, w = m g r / I from the same function at phiL =
@@ -143,7 +148,7 @@ class BallisticStepper {
   // small balloon sliding along the lid is integrated.
   bool closed_forms(const State& y) {
     State dy;
-    ws_ ? model_->flow(*d_, y, dy, *ws_) : model_->flow(*d_, y, dy);
+    flow(y, dy);
     lid_swings_ = !(dy[slot::phi_l] == 0.0 && dy[slot::dphi_l] == 0.0);
     balloon_rises_ = !(dy[slot::balloon_h] == 0.0 && dy[slot::balloon_v] == 0.0);
     if (lid_swings_ && !(dy[slot::phi_l] == y[slot::dphi_l] &&
@@ -198,8 +203,7 @@ class BallisticStepper {
     const BallisticStepper* self;
     void operator()(const Moving& r, Moving& dr, double t) const {
       State dy;
-      const State y = self->at(t, r);
-      self->ws_ ? self->model_->flow(*self->d_, y, dy, *self->ws_) : self->model_->flow(*self->d_, y, dy);
+      self->flow(self->at(t, r), dy);
       for (std::size_t k = 0; k < kMoving.size(); ++k) dr[k] = dy[kMoving[k]];
     }
   };

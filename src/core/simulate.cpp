@@ -43,12 +43,10 @@ constexpr std::int64_t kMaxAdaptiveSteps = 5'000'000;
 // An event's time is promised to this many seconds per unit of run.tolerance (1e-9 s at the
 // default 1e-12). A piece whose event is estimated less certain than kUncertainBeyond of that is
 // integrated again as tightly as brings the estimate to kUncertaintyAim of it (the estimate can
-// be a few times short of the real error, evaluate.cpp), down to the tightest tolerance a
-// double's state can hold.
+// be a few times short of the real error, evaluate.cpp), down to kTightestTolerance (params.hpp).
 constexpr double kEventSecondsPerTolerance = 1e3;
 constexpr double kUncertainBeyond = 0.3;
 constexpr double kUncertaintyAim = 0.1;
-constexpr double kTightestTolerance = 1e-14;
 
 [[noreturn]] void fail(const char* what, double t, Mode mode) {
   char msg[240];

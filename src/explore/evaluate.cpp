@@ -48,7 +48,6 @@ constexpr double kUncertaintyTarget = 0.2;
 constexpr double kAgreement = 0.5;
 constexpr double kTighter = 0.01;
 constexpr int kMaxReruns = 4;
-constexpr double kTightestTolerance = 1e-14;
 // A run again locates its events to this fraction of the accuracy: an impact's time error comes
 // out amplified in the later events, 3,500-fold in a lid that reaches its top slowly (a rope_taut
 // placed 3.4e-12 s late, within the tolerance/10 it was asked for, moved its lid_open by 1.2
